@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian packages fecontact needs, only those missing. Idempotent; run as root
+# (or with sudo available). Usage: scripts/setup.sh
+set -euo pipefail
+
+PKGS=(
+  build-essential cmake pkg-config clang-format
+  petsc-dev libmumps-dev libmetis-dev libhdf5-openmpi-dev openmpi-bin libopenmpi-dev
+  libopenblas0-pthread gmsh
+  python3-petsc4py python3-h5py python3-matplotlib python3-numpy python3-siconos
+)
+
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+else
+  echo "setup: all packages present"
+fi
