@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Generates the fecontact gmsh meshes (.msh, format 4.1 binary, linear tetrahedra) from the
+# .geo sources in meshes/. Usage: scripts/make_meshes.sh [OUTDIR]   (default: <repo>/meshes)
+#
+# A mesh is regenerated only when its .msh is missing or older than its .geo or this script
+# (the per-mesh parameters live here), so repeated calls are cheap. Quiet unless something
+# fails; exits non-zero naming the failed mesh(es). Deterministic: gmsh runs single-threaded.
+# Environment: GMSH (default: gmsh), FORCE=1 regenerates everything.
+set -euo pipefail
+
+SCRIPT="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/$(basename "${BASH_SOURCE[0]}")"
+GEODIR="$(cd "$(dirname "$SCRIPT")/../meshes" && pwd)"
+OUTDIR="${1:-$GEODIR}"
+GMSH="${GMSH:-gmsh}"
+FORCE="${FORCE:-0}"
+
+if ! command -v "$GMSH" >/dev/null 2>&1; then
+  echo "make_meshes: gmsh not found (install it: scripts/setup.sh)" >&2
+  exit 1
+fi
+mkdir -p "$OUTDIR"
+OUTDIR="$(cd "$OUTDIR" && pwd)"
+
+# name  geo  gmsh -setnumber parameters
+MESHES=(
+  "cube         cube.geo      lc 0.08"
+  "cube_coarse  cube.geo      lc 0.2"
+  "beam_n2      beam.geo      n 2"
+  "beam_n4      beam.geo      n 4"
+  "beam_n8      beam.geo      n 8"
+  "beam_n16     beam.geo      n 16"
+  "cylinder     cylinder.geo  lc 0.07"
+  "sphere       sphere.geo    lc 0.075"
+  "slab         slab.geo      lc 0.125"
+  "table1_18k   table1.geo    nx 20 ny 20 nz 15 d 0.05"
+  "table1_24k   table1.geo    nx 20 ny 19 nz 21 d 0.05"
+  "table1_30k   table1.geo    nx 20 ny 20 nz 25 d 0.05"
+  "table1_36k   table1.geo    nx 24 ny 20 nz 25 d 0.05"
+)
+
+failed=()
+for entry in "${MESHES[@]}"; do
+  read -r name geo params <<<"$entry"
+  src="$GEODIR/$geo"
+  out="$OUTDIR/$name.msh"
+  if [ "$FORCE" != 1 ] && [ -f "$out" ] && [ "$out" -nt "$src" ] && [ "$out" -nt "$SCRIPT" ]; then
+    continue
+  fi
+  setargs=()
+  read -r -a kv <<<"${params:-}"
+  for ((i = 0; i + 1 < ${#kv[@]}; i += 2)); do
+    setargs+=(-setnumber "${kv[i]}" "${kv[i + 1]}")
+  done
+  tmp="$OUTDIR/.$name.tmp$$.msh"
+  log="$OUTDIR/.$name.tmp$$.log"
+  # run from the .geo directory so relative includes would resolve; write to a temp file and
+  # rename, so an interrupted or failed run never leaves a fresh-looking partial .msh
+  if (cd "$GEODIR" && "$GMSH" -3 -nt 1 -format msh41 -bin "${setargs[@]}" "$src" -o "$tmp") >"$log" 2>&1 &&
+    ! grep -q "^Error" "$log" && [ -s "$tmp" ] && grep -aq '^\$EndElements' "$tmp"; then
+    mv -f "$tmp" "$out"
+    rm -f "$log"
+  else
+    echo "make_meshes: FAILED to generate $name.msh from $geo ($params); gmsh output:" >&2
+    sed 's/^/  /' "$log" | grep -E "Error|Warning" >&2 || tail -n 20 "$log" | sed 's/^/  /' >&2
+    rm -f "$tmp" "$log"
+    failed+=("$name")
+  fi
+done
+
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "make_meshes: failed: ${failed[*]}" >&2
+  exit 1
+fi
