@@ -1,0 +1,126 @@
+/* fecontact: deformable (P1 finite element) and rigid bodies in frictional contact with the
+   implicit constraint scheme of Zeng & Courtecuisse (2023). Public interface.
+
+   One time step flows one way (DESIGN.md section 2):
+     scene -> bodies (free motion, eq. 5) -> [collision -> contacts -> compliance -> scheme]
+           -> bodies (correction, eq. 20, and integration, eq. 2) -> output                    */
+#pragma once
+
+#include <petscdmplex.h>
+#include <petscksp.h>
+
+#define FECONTACT_VERSION "0.1.0"
+
+/* ---------------------------------------------------------------------------------------
+   Package: type registries, log events, phase timers
+   --------------------------------------------------------------------------------------- */
+PETSC_EXTERN PetscErrorCode FCInitializePackage(void);
+PETSC_EXTERN PetscErrorCode FCFinalizePackage(void);
+
+/* The phases of a time step. Each has one PetscLogEvent (named "FC<Name>") and a wall-clock
+   accumulator that the scene writes to /steps/timing/<name> after every step. */
+typedef enum {
+  FC_PHASE_ASSEMBLY,      /* element loops: K, f_int, M (eq. 5)                  */
+  FC_PHASE_FACTORIZATION, /* numeric (and symbolic) factorization of A           */
+  FC_PHASE_FREE_MOTION,   /* right-hand side b and the solve A dv_free = b       */
+  FC_PHASE_INTEGRATION,   /* v += dv, q += h v (eq. 2)                            */
+  FC_PHASE_OUTPUT,        /* HDF5 writes                                          */
+  FC_PHASE_NUM
+} FCPhase;
+PETSC_EXTERN const char *const FCPhaseNames[];
+PETSC_EXTERN PetscErrorCode    FCPhaseBegin(FCPhase);
+PETSC_EXTERN PetscErrorCode    FCPhaseEnd(FCPhase);
+PETSC_EXTERN PetscErrorCode    FCPhaseGetTimes(PetscReal[FC_PHASE_NUM]); /* seconds since last reset */
+PETSC_EXTERN PetscErrorCode    FCPhaseResetTimes(void);
+
+/* ---------------------------------------------------------------------------------------
+   Options helpers: every numeric option is checked for NaN/Inf and range, errors name it
+   --------------------------------------------------------------------------------------- */
+/* Inside PetscOptionsBegin/End: a real that must be finite, an array of exactly n finite reals */
+PETSC_EXTERN PetscErrorCode FCOptionsInt(PetscOptionItems *, const char opt[], const char text[], PetscInt *,
+                                         PetscBool *);
+PETSC_EXTERN PetscErrorCode FCOptionsReal(PetscOptionItems *, const char opt[], const char text[], PetscReal *,
+                                          PetscBool *);
+PETSC_EXTERN PetscErrorCode FCOptionsRealArray(PetscOptionItems *, const char opt[], const char text[], PetscInt n,
+                                               PetscReal[], PetscBool *);
+/* Range checks whose error names the option with its prefix */
+PETSC_EXTERN PetscErrorCode FCCheckPositive(MPI_Comm, const char prefix[], const char opt[], PetscReal);
+PETSC_EXTERN PetscErrorCode FCCheckNonNegative(MPI_Comm, const char prefix[], const char opt[], PetscReal);
+/* Every option given must have been read: a misspelt one is an error that names it */
+PETSC_EXTERN PetscErrorCode FCOptionsCheckUnused(MPI_Comm);
+
+/* ---------------------------------------------------------------------------------------
+   Shapes of rigid and kinematic bodies (and their mass properties)
+   --------------------------------------------------------------------------------------- */
+typedef const char *FCShapeType;
+#define FCSHAPEPLANE "plane"
+#define FCSHAPESPHERE "sphere"
+#define FCSHAPEBOX "box"
+#define FCSHAPECAPSULE "capsule"
+#define FCSHAPECYLINDER "cylinder"
+#define FCSHAPEMESH "mesh"
+
+/* ---------------------------------------------------------------------------------------
+   Body: a deformable FE body, a rigid body or a kinematic (prescribed-motion) body
+   --------------------------------------------------------------------------------------- */
+typedef struct _p_FCBody *FCBody;
+typedef const char       *FCBodyType;
+#define FCBODYFEM "fem"
+#define FCBODYRIGID "rigid"
+#define FCBODYKINEMATIC "kinematic"
+
+/* Energies of a body at its current state (joules) */
+typedef struct {
+  PetscReal kinetic, elastic, gravity;
+} FCEnergy;
+
+/* What the output needs to draw a body: owned vertices are a contiguous range
+   [vstart, vstart + nv) of a global numbering; cells hold global vertex numbers. */
+typedef struct {
+  PetscInt   nv, vstart, nv_global; /* owned vertices */
+  PetscInt   nc, cstart, nc_global; /* owned cells    */
+  PetscInt   nvpc;                  /* 4: tetrahedra, 3: triangles */
+  PetscInt  *cells;                 /* nc * nvpc global vertex numbers */
+  PetscReal *reference;             /* nv * 3 reference (placed, t = 0) coordinates */
+} FCBodyVisual;
+
+PETSC_EXTERN PetscFunctionList FCBodyList;
+PETSC_EXTERN PetscErrorCode    FCBodyRegister(const char[], PetscErrorCode (*)(FCBody));
+PETSC_EXTERN PetscErrorCode    FCBodyCreate(MPI_Comm, const char name[], FCBody *);
+PETSC_EXTERN PetscErrorCode    FCBodySetType(FCBody, FCBodyType);
+PETSC_EXTERN PetscErrorCode    FCBodyGetType(FCBody, FCBodyType *);
+PETSC_EXTERN PetscErrorCode    FCBodyGetName(FCBody, const char **);
+PETSC_EXTERN PetscErrorCode    FCBodySetFromOptions(FCBody);
+PETSC_EXTERN PetscErrorCode    FCBodySetTimeStep(FCBody, PetscReal);
+PETSC_EXTERN PetscErrorCode    FCBodySetGravity(FCBody, const PetscReal[3]);
+PETSC_EXTERN PetscErrorCode    FCBodySetUp(FCBody);
+PETSC_EXTERN PetscErrorCode    FCBodyComputeFreeMotion(FCBody, PetscReal t);
+PETSC_EXTERN PetscErrorCode    FCBodyIntegrate(FCBody, PetscReal t);
+PETSC_EXTERN PetscErrorCode    FCBodyGetCentroid(FCBody, PetscReal[3]);
+PETSC_EXTERN PetscErrorCode    FCBodyGetRotation(FCBody, PetscReal[4], PetscBool *);
+PETSC_EXTERN PetscErrorCode    FCBodyGetEnergy(FCBody, FCEnergy *);
+PETSC_EXTERN PetscErrorCode    FCBodyGetVisual(FCBody, const FCBodyVisual **);
+PETSC_EXTERN PetscErrorCode    FCBodyGetVisualPositions(FCBody, PetscReal[]);
+PETSC_EXTERN PetscErrorCode    FCBodyCheckState(FCBody, PetscInt step);
+PETSC_EXTERN PetscErrorCode    FCBodyDestroy(FCBody *);
+
+/* FE body specifics, for tests and tools: the DMPlex with the displacement section, the
+   displacement u and velocity v (global vectors), the elastic force f_int(u) (global). */
+PETSC_EXTERN PetscErrorCode FCBodyFEMGetDM(FCBody, DM *);
+PETSC_EXTERN PetscErrorCode FCBodyFEMGetState(FCBody, Vec *u, Vec *v);
+PETSC_EXTERN PetscErrorCode FCBodyFEMComputeElasticForce(FCBody, Vec u, Vec f);
+PETSC_EXTERN PetscErrorCode FCBodyFEMGetReferenceCoordinates(FCBody, Vec *);
+PETSC_EXTERN PetscErrorCode FCBodyFEMGetCounters(FCBody, PetscInt *nassembly, PetscInt *nfactorization);
+
+/* ---------------------------------------------------------------------------------------
+   Scene: the bodies, the time loop, the output
+   --------------------------------------------------------------------------------------- */
+typedef struct _p_FCScene *FCScene;
+
+PETSC_EXTERN PetscErrorCode FCSceneCreate(MPI_Comm, FCScene *);
+PETSC_EXTERN PetscErrorCode FCSceneSetFromOptions(FCScene);
+PETSC_EXTERN PetscErrorCode FCSceneSetUp(FCScene);
+PETSC_EXTERN PetscErrorCode FCSceneRun(FCScene);
+PETSC_EXTERN PetscErrorCode FCSceneStep(FCScene);
+PETSC_EXTERN PetscErrorCode FCSceneGetBody(FCScene, const char[], FCBody *);
+PETSC_EXTERN PetscErrorCode FCSceneDestroy(FCScene *);

@@ -1,0 +1,256 @@
+/* FCBody: one body of the scene, of type fem, rigid or kinematic (-<body>_type). The generic
+   part holds the placement and initial motion options shared by every type:
+     -<body>_type <fem|rigid|kinematic>       required
+     -<body>_center x,y,z            point about which -rotate and -angular_velocity act
+                                     (default: the mesh centroid for FE bodies and mesh shapes,
+                                     the origin for analytic shapes, which are centred on it)
+     -<body>_rotate ax,ay,az,deg     initial rotation about the centre (axis, degrees)
+     -<body>_translate x,y,z         then a translation (the centre moves with it)
+     -<body>_velocity vx,vy,vz       initial (fem, rigid) or prescribed (kinematic) velocity
+     -<body>_angular_velocity wx,wy,wz   same, about the centre, rad/s
+     -<body>_density rho             fem and rigid bodies (> 0)                          */
+#include "../fcimpl.h"
+#include <ctype.h>
+
+PetscFunctionList FCBodyList = NULL;
+
+PetscErrorCode FCBodyRegister(const char name[], PetscErrorCode (*create)(FCBody))
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFunctionListAdd(&FCBodyList, name, create));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyRegisterAll(void)
+{
+  PetscFunctionBegin;
+  PetscCall(FCBodyRegister(FCBODYFEM, FCBodyCreate_FEM));
+  PetscCall(FCBodyRegister(FCBODYRIGID, FCBodyCreate_Rigid));
+  PetscCall(FCBodyRegister(FCBODYKINEMATIC, FCBodyCreate_Kinematic));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyCreate(MPI_Comm comm, const char name[], FCBody *body)
+{
+  FCBody b;
+  size_t len;
+
+  PetscFunctionBegin;
+  PetscCall(FCInitializePackage());
+  PetscCall(PetscStrlen(name, &len));
+  PetscCheck(len > 0 && len < FC_MAX_NAME - 1, comm, PETSC_ERR_USER_INPUT,
+             "Body name '%s' must have 1 to %d characters", name, FC_MAX_NAME - 2);
+  for (size_t i = 0; i < len; i++)
+    PetscCheck(isalnum((unsigned char)name[i]) || name[i] == '_', comm, PETSC_ERR_USER_INPUT,
+               "Body name '%s' may only contain letters, digits and '_'", name);
+  PetscCheck(!isdigit((unsigned char)name[0]), comm, PETSC_ERR_USER_INPUT, "Body name '%s' must not start with a digit",
+             name);
+  PetscCall(PetscNew(&b));
+  b->comm = comm;
+  PetscCall(PetscStrncpy(b->name, name, sizeof(b->name)));
+  PetscCall(PetscSNPrintf(b->prefix, sizeof(b->prefix), "%s_", name));
+  b->rotate[2] = 1.0; /* axis z, angle 0 */
+  b->h         = 0.01;
+  *body        = b;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodySetType(FCBody body, FCBodyType type)
+{
+  PetscErrorCode (*create)(FCBody) = NULL;
+
+  PetscFunctionBegin;
+  PetscCheck(!body->data, body->comm, PETSC_ERR_ORDER, "Body '%s' already has a type", body->name);
+  PetscCall(PetscFunctionListFind(FCBodyList, type, &create));
+  PetscCheck(create, body->comm, PETSC_ERR_USER_INPUT,
+             "Unknown body type '%s' in -%stype (known: fem, rigid, kinematic)", type, body->prefix);
+  PetscCall(PetscStrncpy(body->type, type, sizeof(body->type)));
+  PetscCall((*create)(body));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetType(FCBody body, FCBodyType *type)
+{
+  PetscFunctionBegin;
+  *type = body->type;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetName(FCBody body, const char **name)
+{
+  PetscFunctionBegin;
+  *name = body->name;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyReadPlacement(FCBody body)
+{
+  PetscFunctionBegin;
+  PetscOptionsBegin(body->comm, body->prefix, "Body placement and initial motion", "FCBody");
+  PetscCall(
+      FCOptionsRealArray(PetscOptionsObject, "-center", "Centre of rotation", 3, body->center, &body->center_set));
+  PetscCall(FCOptionsRealArray(PetscOptionsObject, "-rotate", "Initial rotation: axis x,y,z and angle in degrees", 4,
+                               body->rotate, NULL));
+  PetscCall(FCOptionsRealArray(PetscOptionsObject, "-translate", "Initial translation", 3, body->translate, NULL));
+  PetscCall(
+      FCOptionsRealArray(PetscOptionsObject, "-velocity", "Initial (or prescribed) velocity", 3, body->velocity, NULL));
+  PetscCall(FCOptionsRealArray(PetscOptionsObject, "-angular_velocity",
+                               "Initial (or prescribed) angular velocity about the centre, rad/s", 3,
+                               body->angular_velocity, NULL));
+  PetscOptionsEnd();
+  PetscCheck(body->rotate[3] == 0.0 || FCDot(body->rotate, body->rotate) > 0.0, body->comm, PETSC_ERR_USER_INPUT,
+             "Option -%srotate: the rotation axis must be non-zero", body->prefix);
+  PetscFunctionReturn(0);
+}
+
+void FCBodyPlacementRotation(FCBody body, PetscReal R[9])
+{
+  PetscReal q[4];
+  FCQuatFromAxisAngle(body->rotate, body->rotate[3] * PETSC_PI / 180.0, q);
+  FCQuatToMat3(q, R);
+}
+
+PetscErrorCode FCBodySetFromOptions(FCBody body)
+{
+  char      type[FC_MAX_NAME] = "";
+  PetscBool set;
+
+  PetscFunctionBegin;
+  PetscOptionsBegin(body->comm, body->prefix, "Body options", "FCBody");
+  PetscCall(PetscOptionsFList("-type", "Body type", "FCBodySetType", FCBodyList, body->type, type, sizeof(type), &set));
+  PetscOptionsEnd();
+  if (set) PetscCall(FCBodySetType(body, type));
+  PetscCheck(body->data || body->type[0], body->comm, PETSC_ERR_USER_INPUT,
+             "Body '%s' needs -%stype (fem, rigid or kinematic)", body->name, body->prefix);
+  PetscCall(FCBodyReadPlacement(body));
+  if (body->ops.setfromoptions) PetscCall((*body->ops.setfromoptions)(body));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodySetTimeStep(FCBody body, PetscReal h)
+{
+  PetscFunctionBegin;
+  PetscCheck(!body->setupcalled, body->comm, PETSC_ERR_ORDER, "Set the time step of body '%s' before FCBodySetUp()",
+             body->name);
+  body->h = h;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodySetGravity(FCBody body, const PetscReal g[3])
+{
+  PetscFunctionBegin;
+  for (int i = 0; i < 3; i++) body->gravity[i] = g[i];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodySetUp(FCBody body)
+{
+  PetscFunctionBegin;
+  if (body->setupcalled) PetscFunctionReturn(0);
+  PetscCheck(body->type[0], body->comm, PETSC_ERR_ORDER, "Body '%s' has no type", body->name);
+  PetscCall((*body->ops.setup)(body));
+  body->setupcalled = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyComputeFreeMotion(FCBody body, PetscReal t)
+{
+  PetscFunctionBegin;
+  if (body->ops.freemotion) PetscCall((*body->ops.freemotion)(body, t));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyIntegrate(FCBody body, PetscReal t)
+{
+  PetscFunctionBegin;
+  PetscCall(FCPhaseBegin(FC_PHASE_INTEGRATION));
+  PetscCall((*body->ops.integrate)(body, t));
+  PetscCall(FCPhaseEnd(FC_PHASE_INTEGRATION));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetCentroid(FCBody body, PetscReal c[3])
+{
+  PetscFunctionBegin;
+  PetscCall((*body->ops.getcentroid)(body, c));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetRotation(FCBody body, PetscReal q[4], PetscBool *has)
+{
+  PetscFunctionBegin;
+  *has = PETSC_FALSE;
+  if (body->ops.getrotation) PetscCall((*body->ops.getrotation)(body, q, has));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetEnergy(FCBody body, FCEnergy *E)
+{
+  PetscFunctionBegin;
+  E->kinetic = E->elastic = E->gravity = 0.0;
+  if (body->ops.getenergy) PetscCall((*body->ops.getenergy)(body, E));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetVisual(FCBody body, const FCBodyVisual **vis)
+{
+  PetscFunctionBegin;
+  *vis = &body->visual;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetVisualPositions(FCBody body, PetscReal x[])
+{
+  PetscFunctionBegin;
+  PetscCall((*body->ops.getvisualpositions)(body, x));
+  PetscFunctionReturn(0);
+}
+
+/* A state with NaN or Inf stops the run with the step and the body named */
+PetscErrorCode FCBodyCheckState(FCBody body, PetscInt step)
+{
+  PetscFunctionBegin;
+  if (body->ops.checkstate) PetscCall((*body->ops.checkstate)(body, step));
+  PetscFunctionReturn(0);
+}
+
+/* Pictures of analytic shapes: the tessellation lives on rank 0 of the body's communicator */
+PetscErrorCode FCBodyVisualFromShape(FCBody body, FCShape shape)
+{
+  PetscMPIInt   rank;
+  FCBodyVisual *vis = &body->visual;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
+  vis->nvpc = 3;
+  if (rank == 0) {
+    PetscInt nt;
+    PetscCall((*shape->tessellate)(shape, &vis->nv, &vis->reference, &nt, &vis->cells));
+    vis->nc = nt;
+  }
+  PetscCallMPI(MPI_Bcast(&vis->nv, 1, MPIU_INT, 0, body->comm));
+  PetscCallMPI(MPI_Bcast(&vis->nc, 1, MPIU_INT, 0, body->comm));
+  vis->nv_global = vis->nv;
+  vis->nc_global = vis->nc;
+  if (rank) vis->nv = vis->nc = 0;
+  vis->vstart = vis->cstart = 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyVisualDestroy(FCBodyVisual *vis)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree(vis->cells));
+  PetscCall(PetscFree(vis->reference));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyDestroy(FCBody *body)
+{
+  PetscFunctionBegin;
+  if (!*body) PetscFunctionReturn(0);
+  if ((*body)->ops.destroy) PetscCall((*(*body)->ops.destroy)(*body));
+  PetscCall(FCBodyVisualDestroy(&(*body)->visual));
+  PetscCall(PetscFree(*body));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,77 @@
+#include "pose.h"
+
+/* Reads the shape, places its centre and orientation from the body's placement options and
+   prepares the picture. For analytic shapes the centre is -<body>_center (default origin);
+   for a mesh shape it is the mesh centroid, rotated about -<body>_center when given. The
+   initial velocity of the centre is v + omega x (x_centre - centre of rotation). */
+PetscErrorCode FCPoseSetUp(FCBody body, FCPose *P)
+{
+  PetscReal R0[9], rot_center[3], c[3];
+  PetscBool ismesh;
+
+  PetscFunctionBegin;
+  PetscCall(FCShapeCreateFromOptions(body->comm, body->prefix, body->name, &P->shape));
+  PetscCall(PetscStrcmp(P->shape->type, FCSHAPEMESH, &ismesh));
+  if (P->shape->massproperties) PetscCall((*P->shape->massproperties)(P->shape, &P->volume, P->J));
+  FCBodyPlacementRotation(body, R0);
+  FCQuatFromAxisAngle(body->rotate, body->rotate[3] * PETSC_PI / 180.0, P->q);
+  FCQuatNormalize(P->q);
+  if (ismesh) {
+    FCMesh   *mesh = (FCMesh *)P->shape->data;
+    PetscReal V, J[9];
+    PetscCall(FCMeshComputeMassProperties(mesh, &V, c, J));
+    for (int d = 0; d < 3; d++) rot_center[d] = body->center_set ? body->center[d] : c[d];
+  } else {
+    for (int d = 0; d < 3; d++) c[d] = rot_center[d] = body->center[d];
+  }
+  {
+    PetscReal r[3], Rr[3], wr[3];
+    for (int d = 0; d < 3; d++) r[d] = c[d] - rot_center[d];
+    FCMat3Vec(R0, r, Rr);
+    for (int d = 0; d < 3; d++) P->x[d] = rot_center[d] + Rr[d] + body->translate[d];
+    FCCross(body->angular_velocity, Rr, wr);
+    for (int d = 0; d < 3; d++) {
+      P->v[d] = body->velocity[d] + wr[d];
+      P->w[d] = body->angular_velocity[d];
+    }
+  }
+  for (int d = 0; d < 3; d++) body->center[d] = rot_center[d] + body->translate[d];
+  for (int d = 0; d < 3; d++) P->x0[d] = P->x[d];
+  for (int d = 0; d < 4; d++) P->q0[d] = P->q[d];
+
+  /* picture: vertices kept in the body frame */
+  if (ismesh) {
+    FCMesh *mesh = (FCMesh *)P->shape->data;
+    PetscCall(FCMeshCreateVisual(mesh, &body->visual));
+    PetscCall(PetscMalloc1(3 * body->visual.nv, &P->bodyVerts));
+    for (PetscInt i = 0; i < body->visual.nv; i++)
+      for (int d = 0; d < 3; d++) P->bodyVerts[3 * i + d] = body->visual.reference[3 * i + d] - c[d];
+  } else {
+    PetscCall(FCBodyVisualFromShape(body, P->shape));
+    PetscCall(PetscMalloc1(3 * body->visual.nv, &P->bodyVerts));
+    PetscCall(PetscArraycpy(P->bodyVerts, body->visual.reference, 3 * body->visual.nv));
+  }
+  PetscCall(FCPoseVisualPositions(body, P, body->visual.reference)); /* reference = placed at t = 0 */
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPoseVisualPositions(FCBody body, FCPose *P, PetscReal x[])
+{
+  PetscReal R[9];
+
+  PetscFunctionBegin;
+  FCQuatToMat3(P->q, R);
+  for (PetscInt i = 0; i < body->visual.nv; i++) {
+    FCMat3Vec(R, &P->bodyVerts[3 * i], &x[3 * i]);
+    for (int d = 0; d < 3; d++) x[3 * i + d] += P->x[d];
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPoseDestroy(FCPose *P)
+{
+  PetscFunctionBegin;
+  PetscCall(FCShapeDestroy(&P->shape));
+  PetscCall(PetscFree(P->bodyVerts));
+  PetscFunctionReturn(0);
+}

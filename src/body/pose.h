@@ -1,0 +1,16 @@
+/* The pose of a body that moves rigidly (rigid and kinematic bodies): its shape, the position
+   x of its centre, its orientation q (unit quaternion, body to world) and their rates. */
+#pragma once
+#include "../fcimpl.h"
+
+typedef struct {
+  FCShape    shape;
+  PetscReal  x[3], q[4], v[3], w[3]; /* centre, orientation, velocity, angular velocity (world) */
+  PetscReal  x0[3], q0[4];           /* at t = 0 */
+  PetscReal  volume, J[9];           /* volume and inertia per unit density, body frame */
+  PetscReal *bodyVerts;              /* visual vertices in the body frame (nv x 3) */
+} FCPose;
+
+PETSC_INTERN PetscErrorCode FCPoseSetUp(FCBody, FCPose *);
+PETSC_INTERN PetscErrorCode FCPoseVisualPositions(FCBody, FCPose *, PetscReal[]);
+PETSC_INTERN PetscErrorCode FCPoseDestroy(FCPose *);

@@ -1,0 +1,178 @@
+/* Private definitions shared by the implementation files of fecontact. */
+#pragma once
+
+#include <fecontact.h>
+
+#define FC_MAX_NAME 64
+
+/* ---------------------------------------------------------------------------------------
+   Small dense kernels (src/util/linalg.c): 3-vectors, 3x3 matrices (row-major), quaternions
+   --------------------------------------------------------------------------------------- */
+PETSC_INTERN void           FCMat3Identity(PetscReal[9]);
+PETSC_INTERN void           FCMat3Mult(const PetscReal[9], const PetscReal[9], PetscReal[9]);
+PETSC_INTERN void           FCMat3MultTranspose(const PetscReal[9], const PetscReal[9], PetscReal[9]); /* A^T B */
+PETSC_INTERN void           FCMat3Transpose(const PetscReal[9], PetscReal[9]);
+PETSC_INTERN void           FCMat3Vec(const PetscReal[9], const PetscReal[3], PetscReal[3]);
+PETSC_INTERN void           FCMat3TVec(const PetscReal[9], const PetscReal[3], PetscReal[3]);
+PETSC_INTERN PetscReal      FCMat3Det(const PetscReal[9]);
+PETSC_INTERN PetscErrorCode FCMat3Inverse(const PetscReal[9], PetscReal[9]);
+PETSC_INTERN void           FCMat3Polar(const PetscReal F[9], PetscReal R[9]); /* F = R S, det R = +1 */
+PETSC_INTERN void           FCCross(const PetscReal[3], const PetscReal[3], PetscReal[3]);
+PETSC_INTERN PetscReal      FCDot(const PetscReal[3], const PetscReal[3]);
+PETSC_INTERN void FCQuatFromAxisAngle(const PetscReal axis[3], PetscReal angle, PetscReal q[4]); /* q = (w,x,y,z) */
+PETSC_INTERN void FCQuatMult(const PetscReal[4], const PetscReal[4], PetscReal[4]);
+PETSC_INTERN void FCQuatNormalize(PetscReal[4]);
+PETSC_INTERN void FCQuatToMat3(const PetscReal[4], PetscReal[9]);
+PETSC_INTERN void FCQuatIntegrate(const PetscReal q[4], const PetscReal omega[3], PetscReal h, PetscReal qn[4]);
+
+/* ---------------------------------------------------------------------------------------
+   P1 tetrahedron kernels (src/fem/tet.c)
+   --------------------------------------------------------------------------------------- */
+/* Reference data of one tet: inverse edge matrix Dm^-1 (Dm = [X1-X0, X2-X0, X3-X0]) and volume */
+PETSC_INTERN PetscErrorCode FCTetReference(const PetscReal X[12], PetscReal Dminv[9], PetscReal *vol);
+/* Shape function gradients grad N_a (4 x 3) from Dm^-1 */
+PETSC_INTERN void FCTetGradients(const PetscReal Dminv[9], PetscReal G[12]);
+/* Linear isotropic element stiffness (12 x 12, row-major) */
+PETSC_INTERN void FCTetStiffness(const PetscReal G[12], PetscReal vol, PetscReal lambda, PetscReal mu,
+                                 PetscReal K[144]);
+/* Mass of a tet, consistent (12 x 12) or lumped (diagonal, stored dense) */
+PETSC_INTERN void FCTetMass(PetscReal rho, PetscReal vol, PetscBool lumped, PetscReal M[144]);
+
+/* ---------------------------------------------------------------------------------------
+   Materials (src/material/): one file per model, registered in FCMaterialList
+   --------------------------------------------------------------------------------------- */
+typedef struct _p_FCMaterial *FCMaterial;
+struct _p_FCMaterial {
+  char      type[FC_MAX_NAME];
+  PetscReal young, poisson, lambda, mu;
+  PetscBool linear; /* constant stiffness: K assembled and A factored once per run */
+  /* Element internal force f (12) and tangent stiffness K (12x12) at current positions x,
+     reference positions X. Either output may be NULL. */
+  PetscErrorCode (*element)(FCMaterial, const PetscReal x[12], const PetscReal X[12], const PetscReal Dminv[9],
+                            PetscReal vol, PetscReal f[12], PetscReal K[144]);
+  /* Element elastic energy */
+  PetscErrorCode (*energy)(FCMaterial, const PetscReal x[12], const PetscReal X[12], const PetscReal Dminv[9],
+                           PetscReal vol, PetscReal *E);
+};
+PETSC_EXTERN PetscFunctionList FCMaterialList;
+PETSC_INTERN PetscErrorCode    FCMaterialRegisterAll(void);
+PETSC_INTERN PetscErrorCode    FCMaterialCreate(const char type[], PetscReal young, PetscReal poisson, FCMaterial *);
+PETSC_INTERN PetscErrorCode    FCMaterialDestroy(FCMaterial *);
+PETSC_INTERN PetscErrorCode    FCMaterialCreate_Linear(FCMaterial);
+PETSC_INTERN PetscErrorCode    FCMaterialCreate_Corotational(FCMaterial);
+
+/* ---------------------------------------------------------------------------------------
+   Shapes (src/shape/): analytic geometry of rigid and kinematic bodies
+   --------------------------------------------------------------------------------------- */
+typedef struct _p_FCShape *FCShape;
+struct _p_FCShape {
+  char      type[FC_MAX_NAME];
+  PetscReal radius, half_extents[3], length, normal[3];
+  PetscBool bounded; /* a plane is not: it has no mass and can only be kinematic */
+  void     *data;    /* shape-specific (the mesh of a mesh shape)               */
+  PetscErrorCode (*setfromoptions)(PetscOptionItems *, FCShape, const char bodyname[]);
+  PetscErrorCode (*setup)(FCShape, MPI_Comm, const char prefix[], const char bodyname[]);
+  PetscErrorCode (*destroy)(FCShape);
+  /* Volume, and inertia tensor per unit density about the centre, in the body frame */
+  PetscErrorCode (*massproperties)(FCShape, PetscReal *volume, PetscReal J[9]);
+  /* Triangulated surface in the body frame for pictures: nv vertices, nt triangles */
+  PetscErrorCode (*tessellate)(FCShape, PetscInt *nv, PetscReal **xyz, PetscInt *nt, PetscInt **tri);
+};
+PETSC_EXTERN PetscFunctionList FCShapeList;
+PETSC_INTERN PetscErrorCode    FCShapeRegisterAll(void);
+PETSC_INTERN PetscErrorCode FCShapeCreateFromOptions(MPI_Comm, const char prefix[], const char bodyname[], FCShape *);
+PETSC_INTERN PetscErrorCode FCShapeDestroy(FCShape *);
+PETSC_INTERN PetscErrorCode FCShapeCreate_Plane(FCShape);
+PETSC_INTERN PetscErrorCode FCShapeCreate_Sphere(FCShape);
+PETSC_INTERN PetscErrorCode FCShapeCreate_Box(FCShape);
+PETSC_INTERN PetscErrorCode FCShapeCreate_Capsule(FCShape);
+PETSC_INTERN PetscErrorCode FCShapeCreate_Cylinder(FCShape);
+PETSC_INTERN PetscErrorCode FCShapeCreate_Mesh(FCShape);
+
+/* ---------------------------------------------------------------------------------------
+   Tetrahedral mesh of a body (src/fem/mesh.c): reading, validation, per-cell vertex lists
+   --------------------------------------------------------------------------------------- */
+typedef struct {
+  DM         dm; /* DMPlex, distributed, interpolated                            */
+  PetscInt   cStart, cEnd, vStart, vEnd;
+  PetscInt  *cellVerts;                      /* (cEnd-cStart) x 4 local vertex points in closure order      */
+  PetscReal *X;                              /* (vEnd-vStart) x 3 placed reference coordinates              */
+  PetscBool *owned;                          /* (vEnd-vStart) vertex owned by this rank                      */
+  IS         vertexNumbering, cellNumbering; /* global numbers (negative: not owned)      */
+  PetscInt  *visVert;                        /* owned vertices (local index) in increasing global number    */
+} FCMesh;
+PETSC_INTERN PetscErrorCode FCMeshLoad(MPI_Comm, const char prefix[], const char bodyname[], FCMesh *);
+PETSC_INTERN PetscErrorCode FCMeshTransform(FCMesh *, const PetscReal center[3], const PetscReal R[9],
+                                            const PetscReal t[3]);
+PETSC_INTERN PetscErrorCode FCMeshCheckCells(FCMesh *, const char bodyname[]);
+PETSC_INTERN PetscErrorCode FCMeshComputeMassProperties(FCMesh *, PetscReal *volume, PetscReal centroid[3],
+                                                        PetscReal J[9]);
+PETSC_INTERN PetscErrorCode FCMeshCreateVisual(FCMesh *, FCBodyVisual *);
+PETSC_INTERN PetscErrorCode FCMeshDestroy(FCMesh *);
+
+/* ---------------------------------------------------------------------------------------
+   Body
+   --------------------------------------------------------------------------------------- */
+typedef struct {
+  PetscErrorCode (*setfromoptions)(FCBody);
+  PetscErrorCode (*setup)(FCBody);
+  PetscErrorCode (*freemotion)(FCBody, PetscReal t);
+  PetscErrorCode (*integrate)(FCBody, PetscReal t);
+  PetscErrorCode (*getcentroid)(FCBody, PetscReal[3]);
+  PetscErrorCode (*getrotation)(FCBody, PetscReal[4], PetscBool *);
+  PetscErrorCode (*getenergy)(FCBody, FCEnergy *);
+  PetscErrorCode (*getvisualpositions)(FCBody, PetscReal[]);
+  PetscErrorCode (*checkstate)(FCBody, PetscInt);
+  PetscErrorCode (*destroy)(FCBody);
+} FCBodyOps;
+
+struct _p_FCBody {
+  MPI_Comm  comm;
+  char      name[FC_MAX_NAME];
+  char      prefix[FC_MAX_NAME + 1]; /* "<name>_" */
+  char      type[FC_MAX_NAME];
+  FCBodyOps ops;
+  void     *data;
+  PetscBool setupcalled;
+  PetscReal h, gravity[3];
+  /* placement and initial motion, common to every type */
+  PetscReal    translate[3], rotate[4], center[3], velocity[3], angular_velocity[3];
+  PetscBool    center_set;
+  PetscReal    density;
+  FCBodyVisual visual;
+};
+
+PETSC_INTERN PetscErrorCode FCBodyCreate_FEM(FCBody);
+PETSC_INTERN PetscErrorCode FCBodyCreate_Rigid(FCBody);
+PETSC_INTERN PetscErrorCode FCBodyCreate_Kinematic(FCBody);
+PETSC_INTERN PetscErrorCode FCBodyRegisterAll(void);
+/* Reads the placement options of a body: -<name>_translate, _rotate, _center, _velocity,
+   _angular_velocity. */
+PETSC_INTERN PetscErrorCode FCBodyReadPlacement(FCBody);
+/* Rotation matrix of -<name>_rotate */
+PETSC_INTERN void           FCBodyPlacementRotation(FCBody, PetscReal R[9]);
+PETSC_INTERN PetscErrorCode FCBodyVisualFromShape(FCBody, FCShape);
+PETSC_INTERN PetscErrorCode FCBodyVisualDestroy(FCBodyVisual *);
+
+/* ---------------------------------------------------------------------------------------
+   Output (src/io/): one HDF5 file per run, an XDMF file beside it for ParaView
+   --------------------------------------------------------------------------------------- */
+typedef struct _p_FCOutput *FCOutput;
+PETSC_INTERN PetscErrorCode FCOutputCreate(MPI_Comm, const char filename[], FCOutput *);
+PETSC_INTERN PetscErrorCode FCOutputWriteHeader(FCOutput, PetscInt nbodies, FCBody[], PetscReal h, PetscInt nsteps,
+                                                PetscInt every);
+PETSC_INTERN PetscErrorCode FCOutputRecordStep(FCOutput, PetscInt step, PetscReal t,
+                                               const PetscReal timing[FC_PHASE_NUM], PetscInt nbodies, FCBody[]);
+PETSC_INTERN PetscErrorCode FCOutputWriteFrame(FCOutput, PetscInt step, PetscReal t, PetscInt nbodies, FCBody[]);
+PETSC_INTERN PetscErrorCode FCOutputFlush(FCOutput);
+PETSC_INTERN PetscErrorCode FCOutputDestroy(FCOutput *);
+PETSC_INTERN PetscErrorCode FCXdmfWrite(const char h5name[], const char xmfname[], PetscInt nbodies, FCBody[],
+                                        PetscInt nframes, const PetscReal times[]);
+
+/* Progress line on rank 0 (src/util/progress.c) */
+typedef struct {
+  PetscLogDouble start, last;
+  PetscBool      quiet;
+} FCProgress;
+PETSC_INTERN PetscErrorCode FCProgressStart(FCProgress *, PetscBool quiet);
+PETSC_INTERN PetscErrorCode FCProgressUpdate(FCProgress *, MPI_Comm, PetscInt step, PetscInt nsteps, PetscReal t);

@@ -1,0 +1,31 @@
+/* Package registration: type registries (bodies, materials, shapes) and log events. */
+#include "fcimpl.h"
+
+static PetscBool    initialized = PETSC_FALSE;
+static PetscClassId FC_CLASSID;
+
+PETSC_INTERN PetscErrorCode FCPhaseRegisterEvents(PetscClassId);
+
+PetscErrorCode FCInitializePackage(void)
+{
+  PetscFunctionBegin;
+  if (initialized) PetscFunctionReturn(0);
+  initialized = PETSC_TRUE;
+  PetscCall(PetscClassIdRegister("fecontact", &FC_CLASSID));
+  PetscCall(FCPhaseRegisterEvents(FC_CLASSID));
+  PetscCall(FCBodyRegisterAll());
+  PetscCall(FCMaterialRegisterAll());
+  PetscCall(FCShapeRegisterAll());
+  PetscCall(PetscRegisterFinalize(FCFinalizePackage));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCFinalizePackage(void)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFunctionListDestroy(&FCBodyList));
+  PetscCall(PetscFunctionListDestroy(&FCMaterialList));
+  PetscCall(PetscFunctionListDestroy(&FCShapeList));
+  initialized = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}

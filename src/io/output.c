@@ -1,0 +1,454 @@
+/* HDF5 output of a run (schema in docs/output.md). Per-step rows are buffered and written,
+   with the frame, at every output step; the file is flushed after each, so a run that stops
+   keeps every completed output step readable. Parallel HDF5 (MPI-IO): each rank writes the
+   positions of the vertices it owns; rank 0 writes the per-step rows. */
+#include "../fcimpl.h"
+#include <hdf5.h>
+#include <time.h>
+
+#define FC_MAX_BODIES 256
+
+typedef struct {
+  hid_t group, centroid, rotation, energy, positions;
+} BodyOut;
+
+struct _p_FCOutput {
+  MPI_Comm    comm;
+  PetscMPIInt rank;
+  char        filename[PETSC_MAX_PATH_LEN], xdmfname[PETSC_MAX_PATH_LEN];
+  hid_t       file, time, step, energy, timing[FC_PHASE_NUM], ftime, fstep;
+  PetscInt    nbodies;
+  FCBody     *bodies;
+  BodyOut    *bo;
+  /* rows buffered since the last flush (rank 0) */
+  PetscInt  nrows, maxrows;
+  double   *rtime, *renergy, *rtiming, *rbody; /* rbody: per row, per body: centroid 3, quaternion 4, energy 3 */
+  PetscInt *rstep;
+  PetscInt  nframes, xdmfwritten;
+  double   *frametimes;
+  PetscInt  maxframes;
+};
+
+#define FCH5Check(call, msg)                                                                                           \
+  do {                                                                                                                 \
+    if ((call) < 0) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 failed: %s", msg);                                   \
+  } while (0)
+
+/* An extendible dataset of rows of shape dims[1..rank-1], chunked by row */
+static PetscErrorCode CreateRows(hid_t loc, const char name[], hid_t type, int rank, const hsize_t rowdims[],
+                                 hsize_t chunkrows, hid_t *dset)
+{
+  hsize_t dims[3] = {0, 0, 0}, maxdims[3] = {H5S_UNLIMITED, 0, 0}, chunk[3] = {chunkrows, 0, 0};
+  hid_t   space, plist;
+
+  PetscFunctionBegin;
+  for (int i = 1; i < rank; i++) dims[i] = maxdims[i] = chunk[i] = rowdims[i - 1];
+  space = H5Screate_simple(rank, dims, maxdims);
+  plist = H5Pcreate(H5P_DATASET_CREATE);
+  FCH5Check(H5Pset_chunk(plist, rank, chunk), "chunk");
+  *dset = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+  FCH5Check(*dset, name);
+  H5Pclose(plist);
+  H5Sclose(space);
+  PetscFunctionReturn(0);
+}
+
+/* Append n rows (collective extend); rank 0 writes data, the others take part with nothing */
+static PetscErrorCode AppendRows(FCOutput out, hid_t dset, hid_t memtype, hsize_t n, const void *data)
+{
+  hid_t   fspace, mspace;
+  int     rank;
+  hsize_t dims[3], start[3] = {0, 0, 0}, count[3];
+
+  PetscFunctionBegin;
+  if (!n) PetscFunctionReturn(0);
+  fspace = H5Dget_space(dset);
+  rank   = H5Sget_simple_extent_ndims(fspace);
+  H5Sget_simple_extent_dims(fspace, dims, NULL);
+  H5Sclose(fspace);
+  start[0] = dims[0];
+  dims[0] += n;
+  FCH5Check(H5Dset_extent(dset, dims), "extend");
+  fspace = H5Dget_space(dset);
+  for (int i = 0; i < rank; i++) count[i] = i ? dims[i] : n;
+  if (out->rank == 0) {
+    H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL);
+    mspace = H5Screate_simple(rank, count, NULL);
+  } else {
+    H5Sselect_none(fspace);
+    mspace = H5Screate(H5S_NULL);
+    H5Sselect_none(mspace);
+  }
+  FCH5Check(H5Dwrite(dset, memtype, mspace, fspace, H5P_DEFAULT, data), "write rows");
+  H5Sclose(mspace);
+  H5Sclose(fspace);
+  PetscFunctionReturn(0);
+}
+
+/* A fixed-size dataset (rows x cols) written by ranges: each rank its [start, start + n) rows */
+static PetscErrorCode WriteDistributed(hid_t loc, const char name[], hid_t filetype, hid_t memtype, hsize_t rows,
+                                       hsize_t cols, hsize_t start, hsize_t n, const void *data)
+{
+  hsize_t dims[2] = {rows, cols}, s[2] = {start, 0}, c[2] = {n, cols};
+  hid_t   fspace = H5Screate_simple(2, dims, NULL), dset, mspace;
+
+  PetscFunctionBegin;
+  dset = H5Dcreate2(loc, name, filetype, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  FCH5Check(dset, name);
+  if (n) {
+    H5Sselect_hyperslab(fspace, H5S_SELECT_SET, s, NULL, c, NULL);
+    mspace = H5Screate_simple(2, c, NULL);
+  } else {
+    H5Sselect_none(fspace);
+    mspace = H5Screate(H5S_NULL);
+  }
+  FCH5Check(H5Dwrite(dset, memtype, mspace, fspace, H5P_DEFAULT, data), name);
+  H5Sclose(mspace);
+  H5Sclose(fspace);
+  H5Dclose(dset);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AttrString(hid_t loc, const char name[], const char value[])
+{
+  hid_t type = H5Tcopy(H5T_C_S1), space = H5Screate(H5S_SCALAR), attr;
+
+  PetscFunctionBegin;
+  H5Tset_size(type, strlen(value) + 1);
+  attr = H5Acreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  FCH5Check(attr, name);
+  FCH5Check(H5Awrite(attr, type, value), name);
+  H5Aclose(attr);
+  H5Sclose(space);
+  H5Tclose(type);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AttrReals(hid_t loc, const char name[], hsize_t n, const double v[])
+{
+  hid_t space = H5Screate_simple(1, &n, NULL), attr;
+
+  PetscFunctionBegin;
+  attr = H5Acreate2(loc, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
+  FCH5Check(attr, name);
+  FCH5Check(H5Awrite(attr, H5T_NATIVE_DOUBLE, v), name);
+  H5Aclose(attr);
+  H5Sclose(space);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AttrInt(hid_t loc, const char name[], long long v)
+{
+  hid_t space = H5Screate(H5S_SCALAR), attr;
+
+  PetscFunctionBegin;
+  attr = H5Acreate2(loc, name, H5T_NATIVE_LLONG, space, H5P_DEFAULT, H5P_DEFAULT);
+  FCH5Check(attr, name);
+  FCH5Check(H5Awrite(attr, H5T_NATIVE_LLONG, &v), name);
+  H5Aclose(attr);
+  H5Sclose(space);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *output)
+{
+  FCOutput out;
+  hid_t    fapl;
+  size_t   len;
+  int      ok;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&out));
+  out->comm = comm;
+  PetscCallMPI(MPI_Comm_rank(comm, &out->rank));
+  PetscCall(PetscStrncpy(out->filename, filename, sizeof(out->filename)));
+  PetscCall(PetscStrlen(filename, &len));
+  PetscCall(PetscStrncpy(out->xdmfname, filename, sizeof(out->xdmfname)));
+  if (len > 3 && !strcmp(filename + len - 3, ".h5")) out->xdmfname[len - 3] = 0;
+  PetscCall(PetscStrlcat(out->xdmfname, ".xmf", sizeof(out->xdmfname)));
+  fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL);
+  H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* our own messages name the file */
+  out->file = H5Fcreate(filename, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  H5Pclose(fapl);
+  ok = out->file >= 0;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, comm));
+  if (!ok) {
+    if (out->file >= 0) H5Fclose(out->file);
+    PetscCall(PetscFree(out));
+    SETERRQ(comm, PETSC_ERR_FILE_OPEN,
+            "Cannot create output file '%s' (-output_file): check that its directory exists and is writable", filename);
+  }
+  *output = out;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies[], PetscReal h, PetscInt nsteps,
+                                   PetscInt every)
+{
+  hid_t  g, gt, gb, gf;
+  char  *opts;
+  size_t nrow;
+
+  PetscFunctionBegin;
+  out->nbodies = nbodies;
+  out->bodies  = bodies;
+  PetscCall(PetscCalloc1(nbodies, &out->bo));
+  PetscCall(PetscOptionsGetAll(NULL, &opts));
+  PetscCall(AttrString(out->file, "options", opts));
+  PetscCall(PetscFree(opts));
+  PetscCall(AttrString(out->file, "fecontact_version", FECONTACT_VERSION));
+  {
+    PetscMPIInt size;
+    char        date[64];
+    time_t      now = time(NULL);
+    PetscCallMPI(MPI_Comm_size(out->comm, &size));
+    PetscCall(AttrInt(out->file, "mpi_ranks", size));
+    strftime(date, sizeof(date), "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
+    PetscCallMPI(MPI_Bcast(date, sizeof(date), MPI_CHAR, 0, out->comm));
+    PetscCall(AttrString(out->file, "created", date));
+  }
+  {
+    double hv = h;
+    PetscCall(AttrReals(out->file, "time_step", 1, &hv));
+    PetscCall(AttrInt(out->file, "time_steps", nsteps));
+    PetscCall(AttrInt(out->file, "output_every", every));
+  }
+  g = H5Gcreate2(out->file, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  PetscCall(CreateRows(g, "time", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->time));
+  PetscCall(CreateRows(g, "step", H5T_NATIVE_LLONG, 1, NULL, 256, &out->step));
+  PetscCall(CreateRows(g, "energy", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->energy));
+  gt = H5Gcreate2(g, "timing", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  for (int p = 0; p < FC_PHASE_NUM; p++)
+    PetscCall(CreateRows(gt, FCPhaseNames[p], H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->timing[p]));
+  H5Gclose(gt);
+  H5Gclose(g);
+  gf = H5Gcreate2(out->file, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  PetscCall(CreateRows(gf, "time", H5T_NATIVE_DOUBLE, 1, NULL, 64, &out->ftime));
+  PetscCall(CreateRows(gf, "step", H5T_NATIVE_LLONG, 1, NULL, 64, &out->fstep));
+  H5Gclose(gf);
+
+  gb = H5Gcreate2(out->file, "bodies", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  for (PetscInt i = 0; i < nbodies; i++) {
+    FCBody              b = bodies[i];
+    const FCBodyVisual *vis;
+    BodyOut            *bo = &out->bo[i];
+    hid_t               gm;
+    hsize_t             r3[1] = {3}, r4[1] = {4}, pv[2];
+    PetscReal           c[3];
+    long long          *cells;
+
+    PetscCall(FCBodyGetVisual(b, &vis));
+    bo->group = H5Gcreate2(gb, b->name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    PetscCall(AttrString(bo->group, "type", b->type));
+    PetscCall(FCBodyGetCentroid(b, c));
+    PetscCall(AttrReals(bo->group, "initial_centroid", 3, c));
+    PetscCall(CreateRows(bo->group, "centroid", H5T_NATIVE_DOUBLE, 2, r3, 256, &bo->centroid));
+    PetscCall(CreateRows(bo->group, "energy", H5T_NATIVE_DOUBLE, 2, r3, 256, &bo->energy));
+    {
+      PetscReal q[4];
+      PetscBool has;
+      PetscCall(FCBodyGetRotation(b, q, &has));
+      if (has) {
+        PetscCall(AttrReals(bo->group, "initial_rotation", 4, q));
+        PetscCall(CreateRows(bo->group, "rotation", H5T_NATIVE_DOUBLE, 2, r4, 256, &bo->rotation));
+      } else
+        bo->rotation = -1;
+    }
+    gm = H5Gcreate2(bo->group, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    PetscCall(AttrString(gm, "cell_type", vis->nvpc == 4 ? "tetrahedron" : "triangle"));
+    PetscCall(PetscMalloc1(vis->nc * vis->nvpc + 1, &cells));
+    for (PetscInt k = 0; k < vis->nc * vis->nvpc; k++) cells[k] = vis->cells[k];
+    PetscCall(WriteDistributed(gm, "cells", H5T_STD_I64LE, H5T_NATIVE_LLONG, vis->nc_global, vis->nvpc, vis->cstart,
+                               vis->nc, cells));
+    PetscCall(PetscFree(cells));
+    PetscCall(WriteDistributed(gm, "reference", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, vis->nv_global, 3, vis->vstart,
+                               vis->nv, vis->reference));
+    H5Gclose(gm);
+    pv[0] = vis->nv_global;
+    pv[1] = 3;
+    PetscCall(CreateRows(bo->group, "positions", H5T_NATIVE_DOUBLE, 3, pv, 1, &bo->positions));
+  }
+  H5Gclose(gb);
+  nrow         = 64;
+  out->maxrows = (PetscInt)nrow;
+  PetscCall(PetscMalloc5(nrow, &out->rtime, nrow, &out->renergy, nrow * FC_PHASE_NUM, &out->rtiming,
+                         nrow * nbodies * 10 + 1, &out->rbody, nrow, &out->rstep));
+  PetscFunctionReturn(0);
+}
+
+/* One row per completed step (buffered until the next flush) */
+PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, const PetscReal timing[FC_PHASE_NUM],
+                                  PetscInt nbodies, FCBody bodies[])
+{
+  PetscInt r    = out->nrows;
+  double   etot = 0.0;
+
+  PetscFunctionBegin;
+  if (r == out->maxrows) {
+    double   *a, *b, *c, *d;
+    PetscInt *e, n = 2 * out->maxrows;
+    PetscCall(PetscMalloc5(n, &a, n, &b, n * FC_PHASE_NUM, &c, n * nbodies * 10 + 1, &d, n, &e));
+    PetscCall(PetscArraycpy(a, out->rtime, r));
+    PetscCall(PetscArraycpy(b, out->renergy, r));
+    PetscCall(PetscArraycpy(c, out->rtiming, r * FC_PHASE_NUM));
+    PetscCall(PetscArraycpy(d, out->rbody, r * nbodies * 10));
+    PetscCall(PetscArraycpy(e, out->rstep, r));
+    PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
+    out->rtime   = a;
+    out->renergy = b;
+    out->rtiming = c;
+    out->rbody   = d;
+    out->rstep   = e;
+    out->maxrows = n;
+  }
+  out->rtime[r] = t;
+  out->rstep[r] = step;
+  for (int p = 0; p < FC_PHASE_NUM; p++) out->rtiming[r * FC_PHASE_NUM + p] = timing[p];
+  for (PetscInt i = 0; i < nbodies; i++) {
+    double   *row = &out->rbody[(r * nbodies + i) * 10];
+    FCEnergy  E;
+    PetscBool has;
+    PetscCall(FCBodyGetCentroid(bodies[i], row));
+    PetscCall(FCBodyGetRotation(bodies[i], row + 3, &has));
+    PetscCall(FCBodyGetEnergy(bodies[i], &E));
+    row[7] = E.kinetic;
+    row[8] = E.elastic;
+    row[9] = E.gravity;
+    etot += E.kinetic + E.elastic + E.gravity;
+  }
+  out->renergy[r] = etot;
+  out->nrows++;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCOutputWriteFrame(FCOutput out, PetscInt step, PetscReal t, PetscInt nbodies, FCBody bodies[])
+{
+  double    tt = t;
+  long long ss = step;
+
+  PetscFunctionBegin;
+  PetscCall(FCPhaseBegin(FC_PHASE_OUTPUT));
+  for (PetscInt i = 0; i < nbodies; i++) {
+    const FCBodyVisual *vis;
+    PetscReal          *x;
+    hid_t               fspace, mspace;
+    hsize_t             dims[3], start[3] = {0, 0, 0}, count[3];
+    PetscCall(FCBodyGetVisual(bodies[i], &vis));
+    PetscCall(PetscMalloc1(3 * vis->nv + 1, &x));
+    PetscCall(FCBodyGetVisualPositions(bodies[i], x));
+    fspace = H5Dget_space(out->bo[i].positions);
+    H5Sget_simple_extent_dims(fspace, dims, NULL);
+    H5Sclose(fspace);
+    start[0] = dims[0];
+    start[1] = vis->vstart;
+    dims[0] += 1;
+    FCH5Check(H5Dset_extent(out->bo[i].positions, dims), "extend positions");
+    fspace   = H5Dget_space(out->bo[i].positions);
+    count[0] = 1;
+    count[1] = vis->nv;
+    count[2] = 3;
+    if (vis->nv) {
+      H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL);
+      mspace = H5Screate_simple(3, count, NULL);
+    } else {
+      H5Sselect_none(fspace);
+      mspace = H5Screate(H5S_NULL);
+    }
+    FCH5Check(H5Dwrite(out->bo[i].positions, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, x), "write positions");
+    H5Sclose(mspace);
+    H5Sclose(fspace);
+    PetscCall(PetscFree(x));
+  }
+  PetscCall(AppendRows(out, out->ftime, H5T_NATIVE_DOUBLE, 1, &tt));
+  PetscCall(AppendRows(out, out->fstep, H5T_NATIVE_LLONG, 1, &ss));
+  if (out->nframes == out->maxframes) {
+    double *f;
+    out->maxframes = PetscMax(64, 2 * out->maxframes);
+    PetscCall(PetscMalloc1(out->maxframes, &f));
+    PetscCall(PetscArraycpy(f, out->frametimes, out->nframes));
+    PetscCall(PetscFree(out->frametimes));
+    out->frametimes = f;
+  }
+  out->frametimes[out->nframes++] = t;
+  PetscCall(FCOutputFlush(out));
+  PetscCall(FCPhaseEnd(FC_PHASE_OUTPUT));
+  PetscFunctionReturn(0);
+}
+
+/* Writes the buffered step rows, flushes the file; the XDMF index is rewritten whenever the
+   number of frames has doubled (so the total cost stays linear in the number of frames) */
+PetscErrorCode FCOutputFlush(FCOutput out)
+{
+  PetscInt n = out->nrows, nb = out->nbodies;
+  double  *tmp;
+
+  PetscFunctionBegin;
+  if (n) {
+    long long *steps;
+    PetscCall(PetscMalloc2(n * 4 + 1, &tmp, n, &steps));
+    for (PetscInt r = 0; r < n; r++) steps[r] = out->rstep[r];
+    PetscCall(AppendRows(out, out->time, H5T_NATIVE_DOUBLE, n, out->rtime));
+    PetscCall(AppendRows(out, out->step, H5T_NATIVE_LLONG, n, steps));
+    PetscCall(AppendRows(out, out->energy, H5T_NATIVE_DOUBLE, n, out->renergy));
+    for (int p = 0; p < FC_PHASE_NUM; p++) {
+      for (PetscInt r = 0; r < n; r++) tmp[r] = out->rtiming[r * FC_PHASE_NUM + p];
+      PetscCall(AppendRows(out, out->timing[p], H5T_NATIVE_DOUBLE, n, tmp));
+    }
+    for (PetscInt i = 0; i < nb; i++) {
+      for (PetscInt r = 0; r < n; r++)
+        for (int k = 0; k < 3; k++) tmp[3 * r + k] = out->rbody[(r * nb + i) * 10 + k];
+      PetscCall(AppendRows(out, out->bo[i].centroid, H5T_NATIVE_DOUBLE, n, tmp));
+      for (PetscInt r = 0; r < n; r++)
+        for (int k = 0; k < 3; k++) tmp[3 * r + k] = out->rbody[(r * nb + i) * 10 + 7 + k];
+      PetscCall(AppendRows(out, out->bo[i].energy, H5T_NATIVE_DOUBLE, n, tmp));
+      if (out->bo[i].rotation >= 0) {
+        for (PetscInt r = 0; r < n; r++)
+          for (int k = 0; k < 4; k++) tmp[4 * r + k] = out->rbody[(r * nb + i) * 10 + 3 + k];
+        PetscCall(AppendRows(out, out->bo[i].rotation, H5T_NATIVE_DOUBLE, n, tmp));
+      }
+    }
+    PetscCall(PetscFree2(tmp, steps));
+    out->nrows = 0;
+  }
+  FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush");
+  if (out->nframes >= 2 * out->xdmfwritten || out->nframes == 1) {
+    if (out->rank == 0)
+      PetscCall(FCXdmfWrite(out->filename, out->xdmfname, out->nbodies, out->bodies, out->nframes, out->frametimes));
+    out->xdmfwritten = out->nframes;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCOutputDestroy(FCOutput *output)
+{
+  FCOutput out = *output;
+
+  PetscFunctionBegin;
+  if (!out) PetscFunctionReturn(0);
+  if (out->bo) {
+    PetscCall(FCOutputFlush(out));
+    if (out->rank == 0 && out->xdmfwritten != out->nframes)
+      PetscCall(FCXdmfWrite(out->filename, out->xdmfname, out->nbodies, out->bodies, out->nframes, out->frametimes));
+    for (PetscInt i = 0; i < out->nbodies; i++) {
+      H5Dclose(out->bo[i].centroid);
+      H5Dclose(out->bo[i].energy);
+      H5Dclose(out->bo[i].positions);
+      if (out->bo[i].rotation >= 0) H5Dclose(out->bo[i].rotation);
+      H5Gclose(out->bo[i].group);
+    }
+    H5Dclose(out->time);
+    H5Dclose(out->step);
+    H5Dclose(out->energy);
+    for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
+    H5Dclose(out->ftime);
+    H5Dclose(out->fstep);
+    PetscCall(PetscFree(out->bo));
+    PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
+  }
+  PetscCall(PetscFree(out->frametimes));
+  H5Fclose(out->file);
+  PetscCall(PetscFree(*output));
+  PetscFunctionReturn(0);
+}

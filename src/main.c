@@ -1,0 +1,37 @@
+/* fecontact: run a scene described by PETSc options.
+     mpirun -n N fecontact -options_file input/<scene>.opts [overrides]          */
+#include "fcimpl.h"
+
+static const char help[] = "fecontact: deformable and rigid bodies in frictional contact (Zeng & Courtecuisse 2023).\n"
+                           "Usage: mpirun -n N fecontact -options_file input/<scene>.opts [-option value ...]\n"
+                           "Options are documented in docs/options.md; -help lists them with their values.\n";
+
+/* Input errors are the user's, not the code's: one clear line, no traceback. Everything else
+   goes to PETSc's traceback handler. */
+static PetscErrorCode UserErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n,
+                                       PetscErrorType p, const char *mess, void *ctx)
+{
+  if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_ARG_UNKNOWN_TYPE) {
+    if (p == PETSC_ERROR_INITIAL) {
+      PetscMPIInt rank = 0;
+      if (comm != MPI_COMM_NULL) MPI_Comm_rank(comm, &rank);
+      if (!rank) fprintf(stderr, "fecontact: error: %s\n", mess);
+    }
+    return n;
+  }
+  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+}
+
+int main(int argc, char **argv)
+{
+  FCScene scene;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(PetscPushErrorHandler(UserErrorHandler, NULL));
+  PetscCall(FCSceneCreate(PETSC_COMM_WORLD, &scene));
+  PetscCall(FCSceneSetFromOptions(scene));
+  PetscCall(FCSceneRun(scene));
+  PetscCall(FCSceneDestroy(&scene));
+  PetscCall(PetscFinalize());
+  return 0;
+}

@@ -1,0 +1,84 @@
+/* Co-rotational linear elasticity (Felippa; Mueller & Gross 2004): the element rotation R is
+   the rotational part of the polar decomposition of F = Ds Dm^-1. Elastic force
+   f = R K_e (R^T x - X) and tangent K = R K_e R^T (the derivative of R is neglected, as in
+   SOFA's TetrahedronFEMForceField). Rigid motions produce no force; A changes every step. */
+#include "../fcimpl.h"
+
+static PetscErrorCode Rotation(const PetscReal x[12], const PetscReal Dminv[9], PetscReal R[9])
+{
+  PetscReal Ds[9], F[9];
+
+  PetscFunctionBegin;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) Ds[3 * i + j] = x[3 * (j + 1) + i] - x[i];
+  FCMat3Mult(Ds, Dminv, F);
+  FCMat3Polar(F, R);
+  PetscFunctionReturn(0);
+}
+
+/* u_local = R^T x - X, expressed per vertex */
+static void LocalDisplacement(const PetscReal R[9], const PetscReal x[12], const PetscReal X[12], PetscReal ul[12])
+{
+  for (int a = 0; a < 4; a++) {
+    FCMat3TVec(R, &x[3 * a], &ul[3 * a]);
+    for (int i = 0; i < 3; i++) ul[3 * a + i] -= X[3 * a + i];
+  }
+}
+
+static PetscErrorCode Element_Corotational(FCMaterial m, const PetscReal x[12], const PetscReal X[12],
+                                           const PetscReal Dminv[9], PetscReal vol, PetscReal f[12], PetscReal K[144])
+{
+  PetscReal R[9], G[12], Ke[144], ul[12], fl[12];
+
+  PetscFunctionBegin;
+  PetscCall(Rotation(x, Dminv, R));
+  FCTetGradients(Dminv, G);
+  FCTetStiffness(G, vol, m->lambda, m->mu, Ke);
+  if (f) {
+    LocalDisplacement(R, x, X, ul);
+    for (int i = 0; i < 12; i++) {
+      fl[i] = 0.0;
+      for (int j = 0; j < 12; j++) fl[i] += Ke[12 * i + j] * ul[j];
+    }
+    for (int a = 0; a < 4; a++) FCMat3Vec(R, &fl[3 * a], &f[3 * a]);
+  }
+  if (K) { /* K_ab = R Ke_ab R^T, 3x3 block by block */
+    for (int a = 0; a < 4; a++)
+      for (int b = 0; b < 4; b++) {
+        PetscReal B[9], T[9];
+        for (int i = 0; i < 3; i++)
+          for (int j = 0; j < 3; j++) B[3 * i + j] = Ke[(3 * a + i) * 12 + 3 * b + j];
+        FCMat3Mult(R, B, T);
+        for (int i = 0; i < 3; i++)
+          for (int j = 0; j < 3; j++)
+            K[(3 * a + i) * 12 + 3 * b + j] =
+                T[3 * i] * R[3 * j] + T[3 * i + 1] * R[3 * j + 1] + T[3 * i + 2] * R[3 * j + 2];
+      }
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Energy_Corotational(FCMaterial m, const PetscReal x[12], const PetscReal X[12],
+                                          const PetscReal Dminv[9], PetscReal vol, PetscReal *E)
+{
+  PetscReal R[9], G[12], Ke[144], ul[12];
+
+  PetscFunctionBegin;
+  PetscCall(Rotation(x, Dminv, R));
+  FCTetGradients(Dminv, G);
+  FCTetStiffness(G, vol, m->lambda, m->mu, Ke);
+  LocalDisplacement(R, x, X, ul);
+  *E = 0.0;
+  for (int i = 0; i < 12; i++)
+    for (int j = 0; j < 12; j++) *E += 0.5 * ul[i] * Ke[12 * i + j] * ul[j];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCMaterialCreate_Corotational(FCMaterial m)
+{
+  PetscFunctionBegin;
+  m->linear  = PETSC_FALSE;
+  m->element = Element_Corotational;
+  m->energy  = Energy_Corotational;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,186 @@
+/* FCScene: reads the scene options, creates the bodies and owns the time loop.
+   Options:
+     -scene_bodies a,b,c      the bodies (required); each body's options use the prefix <name>_
+     -time_step h             (> 0, default 0.01 s)
+     -time_steps N            (>= 0, default 100)
+     -gravity gx,gy,gz        (default 0,0,-9.81 m/s^2)
+     -output_file f.h5        (default fecontact.h5; an XDMF index f.xmf is written beside it)
+     -output_every k          write body positions every k steps (>= 1, default 1)
+     -quiet                   no progress line, no summary
+   One step (DESIGN.md section 2): free motion of every body (eq. 5), then integration (eq. 2);
+   contact resolution slots in between. */
+#include "../fcimpl.h"
+
+#define FC_MAX_BODIES 256
+
+struct _p_FCScene {
+  MPI_Comm   comm;
+  PetscInt   nbodies;
+  FCBody     bodies[FC_MAX_BODIES];
+  PetscReal  h, t, gravity[3];
+  PetscInt   nsteps, step, every;
+  char       output_file[PETSC_MAX_PATH_LEN];
+  PetscBool  quiet, setupcalled;
+  FCOutput   output;
+  FCProgress progress;
+  PetscReal  phase_total[FC_PHASE_NUM];
+};
+
+PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
+{
+  FCScene s;
+
+  PetscFunctionBegin;
+  PetscCall(FCInitializePackage());
+  PetscCall(PetscNew(&s));
+  s->comm       = comm;
+  s->h          = 0.01;
+  s->nsteps     = 100;
+  s->every      = 1;
+  s->gravity[2] = -9.81;
+  PetscCall(PetscStrncpy(s->output_file, "fecontact.h5", sizeof(s->output_file)));
+  *scene = s;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSceneSetFromOptions(FCScene s)
+{
+  char     *names[FC_MAX_BODIES];
+  PetscInt  n = FC_MAX_BODIES;
+  PetscBool set;
+
+  PetscFunctionBegin;
+  PetscOptionsBegin(s->comm, NULL, "Scene options", "FCScene");
+  PetscCall(PetscOptionsStringArray("-scene_bodies", "Comma-separated body names", NULL, names, &n, &set));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-time_step", "Time step h (s)", &s->h, NULL));
+  PetscCall(FCOptionsInt(PetscOptionsObject, "-time_steps", "Number of time steps", &s->nsteps, NULL));
+  PetscCall(FCOptionsRealArray(PetscOptionsObject, "-gravity", "Gravity gx,gy,gz (m/s^2)", 3, s->gravity, NULL));
+  PetscCall(PetscOptionsString("-output_file", "HDF5 output file", NULL, s->output_file, s->output_file,
+                               sizeof(s->output_file), NULL));
+  PetscCall(FCOptionsInt(PetscOptionsObject, "-output_every", "Write body positions every k steps", &s->every, NULL));
+  PetscCall(PetscOptionsBool("-quiet", "No progress line and no summary", NULL, s->quiet, &s->quiet, NULL));
+  PetscOptionsEnd();
+  PetscCheck(set && n > 0, s->comm, PETSC_ERR_USER_INPUT,
+             "No bodies: give -scene_bodies name1,name2,... (see docs/options.md)");
+  PetscCheck(s->h > 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -time_step must be > 0, got %g", (double)s->h);
+  PetscCheck(s->nsteps >= 0, s->comm, PETSC_ERR_USER_INPUT, "Option -time_steps must be >= 0, got %" PetscInt_FMT,
+             s->nsteps);
+  PetscCheck(s->every >= 1, s->comm, PETSC_ERR_USER_INPUT, "Option -output_every must be >= 1, got %" PetscInt_FMT,
+             s->every);
+  for (PetscInt i = 0; i < n; i++) {
+    for (PetscInt j = 0; j < i; j++)
+      PetscCheck(strcmp(names[i], names[j]), s->comm, PETSC_ERR_USER_INPUT, "Body '%s' appears twice in -scene_bodies",
+                 names[i]);
+    PetscCall(FCBodyCreate(s->comm, names[i], &s->bodies[i]));
+    s->nbodies++;
+    PetscCall(FCBodySetFromOptions(s->bodies[i]));
+  }
+  for (PetscInt i = 0; i < n; i++) PetscCall(PetscFree(names[i]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSceneSetUp(FCScene s)
+{
+  PetscFunctionBegin;
+  if (s->setupcalled) PetscFunctionReturn(0);
+  for (PetscInt i = 0; i < s->nbodies; i++) {
+    PetscCall(FCBodySetTimeStep(s->bodies[i], s->h));
+    PetscCall(FCBodySetGravity(s->bodies[i], s->gravity));
+    PetscCall(FCBodySetUp(s->bodies[i]));
+  }
+  PetscCall(FCOptionsCheckUnused(s->comm)); /* after every object has read its options */
+  PetscCall(FCOutputCreate(s->comm, s->output_file, &s->output));
+  PetscCall(FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every));
+  PetscCall(FCOutputWriteFrame(s->output, 0, 0.0, s->nbodies, s->bodies));
+  PetscCall(FCPhaseResetTimes());
+  s->setupcalled = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSceneGetBody(FCScene s, const char name[], FCBody *body)
+{
+  PetscFunctionBegin;
+  *body = NULL;
+  for (PetscInt i = 0; i < s->nbodies; i++)
+    if (!strcmp(s->bodies[i]->name, name)) *body = s->bodies[i];
+  PetscCheck(*body, s->comm, PETSC_ERR_USER_INPUT, "No body named '%s' in -scene_bodies", name);
+  PetscFunctionReturn(0);
+}
+
+/* One time step: free motion (eq. 5) -> [contacts] -> integration (eq. 2) -> output */
+PetscErrorCode FCSceneStep(FCScene s)
+{
+  PetscReal timing[FC_PHASE_NUM];
+
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyComputeFreeMotion(s->bodies[i], s->t));
+  for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyIntegrate(s->bodies[i], s->t));
+  s->step++;
+  s->t = s->step * s->h; /* no drift from repeated additions */
+  for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyCheckState(s->bodies[i], s->step));
+  PetscCall(FCPhaseGetTimes(timing));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, timing, FC_PHASE_NUM, MPIU_REAL, MPIU_MAX, s->comm));
+  for (int p = 0; p < FC_PHASE_NUM; p++) s->phase_total[p] += timing[p];
+  PetscCall(FCPhaseResetTimes());
+  /* the output of this step (frame and flush) is counted in the next step's row */
+  PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, s->nbodies, s->bodies));
+  if (s->step % s->every == 0 || s->step == s->nsteps)
+    PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode PrintSummary(FCScene s, PetscLogDouble wall)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscPrintf(s->comm, "fecontact: %" PetscInt_FMT " steps of %g s (t = %g s) in %.3f s wall\n", s->step,
+                        (double)s->h, (double)s->t, (double)wall));
+  PetscCall(PetscPrintf(s->comm, "  time per phase (s, max over ranks):"));
+  for (int p = 0; p < FC_PHASE_NUM; p++)
+    PetscCall(PetscPrintf(s->comm, " %s %.3f", FCPhaseNames[p], (double)s->phase_total[p]));
+  PetscCall(PetscPrintf(s->comm, "\n"));
+  for (PetscInt i = 0; i < s->nbodies; i++) {
+    PetscReal c[3];
+    FCEnergy  E;
+    PetscCall(FCBodyGetCentroid(s->bodies[i], c));
+    PetscCall(FCBodyGetEnergy(s->bodies[i], &E));
+    PetscCall(PetscPrintf(
+        s->comm, "  body %-12s %-9s centroid (%.6g, %.6g, %.6g)  energy kinetic %.6g elastic %.6g gravity %.6g\n",
+        s->bodies[i]->name, s->bodies[i]->type, (double)c[0], (double)c[1], (double)c[2], (double)E.kinetic,
+        (double)E.elastic, (double)E.gravity));
+  }
+  PetscCall(PetscPrintf(s->comm, "  output: %s (open the .xmf beside it in ParaView)\n", s->output_file));
+  PetscFunctionReturn(0);
+}
+
+/* Runs the remaining steps. If a step fails, the output file is closed cleanly first, so that
+   every completed step stays readable, then the error is returned. */
+PetscErrorCode FCSceneRun(FCScene s)
+{
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBegin;
+  PetscCall(FCSceneSetUp(s));
+  PetscCall(PetscTime(&t0));
+  PetscCall(FCProgressStart(&s->progress, s->quiet));
+  while (s->step < s->nsteps) {
+    PetscErrorCode ierr = FCSceneStep(s);
+    if (ierr) {
+      (void)FCOutputDestroy(&s->output);
+      return ierr;
+    }
+    PetscCall(FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t));
+  }
+  PetscCall(PetscTime(&t1));
+  if (!s->quiet) PetscCall(PrintSummary(s, t1 - t0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSceneDestroy(FCScene *scene)
+{
+  PetscFunctionBegin;
+  if (!*scene) PetscFunctionReturn(0);
+  PetscCall(FCOutputDestroy(&(*scene)->output));
+  for (PetscInt i = 0; i < (*scene)->nbodies; i++) PetscCall(FCBodyDestroy(&(*scene)->bodies[i]));
+  PetscCall(PetscFree(*scene));
+  PetscFunctionReturn(0);
+}

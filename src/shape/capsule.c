@@ -1,0 +1,47 @@
+/* Capsule: a cylinder of radius -<body>_radius and length -<body>_length along the body z
+   axis, closed by two hemispheres; centred on the body origin. */
+#include "tessellate.h"
+
+static PetscErrorCode SetFromOptions_Capsule(PetscOptionItems *PetscOptionsObject, FCShape s, const char bodyname[])
+{
+  PetscBool setr, setl;
+
+  PetscFunctionBegin;
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-radius", "Capsule radius", &s->radius, &setr));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-length", "Capsule length between cap centres", &s->length, &setl));
+  PetscCheck(setr && setl, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT,
+             "Capsule body '%s' needs -%sradius and -%slength", bodyname, PetscOptionsObject->prefix,
+             PetscOptionsObject->prefix);
+  PetscCall(FCCheckPositive(PetscOptionsObject->comm, PetscOptionsObject->prefix, "-radius", s->radius));
+  PetscCall(FCCheckNonNegative(PetscOptionsObject->comm, PetscOptionsObject->prefix, "-length", s->length));
+  PetscFunctionReturn(0);
+}
+
+/* Cylinder part plus two hemispheres whose centroids sit 3r/8 beyond the cylinder ends */
+static PetscErrorCode MassProperties_Capsule(FCShape s, PetscReal *V, PetscReal J[9])
+{
+  PetscReal r = s->radius, L = s->length, Vc = PETSC_PI * r * r * L, Vs = 4.0 / 3.0 * PETSC_PI * r * r * r;
+
+  PetscFunctionBegin;
+  *V = Vc + Vs;
+  for (int i = 0; i < 9; i++) J[i] = 0.0;
+  J[0] = J[4] = Vc * (3.0 * r * r + L * L) / 12.0 + Vs * (0.4 * r * r + 0.25 * L * L + 0.375 * L * r);
+  J[8]        = 0.5 * Vc * r * r + 0.4 * Vs * r * r;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Tessellate_Capsule(FCShape s, PetscInt *nv, PetscReal **xyz, PetscInt *nt, PetscInt **tri)
+{
+  PetscFunctionBegin;
+  PetscCall(FCTessellateCapsule(s->radius, s->length, 8, 24, nv, xyz, nt, tri));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCShapeCreate_Capsule(FCShape s)
+{
+  PetscFunctionBegin;
+  s->setfromoptions = SetFromOptions_Capsule;
+  s->massproperties = MassProperties_Capsule;
+  s->tessellate     = Tessellate_Capsule;
+  PetscFunctionReturn(0);
+}

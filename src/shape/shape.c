@@ -1,0 +1,67 @@
+/* Shapes of rigid and kinematic bodies: -<body>_shape plane|sphere|box|capsule|cylinder|mesh.
+   Each shape lives in its own file, reads its own options and provides its mass properties
+   (per unit density, about its centre, in the body frame) and a triangulated surface for
+   pictures. The body frame has its origin at the shape's centre. */
+#include "../fcimpl.h"
+
+PetscFunctionList FCShapeList = NULL;
+
+PetscErrorCode FCShapeRegisterAll(void)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPEPLANE, FCShapeCreate_Plane));
+  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPESPHERE, FCShapeCreate_Sphere));
+  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPEBOX, FCShapeCreate_Box));
+  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPECAPSULE, FCShapeCreate_Capsule));
+  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPECYLINDER, FCShapeCreate_Cylinder));
+  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPEMESH, FCShapeCreate_Mesh));
+  PetscFunctionReturn(0);
+}
+
+/* Options (prefix <body>_):
+     -<body>_shape <plane|sphere|box|capsule|cylinder|mesh>  required for rigid and kinematic bodies
+     -<body>_radius r            sphere, capsule, cylinder (> 0)
+     -<body>_half_extents a,b,c  box (each > 0)
+     -<body>_length L            capsule (distance between the cap centres, >= 0), cylinder (> 0),
+                                 plane (side of the square drawn in pictures, default 4)
+     -<body>_normal nx,ny,nz     plane outward normal in the body frame (default 0,0,1)
+   Capsule and cylinder axes are the body-frame z axis. */
+PetscErrorCode FCShapeCreateFromOptions(MPI_Comm comm, const char prefix[], const char bodyname[], FCShape *shape)
+{
+  char      type[FC_MAX_NAME] = "";
+  PetscBool set;
+  PetscErrorCode (*create)(FCShape) = NULL;
+  FCShape s;
+
+  PetscFunctionBegin;
+  PetscOptionsBegin(comm, prefix, "Shape options", "FCShape");
+  PetscCall(PetscOptionsFList("-shape", "Shape of a rigid or kinematic body", NULL, FCShapeList, type, type,
+                              sizeof(type), &set));
+  PetscOptionsEnd();
+  PetscCheck(set, comm, PETSC_ERR_USER_INPUT,
+             "Body '%s' needs -%sshape (plane, sphere, box, capsule, cylinder or mesh)", bodyname, prefix);
+  PetscCall(PetscFunctionListFind(FCShapeList, type, &create));
+  PetscCheck(create, comm, PETSC_ERR_USER_INPUT,
+             "Unknown shape '%s' in -%sshape (known: plane, sphere, box, capsule, cylinder, mesh)", type, prefix);
+  PetscCall(PetscNew(&s));
+  PetscCall(PetscStrncpy(s->type, type, sizeof(s->type)));
+  s->bounded = PETSC_TRUE;
+  PetscCall((*create)(s));
+  if (s->setfromoptions) {
+    PetscOptionsBegin(comm, prefix, "Shape options", "FCShape");
+    PetscCall((*s->setfromoptions)(PetscOptionsObject, s, bodyname));
+    PetscOptionsEnd();
+  }
+  if (s->setup) PetscCall((*s->setup)(s, comm, prefix, bodyname));
+  *shape = s;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCShapeDestroy(FCShape *shape)
+{
+  PetscFunctionBegin;
+  if (!*shape) PetscFunctionReturn(0);
+  if ((*shape)->destroy) PetscCall((*(*shape)->destroy)(*shape));
+  PetscCall(PetscFree(*shape));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,167 @@
+/* Option helpers: numeric options are checked for NaN/Inf and exact arity, range errors name
+   the full option, and options nobody read are reported (a misspelt option is an error,
+   never a silent default). */
+#include "../fcimpl.h"
+
+static const char *PrefixOf(PetscOptionItems *obj)
+{
+  return obj->prefix ? obj->prefix : "";
+}
+
+/* The raw text of an option must be n comma-separated numbers (integers when integer): PETSc's
+   own parse error would not name the option. */
+static PetscErrorCode CheckNumbers(PetscOptionItems *obj, const char opt[], PetscBool integer)
+{
+  char      buf[1024], *tok, *save = NULL;
+  PetscBool set;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsGetString(obj->options, obj->prefix, opt, buf, sizeof(buf), &set));
+  if (!set) PetscFunctionReturn(0);
+  PetscCheck(buf[0], obj->comm, PETSC_ERR_USER_INPUT, "Option -%s%s needs a value", PrefixOf(obj), opt + 1);
+  for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    char *end;
+    while (*tok == ' ') tok++;
+    if (integer)
+      (void)strtoll(tok, &end, 10);
+    else
+      (void)strtod(tok, &end);
+    while (*end == ' ') end++;
+    PetscCheck(end != tok && *end == 0, obj->comm, PETSC_ERR_USER_INPUT, "Option -%s%s: '%s' is not %s", PrefixOf(obj),
+               opt + 1, tok, integer ? "an integer" : "a number");
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCOptionsInt(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt *v,
+                            PetscBool *set)
+{
+  PetscFunctionBegin;
+  PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_TRUE));
+  PetscCall(PetscOptionsInt(opt, text, NULL, *v, v, set));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCOptionsReal(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscReal *v,
+                             PetscBool *set)
+{
+  PetscBool flg = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_FALSE));
+  PetscCall(PetscOptionsReal(opt, text, NULL, *v, v, &flg));
+  PetscCheck(!flg || PetscIsNormalReal(*v) || *v == 0.0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT,
+             "Option -%s%s must be a finite number, got %g", PrefixOf(PetscOptionsObject), opt + 1, (double)*v);
+  if (set) *set = flg;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCOptionsRealArray(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt n,
+                                  PetscReal v[], PetscBool *set)
+{
+  PetscInt  got = n;
+  PetscBool flg = PETSC_FALSE;
+  PetscReal tmp[16];
+
+  PetscFunctionBegin;
+  PetscCheck(n <= 15, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Array option too long");
+  got = 16;
+  PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_FALSE));
+  PetscCall(PetscArraycpy(tmp, v, n));
+  PetscCall(PetscOptionsRealArray(opt, text, NULL, tmp, &got, &flg));
+  if (flg) {
+    PetscCheck(got == n, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT,
+               "Option -%s%s needs %" PetscInt_FMT " comma-separated numbers, got %" PetscInt_FMT,
+               PrefixOf(PetscOptionsObject), opt + 1, n, got);
+    for (PetscInt i = 0; i < n; i++)
+      PetscCheck(PetscIsNormalReal(tmp[i]) || tmp[i] == 0.0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT,
+                 "Option -%s%s: entry %" PetscInt_FMT " must be a finite number, got %g", PrefixOf(PetscOptionsObject),
+                 opt + 1, i, (double)tmp[i]);
+    PetscCall(PetscArraycpy(v, tmp, n));
+  }
+  if (set) *set = flg;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCCheckPositive(MPI_Comm comm, const char prefix[], const char opt[], PetscReal v)
+{
+  PetscFunctionBegin;
+  PetscCheck(v > 0.0, comm, PETSC_ERR_USER_INPUT, "Option -%s%s must be > 0, got %g", prefix ? prefix : "", opt + 1,
+             (double)v);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCCheckNonNegative(MPI_Comm comm, const char prefix[], const char opt[], PetscReal v)
+{
+  PetscFunctionBegin;
+  PetscCheck(v >= 0.0, comm, PETSC_ERR_USER_INPUT, "Option -%s%s must be >= 0, got %g", prefix ? prefix : "", opt + 1,
+             (double)v);
+  PetscFunctionReturn(0);
+}
+
+/* PETSc's own run-time options that are legitimately read after set-up (viewers at solve or
+   exit, logging, debugging): never reported. */
+static PetscBool IsPetscRuntimeOption(const char name[])
+{
+  static const char *starts[] = {"options_",
+                                 "log",
+                                 "info",
+                                 "malloc",
+                                 "help",
+                                 "version",
+                                 "on_error",
+                                 "fp_trap",
+                                 "no_signal_handler",
+                                 "history",
+                                 "checkstack",
+                                 "objects_dump",
+                                 "memory_view",
+                                 "viewer_",
+                                 "skip_petscrc",
+                                 "check_pointer_intensity",
+                                 "start_in_debugger",
+                                 "debugger",
+                                 "stop_for_debugger",
+                                 "display",
+                                 "use_gpu_aware_mpi",
+                                 "device_",
+                                 "cuda_",
+                                 "fecontact_allow_unknown_options",
+                                 NULL};
+  for (int i = 0; starts[i]; i++) {
+    size_t n = strlen(starts[i]);
+    if (!strncmp(name, starts[i], n)) return PETSC_TRUE;
+  }
+  /* -xxx_view, -xxx_view_*, -xxx_converged_reason are read when a solve finishes */
+  if (strstr(name, "view") || strstr(name, "converged_reason")) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+PetscErrorCode FCOptionsCheckUnused(MPI_Comm comm)
+{
+  PetscInt  n;
+  char    **names, **values;
+  PetscBool allow = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-fecontact_allow_unknown_options", &allow, NULL));
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt i = 0; i < n; i++) {
+    if (IsPetscRuntimeOption(names[i])) continue;
+    if (allow) {
+      PetscCall(PetscPrintf(comm, "fecontact: warning: option -%s was never used\n", names[i]));
+      continue;
+    }
+    {
+      char msg[PETSC_MAX_PATH_LEN];
+      PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s", names[i]));
+      PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+      SETERRQ(comm, PETSC_ERR_USER_INPUT,
+              "Unknown or unused option -%s (misspelt, or for a body not in -scene_bodies? see docs/options.md; "
+              "-fecontact_allow_unknown_options turns this into a warning)",
+              msg);
+    }
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscFunctionReturn(0);
+}

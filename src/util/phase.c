@@ -1,0 +1,54 @@
+/* Phases of a time step: one PetscLogEvent each (so -log_view shows where time goes) and a
+   wall-clock accumulator per phase that the scene writes to /steps/timing/<phase>. */
+#include "../fcimpl.h"
+
+const char *const FCPhaseNames[] = {"assembly", "factorization", "free_motion", "integration",
+                                    "output",   "FCPhase",       "FC_PHASE_",   NULL};
+
+static PetscLogEvent  events[FC_PHASE_NUM];
+static PetscLogDouble started[FC_PHASE_NUM], total[FC_PHASE_NUM];
+static PetscBool      registered = PETSC_FALSE;
+
+PETSC_INTERN PetscErrorCode FCPhaseRegisterEvents(PetscClassId classid)
+{
+  static const char *eventnames[] = {"FCAssembly", "FCFactorization", "FCFreeMotion", "FCIntegration", "FCOutput"};
+
+  PetscFunctionBegin;
+  if (registered) PetscFunctionReturn(0);
+  for (int p = 0; p < FC_PHASE_NUM; p++) PetscCall(PetscLogEventRegister(eventnames[p], classid, &events[p]));
+  registered = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPhaseBegin(FCPhase p)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(events[p], 0, 0, 0, 0));
+  PetscCall(PetscTime(&started[p]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPhaseEnd(FCPhase p)
+{
+  PetscLogDouble now;
+
+  PetscFunctionBegin;
+  PetscCall(PetscTime(&now));
+  total[p] += now - started[p];
+  PetscCall(PetscLogEventEnd(events[p], 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPhaseGetTimes(PetscReal t[FC_PHASE_NUM])
+{
+  PetscFunctionBegin;
+  for (int p = 0; p < FC_PHASE_NUM; p++) t[p] = (PetscReal)total[p];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPhaseResetTimes(void)
+{
+  PetscFunctionBegin;
+  for (int p = 0; p < FC_PHASE_NUM; p++) total[p] = 0.0;
+  PetscFunctionReturn(0);
+}
