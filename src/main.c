@@ -22,16 +22,32 @@ static PetscErrorCode UserErrorHandler(MPI_Comm comm, int line, const char *fun,
   return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
 }
 
-int main(int argc, char **argv)
+static PetscErrorCode RunScene(void)
 {
   FCScene scene;
 
-  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
-  PetscCall(PetscPushErrorHandler(UserErrorHandler, NULL));
+  PetscFunctionBegin;
   PetscCall(FCSceneCreate(PETSC_COMM_WORLD, &scene));
   PetscCall(FCSceneSetFromOptions(scene));
   PetscCall(FCSceneRun(scene));
   PetscCall(FCSceneDestroy(&scene));
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  PetscErrorCode ierr;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  PetscCall(PetscPushErrorHandler(UserErrorHandler, NULL));
+  ierr = RunScene();
+  /* input errors are detected on every rank alike: finish cleanly with exit status 1;
+     anything else may have happened on one rank only: abort them all */
+  if (ierr == PETSC_ERR_USER_INPUT || ierr == PETSC_ERR_ARG_UNKNOWN_TYPE) {
+    (void)PetscFinalize();
+    return 1;
+  }
+  if (ierr) PETSCABORT(PETSC_COMM_WORLD, ierr);
   PetscCall(PetscFinalize());
   return 0;
 }

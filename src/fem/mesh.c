@@ -3,6 +3,7 @@
    -<body>_petscpartitioner_type ...), validated (3D, tetrahedra only, positive volumes), with
    per-cell vertex lists in a positively oriented order and placed reference coordinates. */
 #include "../fcimpl.h"
+#include <sys/stat.h>
 
 PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodyname[], FCMesh *mesh)
 {
@@ -28,14 +29,19 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
       fclose(fp);
   }
   PetscCallMPI(MPI_Bcast(&readable, 1, MPIU_INT, 0, comm));
-  PetscCheck(readable, comm, PETSC_ERR_FILE_OPEN,
+  PetscCheck(readable, comm, PETSC_ERR_USER_INPUT,
              "Cannot open mesh file '%s' given by -%sdm_plex_filename for body '%s'", fname, prefix, bodyname);
 
   PetscCall(DMCreate(comm, &mesh->dm));
   PetscCall(DMSetType(mesh->dm, DMPLEX));
   PetscCall(PetscObjectSetName((PetscObject)mesh->dm, bodyname));
   PetscCall(DMSetOptionsPrefix(mesh->dm, prefix));
-  PetscCall(DMSetFromOptions(mesh->dm)); /* reads, interpolates, distributes, refines */
+  {
+    /* reads (on rank 0), interpolates, distributes, refines; a malformed file fails on rank 0
+       only, so this stays an abort-class error */
+    PetscErrorCode ierr = DMSetFromOptions(mesh->dm);
+    PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "Cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': not a valid or complete gmsh file (see above)", fname, prefix, bodyname);
+  }
   PetscCall(DMViewFromOptions(mesh->dm, NULL, "-dm_view"));
   PetscCall(DMGetDimension(mesh->dm, &dim));
   PetscCheck(dim == 3, comm, PETSC_ERR_USER_INPUT,
