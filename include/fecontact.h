@@ -1,7 +1,7 @@
 /* fecontact: deformable (P1 finite element) and rigid bodies in frictional contact with the
    implicit constraint scheme of Zeng & Courtecuisse (2023). Public interface.
 
-   One time step flows one way (DESIGN.md section 2):
+   One time step flows one way (../shared/design/DESIGN.md, section 2):
      scene -> bodies (free motion, eq. 5) -> [collision -> contacts -> compliance -> scheme]
            -> bodies (correction, eq. 20, and integration, eq. 2) -> output                    */
 #pragma once

@@ -40,10 +40,9 @@ typedef struct {
 
 static PetscErrorCode SetFromOptions_FEM(FCBody body)
 {
-  FEM        *fem = (FEM *)body->data;
-  PetscBool   set, setE, setRho;
-  const char *masstypes[] = {"consistent", "lumped"};
-  PetscInt    mt          = 0;
+  FEM      *fem = (FEM *)body->data;
+  PetscBool set, setE, setRho;
+  char      masstype[FC_MAX_NAME] = "consistent";
 
   PetscFunctionBegin;
   PetscOptionsBegin(body->comm, body->prefix, "FE body options", "FCBody");
@@ -52,7 +51,8 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
   PetscCall(FCOptionsReal(PetscOptionsObject, "-young", "Young's modulus (Pa)", &fem->young, &setE));
   PetscCall(FCOptionsReal(PetscOptionsObject, "-poisson", "Poisson's ratio", &fem->poisson, NULL));
   PetscCall(FCOptionsReal(PetscOptionsObject, "-density", "Density (kg/m^3)", &body->density, &setRho));
-  PetscCall(PetscOptionsEList("-mass_type", "Mass matrix", NULL, masstypes, 2, masstypes[0], &mt, NULL));
+  PetscCall(PetscOptionsString("-mass_type", "Mass matrix: consistent or lumped", NULL, masstype, masstype,
+                               sizeof(masstype), NULL));
   PetscCall(FCOptionsReal(PetscOptionsObject, "-rayleigh_mass", "Rayleigh damping alpha (B = alpha M + beta K)",
                           &fem->alpha, NULL));
   PetscCall(FCOptionsReal(PetscOptionsObject, "-rayleigh_stiffness", "Rayleigh damping beta (B = alpha M + beta K)",
@@ -61,11 +61,14 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
                                "Fix the vertices inside xmin,ymin,zmin,xmax,ymax,zmax", 6, fem->fixed_box,
                                &fem->has_fixed_box));
   PetscOptionsEnd();
-  fem->lumped = mt == 1 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCheck(!strcmp(masstype, "consistent") || !strcmp(masstype, "lumped"), body->comm, PETSC_ERR_USER_INPUT,
+             "Unknown mass type '%s' in -%smass_type (known: consistent, lumped)", masstype, body->prefix);
+  fem->lumped = !strcmp(masstype, "lumped") ? PETSC_TRUE : PETSC_FALSE;
   {
     PetscErrorCode (*create)(FCMaterial) = NULL;
     PetscCall(PetscFunctionListFind(FCMaterialList, fem->material, &create));
-    PetscCheck(create, body->comm, PETSC_ERR_USER_INPUT, "Unknown material '%s' in -%smaterial (known: linear, corotational)", fem->material, body->prefix);
+    PetscCheck(create, body->comm, PETSC_ERR_USER_INPUT,
+               "Unknown material '%s' in -%smaterial (known: linear, corotational)", fem->material, body->prefix);
   }
   PetscCheck(setE, body->comm, PETSC_ERR_USER_INPUT, "FE body '%s' needs -%syoung", body->name, body->prefix);
   PetscCheck(setRho, body->comm, PETSC_ERR_USER_INPUT, "FE body '%s' needs -%sdensity", body->name, body->prefix);
@@ -406,10 +409,9 @@ static PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
   if (!fem->Acurrent) { /* co-rotational: K, f_int and A at q_t */
     PetscCall(AssembleElastic(body, fem->u, fem->fint, fem->K));
     PetscCall(FormAndFactorA(body));
-  } else if (fem->mat->linear) {
-    PetscCall(MatMult(fem->K, fem->u, fem->fint)); /* f_int = K u */
   }
   PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));
+  if (fem->mat->linear) PetscCall(MatMult(fem->K, fem->u, fem->fint)); /* f_int = K u */
   PetscCall(VecAXPBYPCZ(fem->b, h, -h, 0.0, fem->fgrav, fem->fint));
   if (fem->alpha != 0.0) {
     PetscCall(MatMult(fem->M, fem->v, fem->work));

@@ -22,11 +22,10 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
              prefix);
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0) {
-    FILE *fp = fopen(fname, "rb");
-    if (!fp)
-      readable = 0;
-    else
-      fclose(fp);
+    struct stat st;
+    FILE       *fp = NULL;
+    if (stat(fname, &st) || !S_ISREG(st.st_mode) || !(fp = fopen(fname, "rb"))) readable = 0;
+    if (fp) fclose(fp);
   }
   PetscCallMPI(MPI_Bcast(&readable, 1, MPIU_INT, 0, comm));
   PetscCheck(readable, comm, PETSC_ERR_USER_INPUT,
@@ -36,11 +35,24 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
   PetscCall(DMSetType(mesh->dm, DMPLEX));
   PetscCall(PetscObjectSetName((PetscObject)mesh->dm, bodyname));
   PetscCall(DMSetOptionsPrefix(mesh->dm, prefix));
+  { /* -<body>_petscpartitioner_type (default ptscotch) */
+    PetscPartitioner part;
+    PetscCall(DMPlexGetPartitioner(mesh->dm, &part));
+    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)part, prefix));
+    PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
+    PetscCall(PetscPartitionerSetFromOptions(part));
+  }
   {
     /* reads (on rank 0), interpolates, distributes, refines; a malformed file fails on rank 0
        only, so this stays an abort-class error */
     PetscErrorCode ierr = DMSetFromOptions(mesh->dm);
-    PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_FILE_READ, "Cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': not a valid or complete gmsh file (see above)", fname, prefix, bodyname);
+    if (ierr) { /* PETSc has printed the reader's message; name the file and the option */
+      fprintf(stderr,
+              "fecontact: error: cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': not a valid or "
+              "complete gmsh file\n",
+              fname, prefix, bodyname);
+      return ierr;
+    }
   }
   PetscCall(DMViewFromOptions(mesh->dm, NULL, "-dm_view"));
   PetscCall(DMGetDimension(mesh->dm, &dim));
@@ -116,6 +128,11 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
 PetscErrorCode FCMeshTransform(FCMesh *mesh, const PetscReal center[3], const PetscReal R[9], const PetscReal t[3])
 {
   PetscFunctionBegin;
+  if (R[0] == 1.0 && R[4] == 1.0 && R[8] == 1.0) { /* no rotation: keep the file's coordinates exact */
+    for (PetscInt v = 0; v < mesh->vEnd - mesh->vStart; v++)
+      for (int i = 0; i < 3; i++) mesh->X[3 * v + i] += t[i];
+    PetscFunctionReturn(0);
+  }
   for (PetscInt v = 0; v < mesh->vEnd - mesh->vStart; v++) {
     PetscReal d[3], r[3];
     for (int i = 0; i < 3; i++) d[i] = mesh->X[3 * v + i] - center[i];

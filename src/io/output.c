@@ -210,8 +210,12 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     PetscCall(AttrString(out->file, "created", date));
   }
   {
-    double hv = h;
-    PetscCall(AttrReals(out->file, "time_step", 1, &hv));
+    double hv    = h;
+    hid_t  space = H5Screate(H5S_SCALAR),
+          attr   = H5Acreate2(out->file, "time_step", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
+    FCH5Check(H5Awrite(attr, H5T_NATIVE_DOUBLE, &hv), "time_step");
+    H5Aclose(attr);
+    H5Sclose(space);
     PetscCall(AttrInt(out->file, "time_steps", nsteps));
     PetscCall(AttrInt(out->file, "output_every", every));
   }

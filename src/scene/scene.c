@@ -7,7 +7,7 @@
      -output_file f.h5        (default fecontact.h5; an XDMF index f.xmf is written beside it)
      -output_every k          write body positions every k steps (>= 1, default 1)
      -quiet                   no progress line, no summary
-   One step (DESIGN.md section 2): free motion of every body (eq. 5), then integration (eq. 2);
+   One step (../shared/design/DESIGN.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
    contact resolution slots in between. */
 #include "../fcimpl.h"
 

@@ -103,37 +103,40 @@ PetscErrorCode FCCheckNonNegative(MPI_Comm comm, const char prefix[], const char
    exit, logging, debugging): never reported. */
 static PetscBool IsPetscRuntimeOption(const char name[])
 {
-  static const char *starts[] = {"options_",
-                                 "log",
+  static const char *exact[]  = {"log",
                                  "info",
                                  "malloc",
+                                 "malloc_debug",
+                                 "malloc_dump",
+                                 "malloc_view",
                                  "help",
                                  "version",
-                                 "on_error",
                                  "fp_trap",
                                  "no_signal_handler",
                                  "history",
                                  "checkstack",
                                  "objects_dump",
                                  "memory_view",
-                                 "viewer_",
                                  "skip_petscrc",
-                                 "check_pointer_intensity",
                                  "start_in_debugger",
                                  "debugger",
                                  "stop_for_debugger",
                                  "display",
                                  "use_gpu_aware_mpi",
-                                 "device_",
-                                 "cuda_",
                                  "fecontact_allow_unknown_options",
                                  NULL};
-  for (int i = 0; starts[i]; i++) {
-    size_t n = strlen(starts[i]);
-    if (!strncmp(name, starts[i], n)) return PETSC_TRUE;
-  }
-  /* -xxx_view, -xxx_view_*, -xxx_converged_reason are read when a solve finishes */
-  if (strstr(name, "view") || strstr(name, "converged_reason")) return PETSC_TRUE;
+  static const char *starts[] = {
+      "options_", "log_", "info_", "malloc_", "on_error_", "viewer_", "device_", "cuda_", "check_pointer_intensity",
+      NULL};
+  size_t len = strlen(name);
+  for (int i = 0; exact[i]; i++)
+    if (!strcmp(name, exact[i])) return PETSC_TRUE;
+  for (int i = 0; starts[i]; i++)
+    if (!strncmp(name, starts[i], strlen(starts[i]))) return PETSC_TRUE;
+  /* viewers and reports read when a solve finishes: -xxx_view, -xxx_view_*, -xxx_converged_reason */
+  if ((len >= 5 && !strcmp(name + len - 5, "_view")) || strstr(name, "_view_") ||
+      (len >= 16 && !strcmp(name + len - 16, "converged_reason")))
+    return PETSC_TRUE;
   return PETSC_FALSE;
 }
 

@@ -1,0 +1,66 @@
+"""Shared helpers of the fecontact tests: run the executable (optionally under mpirun) and read
+its HDF5 output. The executable comes from $FECONTACT (set by ctest), the repository root is the
+working directory."""
+import os
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXE = os.environ.get("FECONTACT", os.path.join(ROOT, "build", "fecontact"))
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OPENBLAS_NUM_THREADS="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+TMP = tempfile.mkdtemp(prefix="fctest-")
+
+
+def run(args, np_=1, check=True, timeout=600):
+    """Run fecontact with a list of option strings; returns the CompletedProcess."""
+    cmd = [EXE] + [str(a) for a in args]
+    if np_ > 1:
+        cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
+    p = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=timeout)
+    if check and p.returncode != 0:
+        sys.stderr.write(p.stdout + p.stderr)
+        raise RuntimeError("fecontact failed (%d): %s" % (p.returncode, " ".join(cmd)))
+    return p
+
+
+def out(name):
+    return os.path.join(TMP, name)
+
+
+def sorted_positions(h5, body, frame=-1):
+    """Positions of a body's vertices at a frame, in an order independent of the MPI partition
+    (lexicographic order of the reference coordinates)."""
+    ref = h5["bodies/%s/mesh/reference" % body][:]
+    pos = h5["bodies/%s/positions" % body][frame]
+    key = np.round(ref, 9)  # placement may differ by round-off between partitions
+    order = np.lexsort(key.T[::-1])
+    return ref[order], pos[order]
+
+
+class Checker:
+    """Collects named assertions, prints each with its measured value, exits non-zero on failure."""
+
+    def __init__(self, name):
+        self.name, self.failed, self.count = name, 0, 0
+
+    def check(self, ok, what):
+        self.count += 1
+        print("%s: %s  %s" % ("PASS" if ok else "FAIL", self.name, what))
+        if not ok:
+            self.failed += 1
+
+    def done(self):
+        print("%d passed, %d failed" % (self.count - self.failed, self.failed))
+        sys.exit(1 if self.failed else 0)
+
+
+def np_from_argv(default=1):
+    for i, a in enumerate(sys.argv):
+        if a == "--np":
+            return int(sys.argv[i + 1])
+    return default

@@ -1,0 +1,83 @@
+"""Bad input: each case exits non-zero (not by a signal), within a time limit (no hang on N ranks),
+and prints an error that names the culprit. Usage: test_bad_input.py [--np N]"""
+import os
+from fctest import run, out, Checker, np_from_argv
+
+NP = np_from_argv()
+c = Checker("bad input np%d" % NP)
+good = ["-scene_bodies", "cube", "-cube_type", "fem", "-cube_dm_plex_filename", "meshes/cube_coarse.msh",
+        "-cube_young", "1e5", "-cube_density", "100", "-time_steps", "2"]
+
+
+def opts(**kw):
+    """good options with some replaced (value None removes the option)"""
+    o, i = [], 0
+    while i < len(good):
+        k = good[i][1:]
+        if k in kw:
+            if kw[k] is not None:
+                o += [good[i], kw[k]]
+        else:
+            o += [good[i], good[i + 1]]
+        i += 2
+    for k, v in kw.items():
+        if "-" + k not in good and v is not None:
+            o += ["-" + k, v]
+    return o + ["-quiet"]
+
+
+os.makedirs(out("optsdir"), exist_ok=True)
+badfile = out("optsdir/bad.opts")
+with open(badfile, "w") as f:
+    f.write("-scene_bodies cube\n-cube_type fem\n-cube_dm_plex_filename meshes/cube_coarse.msh\n-cube_young 1e5 2e5 oops\n-cube_density 100\n")
+cases = [
+    ("missing mesh file", opts(cube_dm_plex_filename="meshes/does_not_exist.msh"), "does_not_exist.msh"),
+    ("no mesh given", opts(cube_dm_plex_filename=None), "-cube_dm_plex_filename"),
+    ("mesh path is a directory", opts(cube_dm_plex_filename="meshes"), "Cannot open mesh file"),
+    ("not a gmsh file", opts(cube_dm_plex_filename="tests/data/garbage.msh"), "garbage.msh"),
+    ("truncated mesh", opts(cube_dm_plex_filename="tests/data/truncated.msh"), "truncated.msh"),
+    ("hexahedral mesh", opts(cube_dm_plex_filename="tests/data/hex.msh"), "not tetrahedra"),
+    ("2D mesh", opts(cube_dm_plex_filename="tests/data/triangle_2d.msh"), "2-dimensional"),
+    ("inverted element", opts(cube_dm_plex_filename="tests/data/inverted_tet.msh"), "inverted"),
+    ("zero-volume element", opts(cube_dm_plex_filename="tests/data/degenerate_tet.msh"), "degenerate"),
+    ("unknown body type", opts(cube_type="soft"), "Unknown body type 'soft'"),
+    ("missing body type", opts(cube_type=None), "-cube_type"),
+    ("unknown shape", ["-scene_bodies", "b", "-b_type", "rigid", "-b_shape", "cone", "-b_density", "1", "-quiet"], "Unknown shape 'cone'"),
+    ("rigid plane", ["-scene_bodies", "b", "-b_type", "rigid", "-b_shape", "plane", "-b_density", "1", "-quiet"], "kinematic"),
+    ("sphere without radius", ["-scene_bodies", "b", "-b_type", "rigid", "-b_shape", "sphere", "-b_density", "1", "-quiet"], "-b_radius"),
+    ("unknown material", opts(cube_material="rubber"), "Unknown material 'rubber'"),
+    ("density zero", opts(cube_density="0"), "-cube_density must be > 0"),
+    ("density negative (rigid)", ["-scene_bodies", "b", "-b_type", "rigid", "-b_shape", "sphere", "-b_radius", "1", "-b_density", "-1", "-quiet"], "-b_density must be > 0"),
+    ("Young zero", opts(cube_young="0"), "-cube_young must be > 0"),
+    ("Young negative", opts(cube_young="-5"), "-cube_young must be > 0"),
+    ("Poisson 0.5", opts(cube_poisson="0.5"), "-cube_poisson"),
+    ("Poisson -1", opts(cube_poisson="-1"), "-cube_poisson"),
+    ("Poisson 0.7", opts(cube_poisson="0.7"), "-cube_poisson"),
+    ("time step zero", opts(time_step="0"), "-time_step"),
+    ("time step negative", opts(time_step="-0.01"), "-time_step"),
+    ("NaN Young", opts(cube_young="nan"), "-cube_young"),
+    ("NaN in gravity", opts(gravity="0,0,nan"), "-gravity"),
+    ("Inf time step", opts(time_step="inf"), "-time_step"),
+    ("not a number", opts(cube_density="heavy"), "-cube_density: 'heavy' is not a number"),
+    ("wrong arity", opts(gravity="0,-9.81"), "-gravity needs 3"),
+    ("misspelt option", opts(cube_yung="1e5"), "-cube_yung"),
+    ("options for an unknown body", opts(ball_type="rigid"), "-ball_type"),
+    ("no bodies", ["-time_steps", "1", "-quiet"], "-scene_bodies"),
+    ("duplicate body", opts(scene_bodies="cube,cube"), "appears twice"),
+    ("bad body name", opts(scene_bodies="cu-be"), "cu-be"),
+    ("negative step count", opts(time_steps="-3"), "-time_steps"),
+    ("output every 0", opts(output_every="0"), "-output_every"),
+    ("unwritable output path", opts(output_file="/nonexistent_dir/run.h5"), "/nonexistent_dir/run.h5"),
+    ("malformed options file", ["-options_file", badfile, "-quiet"], "bad.opts line 4"),
+    ("fixed box fixes everything", opts(cube_fixed_box="-9,-9,-9,9,9,9"), "fixed"),
+    ("fixed box min > max", opts(cube_fixed_box="1,0,0,0,1,1"), "-cube_fixed_box"),
+]
+for what, args, expect in cases:
+    p = run(args + ["-output_file", out("bad_np%d.h5" % NP)] if "-output_file" not in args else args,
+            np_=NP, check=False, timeout=120)
+    text = p.stdout + p.stderr
+    crashed = p.returncode < 0 or p.returncode >= 128 or "Segmentation" in text or "signal" in text.lower()
+    ok = p.returncode != 0 and not crashed and expect in text
+    c.check(ok, "%-28s exit %d, message names '%s'%s" % (what, p.returncode, expect,
+            "" if ok else "\n----\n" + text[-1500:]))
+c.done()
