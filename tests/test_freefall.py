@@ -12,7 +12,11 @@ c = Checker("freefall np%d" % NP)
 h, N, g = 0.01, 40, np.array([0.3, -0.2, -9.81])
 v0 = np.array([0.5, 0.0, 1.0])
 f = out("freefall_np%d.h5" % NP)
-run(["-scene_bodies", "lin,cor,box,ball,kin", "-time_step", h, "-time_steps", N, "-gravity", "0.3,-0.2,-9.81",
+run(["-scene_bodies", "lin,cor,box,ball,kin,mcube,bcube",
+     "-mcube_type", "rigid", "-mcube_shape", "mesh", "-mcube_dm_plex_filename", "meshes/cube_coarse.msh",
+     "-mcube_density", "100", "-mcube_angular_velocity", "0,0,2", "-mcube_velocity", "0.5,0,1", "-mcube_translate", "0,0,5",
+     "-bcube_type", "rigid", "-bcube_shape", "box", "-bcube_half_extents", "0.5,0.5,0.5", "-bcube_density", "100",
+     "-bcube_angular_velocity", "0,0,2", "-bcube_velocity", "0.5,0,1", "-bcube_center", "0,0,-5", "-time_step", h, "-time_steps", N, "-gravity", "0.3,-0.2,-9.81",
      "-output_file", f, "-quiet",
      "-lin_type", "fem", "-lin_dm_plex_filename", "meshes/cube_coarse.msh", "-lin_young", "1e6", "-lin_density", "800",
      "-lin_velocity", "0.5,0,1",
@@ -49,5 +53,17 @@ c.check(err < 1e-12, "kinematic body follows its prescribed twist: err %.2e" % e
 qk = H["bodies/kin/rotation"][-1]
 c.check(abs(qk[0] - np.cos(5 * h * N / 2)) < 1e-12 and abs(qk[3] - np.sin(5 * h * N / 2)) < 1e-12,
         "kinematic rotation exp(t w/2): %s" % qk)
+# mass properties: a rigid body shaped by the tet mesh of the unit cube and an analytic unit box,
+# both spinning about z: kinetic energy 1/2 m |v|^2 + 1/2 (m/6) w^2 at every step
+m, wz = 100.0, 2.0
+for b in ["mcube", "bcube"]:
+    v = v0 + n * h * g
+    Ek = 0.5 * m * (v * v).sum(axis=1) + 0.5 * (m / 6.0) * wz * wz
+    err = np.abs(H["bodies/%s/energy" % b][:, 0] - Ek).max() / Ek.max()
+    c.check(err < 1e-12, "%s (rigid %s) kinetic energy vs 1/2 m v^2 + 1/2 (m/6) w^2: rel err %.2e" % (b, "mesh" if b == "mcube" else "box", err))
+    x0 = H["bodies/%s" % b].attrs["initial_centroid"]
+    err = np.abs(H["bodies/%s/centroid" % b][:] - (x0 + n * h * v0 + h * h * g * n * (n + 1) / 2)).max() / scale
+    c.check(err < 1e-12, "%s centroid vs closed form: rel err %.2e" % (b, err))
+c.check(np.abs(H["bodies/mcube"].attrs["initial_centroid"] - [0, 0, 5]).max() < 1e-12, "mesh shape: centroid of the mesh, translated")
 c.check(H["steps/time"].shape == (N,) and abs(H["steps/time"][-1] - N * h) < 1e-14, "one /steps row per step")
 c.done()
