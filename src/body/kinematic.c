@@ -25,30 +25,6 @@ static PetscErrorCode Integrate_Kinematic(FCBody body, PetscReal t)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode GetCentroid_Kinematic(FCBody body, PetscReal c[3])
-{
-  FCPose *P = &((Kinematic *)body->data)->pose;
-  PetscFunctionBegin;
-  for (int d = 0; d < 3; d++) c[d] = P->x[d];
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode GetRotation_Kinematic(FCBody body, PetscReal q[4], PetscBool *has)
-{
-  FCPose *P = &((Kinematic *)body->data)->pose;
-  PetscFunctionBegin;
-  for (int d = 0; d < 4; d++) q[d] = P->q[d];
-  *has = PETSC_TRUE;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode GetVisualPositions_Kinematic(FCBody body, PetscReal x[])
-{
-  PetscFunctionBegin;
-  PetscCall(FCPoseVisualPositions(body, &((Kinematic *)body->data)->pose, x));
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode Destroy_Kinematic(FCBody body)
 {
   PetscFunctionBegin;
@@ -66,9 +42,9 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   body->data                   = k;
   body->ops.setup              = SetUp_Kinematic;
   body->ops.integrate          = Integrate_Kinematic;
-  body->ops.getcentroid        = GetCentroid_Kinematic;
-  body->ops.getrotation        = GetRotation_Kinematic;
-  body->ops.getvisualpositions = GetVisualPositions_Kinematic;
+  body->ops.getcentroid        = FCPoseGetCentroid;
+  body->ops.getrotation        = FCPoseGetRotation;
+  body->ops.getvisualpositions = FCPoseGetVisualPositions;
   body->ops.destroy            = Destroy_Kinematic;
   PetscFunctionReturn(0);
 }

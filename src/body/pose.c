@@ -75,3 +75,29 @@ PetscErrorCode FCPoseDestroy(FCPose *P)
   PetscCall(PetscFree(P->bodyVerts));
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode FCPoseGetCentroid(FCBody body, PetscReal c[3])
+{
+  FCPose *P = (FCPose *)body->data;
+
+  PetscFunctionBegin;
+  for (int d = 0; d < 3; d++) c[d] = P->x[d];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPoseGetRotation(FCBody body, PetscReal q[4], PetscBool *has)
+{
+  FCPose *P = (FCPose *)body->data;
+
+  PetscFunctionBegin;
+  for (int d = 0; d < 4; d++) q[d] = P->q[d];
+  *has = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPoseGetVisualPositions(FCBody body, PetscReal x[])
+{
+  PetscFunctionBegin;
+  PetscCall(FCPoseVisualPositions(body, (FCPose *)body->data, x));
+  PetscFunctionReturn(0);
+}

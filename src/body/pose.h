@@ -14,3 +14,7 @@ typedef struct {
 PETSC_INTERN PetscErrorCode FCPoseSetUp(FCBody, FCPose *);
 PETSC_INTERN PetscErrorCode FCPoseVisualPositions(FCBody, FCPose *, PetscReal[]);
 PETSC_INTERN PetscErrorCode FCPoseDestroy(FCPose *);
+/* Body ops shared by rigid and kinematic bodies, whose data begins with an FCPose */
+PETSC_INTERN PetscErrorCode FCPoseGetCentroid(FCBody, PetscReal[3]);
+PETSC_INTERN PetscErrorCode FCPoseGetRotation(FCBody, PetscReal[4], PetscBool *);
+PETSC_INTERN PetscErrorCode FCPoseGetVisualPositions(FCBody, PetscReal[]);

@@ -8,7 +8,7 @@
 #include "pose.h"
 
 typedef struct {
-  FCPose    pose;
+  FCPose    pose; /* first: the shared pose ops of pose.c read body->data as an FCPose */
   PetscReal mass, dv[3], dw[3];
 } Rigid;
 
@@ -80,23 +80,6 @@ static PetscErrorCode Integrate_Rigid(FCBody body, PetscReal t)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode GetCentroid_Rigid(FCBody body, PetscReal c[3])
-{
-  Rigid *r = (Rigid *)body->data;
-  PetscFunctionBegin;
-  for (int d = 0; d < 3; d++) c[d] = r->pose.x[d];
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode GetRotation_Rigid(FCBody body, PetscReal q[4], PetscBool *has)
-{
-  Rigid *r = (Rigid *)body->data;
-  PetscFunctionBegin;
-  for (int d = 0; d < 4; d++) q[d] = r->pose.q[d];
-  *has = PETSC_TRUE;
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode GetEnergy_Rigid(FCBody body, FCEnergy *E)
 {
   Rigid    *r = (Rigid *)body->data;
@@ -107,13 +90,6 @@ static PetscErrorCode GetEnergy_Rigid(FCBody body, FCEnergy *E)
   FCMat3Vec(Jw, r->pose.w, Jwv);
   E->kinetic = 0.5 * r->mass * FCDot(r->pose.v, r->pose.v) + 0.5 * FCDot(r->pose.w, Jwv);
   E->gravity = -r->mass * FCDot(body->gravity, r->pose.x);
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode GetVisualPositions_Rigid(FCBody body, PetscReal x[])
-{
-  PetscFunctionBegin;
-  PetscCall(FCPoseVisualPositions(body, &((Rigid *)body->data)->pose, x));
   PetscFunctionReturn(0);
 }
 
@@ -148,10 +124,10 @@ PetscErrorCode FCBodyCreate_Rigid(FCBody body)
   body->ops.setup              = SetUp_Rigid;
   body->ops.freemotion         = FreeMotion_Rigid;
   body->ops.integrate          = Integrate_Rigid;
-  body->ops.getcentroid        = GetCentroid_Rigid;
-  body->ops.getrotation        = GetRotation_Rigid;
+  body->ops.getcentroid        = FCPoseGetCentroid;
+  body->ops.getrotation        = FCPoseGetRotation;
   body->ops.getenergy          = GetEnergy_Rigid;
-  body->ops.getvisualpositions = GetVisualPositions_Rigid;
+  body->ops.getvisualpositions = FCPoseGetVisualPositions;
   body->ops.checkstate         = CheckState_Rigid;
   body->ops.destroy            = Destroy_Rigid;
   PetscFunctionReturn(0);
