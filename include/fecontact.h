@@ -124,3 +124,41 @@ PETSC_EXTERN PetscErrorCode FCSceneRun(FCScene);
 PETSC_EXTERN PetscErrorCode FCSceneStep(FCScene);
 PETSC_EXTERN PetscErrorCode FCSceneGetBody(FCScene, const char[], FCBody *);
 PETSC_EXTERN PetscErrorCode FCSceneDestroy(FCScene *);
+
+/* ---------------------------------------------------------------------------------------
+   Frictional contact problem FC(W, q, mu) in local coordinates (eq. 18): find r with
+   u = W r + q, each contact's r in the Coulomb cone {||r_T|| <= mu r_n}, the modified velocity
+   u + mu ||u_T|| e_N in the dual cone, orthogonal to r. Contacts have 1 (frictionless normal),
+   2 (2D: normal + one tangent) or 3 (normal + two tangents) rows, ordered [n t1 t2].
+   --------------------------------------------------------------------------------------- */
+typedef struct _p_FCContactProblem *FCContactProblem;
+PETSC_EXTERN PetscErrorCode         FCContactProblemCreateDense(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
+                                                                const PetscReal W[], const PetscReal q[], FCContactProblem *);
+PETSC_EXTERN PetscErrorCode         FCContactProblemCreateCSR(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
+                                                              const PetscInt rowptr[], const PetscInt col[],
+                                                              const PetscReal val[], const PetscReal q[], FCContactProblem *);
+PETSC_EXTERN PetscErrorCode         FCContactProblemLoadFCLIB(const char path[], FCContactProblem *);
+PETSC_EXTERN PetscErrorCode         FCContactProblemGetSizes(FCContactProblem, PetscInt *ncontacts, PetscInt *nrows);
+PETSC_EXTERN PetscErrorCode         FCContactProblemVelocity(FCContactProblem, const PetscReal r[], PetscReal u[]);
+/* Natural-map residual e_i = r_i - Proj_K(r_i - (u_i + mu ||u_T|| e_N)); returns sqrt(sum ||e_i||^2)
+   (absolute) and that divided by max(||q||, eps) (relative, the normalization of Siconos 4.4) */
+PETSC_EXTERN PetscErrorCode FCContactProblemResidual(FCContactProblem, const PetscReal r[], PetscReal *abs,
+                                                     PetscReal *rel);
+PETSC_EXTERN PetscErrorCode FCContactProblemDestroy(FCContactProblem *);
+
+/* Exact solution of one contact's problem (W 3x3 or smaller, row-major): open, stick, or slip
+   found by a root search on the slip direction; returns the local residual reached */
+PETSC_EXTERN PetscErrorCode FCContactLocalSolve(PetscInt dim, const PetscReal W[], const PetscReal q[], PetscReal mu,
+                                                PetscReal r[], PetscReal *residual);
+
+typedef struct _p_FCContactSolver *FCContactSolver;
+typedef const char                *FCContactSolverType;
+#define FCCONTACTSOLVERPGS "pgs"
+PETSC_EXTERN PetscErrorCode FCContactSolverCreate(MPI_Comm, FCContactSolver *);
+PETSC_EXTERN PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver);
+PETSC_EXTERN PetscErrorCode FCContactSolverSetTolerances(FCContactSolver, PetscReal tol, PetscInt max_it);
+/* r: warm start on input, solution on output */
+PETSC_EXTERN PetscErrorCode FCContactSolverSolve(FCContactSolver, FCContactProblem, PetscReal r[]);
+PETSC_EXTERN PetscErrorCode FCContactSolverGetConvergence(FCContactSolver, PetscInt *sweeps, PetscReal *residual,
+                                                          PetscBool *converged);
+PETSC_EXTERN PetscErrorCode FCContactSolverDestroy(FCContactSolver *);

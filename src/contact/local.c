@@ -1,0 +1,205 @@
+/* One contact's frictional problem, solved exactly (not by a projection pass):
+     open   r = 0                                   when q_n >= 0
+     stick  W r = -q, u = 0                         when r lies in the cone
+     slip   u_n = 0, r_T = -mu r_n t, u_T = s t (s > 0): a root of g(theta) = u_T x t over the
+            slip direction t = (cos theta, sin theta), bracketed on a grid and bisected to
+            machine precision (2D: t = +-1)
+   The candidate is accepted when its natural-map residual is at round-off level; otherwise a
+   projected fixed-point iteration finishes the job (degenerate or non-symmetric W). */
+#include "contactimpl.h"
+
+/* Projection on the Coulomb cone {||x_T|| <= mu x_n} (d = 2, 3) or on R+ (d = 1) */
+static void ProjectCone(PetscInt d, PetscReal mu, const PetscReal x[], PetscReal p[])
+{
+  PetscReal t = 0.0;
+  if (d == 1) {
+    p[0] = PetscMax(x[0], 0.0);
+    return;
+  }
+  for (PetscInt a = 1; a < d; a++) t += x[a] * x[a];
+  t = PetscSqrtReal(t);
+  if (t <= mu * x[0]) {
+    for (PetscInt a = 0; a < d; a++) p[a] = x[a];
+  } else if (mu * t <= -x[0]) {
+    for (PetscInt a = 0; a < d; a++) p[a] = 0.0;
+  } else {
+    PetscReal s = (x[0] + mu * t) / (1.0 + mu * mu);
+    p[0]        = s;
+    for (PetscInt a = 1; a < d; a++) p[a] = mu * s * x[a] / t;
+  }
+}
+
+PetscReal FCContactNaturalMapError2(PetscInt d, PetscReal mu, const PetscReal r[], const PetscReal u[])
+{
+  PetscReal x[3], p[3], uT = 0.0, e2 = 0.0;
+  for (PetscInt a = 1; a < d; a++) uT += u[a] * u[a];
+  uT = PetscSqrtReal(uT);
+  for (PetscInt a = 0; a < d; a++) x[a] = r[a] - u[a] - (a == 0 ? mu * uT : 0.0);
+  ProjectCone(d, mu, x, p);
+  for (PetscInt a = 0; a < d; a++) e2 += PetscSqr(r[a] - p[a]);
+  return e2;
+}
+
+/* Accept a candidate when its residual is round-off relative to the larger of |q| and |r|
+   (r = -W^-1 q carries the round-off of |r|, which may exceed |q| by the conditioning of W) */
+static PetscBool Accept(PetscInt d, PetscReal e2, const PetscReal q[], const PetscReal r[])
+{
+  PetscReal s2q = 0.0, s2r = 0.0;
+  for (PetscInt a = 0; a < d; a++) {
+    s2q += q[a] * q[a];
+    s2r += r[a] * r[a];
+  }
+  return e2 <= PetscSqr(1e-12) * PetscMax(PetscMax(s2q, s2r), PETSC_SMALL * PETSC_SMALL) ? PETSC_TRUE : PETSC_FALSE;
+}
+
+static PetscReal LocalError2(PetscInt d, const PetscReal W[], const PetscReal q[], PetscReal mu, const PetscReal r[])
+{
+  PetscReal u[3];
+  for (PetscInt a = 0; a < d; a++) {
+    u[a] = q[a];
+    for (PetscInt b = 0; b < d; b++) u[a] += W[a * d + b] * r[b];
+  }
+  return FCContactNaturalMapError2(d, mu, r, u);
+}
+
+/* Solve the d x d system W r = -q; returns false if singular */
+static PetscBool SolveStick(PetscInt d, const PetscReal W[], const PetscReal q[], PetscReal r[])
+{
+  if (d == 1) {
+    if (W[0] <= 0.0) return PETSC_FALSE;
+    r[0] = -q[0] / W[0];
+    return PETSC_TRUE;
+  } else if (d == 2) {
+    PetscReal det = W[0] * W[3] - W[1] * W[2];
+    if (det == 0.0) return PETSC_FALSE;
+    r[0] = (-q[0] * W[3] + q[1] * W[1]) / det;
+    r[1] = (-q[1] * W[0] + q[0] * W[2]) / det;
+    return PETSC_TRUE;
+  } else {
+    PetscReal Wi[9], det = FCMat3Det(W);
+    if (det == 0.0 || !PetscIsNormalReal(det)) return PETSC_FALSE;
+    if (FCMat3Inverse(W, Wi)) return PETSC_FALSE;
+    for (int a = 0; a < 3; a++) r[a] = -(Wi[3 * a] * q[0] + Wi[3 * a + 1] * q[1] + Wi[3 * a + 2] * q[2]);
+    return PETSC_TRUE;
+  }
+}
+
+/* 3D slip at direction theta: r_n from u_n = 0, then u_T; returns false when r_n <= 0 */
+static PetscBool Slip3(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal theta, PetscReal r[3],
+                       PetscReal *g, PetscReal *dot)
+{
+  PetscReal t[2] = {PetscCosReal(theta), PetscSinReal(theta)}, D, uT[2];
+  D              = W[0] - mu * (W[1] * t[0] + W[2] * t[1]);
+  if (!(D > 0.0)) return PETSC_FALSE;
+  r[0] = -q[0] / D;
+  r[1] = -mu * r[0] * t[0];
+  r[2] = -mu * r[0] * t[1];
+  for (int a = 0; a < 2; a++)
+    uT[a] = q[1 + a] + W[3 * (1 + a)] * r[0] + W[3 * (1 + a) + 1] * r[1] + W[3 * (1 + a) + 2] * r[2];
+  *g   = uT[0] * t[1] - uT[1] * t[0];
+  *dot = uT[0] * t[0] + uT[1] * t[1];
+  return r[0] > 0.0 ? PETSC_TRUE : PETSC_FALSE;
+}
+
+static PetscBool SolveSlip3(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal r[3])
+{
+  const int N    = 256;
+  PetscReal best = PETSC_MAX_REAL, rb[3] = {0, 0, 0};
+  PetscReal th0 = 0.0, g0 = 0.0, d0 = 0.0, rr[3];
+  PetscBool v0 = Slip3(W, q, mu, th0, rr, &g0, &d0);
+  for (int k = 1; k <= N; k++) {
+    PetscReal th1 = 2.0 * PETSC_PI * k / N, g1, d1;
+    PetscBool v1  = Slip3(W, q, mu, th1, rr, &g1, &d1);
+    if (v0 && v1 && (g0 == 0.0 || g0 * g1 < 0.0) && (d0 > 0.0 || d1 > 0.0)) {
+      PetscReal a = th0, b = th1, ga = g0;
+      for (int it = 0; it < 200 && b - a > 4 * PETSC_MACHINE_EPSILON; it++) {
+        PetscReal m = 0.5 * (a + b), gm, dm;
+        if (!Slip3(W, q, mu, m, rr, &gm, &dm)) break;
+        if (gm == 0.0) {
+          a = b = m;
+          break;
+        }
+        if ((ga < 0.0) == (gm < 0.0)) {
+          a  = m;
+          ga = gm;
+        } else
+          b = m;
+      }
+      {
+        PetscReal gm, dm, e2;
+        if (Slip3(W, q, mu, 0.5 * (a + b), rr, &gm, &dm) && dm >= 0.0) {
+          e2 = LocalError2(3, W, q, mu, rr);
+          if (e2 < best) {
+            best = e2;
+            for (int c = 0; c < 3; c++) rb[c] = rr[c];
+          }
+          if (Accept(3, e2, q, rr)) break;
+        }
+      }
+    }
+    th0 = th1;
+    g0  = g1;
+    d0  = d1;
+    v0  = v1;
+  }
+  if (best == PETSC_MAX_REAL) return PETSC_FALSE;
+  for (int c = 0; c < 3; c++) r[c] = rb[c];
+  return Accept(3, best, q, r);
+}
+
+static PetscBool SolveSlip2(const PetscReal W[4], const PetscReal q[2], PetscReal mu, PetscReal r[2])
+{
+  for (int s = -1; s <= 1; s += 2) {
+    PetscReal D = W[0] - s * mu * W[1], rr[2];
+    if (!(D > 0.0)) continue;
+    rr[0] = -q[0] / D;
+    rr[1] = -s * mu * rr[0];
+    if (rr[0] > 0.0 && Accept(2, LocalError2(2, W, q, mu, rr), q, rr)) {
+      r[0] = rr[0];
+      r[1] = rr[1];
+      return PETSC_TRUE;
+    }
+  }
+  return PETSC_FALSE;
+}
+
+/* Last resort: r <- Proj_K(r - rho (u + mu ||u_T|| e_N)) with rho = 1 / ||W||_F */
+static void FixedPoint(PetscInt d, const PetscReal W[], const PetscReal q[], PetscReal mu, PetscReal r[])
+{
+  PetscReal nW = 0.0, rho;
+  for (PetscInt a = 0; a < d * d; a++) nW += W[a] * W[a];
+  rho = 1.0 / PetscMax(PetscSqrtReal(nW), PETSC_MACHINE_EPSILON);
+  for (int it = 0; it < 100000; it++) {
+    PetscReal u[3] = {0, 0, 0}, x[3] = {0, 0, 0}, uT = 0.0;
+    for (PetscInt a = 0; a < d; a++) {
+      u[a] = q[a];
+      for (PetscInt b = 0; b < d; b++) u[a] += W[a * d + b] * r[b];
+    }
+    for (PetscInt a = 1; a < d; a++) uT += u[a] * u[a];
+    uT = PetscSqrtReal(uT);
+    for (PetscInt a = 0; a < d; a++) x[a] = r[a] - rho * (u[a] + (a == 0 ? mu * uT : 0.0));
+    ProjectCone(d, mu, x, r);
+    if (it % 16 == 0 && Accept(d, LocalError2(d, W, q, mu, r), q, r)) break;
+  }
+}
+
+PetscErrorCode FCContactLocalSolve(PetscInt d, const PetscReal W[], const PetscReal q[], PetscReal mu, PetscReal r[],
+                                   PetscReal *residual)
+{
+  PetscReal rr[3];
+
+  PetscFunctionBegin;
+  if (q[0] >= 0.0) { /* open: r = 0, u = q, and u_n >= 0 makes u + mu ||u_T|| e_N dual-admissible */
+    for (PetscInt a = 0; a < d; a++) r[a] = 0.0;
+  } else if (SolveStick(d, W, q, rr) && Accept(d, LocalError2(d, W, q, mu, rr), q, rr)) {
+    for (PetscInt a = 0; a < d; a++) r[a] = rr[a];
+  } else if (d == 3 && SolveSlip3(W, q, mu, rr)) {
+    for (PetscInt a = 0; a < d; a++) r[a] = rr[a];
+  } else if (d == 2 && SolveSlip2(W, q, mu, rr)) {
+    for (PetscInt a = 0; a < d; a++) r[a] = rr[a];
+  } else {
+    FixedPoint(d, W, q, mu, r); /* starts from the caller's r (warm start) */
+  }
+  if (residual) *residual = PetscSqrtReal(LocalError2(d, W, q, mu, r));
+  PetscFunctionReturn(0);
+}
