@@ -23,6 +23,10 @@ typedef enum {
   FC_PHASE_ASSEMBLY,      /* element loops: K, f_int, M (eq. 5)                  */
   FC_PHASE_FACTORIZATION, /* numeric (and symbolic) factorization of A           */
   FC_PHASE_FREE_MOTION,   /* right-hand side b and the solve A dv_free = b       */
+  FC_PHASE_COLLISION,     /* discrete collision detection, contact set            */
+  FC_PHASE_COMPLIANCE,    /* W = sum J A^-1 J^T (eq. 17)                           */
+  FC_PHASE_CONTACT_SOLVE, /* projected Gauss-Seidel (eq. 19)                       */
+  FC_PHASE_CORRECTION,    /* dv += h A^-1 J^T lambda (eq. 20)                      */
   FC_PHASE_INTEGRATION,   /* v += dv, q += h v (eq. 2)                            */
   FC_PHASE_OUTPUT,        /* HDF5 writes                                          */
   FC_PHASE_NUM

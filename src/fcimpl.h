@@ -75,6 +75,9 @@ struct _p_FCShape {
   PetscErrorCode (*destroy)(FCShape);
   /* Volume, and inertia tensor per unit density about the centre, in the body frame */
   PetscErrorCode (*massproperties)(FCShape, PetscReal *volume, PetscReal J[9]);
+  /* Signed distance of a body-frame point x to the surface (negative inside), the outward
+     unit normal there and the closest surface point (body frame) */
+  PetscErrorCode (*distance)(FCShape, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cp[3]);
   /* Triangulated surface in the body frame for pictures: nv vertices, nt triangles */
   PetscErrorCode (*tessellate)(FCShape, PetscInt *nv, PetscReal **xyz, PetscInt *nt, PetscInt **tri);
 };
@@ -111,6 +114,40 @@ PETSC_INTERN PetscErrorCode FCMeshCreateVisual(FCMesh *, FCBodyVisual *);
 PETSC_INTERN PetscErrorCode FCMeshDestroy(FCMesh *);
 
 /* ---------------------------------------------------------------------------------------
+   Contacts of one step (src/contact/contactset.c). A proximity point is a linear map of a
+   body's DOFs (eq. 6): barycentric weights on FE vertices, or a body-frame point of a rigid or
+   kinematic body. Contacts are replicated on every rank, in a partition-independent order.
+   --------------------------------------------------------------------------------------- */
+typedef struct {
+  PetscInt  nv;      /* FE: vertices (1..3); 0 for rigid and kinematic bodies */
+  PetscInt  gdof[3]; /* FE: first global DOF of each vertex, -1 when fixed     */
+  PetscReal w[3];    /* FE: barycentric weights                                */
+  PetscReal r[3];    /* rigid/kinematic: body-frame point                      */
+} FCProximity;
+
+typedef struct {
+  PetscInt    pair, body[2]; /* scene body indices; the normal points from side 2 to side 1 */
+  FCProximity prox[2];
+  PetscReal   key[3];                /* reference position on side 1: sorts contacts independently of the partition */
+  PetscReal   n[3], t1[3], t2[3];    /* frame at the start of the step */
+  PetscReal   p0[2][3], pfree[2][3]; /* proximity positions at the start and after free motion */
+  PetscReal   gap0, mu, gap_end;
+  PetscInt    dim, row, owner; /* rows (1 frictionless, 3), first row, detecting rank */
+  PetscReal   force[3];        /* lambda in the [n t1 t2] frame (force units)      */
+  PetscInt    state;           /* 0 open, 1 stick, 2 slip */
+} FCContact;
+
+typedef struct {
+  PetscInt   n, max, nrows;
+  FCContact *c;
+} FCContactSet;
+PETSC_INTERN PetscErrorCode FCContactSetAdd(FCContactSet *, const FCContact *);
+PETSC_INTERN PetscErrorCode FCContactSetGather(FCContactSet *, MPI_Comm);
+PETSC_INTERN PetscErrorCode FCContactSetFinalize(FCContactSet *); /* frames, rows */
+PETSC_INTERN PetscErrorCode FCContactSetReset(FCContactSet *);
+PETSC_INTERN PetscErrorCode FCContactSetDestroy(FCContactSet *);
+
+/* ---------------------------------------------------------------------------------------
    Body
    --------------------------------------------------------------------------------------- */
 typedef struct {
@@ -124,7 +161,21 @@ typedef struct {
   PetscErrorCode (*getvisualpositions)(FCBody, PetscReal[]);
   PetscErrorCode (*checkstate)(FCBody, PetscInt);
   PetscErrorCode (*destroy)(FCBody);
+  /* contact: candidate points of this body (owned FE boundary vertices, or points of a rigid
+     shape), each with its proximity map, start and free-motion positions */
+  PetscErrorCode (*contactpoints)(FCBody, PetscInt *n, FCProximity **prox, PetscReal **x0, PetscReal **xfree,
+                                  PetscReal **key);
+  /* world position of a proximity point: at the start of the step, after free motion, now */
+  PetscErrorCode (*proximityposition)(FCBody, const FCProximity *, PetscInt when, PetscReal x[3]);
+  /* W += J_b A_b^-1 J_b^T for the contacts touching this body (W: nrows x nrows, replicated) */
+  PetscErrorCode (*addcompliance)(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
+  /* signed distance of a world point to this body's shape now: outward normal (world) and the
+     closest point (body frame) */
+  PetscErrorCode (*shapedistance)(FCBody, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cpb[3]);
+  /* dv += h A_b^-1 J_b^T lambda */
+  PetscErrorCode (*applycorrection)(FCBody, PetscInt self, const FCContactSet *, const PetscReal lambda[]);
 } FCBodyOps;
+enum { FC_AT_START, FC_AT_FREE, FC_AT_NOW };
 
 struct _p_FCBody {
   MPI_Comm  comm;
@@ -140,6 +191,7 @@ struct _p_FCBody {
   PetscBool    center_set;
   PetscReal    density;
   FCBodyVisual visual;
+  FCShape      shape; /* rigid and kinematic bodies: their shape (owned by the pose) */
 };
 
 PETSC_INTERN PetscErrorCode FCBodyCreate_FEM(FCBody);
@@ -159,8 +211,11 @@ PETSC_INTERN PetscErrorCode FCBodyVisualDestroy(FCBodyVisual *);
    --------------------------------------------------------------------------------------- */
 typedef struct _p_FCOutput *FCOutput;
 PETSC_INTERN PetscErrorCode FCOutputCreate(MPI_Comm, const char filename[], FCOutput *);
+struct _FCContactSetView; /* defined with the schemes below */
 PETSC_INTERN PetscErrorCode FCOutputWriteHeader(FCOutput, PetscInt nbodies, FCBody[], PetscReal h, PetscInt nsteps,
-                                                PetscInt every);
+                                                PetscInt every, PetscBool contacts);
+/* The contacts of the step just recorded (only in scenes with contact pairs) */
+PETSC_INTERN PetscErrorCode FCOutputRecordContacts(FCOutput, const struct _FCContactSetView *);
 PETSC_INTERN PetscErrorCode FCOutputRecordStep(FCOutput, PetscInt step, PetscReal t,
                                                const PetscReal timing[FC_PHASE_NUM], PetscInt nbodies, FCBody[]);
 PETSC_INTERN PetscErrorCode FCOutputWriteFrame(FCOutput, PetscInt step, PetscReal t, PetscInt nbodies, FCBody[]);
@@ -168,6 +223,37 @@ PETSC_INTERN PetscErrorCode FCOutputFlush(FCOutput);
 PETSC_INTERN PetscErrorCode FCOutputDestroy(FCOutput *);
 PETSC_INTERN PetscErrorCode FCXdmfWrite(const char h5name[], const char xmfname[], PetscInt nbodies, FCBody[],
                                         PetscInt nframes, const PetscReal times[]);
+
+/* ---------------------------------------------------------------------------------------
+   Contact pairs, collision detection (src/collision/) and the constraint schemes (src/scheme/)
+   --------------------------------------------------------------------------------------- */
+typedef struct {
+  PetscInt n;
+  PetscInt (*body)[2]; /* scene body indices */
+  PetscReal *mu;
+  PetscReal  distance; /* alarm distance */
+} FCContactPairs;
+/* Discrete collision detection at the start of the step (after the free motion has been
+   computed, so that every contact also carries its free-motion positions) */
+PETSC_INTERN PetscErrorCode FCCollisionDetect(MPI_Comm, PetscInt nbodies, FCBody bodies[], const FCContactPairs *,
+                                              FCContactSet *);
+/* Gap of every contact at the end of the step, on the real geometry (end-of-step normals) */
+PETSC_INTERN PetscErrorCode FCCollisionEndGaps(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCContactSet *,
+                                               PetscReal *max_penetration);
+
+typedef struct {
+  PetscInt  contacts, rows, sweeps;
+  PetscReal residual;
+} FCSchemeStats;
+/* Algorithm 1: W = sum J A^-1 J^T, PGS on (h^2 W, delta_free, mu), correction (eq. 20) */
+PETSC_INTERN PetscErrorCode FCSchemeExplicit(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCContactSet *,
+                                             FCContactSolver, FCSchemeStats *);
+
+struct _FCContactSetView {
+  const FCContactSet  *set;
+  const FCSchemeStats *stats;
+  PetscReal            max_penetration;
+};
 
 /* Progress line on rank 0 (src/util/progress.c) */
 typedef struct {

@@ -36,6 +36,13 @@ typedef struct {
   PetscInt   nassembly, nfactor;
   PetscBool  Acurrent; /* A, K and f_int belong to the current state */
   PetscReal  mass;
+  /* contact */
+  PetscInt     nbv, *bv;         /* owned boundary vertices (local vertex indices)          */
+  Vec          Xg;               /* placed reference coordinates, layout of u               */
+  Mat          JT, X;            /* J_b^T and A^-1 J_b^T of the step's contacts (dense)     */
+  PetscInt     ncols, *cols;     /* global constraint row of each column of JT and X        */
+  PetscReal   *bx0, *bxf, *bkey; /* contact point buffers                                   */
+  FCProximity *bprox;
 } FEM;
 
 static PetscErrorCode SetFromOptions_FEM(FCBody body)
@@ -396,6 +403,204 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   PetscCall(AssembleElastic(body, fem->u, fem->fint, fem->K));
   PetscCall(FormAndFactorA(body));
   PetscCall(FCMeshCreateVisual(m, &body->visual));
+  PetscCall(FCBodyFEMGetReferenceCoordinates(body, &fem->Xg));
+  { /* owned vertices of boundary faces: the candidate contact points */
+    DMLabel    label;
+    PetscInt   fStart, fEnd;
+    PetscBool *isb;
+    PetscCall(DMCreateLabel(m->dm, "fc_boundary"));
+    PetscCall(DMGetLabel(m->dm, "fc_boundary", &label));
+    PetscCall(DMPlexMarkBoundaryFaces(m->dm, 1, label));
+    PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
+    PetscCall(PetscCalloc1(nv, &isb));
+    for (PetscInt f = fStart; f < fEnd; f++) {
+      PetscInt val, *closure = NULL, ncl;
+      PetscCall(DMLabelGetValue(label, f, &val));
+      if (val != 1) continue;
+      PetscCall(DMPlexGetTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
+      for (PetscInt i = 0; i < ncl; i++)
+        if (closure[2 * i] >= m->vStart && closure[2 * i] < m->vEnd) isb[closure[2 * i] - m->vStart] = PETSC_TRUE;
+      PetscCall(DMPlexRestoreTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
+    }
+    for (PetscInt v = 0; v < nv; v++) fem->nbv += (isb[v] && m->owned[v]);
+    PetscCall(PetscMalloc1(fem->nbv + 1, &fem->bv));
+    fem->nbv = 0;
+    for (PetscInt v = 0; v < nv; v++)
+      if (isb[v] && m->owned[v]) fem->bv[fem->nbv++] = v;
+    PetscCall(PetscFree(isb));
+    PetscCall(PetscMalloc4(3 * fem->nbv + 1, &fem->bx0, 3 * fem->nbv + 1, &fem->bxf, 3 * fem->nbv + 1, &fem->bkey,
+                           fem->nbv + 1, &fem->bprox));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Owned boundary vertices: positions at the start of the step and after the free motion
+   x_free = X + u + h (v + dv_free) */
+static PetscErrorCode ContactPoints_FEM(FCBody body, PetscInt *n, FCProximity **prox, PetscReal **x0, PetscReal **xf,
+                                        PetscReal **key)
+{
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  const PetscScalar *u, *v, *dv;
+  PetscInt           lo;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
+  PetscCall(VecGetArrayRead(fem->u, &u));
+  PetscCall(VecGetArrayRead(fem->v, &v));
+  PetscCall(VecGetArrayRead(fem->dv, &dv));
+  for (PetscInt i = 0; i < fem->nbv; i++) {
+    PetscInt     vtx = fem->bv[i], g = fem->gdof[vtx];
+    FCProximity *p = &fem->bprox[i];
+    PetscCall(PetscMemzero(p, sizeof(*p)));
+    p->nv      = 1;
+    p->gdof[0] = g;
+    p->w[0]    = 1.0;
+    for (int d = 0; d < 3; d++) {
+      PetscReal X          = m->X[3 * vtx + d];
+      p->r[d]              = X;
+      fem->bkey[3 * i + d] = X;
+      fem->bx0[3 * i + d]  = X + (g < 0 ? 0.0 : PetscRealPart(u[g - lo + d]));
+      fem->bxf[3 * i + d] =
+          fem->bx0[3 * i + d] + (g < 0 ? 0.0 : body->h * PetscRealPart(v[g - lo + d] + dv[g - lo + d]));
+    }
+  }
+  PetscCall(VecRestoreArrayRead(fem->u, &u));
+  PetscCall(VecRestoreArrayRead(fem->v, &v));
+  PetscCall(VecRestoreArrayRead(fem->dv, &dv));
+  *n    = fem->nbv;
+  *prox = fem->bprox;
+  *x0   = fem->bx0;
+  *xf   = fem->bxf;
+  *key  = fem->bkey;
+  PetscFunctionReturn(0);
+}
+
+/* Current position of a proximity point whose vertices this rank owns */
+static PetscErrorCode ProximityPosition_FEM(FCBody body, const FCProximity *p, PetscInt when, PetscReal x[3])
+{
+  FEM               *fem = (FEM *)body->data;
+  const PetscScalar *u, *X;
+  PetscInt           lo, hi;
+
+  PetscFunctionBegin;
+  PetscCheck(when == FC_AT_NOW, body->comm, PETSC_ERR_SUP,
+             "FE proximity positions are evaluated at the current state only");
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, &hi));
+  PetscCall(VecGetArrayRead(fem->u, &u));
+  PetscCall(VecGetArrayRead(fem->Xg, &X));
+  for (int d = 0; d < 3; d++) x[d] = 0.0;
+  for (PetscInt k = 0; k < p->nv; k++) {
+    PetscInt g = p->gdof[k];
+    if (g < 0) { /* fixed vertex: its reference position is kept in r (vertex contacts) */
+      for (int d = 0; d < 3; d++) x[d] += p->w[k] * p->r[d];
+      continue;
+    }
+    PetscCheck(g >= lo && g < hi, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Proximity vertex not owned by this rank");
+    for (int d = 0; d < 3; d++) x[d] += p->w[k] * PetscRealPart(X[g - lo + d] + u[g - lo + d]);
+  }
+  PetscCall(VecRestoreArrayRead(fem->u, &u));
+  PetscCall(VecRestoreArrayRead(fem->Xg, &X));
+  PetscFunctionReturn(0);
+}
+
+/* Frame direction a (0: n, 1: t1, 2: t2) of a contact, signed for the side of this body */
+static void Direction(const FCContact *c, PetscInt side, PetscInt a, PetscReal e[3])
+{
+  const PetscReal *f = a == 0 ? c->n : (a == 1 ? c->t1 : c->t2);
+  for (int i = 0; i < 3; i++) e[i] = (side == 0 ? 1.0 : -1.0) * f[i];
+}
+
+/* Compliance, "dense multi-RHS" builder: J_b^T (dense, n_b x m_b) is solved with the factor of
+   A in one MatMatSolve, X = A^-1 J_b^T is kept for the correction, and
+   W_b = J_b X accumulates only the rows of J_b that are non-zero (3 per vertex). */
+static PetscErrorCode AddCompliance_FEM(FCBody body, PetscInt self, const FCContactSet *set, PetscReal W[])
+{
+  FEM               *fem = (FEM *)body->data;
+  PetscInt           nloc, N, lo, M = set->nrows, ncols = 0;
+  PetscScalar       *jt;
+  const PetscScalar *x;
+  Mat                F;
+  PC                 pc;
+  PetscReal         *Wb;
+
+  PetscFunctionBegin;
+  PetscCall(MatDestroy(&fem->JT));
+  PetscCall(MatDestroy(&fem->X));
+  PetscCall(PetscFree(fem->cols));
+  fem->ncols = 0;
+  for (PetscInt k = 0; k < set->n; k++)
+    for (PetscInt s = 0; s < 2; s++)
+      if (set->c[k].body[s] == self) ncols += set->c[k].dim;
+  if (!ncols) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(ncols, &fem->cols));
+  PetscCall(VecGetLocalSize(fem->u, &nloc));
+  PetscCall(VecGetSize(fem->u, &N));
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
+  PetscCall(MatCreateDense(body->comm, nloc, PETSC_DECIDE, N, ncols, NULL, &fem->JT));
+  PetscCall(MatDenseGetArray(fem->JT, &jt));
+  PetscCall(PetscArrayzero(jt, nloc * ncols));
+  ncols = 0;
+  for (PetscInt k = 0; k < set->n; k++)
+    for (PetscInt s = 0; s < 2; s++) {
+      const FCContact *c = &set->c[k];
+      if (c->body[s] != self) continue;
+      for (PetscInt a = 0; a < c->dim; a++, ncols++) {
+        PetscReal e[3];
+        fem->cols[ncols] = c->row + a;
+        Direction(c, s, a, e);
+        for (PetscInt vtx = 0; vtx < c->prox[s].nv; vtx++) {
+          PetscInt g = c->prox[s].gdof[vtx];
+          if (g < lo || g >= lo + nloc) continue; /* fixed (-1) or owned elsewhere */
+          for (int d = 0; d < 3; d++) jt[(g - lo + d) + ncols * nloc] += c->prox[s].w[vtx] * e[d];
+        }
+      }
+    }
+  fem->ncols = ncols;
+  PetscCall(MatDenseRestoreArray(fem->JT, &jt));
+  PetscCall(MatDuplicate(fem->JT, MAT_DO_NOT_COPY_VALUES, &fem->X));
+  PetscCall(KSPGetPC(fem->ksp, &pc));
+  PetscCall(PCFactorGetMatrix(pc, &F));
+  PetscCall(MatMatSolve(F, fem->JT, fem->X));
+  /* W_b(i, j) = sum over the non-zero rows r of column i of J^T: JT(r, i) X(r, j) */
+  PetscCall(PetscCalloc1(ncols * ncols, &Wb));
+  PetscCall(MatDenseGetArray(fem->JT, &jt));
+  PetscCall(MatDenseGetArrayRead(fem->X, &x));
+  for (PetscInt i = 0; i < ncols; i++)
+    for (PetscInt r = 0; r < nloc; r++) {
+      PetscReal j = PetscRealPart(jt[r + i * nloc]);
+      if (j == 0.0) continue;
+      for (PetscInt c2 = 0; c2 < ncols; c2++) Wb[i * ncols + c2] += j * PetscRealPart(x[r + c2 * nloc]);
+    }
+  PetscCall(MatDenseRestoreArray(fem->JT, &jt));
+  PetscCall(MatDenseRestoreArrayRead(fem->X, &x));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, Wb, ncols * ncols, MPIU_REAL, MPIU_SUM, body->comm));
+  for (PetscInt i = 0; i < ncols; i++)
+    for (PetscInt j = 0; j < ncols; j++) W[fem->cols[i] * M + fem->cols[j]] += Wb[i * ncols + j];
+  PetscCall(PetscFree(Wb));
+  PetscFunctionReturn(0);
+}
+
+/* eq. 20: dv = dv_free + h A^-1 J_b^T lambda = dv_free + h X lambda_b */
+static PetscErrorCode ApplyCorrection_FEM(FCBody body, PetscInt self, const FCContactSet *set, const PetscReal lambda[])
+{
+  FEM               *fem = (FEM *)body->data;
+  const PetscScalar *x;
+  PetscScalar       *dv;
+  PetscInt           nloc;
+
+  PetscFunctionBegin;
+  if (!fem->ncols) PetscFunctionReturn(0);
+  PetscCall(VecGetLocalSize(fem->u, &nloc));
+  PetscCall(MatDenseGetArrayRead(fem->X, &x));
+  PetscCall(VecGetArray(fem->dv, &dv));
+  for (PetscInt i = 0; i < fem->ncols; i++) {
+    PetscReal l = body->h * lambda[fem->cols[i]];
+    if (l == 0.0) continue;
+    for (PetscInt r = 0; r < nloc; r++) dv[r] += l * x[r + i * nloc];
+  }
+  PetscCall(VecRestoreArray(fem->dv, &dv));
+  PetscCall(MatDenseRestoreArrayRead(fem->X, &x));
   PetscFunctionReturn(0);
 }
 
@@ -547,6 +752,12 @@ static PetscErrorCode Destroy_FEM(FCBody body)
   PetscCall(VecDestroy(&fem->floc));
   PetscCall(PetscFree3(fem->ldof, fem->gdof, fem->fixed));
   PetscCall(PetscFree2(fem->Dminv, fem->vol));
+  PetscCall(PetscFree(fem->bv));
+  PetscCall(PetscFree4(fem->bx0, fem->bxf, fem->bkey, fem->bprox));
+  PetscCall(PetscFree(fem->cols));
+  PetscCall(MatDestroy(&fem->JT));
+  PetscCall(MatDestroy(&fem->X));
+  PetscCall(VecDestroy(&fem->Xg));
   PetscCall(FCMaterialDestroy(&fem->mat));
   PetscCall(FCMeshDestroy(&fem->mesh));
   PetscCall(PetscFree(body->data));
@@ -571,6 +782,10 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.getvisualpositions = GetVisualPositions_FEM;
   body->ops.checkstate         = CheckState_FEM;
   body->ops.destroy            = Destroy_FEM;
+  body->ops.contactpoints      = ContactPoints_FEM;
+  body->ops.proximityposition  = ProximityPosition_FEM;
+  body->ops.addcompliance      = AddCompliance_FEM;
+  body->ops.applycorrection    = ApplyCorrection_FEM;
   PetscFunctionReturn(0);
 }
 

@@ -25,6 +25,17 @@ static PetscErrorCode Integrate_Kinematic(FCBody body, PetscReal t)
   PetscFunctionReturn(0);
 }
 
+/* The pose at the end of the step, which the free motion of the others is compared with */
+static PetscErrorCode FreeMotion_Kinematic(FCBody body, PetscReal t)
+{
+  FCPose *P = &((Kinematic *)body->data)->pose;
+
+  PetscFunctionBegin;
+  for (int d = 0; d < 3; d++) P->xf[d] = P->x0[d] + (t + body->h) * P->v[d];
+  FCQuatIntegrate(P->q0, P->w, t + body->h, P->qf);
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy_Kinematic(FCBody body)
 {
   PetscFunctionBegin;
@@ -46,5 +57,9 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   body->ops.getrotation        = FCPoseGetRotation;
   body->ops.getvisualpositions = FCPoseGetVisualPositions;
   body->ops.destroy            = Destroy_Kinematic;
+  body->ops.freemotion         = FreeMotion_Kinematic;
+  body->ops.contactpoints      = FCPoseContactPoints;
+  body->ops.proximityposition  = FCPoseProximityPosition;
+  body->ops.shapedistance      = FCPoseShapeDistance;
   PetscFunctionReturn(0);
 }

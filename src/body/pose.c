@@ -52,6 +52,17 @@ PetscErrorCode FCPoseSetUp(FCBody body, FCPose *P)
     PetscCall(PetscArraycpy(P->bodyVerts, body->visual.reference, 3 * body->visual.nv));
   }
   PetscCall(FCPoseVisualPositions(body, P, body->visual.reference)); /* reference = placed at t = 0 */
+  body->shape = P->shape;
+  for (int d = 0; d < 3; d++) P->xf[d] = P->x[d];
+  for (int d = 0; d < 4; d++) P->qf[d] = P->q[d];
+  /* contact points of the shape: its picture's vertices (box corners exactly), on rank 0 */
+  if (!ismesh && P->shape->bounded) {
+    P->npts = body->visual.nv;
+    PetscCall(PetscCalloc4(P->npts + 1, &P->prox, 3 * P->npts + 1, &P->px0, 3 * P->npts + 1, &P->pxf, 3 * P->npts + 1,
+                           &P->pkey));
+    for (PetscInt i = 0; i < P->npts; i++)
+      for (int d = 0; d < 3; d++) P->prox[i].r[d] = P->pkey[3 * i + d] = P->bodyVerts[3 * i + d];
+  }
   PetscFunctionReturn(0);
 }
 
@@ -72,6 +83,7 @@ PetscErrorCode FCPoseDestroy(FCPose *P)
 {
   PetscFunctionBegin;
   PetscCall(FCShapeDestroy(&P->shape));
+  PetscCall(PetscFree4(P->prox, P->px0, P->pxf, P->pkey));
   PetscCall(PetscFree(P->bodyVerts));
   PetscFunctionReturn(0);
 }
@@ -99,5 +111,59 @@ PetscErrorCode FCPoseGetVisualPositions(FCBody body, PetscReal x[])
 {
   PetscFunctionBegin;
   PetscCall(FCPoseVisualPositions(body, (FCPose *)body->data, x));
+  PetscFunctionReturn(0);
+}
+
+static void Transform(const PetscReal x[3], const PetscReal q[4], const PetscReal r[3], PetscReal p[3])
+{
+  PetscReal R[9];
+  FCQuatToMat3(q, R);
+  FCMat3Vec(R, r, p);
+  for (int d = 0; d < 3; d++) p[d] += x[d];
+}
+
+PetscErrorCode FCPoseContactPoints(FCBody body, PetscInt *n, FCProximity **prox, PetscReal **x0, PetscReal **xf,
+                                   PetscReal **key)
+{
+  FCPose *P = (FCPose *)body->data;
+
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < P->npts; i++) {
+    Transform(P->x, P->q, P->prox[i].r, &P->px0[3 * i]);
+    Transform(P->xf, P->qf, P->prox[i].r, &P->pxf[3 * i]);
+  }
+  *n    = P->npts;
+  *prox = P->prox;
+  *x0   = P->px0;
+  *xf   = P->pxf;
+  *key  = P->pkey;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPoseProximityPosition(FCBody body, const FCProximity *p, PetscInt when, PetscReal x[3])
+{
+  FCPose *P = (FCPose *)body->data;
+
+  PetscFunctionBegin;
+  if (when == FC_AT_FREE)
+    Transform(P->xf, P->qf, p->r, x);
+  else
+    Transform(P->x, P->q, p->r, x);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPoseShapeDistance(FCBody body, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cpb[3])
+{
+  FCPose   *P = (FCPose *)body->data;
+  PetscReal R[9], xb[3], nb[3], dx[3];
+
+  PetscFunctionBegin;
+  PetscCheck(P->shape->distance, body->comm, PETSC_ERR_SUP, "Body '%s': contact with a %s shape is not supported yet",
+             body->name, P->shape->type);
+  FCQuatToMat3(P->q, R);
+  for (int i = 0; i < 3; i++) dx[i] = x[i] - P->x[i];
+  FCMat3TVec(R, dx, xb);
+  PetscCall((*P->shape->distance)(P->shape, xb, d, nb, cpb));
+  FCMat3Vec(R, nb, n);
   PetscFunctionReturn(0);
 }

@@ -8,8 +8,10 @@
 #include "pose.h"
 
 typedef struct {
-  FCPose    pose; /* first: the shared pose ops of pose.c read body->data as an FCPose */
-  PetscReal mass, dv[3], dw[3];
+  FCPose     pose; /* first: the shared pose ops of pose.c read body->data as an FCPose */
+  PetscReal  mass, dv[3], dw[3];
+  PetscInt   ncols, *cols; /* constraint rows touching this body in the step */
+  PetscReal *AiJT;         /* A^-1 J_b^T (6 x ncols), kept for the correction */
 } Rigid;
 
 static PetscErrorCode SetFromOptions_Rigid(FCBody body)
@@ -62,6 +64,12 @@ static PetscErrorCode FreeMotion_Rigid(FCBody body, PetscReal t)
   FCCross(r->pose.w, Jwv, tau);
   for (int d = 0; d < 3; d++) tau[d] *= -body->h;
   FCMat3Vec(Jinv, tau, r->dw);
+  for (int d = 0; d < 3; d++) {
+    PetscReal w   = r->pose.w[d] + r->dw[d];
+    r->pose.xf[d] = r->pose.x[d] + body->h * (r->pose.v[d] + r->dv[d]);
+    tau[d]        = w;
+  }
+  FCQuatIntegrate(r->pose.q, tau, body->h, r->pose.qf);
   PetscCall(FCPhaseEnd(FC_PHASE_FREE_MOTION));
   PetscFunctionReturn(0);
 }
@@ -105,9 +113,82 @@ static PetscErrorCode CheckState_Rigid(FCBody body, PetscInt step)
   PetscFunctionReturn(0);
 }
 
+/* Row of J_b for direction e at world offset r from the centre of mass: e.(v + w x r) =
+   [e, r x e] . (v, w). W_b = J A^-1 J^T with A = diag(m I, J_world) (closed form). */
+static PetscErrorCode AddCompliance_Rigid(FCBody body, PetscInt self, const FCContactSet *set, PetscReal W[])
+{
+  Rigid    *rb = (Rigid *)body->data;
+  PetscReal Jw[9], Jinv[9], R[9], *J;
+  PetscInt  n = 0, M = set->nrows;
+
+  PetscFunctionBegin;
+  PetscCall(PetscFree(rb->cols));
+  PetscCall(PetscFree(rb->AiJT));
+  rb->ncols = 0;
+  for (PetscInt k = 0; k < set->n; k++)
+    for (PetscInt s = 0; s < 2; s++)
+      if (set->c[k].body[s] == self) n += set->c[k].dim;
+  if (!n) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc3(n, &rb->cols, 6 * n, &rb->AiJT, 6 * n, &J));
+  WorldInertia(rb, body->density, Jw);
+  PetscCall(FCMat3Inverse(Jw, Jinv));
+  FCQuatToMat3(rb->pose.q, R);
+  n = 0;
+  for (PetscInt k = 0; k < set->n; k++)
+    for (PetscInt s = 0; s < 2; s++) {
+      const FCContact *c = &set->c[k];
+      PetscReal        rw[3];
+      if (c->body[s] != self) continue;
+      FCMat3Vec(R, c->prox[s].r, rw);
+      for (PetscInt a = 0; a < c->dim; a++, n++) {
+        const PetscReal *f = a == 0 ? c->n : (a == 1 ? c->t1 : c->t2);
+        PetscReal        e[3], rxe[3], tmp[3];
+        for (int i = 0; i < 3; i++) e[i] = (s == 0 ? 1.0 : -1.0) * f[i];
+        FCCross(rw, e, rxe);
+        rb->cols[n] = c->row + a;
+        for (int i = 0; i < 3; i++) {
+          J[6 * n + i]     = e[i];
+          J[6 * n + 3 + i] = rxe[i];
+        }
+        FCMat3Vec(Jinv, rxe, tmp);
+        for (int i = 0; i < 3; i++) {
+          rb->AiJT[6 * n + i]     = e[i] / rb->mass;
+          rb->AiJT[6 * n + 3 + i] = tmp[i];
+        }
+      }
+    }
+  rb->ncols = n;
+  for (PetscInt i = 0; i < n; i++)
+    for (PetscInt j = 0; j < n; j++) {
+      PetscReal w = 0.0;
+      for (int d = 0; d < 6; d++) w += J[6 * i + d] * rb->AiJT[6 * j + d];
+      W[rb->cols[i] * M + rb->cols[j]] += w;
+    }
+  PetscCall(PetscFree(J));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ApplyCorrection_Rigid(FCBody body, PetscInt self, const FCContactSet *set,
+                                            const PetscReal lambda[])
+{
+  Rigid *rb = (Rigid *)body->data;
+
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < rb->ncols; i++) {
+    PetscReal l = body->h * lambda[rb->cols[i]];
+    for (int d = 0; d < 3; d++) {
+      rb->dv[d] += l * rb->AiJT[6 * i + d];
+      rb->dw[d] += l * rb->AiJT[6 * i + 3 + d];
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy_Rigid(FCBody body)
 {
   PetscFunctionBegin;
+  PetscCall(PetscFree(((Rigid *)body->data)->cols));
+  PetscCall(PetscFree(((Rigid *)body->data)->AiJT));
   PetscCall(FCPoseDestroy(&((Rigid *)body->data)->pose));
   PetscCall(PetscFree(body->data));
   PetscFunctionReturn(0);
@@ -130,5 +211,10 @@ PetscErrorCode FCBodyCreate_Rigid(FCBody body)
   body->ops.getvisualpositions = FCPoseGetVisualPositions;
   body->ops.checkstate         = CheckState_Rigid;
   body->ops.destroy            = Destroy_Rigid;
+  body->ops.contactpoints      = FCPoseContactPoints;
+  body->ops.proximityposition  = FCPoseProximityPosition;
+  body->ops.shapedistance      = FCPoseShapeDistance;
+  body->ops.addcompliance      = AddCompliance_Rigid;
+  body->ops.applycorrection    = ApplyCorrection_Rigid;
   PetscFunctionReturn(0);
 }

@@ -25,8 +25,22 @@ struct _p_FCOutput {
   double   *rtime, *renergy, *rtiming, *rbody; /* rbody: per row, per body: centroid 3, quaternion 4, energy 3 */
   PetscInt *rstep;
   PetscInt  nframes, xdmfwritten;
-  double   *frametimes;
-  PetscInt  maxframes;
+  /* contacts (scenes with contact pairs only) */
+  PetscBool contacts;
+  hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state;
+  hid_t     s_contacts, s_rows, s_sweeps, s_residual, s_maxpen;
+  long long ctotal;             /* contacts recorded so far */
+  PetscInt  nc, maxc, ns, maxs; /* buffered contact records and per-step rows */
+  struct {
+    long long bodies[2], state;
+    double    point[3], normal[3], force[3], gap, gap_end;
+  } * cbuf;
+  struct {
+    long long contacts, rows, sweeps, offset;
+    double    residual, maxpen;
+  } * sbuf;
+  double  *frametimes;
+  PetscInt maxframes;
 };
 
 #define FCH5Check(call, msg)                                                                                           \
@@ -185,7 +199,7 @@ PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *ou
 }
 
 PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies[], PetscReal h, PetscInt nsteps,
-                                   PetscInt every)
+                                   PetscInt every, PetscBool contacts)
 {
   hid_t  g, gt, gb, gf;
   char  *opts;
@@ -228,6 +242,29 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     PetscCall(CreateRows(gt, FCPhaseNames[p], H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->timing[p]));
   H5Gclose(gt);
   H5Gclose(g);
+  if (contacts) {
+    hid_t gc         = H5Gcreate2(out->file, "contacts", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+          gs         = H5Gopen2(out->file, "steps", H5P_DEFAULT);
+    hsize_t   two[1] = {2}, three[1] = {3};
+    long long zero = 0;
+    out->contacts  = PETSC_TRUE;
+    PetscCall(CreateRows(gc, "offset", H5T_NATIVE_LLONG, 1, NULL, 256, &out->c_offset));
+    PetscCall(CreateRows(gc, "bodies", H5T_NATIVE_LLONG, 2, two, 1024, &out->c_bodies));
+    PetscCall(CreateRows(gc, "point", H5T_NATIVE_DOUBLE, 2, three, 1024, &out->c_point));
+    PetscCall(CreateRows(gc, "normal", H5T_NATIVE_DOUBLE, 2, three, 1024, &out->c_normal));
+    PetscCall(CreateRows(gc, "force", H5T_NATIVE_DOUBLE, 2, three, 1024, &out->c_force));
+    PetscCall(CreateRows(gc, "gap", H5T_NATIVE_DOUBLE, 1, NULL, 1024, &out->c_gap));
+    PetscCall(CreateRows(gc, "gap_end", H5T_NATIVE_DOUBLE, 1, NULL, 1024, &out->c_gapend));
+    PetscCall(CreateRows(gc, "state", H5T_NATIVE_LLONG, 1, NULL, 1024, &out->c_state));
+    PetscCall(CreateRows(gs, "contacts", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_contacts));
+    PetscCall(CreateRows(gs, "constraint_rows", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_rows));
+    PetscCall(CreateRows(gs, "pgs_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_sweeps));
+    PetscCall(CreateRows(gs, "residual", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_residual));
+    PetscCall(CreateRows(gs, "max_penetration", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_maxpen));
+    PetscCall(AppendRows(out, out->c_offset, H5T_NATIVE_LLONG, 1, &zero));
+    H5Gclose(gs);
+    H5Gclose(gc);
+  }
   gf = H5Gcreate2(out->file, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   PetscCall(CreateRows(gf, "time", H5T_NATIVE_DOUBLE, 1, NULL, 64, &out->ftime));
   PetscCall(CreateRows(gf, "step", H5T_NATIVE_LLONG, 1, NULL, 64, &out->fstep));
@@ -327,6 +364,96 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCOutputRecordContacts(FCOutput out, const struct _FCContactSetView *v)
+{
+  const FCContactSet *set = v->set;
+
+  PetscFunctionBegin;
+  if (out->ns == out->maxs) {
+    void *tmp;
+    out->maxs = PetscMax(64, 2 * out->maxs);
+    PetscCall(PetscMalloc(out->maxs * sizeof(*out->sbuf), &tmp));
+    if (out->ns) PetscCall(PetscMemcpy(tmp, out->sbuf, out->ns * sizeof(*out->sbuf)));
+    PetscCall(PetscFree(out->sbuf));
+    out->sbuf = tmp;
+  }
+  if (out->nc + set->n > out->maxc) {
+    void *tmp;
+    out->maxc = PetscMax(2 * out->maxc, out->nc + set->n + 256);
+    PetscCall(PetscMalloc(out->maxc * sizeof(*out->cbuf), &tmp));
+    if (out->nc) PetscCall(PetscMemcpy(tmp, out->cbuf, out->nc * sizeof(*out->cbuf)));
+    PetscCall(PetscFree(out->cbuf));
+    out->cbuf = tmp;
+  }
+  for (PetscInt k = 0; k < set->n; k++) {
+    const FCContact *c           = &set->c[k];
+    out->cbuf[out->nc].bodies[0] = c->body[0];
+    out->cbuf[out->nc].bodies[1] = c->body[1];
+    out->cbuf[out->nc].state     = c->state;
+    for (int i = 0; i < 3; i++) {
+      out->cbuf[out->nc].point[i]  = c->p0[0][i];
+      out->cbuf[out->nc].normal[i] = c->n[i];
+      out->cbuf[out->nc].force[i]  = c->force[i];
+    }
+    out->cbuf[out->nc].gap     = c->gap0;
+    out->cbuf[out->nc].gap_end = c->gap_end;
+    out->nc++;
+  }
+  out->ctotal += set->n;
+  out->sbuf[out->ns].contacts = set->n;
+  out->sbuf[out->ns].rows     = v->stats->rows;
+  out->sbuf[out->ns].sweeps   = v->stats->sweeps;
+  out->sbuf[out->ns].residual = v->stats->residual;
+  out->sbuf[out->ns].maxpen   = v->max_penetration;
+  out->sbuf[out->ns].offset   = out->ctotal;
+  out->ns++;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FlushContacts(FCOutput out)
+{
+  PetscInt   n = out->nc, m = out->ns;
+  double    *d;
+  long long *l;
+
+  PetscFunctionBegin;
+  if (!out->contacts) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc2(3 * n + 3 * m + 1, &d, 2 * n + 2 * m + 1, &l));
+  for (PetscInt k = 0; k < n; k++)
+    for (int i = 0; i < 2; i++) l[2 * k + i] = out->cbuf[k].bodies[i];
+  PetscCall(AppendRows(out, out->c_bodies, H5T_NATIVE_LLONG, n, l));
+  for (PetscInt k = 0; k < n; k++)
+    for (int i = 0; i < 3; i++) d[3 * k + i] = out->cbuf[k].point[i];
+  PetscCall(AppendRows(out, out->c_point, H5T_NATIVE_DOUBLE, n, d));
+  for (PetscInt k = 0; k < n; k++)
+    for (int i = 0; i < 3; i++) d[3 * k + i] = out->cbuf[k].normal[i];
+  PetscCall(AppendRows(out, out->c_normal, H5T_NATIVE_DOUBLE, n, d));
+  for (PetscInt k = 0; k < n; k++)
+    for (int i = 0; i < 3; i++) d[3 * k + i] = out->cbuf[k].force[i];
+  PetscCall(AppendRows(out, out->c_force, H5T_NATIVE_DOUBLE, n, d));
+  for (PetscInt k = 0; k < n; k++) d[k] = out->cbuf[k].gap;
+  PetscCall(AppendRows(out, out->c_gap, H5T_NATIVE_DOUBLE, n, d));
+  for (PetscInt k = 0; k < n; k++) d[k] = out->cbuf[k].gap_end;
+  PetscCall(AppendRows(out, out->c_gapend, H5T_NATIVE_DOUBLE, n, d));
+  for (PetscInt k = 0; k < n; k++) l[k] = out->cbuf[k].state;
+  PetscCall(AppendRows(out, out->c_state, H5T_NATIVE_LLONG, n, l));
+  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].offset;
+  PetscCall(AppendRows(out, out->c_offset, H5T_NATIVE_LLONG, m, l));
+  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].contacts;
+  PetscCall(AppendRows(out, out->s_contacts, H5T_NATIVE_LLONG, m, l));
+  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].rows;
+  PetscCall(AppendRows(out, out->s_rows, H5T_NATIVE_LLONG, m, l));
+  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].sweeps;
+  PetscCall(AppendRows(out, out->s_sweeps, H5T_NATIVE_LLONG, m, l));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].residual;
+  PetscCall(AppendRows(out, out->s_residual, H5T_NATIVE_DOUBLE, m, d));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].maxpen;
+  PetscCall(AppendRows(out, out->s_maxpen, H5T_NATIVE_DOUBLE, m, d));
+  PetscCall(PetscFree2(d, l));
+  out->nc = out->ns = 0;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCOutputWriteFrame(FCOutput out, PetscInt step, PetscReal t, PetscInt nbodies, FCBody bodies[])
 {
   double    tt = t;
@@ -416,6 +543,7 @@ PetscErrorCode FCOutputFlush(FCOutput out)
     PetscCall(PetscFree2(tmp, steps));
     out->nrows = 0;
   }
+  PetscCall(FlushContacts(out));
   FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush");
   if (out->nframes >= 2 * out->xdmfwritten || out->nframes == 1) {
     if (out->rank == 0)
@@ -448,6 +576,14 @@ PetscErrorCode FCOutputDestroy(FCOutput *output)
     for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
     H5Dclose(out->ftime);
     H5Dclose(out->fstep);
+    if (out->contacts) {
+      hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point, out->c_normal,   out->c_force,
+                    out->c_gap,    out->c_gapend,   out->c_state, out->s_contacts, out->s_rows,
+                    out->s_sweeps, out->s_residual, out->s_maxpen};
+      for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) H5Dclose(ds[i]);
+    }
+    PetscCall(PetscFree(out->cbuf));
+    PetscCall(PetscFree(out->sbuf));
     PetscCall(PetscFree(out->bo));
     PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
   }

@@ -7,6 +7,11 @@
      -output_file f.h5        (default fecontact.h5; an XDMF index f.xmf is written beside it)
      -output_every k          write body positions every k steps (>= 1, default 1)
      -quiet                   no progress line, no summary
+     -contact_pairs a:b,c:d   pairs of bodies that may touch (none: no collision work at all)
+     -contact_mu m[,m2,...]   Coulomb friction, one value or one per pair (>= 0; 0 = frictionless,
+                              one constraint row per contact; default 0)
+     -contact_distance d      alarm distance: points closer than d are contacts (>= 0, default 0.01 m)
+     -pgs_tol, -pgs_max_it    the contact solver (src/contact/pgs.c)
    One step (../shared/design/DESIGN.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
    contact resolution slots in between. */
 #include "../fcimpl.h"
@@ -24,6 +29,12 @@ struct _p_FCScene {
   FCOutput   output;
   FCProgress progress;
   PetscReal  phase_total[FC_PHASE_NUM];
+  /* contact */
+  FCContactPairs  pairs;
+  FCContactSet    set;
+  FCContactSolver solver;
+  FCSchemeStats   stats;
+  PetscReal       maxpen;
 };
 
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
@@ -40,6 +51,72 @@ PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
   s->gravity[2] = -9.81;
   PetscCall(PetscStrncpy(s->output_file, "fecontact.h5", sizeof(s->output_file)));
   *scene = s;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BodyIndex(FCScene s, const char name[], const char pair[], PetscInt *idx)
+{
+  PetscFunctionBegin;
+  *idx = -1;
+  for (PetscInt i = 0; i < s->nbodies; i++)
+    if (!strcmp(s->bodies[i]->name, name)) *idx = i;
+  PetscCheck(*idx >= 0, s->comm, PETSC_ERR_USER_INPUT,
+             "Contact pair '%s' in -contact_pairs names unknown body '%s' (bodies: -scene_bodies)", pair, name);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadContactPairs(FCScene s)
+{
+  char     *pairs[FC_MAX_BODIES];
+  PetscInt  np = FC_MAX_BODIES, nmu = FC_MAX_BODIES;
+  PetscReal mu[FC_MAX_BODIES];
+  PetscBool set, setmu;
+
+  PetscFunctionBegin;
+  s->pairs.distance = 0.01;
+  PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
+  PetscCall(
+      PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
+  if (set && np > 0) {
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_distance", "Alarm distance", &s->pairs.distance, NULL));
+    PetscCall(PetscOptionsRealArray("-contact_mu", "Friction coefficient: one value, or one per pair", NULL, mu, &nmu,
+                                    &setmu));
+  }
+  PetscOptionsEnd();
+  if (!set || np == 0) PetscFunctionReturn(0);
+  if (!setmu) {
+    nmu   = 1;
+    mu[0] = 0.0;
+  }
+  PetscCheck(nmu == 1 || nmu == np, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_mu needs one value or one per pair (%" PetscInt_FMT " pairs), got %" PetscInt_FMT, np,
+             nmu);
+  for (PetscInt i = 0; i < nmu; i++)
+    PetscCheck(mu[i] >= 0.0 && PetscIsNormalReal(mu[i] + 1.0), s->comm, PETSC_ERR_USER_INPUT,
+               "Option -contact_mu: entry %" PetscInt_FMT " must be a finite number >= 0, got %g", i, (double)mu[i]);
+  PetscCheck(s->pairs.distance >= 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_distance must be >= 0, got %g",
+             (double)s->pairs.distance);
+  s->pairs.n = np;
+  PetscCall(PetscMalloc2(np, &s->pairs.body, np, &s->pairs.mu));
+  for (PetscInt p = 0; p < np; p++) {
+    char *colon = strchr(pairs[p], ':');
+    PetscCheck(colon && colon != pairs[p] && colon[1], s->comm, PETSC_ERR_USER_INPUT,
+               "Contact pair '%s' in -contact_pairs must read body1:body2", pairs[p]);
+    *colon = 0;
+    PetscCall(BodyIndex(s, pairs[p], pairs[p], &s->pairs.body[p][0]));
+    PetscCall(BodyIndex(s, colon + 1, pairs[p], &s->pairs.body[p][1]));
+    PetscCheck(s->pairs.body[p][0] != s->pairs.body[p][1], s->comm, PETSC_ERR_USER_INPUT,
+               "Contact pair '%s:%s' pairs a body with itself (self-contact is not supported)", pairs[p], colon + 1);
+    {
+      PetscBool k0, k1;
+      PetscCall(PetscStrcmp(s->bodies[s->pairs.body[p][0]]->type, FCBODYKINEMATIC, &k0));
+      PetscCall(PetscStrcmp(s->bodies[s->pairs.body[p][1]]->type, FCBODYKINEMATIC, &k1));
+      PetscCheck(!(k0 && k1), s->comm, PETSC_ERR_USER_INPUT,
+                 "Contact pair '%s:%s' joins two kinematic bodies: nothing can respond", pairs[p], colon + 1);
+    }
+    s->pairs.mu[p] = mu[nmu == 1 ? 0 : p];
+  }
+  for (PetscInt p = 0; p < np; p++) PetscCall(PetscFree(pairs[p]));
   PetscFunctionReturn(0);
 }
 
@@ -76,6 +153,7 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
     PetscCall(FCBodySetFromOptions(s->bodies[i]));
   }
   for (PetscInt i = 0; i < n; i++) PetscCall(PetscFree(names[i]));
+  PetscCall(ReadContactPairs(s));
   PetscFunctionReturn(0);
 }
 
@@ -88,9 +166,14 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCBodySetGravity(s->bodies[i], s->gravity));
     PetscCall(FCBodySetUp(s->bodies[i]));
   }
+  if (s->pairs.n) {
+    PetscCall(FCContactSolverCreate(s->comm, &s->solver));
+    PetscCall(FCContactSolverSetFromOptions(s->solver));
+  }
   PetscCall(FCOptionsCheckUnused(s->comm)); /* after every object has read its options */
   PetscCall(FCOutputCreate(s->comm, s->output_file, &s->output));
-  PetscCall(FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every));
+  PetscCall(FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every,
+                                s->pairs.n ? PETSC_TRUE : PETSC_FALSE));
   PetscCall(FCOutputWriteFrame(s->output, 0, 0.0, s->nbodies, s->bodies));
   PetscCall(FCPhaseResetTimes());
   s->setupcalled = PETSC_TRUE;
@@ -114,7 +197,18 @@ PetscErrorCode FCSceneStep(FCScene s)
 
   PetscFunctionBegin;
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyComputeFreeMotion(s->bodies[i], s->t));
+  if (s->pairs.n) {
+    PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
+    PetscCall(FCCollisionDetect(s->comm, s->nbodies, s->bodies, &s->pairs, &s->set));
+    PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
+    PetscCall(FCSchemeExplicit(s->comm, s->nbodies, s->bodies, &s->set, s->solver, &s->stats));
+  }
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyIntegrate(s->bodies[i], s->t));
+  if (s->pairs.n) {
+    PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
+    PetscCall(FCCollisionEndGaps(s->comm, s->nbodies, s->bodies, &s->set, &s->maxpen));
+    PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
+  }
   s->step++;
   s->t = s->step * s->h; /* no drift from repeated additions */
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyCheckState(s->bodies[i], s->step));
@@ -124,6 +218,10 @@ PetscErrorCode FCSceneStep(FCScene s)
   PetscCall(FCPhaseResetTimes());
   /* the output of this step (frame and flush) is counted in the next step's row */
   PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, s->nbodies, s->bodies));
+  if (s->pairs.n) {
+    struct _FCContactSetView v = {&s->set, &s->stats, s->maxpen};
+    PetscCall(FCOutputRecordContacts(s->output, &v));
+  }
   if (s->step % s->every == 0 || s->step == s->nsteps)
     PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
   PetscFunctionReturn(0);
@@ -180,6 +278,9 @@ PetscErrorCode FCSceneDestroy(FCScene *scene)
   PetscFunctionBegin;
   if (!*scene) PetscFunctionReturn(0);
   PetscCall(FCOutputDestroy(&(*scene)->output));
+  PetscCall(FCContactSolverDestroy(&(*scene)->solver));
+  PetscCall(FCContactSetDestroy(&(*scene)->set));
+  PetscCall(PetscFree2((*scene)->pairs.body, (*scene)->pairs.mu));
   for (PetscInt i = 0; i < (*scene)->nbodies; i++) PetscCall(FCBodyDestroy(&(*scene)->bodies[i]));
   PetscCall(PetscFree(*scene));
   PetscFunctionReturn(0);

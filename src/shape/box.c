@@ -51,11 +51,45 @@ static PetscErrorCode Tessellate_Box(FCShape s, PetscInt *nv, PetscReal **xyz, P
   PetscFunctionReturn(0);
 }
 
+/* Box signed distance: outside, distance to the clamped point; inside, the nearest face */
+static PetscErrorCode Distance_Box(FCShape s, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cp[3])
+{
+  const PetscReal *h      = s->half_extents;
+  PetscBool        inside = PETSC_TRUE;
+
+  PetscFunctionBegin;
+  for (int i = 0; i < 3; i++) {
+    cp[i] = PetscMax(-h[i], PetscMin(h[i], x[i]));
+    if (cp[i] != x[i]) inside = PETSC_FALSE;
+  }
+  if (!inside) {
+    PetscReal v[3], r;
+    for (int i = 0; i < 3; i++) v[i] = x[i] - cp[i];
+    r  = PetscSqrtReal(FCDot(v, v));
+    *d = r;
+    for (int i = 0; i < 3; i++) n[i] = v[i] / r;
+  } else {
+    int       k    = 0;
+    PetscReal best = PETSC_MAX_REAL;
+    for (int i = 0; i < 3; i++)
+      if (h[i] - PetscAbsReal(x[i]) < best) {
+        best = h[i] - PetscAbsReal(x[i]);
+        k    = i;
+      }
+    *d = -best;
+    for (int i = 0; i < 3; i++) n[i] = (i == k) ? (x[k] >= 0 ? 1.0 : -1.0) : 0.0;
+    for (int i = 0; i < 3; i++) cp[i] = x[i];
+    cp[k] = n[k] * h[k];
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCShapeCreate_Box(FCShape s)
 {
   PetscFunctionBegin;
   s->setfromoptions = SetFromOptions_Box;
   s->massproperties = MassProperties_Box;
   s->tessellate     = Tessellate_Box;
+  s->distance       = Distance_Box;
   PetscFunctionReturn(0);
 }

@@ -37,11 +37,26 @@ static PetscErrorCode Tessellate_Capsule(FCShape s, PetscInt *nv, PetscReal **xy
   PetscFunctionReturn(0);
 }
 
+/* distance to the axis segment [-L/2, L/2] on z, minus the radius */
+static PetscErrorCode Distance_Capsule(FCShape s, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cp[3])
+{
+  PetscReal z = PetscMax(-0.5 * s->length, PetscMin(0.5 * s->length, x[2])), a[3] = {0, 0, z}, v[3], r;
+
+  PetscFunctionBegin;
+  for (int i = 0; i < 3; i++) v[i] = x[i] - a[i];
+  r  = PetscSqrtReal(FCDot(v, v));
+  *d = r - s->radius;
+  for (int i = 0; i < 3; i++) n[i] = r > 0 ? v[i] / r : (i == 0 ? 1.0 : 0.0);
+  for (int i = 0; i < 3; i++) cp[i] = a[i] + s->radius * n[i];
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCShapeCreate_Capsule(FCShape s)
 {
   PetscFunctionBegin;
   s->setfromoptions = SetFromOptions_Capsule;
   s->massproperties = MassProperties_Capsule;
   s->tessellate     = Tessellate_Capsule;
+  s->distance       = Distance_Capsule;
   PetscFunctionReturn(0);
 }

@@ -75,11 +75,54 @@ static PetscErrorCode Tessellate_Cylinder(FCShape s, PetscInt *nv, PetscReal **x
   PetscFunctionReturn(0);
 }
 
+/* Solid cylinder (axis z): the 2D distance in (radial, axial) coordinates */
+static PetscErrorCode Distance_Cylinder(FCShape s, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cp[3])
+{
+  PetscReal rho = PetscSqrtReal(x[0] * x[0] + x[1] * x[1]), e[2], dr = rho - s->radius,
+            dz = PetscAbsReal(x[2]) - 0.5 * s->length, sz = x[2] >= 0 ? 1.0 : -1.0;
+
+  PetscFunctionBegin;
+  e[0] = rho > 0 ? x[0] / rho : 1.0;
+  e[1] = rho > 0 ? x[1] / rho : 0.0;
+  if (dr > 0 && dz > 0) { /* beyond the rim */
+    PetscReal r = PetscSqrtReal(dr * dr + dz * dz);
+    *d          = r;
+    n[0]        = e[0] * dr / r;
+    n[1]        = e[1] * dr / r;
+    n[2]        = sz * dz / r;
+  } else if (dr > dz) { /* side */
+    *d   = dr;
+    n[0] = e[0];
+    n[1] = e[1];
+    n[2] = 0.0;
+  } else { /* cap */
+    *d   = dz;
+    n[0] = n[1] = 0.0;
+    n[2]        = sz;
+  }
+  cp[0] = e[0] * PetscMin(rho, s->radius);
+  cp[1] = e[1] * PetscMin(rho, s->radius);
+  cp[2] = sz * PetscMin(PetscAbsReal(x[2]), 0.5 * s->length);
+  if (!(dr > 0 && dz > 0)) {
+    if (dr > dz) {
+      cp[0] = e[0] * s->radius;
+      cp[1] = e[1] * s->radius;
+      cp[2] = x[2];
+    } else {
+      cp[0] = x[0];
+      cp[1] = x[1];
+      cp[2] = sz * 0.5 * s->length;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCShapeCreate_Cylinder(FCShape s)
 {
   PetscFunctionBegin;
   s->setfromoptions = SetFromOptions_Cylinder;
   s->massproperties = MassProperties_Cylinder;
   s->tessellate     = Tessellate_Cylinder;
+  s->distance       = Distance_Cylinder;
   PetscFunctionReturn(0);
 }

@@ -54,11 +54,24 @@ static PetscErrorCode Tessellate_Plane(FCShape s, PetscInt *nv, PetscReal **xyz,
   PetscFunctionReturn(0);
 }
 
+/* d = n . x: the plane passes through the body origin */
+static PetscErrorCode Distance_Plane(FCShape s, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cp[3])
+{
+  PetscFunctionBegin;
+  *d = FCDot(s->normal, x);
+  for (int i = 0; i < 3; i++) {
+    n[i]  = s->normal[i];
+    cp[i] = x[i] - (*d) * n[i];
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCShapeCreate_Plane(FCShape s)
 {
   PetscFunctionBegin;
   s->bounded        = PETSC_FALSE;
   s->setfromoptions = SetFromOptions_Plane;
   s->tessellate     = Tessellate_Plane;
+  s->distance       = Distance_Plane;
   PetscFunctionReturn(0);
 }

@@ -30,11 +30,23 @@ static PetscErrorCode Tessellate_Sphere(FCShape s, PetscInt *nv, PetscReal **xyz
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode Distance_Sphere(FCShape s, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cp[3])
+{
+  PetscReal r = PetscSqrtReal(FCDot(x, x));
+
+  PetscFunctionBegin;
+  *d = r - s->radius;
+  for (int i = 0; i < 3; i++) n[i] = r > 0 ? x[i] / r : (i == 2 ? 1.0 : 0.0);
+  for (int i = 0; i < 3; i++) cp[i] = s->radius * n[i];
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCShapeCreate_Sphere(FCShape s)
 {
   PetscFunctionBegin;
   s->setfromoptions = SetFromOptions_Sphere;
   s->massproperties = MassProperties_Sphere;
   s->tessellate     = Tessellate_Sphere;
+  s->distance       = Distance_Sphere;
   PetscFunctionReturn(0);
 }

@@ -2,8 +2,9 @@
    wall-clock accumulator per phase that the scene writes to /steps/timing/<phase>. */
 #include "../fcimpl.h"
 
-const char *const FCPhaseNames[] = {"assembly", "factorization", "free_motion", "integration",
-                                    "output",   "FCPhase",       "FC_PHASE_",   NULL};
+const char *const FCPhaseNames[] = {"assembly",   "factorization",  "free_motion", "collision",
+                                    "compliance", "contact_solver", "correction",  "integration",
+                                    "output",     "FCPhase",        "FC_PHASE_",   NULL};
 
 static PetscLogEvent  events[FC_PHASE_NUM];
 static PetscLogDouble started[FC_PHASE_NUM], total[FC_PHASE_NUM];
@@ -11,7 +12,9 @@ static PetscBool      registered = PETSC_FALSE;
 
 PETSC_INTERN PetscErrorCode FCPhaseRegisterEvents(PetscClassId classid)
 {
-  static const char *eventnames[] = {"FCAssembly", "FCFactorization", "FCFreeMotion", "FCIntegration", "FCOutput"};
+  static const char *eventnames[] = {"FCAssembly",   "FCFactorization", "FCFreeMotion",
+                                     "FCCollision",  "FCCompliance",    "FCContactSolve",
+                                     "FCCorrection", "FCIntegration",   "FCOutput"};
 
   PetscFunctionBegin;
   if (registered) PetscFunctionReturn(0);

@@ -1,0 +1,97 @@
+/* FCContactSet: the contacts of one step. Each rank detects the contacts of the surface it
+   owns; the set is then gathered on every rank and sorted by (pair, reference position), so the
+   contact solver sees the same problem in the same order whatever the partition. */
+#include "contactimpl.h"
+
+PetscErrorCode FCContactSetAdd(FCContactSet *set, const FCContact *c)
+{
+  PetscFunctionBegin;
+  if (set->n == set->max) {
+    FCContact *tmp;
+    set->max = PetscMax(64, 2 * set->max);
+    PetscCall(PetscMalloc1(set->max, &tmp));
+    if (set->n) PetscCall(PetscArraycpy(tmp, set->c, set->n));
+    PetscCall(PetscFree(set->c));
+    set->c = tmp;
+  }
+  set->c[set->n++] = *c;
+  PetscFunctionReturn(0);
+}
+
+static int CompareContacts(const void *a, const void *b)
+{
+  const FCContact *x = (const FCContact *)a, *y = (const FCContact *)b;
+  if (x->pair != y->pair) return x->pair < y->pair ? -1 : 1;
+  for (int i = 0; i < 3; i++)
+    if (x->key[i] != y->key[i]) return x->key[i] < y->key[i] ? -1 : 1;
+  for (int i = 0; i < 3; i++)
+    if (x->prox[1].r[i] != y->prox[1].r[i]) return x->prox[1].r[i] < y->prox[1].r[i] ? -1 : 1;
+  return 0;
+}
+
+PetscErrorCode FCContactSetGather(FCContactSet *set, MPI_Comm comm)
+{
+  PetscMPIInt size, n = (PetscMPIInt)set->n, *counts, *displs, total = 0;
+  FCContact  *all;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (size > 1) {
+    PetscCall(PetscMalloc2(size, &counts, size, &displs));
+    PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts, 1, MPI_INT, comm));
+    for (PetscMPIInt r = 0; r < size; r++) {
+      displs[r] = total * (PetscMPIInt)sizeof(FCContact);
+      total += counts[r];
+      counts[r] *= (PetscMPIInt)sizeof(FCContact);
+    }
+    PetscCall(PetscMalloc1(total + 1, &all));
+    PetscCallMPI(
+        MPI_Allgatherv(set->c, n * (PetscMPIInt)sizeof(FCContact), MPI_BYTE, all, counts, displs, MPI_BYTE, comm));
+    PetscCall(PetscFree(set->c));
+    set->c   = all;
+    set->n   = total;
+    set->max = total + 1;
+    PetscCall(PetscFree2(counts, displs));
+  }
+  if (set->n > 1) qsort(set->c, set->n, sizeof(FCContact), CompareContacts);
+  PetscFunctionReturn(0);
+}
+
+/* Tangents t1, t2 completing n (frame C_i = [n t1 t2], only n when mu = 0) and row offsets */
+PetscErrorCode FCContactSetFinalize(FCContactSet *set)
+{
+  PetscFunctionBegin;
+  set->nrows = 0;
+  for (PetscInt k = 0; k < set->n; k++) {
+    FCContact *c    = &set->c[k];
+    PetscReal  e[3] = {1, 0, 0}, nn;
+    if (PetscAbsReal(c->n[0]) > 0.6) {
+      e[0] = 0;
+      e[1] = 1;
+    }
+    FCCross(c->n, e, c->t1);
+    nn = PetscSqrtReal(FCDot(c->t1, c->t1));
+    for (int i = 0; i < 3; i++) c->t1[i] /= nn;
+    FCCross(c->n, c->t1, c->t2);
+    c->dim = c->mu > 0.0 ? 3 : 1;
+    c->row = set->nrows;
+    set->nrows += c->dim;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCContactSetReset(FCContactSet *set)
+{
+  PetscFunctionBegin;
+  set->n     = 0;
+  set->nrows = 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCContactSetDestroy(FCContactSet *set)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree(set->c));
+  set->n = set->max = set->nrows = 0;
+  PetscFunctionReturn(0);
+}

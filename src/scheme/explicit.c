@@ -1,0 +1,65 @@
+/* Algorithm 1 (explicit constraint resolution, once per step):
+     W = sum_b J_b A_b^-1 J_b^T                               (eq. 17, per-body builders)
+     delta_free: normal gap n.(p1 - p2) and tangential displacement t.(dp1 - dp2) after the free motion
+     PGS on delta = delta_free + h^2 W lambda, Signorini-Coulomb    (eq. 18-19)
+     dv_b = dv_free_b + h A_b^-1 J_b^T lambda                    (eq. 20)                     */
+#include "../fcimpl.h"
+
+PetscErrorCode FCSchemeExplicit(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCContactSet *set,
+                                FCContactSolver solver, FCSchemeStats *st)
+{
+  PetscInt         M = set->nrows, *dims;
+  PetscReal       *W, *q, *mu, *lambda, h = nbodies ? bodies[0]->h : 0.0;
+  FCContactProblem prob;
+  PetscBool        conv;
+
+  PetscFunctionBegin;
+  st->contacts = set->n;
+  st->rows     = M;
+  st->sweeps   = 0;
+  st->residual = 0.0;
+  if (!set->n) PetscFunctionReturn(0);
+  PetscCall(PetscCalloc1(M * M, &W));
+  PetscCall(PetscMalloc4(M, &q, set->n, &mu, set->n, &dims, M, &lambda));
+  PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
+  for (PetscInt b = 0; b < nbodies; b++)
+    if (bodies[b]->ops.addcompliance) PetscCall((*bodies[b]->ops.addcompliance)(bodies[b], b, set, W));
+  PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
+  for (PetscInt k = 0; k < M * M; k++) W[k] *= h * h;
+  for (PetscInt k = 0; k < set->n; k++) {
+    FCContact *c = &set->c[k];
+    PetscReal  dp[3], df[3];
+    for (int i = 0; i < 3; i++) {
+      dp[i] = c->pfree[0][i] - c->pfree[1][i];
+      df[i] = (c->pfree[0][i] - c->p0[0][i]) - (c->pfree[1][i] - c->p0[1][i]);
+    }
+    q[c->row] = FCDot(c->n, dp);
+    if (c->dim == 3) {
+      q[c->row + 1] = FCDot(c->t1, df);
+      q[c->row + 2] = FCDot(c->t2, df);
+    }
+    mu[k]   = c->mu;
+    dims[k] = c->dim;
+  }
+  PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
+  PetscCall(FCContactProblemCreateDense(set->n, dims, mu, W, q, &prob));
+  PetscCall(PetscArrayzero(lambda, M));
+  PetscCall(FCContactSolverSolve(solver, prob, lambda));
+  PetscCall(FCContactSolverGetConvergence(solver, &st->sweeps, &st->residual, &conv));
+  PetscCall(FCContactProblemDestroy(&prob));
+  PetscCall(FCPhaseEnd(FC_PHASE_CONTACT_SOLVE));
+  for (PetscInt k = 0; k < set->n; k++) {
+    FCContact *c = &set->c[k];
+    PetscReal  ft;
+    for (PetscInt a = 0; a < 3; a++) c->force[a] = a < c->dim ? lambda[c->row + a] : 0.0;
+    ft       = PetscSqrtReal(c->force[1] * c->force[1] + c->force[2] * c->force[2]);
+    c->state = c->force[0] <= 0.0 ? 0 : (c->dim == 3 && ft >= c->mu * c->force[0] * (1.0 - 1e-6) ? 2 : 1);
+  }
+  PetscCall(FCPhaseBegin(FC_PHASE_CORRECTION));
+  for (PetscInt b = 0; b < nbodies; b++)
+    if (bodies[b]->ops.applycorrection) PetscCall((*bodies[b]->ops.applycorrection)(bodies[b], b, set, lambda));
+  PetscCall(FCPhaseEnd(FC_PHASE_CORRECTION));
+  PetscCall(PetscFree(W));
+  PetscCall(PetscFree4(q, mu, dims, lambda));
+  PetscFunctionReturn(0);
+}
