@@ -129,7 +129,9 @@ static PetscErrorCode AddCompliance_Rigid(FCBody body, PetscInt self, const FCCo
     for (PetscInt s = 0; s < 2; s++)
       if (set->c[k].body[s] == self) n += set->c[k].dim;
   if (!n) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc3(n, &rb->cols, 6 * n, &rb->AiJT, 6 * n, &J));
+  PetscCall(PetscMalloc1(n, &rb->cols));
+  PetscCall(PetscMalloc1(6 * n, &rb->AiJT));
+  PetscCall(PetscMalloc1(6 * n, &J));
   WorldInertia(rb, body->density, Jw);
   PetscCall(FCMat3Inverse(Jw, Jinv));
   FCQuatToMat3(rb->pose.q, R);
