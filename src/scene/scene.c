@@ -12,6 +12,8 @@
                               one constraint row per contact; default 0)
      -contact_distance d      alarm distance: points closer than d are contacts (>= 0, default 0.01 m)
      -pgs_tol, -pgs_max_it    the contact solver (src/contact/pgs.c)
+     -compliance_type dense|sparse   how FE bodies compute A^-1 J^T for W: one MUMPS solve with
+                              dense right-hand sides, or with sparse ones (default dense)
    One step (../shared/design/DESIGN.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
    contact resolution slots in between. */
 #include "../fcimpl.h"
@@ -167,6 +169,13 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCBodySetUp(s->bodies[i]));
   }
   if (s->pairs.n) {
+    char      ctype[FC_MAX_NAME] = "dense";
+    PetscBool isfem;
+    PetscCall(PetscOptionsGetString(NULL, NULL, "-compliance_type", ctype, sizeof(ctype), NULL));
+    for (PetscInt i = 0; i < s->nbodies; i++) {
+      PetscCall(PetscStrcmp(s->bodies[i]->type, FCBODYFEM, &isfem));
+      if (isfem) PetscCall(FCBodyFEMSetComplianceType(s->bodies[i], ctype));
+    }
     PetscCall(FCContactSolverCreate(s->comm, &s->solver));
     PetscCall(FCContactSolverSetFromOptions(s->solver));
   }
