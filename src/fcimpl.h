@@ -146,6 +146,9 @@ PETSC_INTERN PetscErrorCode FCContactSetGather(FCContactSet *, MPI_Comm);
 PETSC_INTERN PetscErrorCode FCContactSetFinalize(FCContactSet *); /* frames, rows */
 PETSC_INTERN PetscErrorCode FCContactSetReset(FCContactSet *);
 PETSC_INTERN PetscErrorCode FCContactSetDestroy(FCContactSet *);
+PETSC_INTERN PetscErrorCode FCContactSetCopy(const FCContactSet *, FCContactSet *);
+/* The contact of set with the same pair and side-1 point as c, or NULL */
+PETSC_INTERN const FCContact *FCContactSetFind(const FCContactSet *, const FCContact *c);
 
 /* ---------------------------------------------------------------------------------------
    Body
@@ -247,7 +250,7 @@ typedef struct {
 } FCSchemeStats;
 /* Algorithm 1: W = sum J A^-1 J^T, PGS on (h^2 W, delta_free, mu), correction (eq. 20) */
 PETSC_INTERN PetscErrorCode FCSchemeExplicit(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCContactSet *,
-                                             FCContactSolver, FCSchemeStats *);
+                                             const FCContactSet *previous, FCContactSolver, FCSchemeStats *);
 
 struct _FCContactSetView {
   const FCContactSet  *set;

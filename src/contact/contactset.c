@@ -29,6 +29,42 @@ static int CompareContacts(const void *a, const void *b)
   return 0;
 }
 
+static int CompareKey(const void *a, const void *b)
+{
+  const FCContact *x = (const FCContact *)a, *y = (const FCContact *)b;
+  if (x->pair != y->pair) return x->pair < y->pair ? -1 : 1;
+  for (int i = 0; i < 3; i++)
+    if (x->key[i] != y->key[i]) return x->key[i] < y->key[i] ? -1 : 1;
+  return 0;
+}
+
+const FCContact *FCContactSetFind(const FCContactSet *set, const FCContact *c)
+{
+  PetscInt lo = 0, hi = set->n;
+  while (lo < hi) { /* the set is sorted by (pair, key, ...): lower bound on (pair, key) */
+    PetscInt mid = (lo + hi) / 2;
+    if (CompareKey(&set->c[mid], c) < 0)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo < set->n && !CompareKey(&set->c[lo], c) ? &set->c[lo] : NULL;
+}
+
+PetscErrorCode FCContactSetCopy(const FCContactSet *from, FCContactSet *to)
+{
+  PetscFunctionBegin;
+  if (to->max < from->n) {
+    PetscCall(PetscFree(to->c));
+    to->max = from->n;
+    PetscCall(PetscMalloc1(to->max, &to->c));
+  }
+  if (from->n) PetscCall(PetscArraycpy(to->c, from->c, from->n));
+  to->n     = from->n;
+  to->nrows = from->nrows;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCContactSetGather(FCContactSet *set, MPI_Comm comm)
 {
   PetscMPIInt size, n = (PetscMPIInt)set->n, *counts, *displs, total = 0;

@@ -34,6 +34,7 @@ struct _p_FCScene {
   /* contact */
   FCContactPairs  pairs;
   FCContactSet    set;
+  FCContactSet    previous; /* last step's contacts and forces: warm start of the solver */
   FCContactSolver solver;
   FCSchemeStats   stats;
   PetscReal       maxpen;
@@ -210,7 +211,8 @@ PetscErrorCode FCSceneStep(FCScene s)
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
     PetscCall(FCCollisionDetect(s->comm, s->nbodies, s->bodies, &s->pairs, &s->set));
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
-    PetscCall(FCSchemeExplicit(s->comm, s->nbodies, s->bodies, &s->set, s->solver, &s->stats));
+    PetscCall(FCSchemeExplicit(s->comm, s->nbodies, s->bodies, &s->set, &s->previous, s->solver, &s->stats));
+    PetscCall(FCContactSetCopy(&s->set, &s->previous));
   }
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyIntegrate(s->bodies[i], s->t));
   if (s->pairs.n) {
@@ -289,6 +291,7 @@ PetscErrorCode FCSceneDestroy(FCScene *scene)
   PetscCall(FCOutputDestroy(&(*scene)->output));
   PetscCall(FCContactSolverDestroy(&(*scene)->solver));
   PetscCall(FCContactSetDestroy(&(*scene)->set));
+  PetscCall(FCContactSetDestroy(&(*scene)->previous));
   PetscCall(PetscFree2((*scene)->pairs.body, (*scene)->pairs.mu));
   for (PetscInt i = 0; i < (*scene)->nbodies; i++) PetscCall(FCBodyDestroy(&(*scene)->bodies[i]));
   PetscCall(PetscFree(*scene));

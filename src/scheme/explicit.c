@@ -6,7 +6,7 @@
 #include "../fcimpl.h"
 
 PetscErrorCode FCSchemeExplicit(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCContactSet *set,
-                                FCContactSolver solver, FCSchemeStats *st)
+                                const FCContactSet *previous, FCContactSolver solver, FCSchemeStats *st)
 {
   PetscInt         M = set->nrows, *dims;
   PetscReal       *W, *q, *mu, *lambda, h = nbodies ? bodies[0]->h : 0.0;
@@ -43,7 +43,13 @@ PetscErrorCode FCSchemeExplicit(MPI_Comm comm, PetscInt nbodies, FCBody bodies[]
   }
   PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
   PetscCall(FCContactProblemCreateDense(set->n, dims, mu, W, q, &prob));
+  /* warm start: the force of the same contact (pair, side-1 point) in the previous step */
   PetscCall(PetscArrayzero(lambda, M));
+  for (PetscInt k = 0; previous && k < set->n; k++) {
+    const FCContact *old = FCContactSetFind(previous, &set->c[k]);
+    if (old)
+      for (PetscInt a = 0; a < set->c[k].dim; a++) lambda[set->c[k].row + a] = old->force[a];
+  }
   PetscCall(FCContactSolverSolve(solver, prob, lambda));
   PetscCall(FCContactSolverGetConvergence(solver, &st->sweeps, &st->residual, &conv));
   PetscCall(FCContactProblemDestroy(&prob));
