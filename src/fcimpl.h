@@ -123,6 +123,7 @@ typedef struct {
   PetscInt  gdof[3]; /* FE: first global DOF of each vertex, -1 when fixed     */
   PetscReal w[3];    /* FE: barycentric weights                                */
   PetscReal r[3];    /* rigid/kinematic: body-frame point                      */
+  PetscReal X[3][3]; /* FE: reference positions of the vertices (fixed ones never move) */
 } FCProximity;
 
 typedef struct {
@@ -150,6 +151,13 @@ PETSC_INTERN PetscErrorCode FCContactSetCopy(const FCContactSet *, FCContactSet 
 /* The contact of set with the same pair and side-1 point as c, or NULL */
 PETSC_INTERN const FCContact *FCContactSetFind(const FCContactSet *, const FCContact *c);
 
+/* A boundary triangle of an FE body, outward-oriented, with its vertices' first global DOF
+   (-1: fixed), reference, start-of-step and free-motion positions */
+typedef struct {
+  PetscInt  gdof[3];
+  PetscReal X[3][3], x0[3][3], xf[3][3];
+} FCSurfaceTriangle;
+
 /* ---------------------------------------------------------------------------------------
    Body
    --------------------------------------------------------------------------------------- */
@@ -175,6 +183,10 @@ typedef struct {
   /* signed distance of a world point to this body's shape now: outward normal (world) and the
      closest point (body frame) */
   PetscErrorCode (*shapedistance)(FCBody, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cpb[3]);
+  /* FE: the boundary triangles this rank holds (start and free positions of this step) */
+  PetscErrorCode (*surfacetriangles)(FCBody, PetscInt *n, FCSurfaceTriangle **);
+  /* FE: add w x (current position) of the vertices of a proximity point this rank owns */
+  PetscErrorCode (*partialposition)(FCBody, const FCProximity *, PetscReal x[3]);
   /* dv += h A_b^-1 J_b^T lambda */
   PetscErrorCode (*applycorrection)(FCBody, PetscInt self, const FCContactSet *, const PetscReal lambda[]);
 } FCBodyOps;

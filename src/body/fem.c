@@ -37,13 +37,17 @@ typedef struct {
   PetscBool  Acurrent; /* A, K and f_int belong to the current state */
   PetscReal  mass;
   /* contact */
-  PetscInt     nbv, *bv;         /* owned boundary vertices (local vertex indices)          */
-  Vec          Xg;               /* placed reference coordinates, layout of u               */
-  Mat          JT, X;            /* J_b^T and A^-1 J_b^T of the step's contacts (dense)     */
-  PetscInt     ncols, *cols;     /* global constraint row of each column of JT and X        */
-  PetscReal   *bx0, *bxf, *bkey; /* contact point buffers                                   */
-  FCProximity *bprox;
-  char         compliance[FC_MAX_NAME]; /* builder of A^-1 J^T: dense or sparse right-hand sides */
+  PetscInt           nbv, *bv;         /* owned boundary vertices (local vertex indices)          */
+  Vec                Xg;               /* placed reference coordinates, layout of u               */
+  Mat                JT, X;            /* J_b^T and A^-1 J_b^T of the step's contacts (dense)     */
+  PetscInt           ncols, *cols;     /* global constraint row of each column of JT and X        */
+  PetscReal         *bx0, *bxf, *bkey; /* contact point buffers                                   */
+  FCProximity       *bprox;
+  char               compliance[FC_MAX_NAME]; /* builder of A^-1 J^T: dense or sparse right-hand sides */
+  PetscInt           ntri;                    /* local boundary faces: vertices (local indices, outward order) */
+  PetscInt          *triv;
+  FCSurfaceTriangle *tri;
+  Vec                vloc, dvloc;
 } FEM;
 
 static PetscErrorCode SetFromOptions_FEM(FCBody body)
@@ -428,6 +432,48 @@ static PetscErrorCode SetUp_FEM(FCBody body)
     fem->nbv = 0;
     for (PetscInt v = 0; v < nv; v++)
       if (isb[v] && m->owned[v]) fem->bv[fem->nbv++] = v;
+    /* boundary triangles, ordered so that (x1 - x0) x (x2 - x0) points out of the body */
+    fem->ntri = 0;
+    for (PetscInt f = fStart; f < fEnd; f++) {
+      PetscInt val;
+      PetscCall(DMLabelGetValue(label, f, &val));
+      if (val == 1) fem->ntri++;
+    }
+    PetscCall(PetscMalloc1(3 * fem->ntri + 1, &fem->triv));
+    PetscCall(PetscMalloc1(fem->ntri + 1, &fem->tri));
+    fem->ntri = 0;
+    for (PetscInt f = fStart; f < fEnd; f++) {
+      PetscInt        val, *closure = NULL, ncl, k = 0, *tv = &fem->triv[3 * fem->ntri], ns, cell, opp = -1;
+      const PetscInt *supp;
+      PetscReal       e1[3], e2[3], nn[3], d[3];
+      PetscCall(DMLabelGetValue(label, f, &val));
+      if (val != 1) continue;
+      PetscCall(DMPlexGetTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
+      for (PetscInt i = 0; i < ncl && k < 3; i++)
+        if (closure[2 * i] >= m->vStart && closure[2 * i] < m->vEnd) tv[k++] = closure[2 * i] - m->vStart;
+      PetscCall(DMPlexRestoreTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
+      PetscCall(DMPlexGetSupportSize(m->dm, f, &ns));
+      PetscCall(DMPlexGetSupport(m->dm, f, &supp));
+      cell = supp[0] - m->cStart;
+      for (int a = 0; a < 4; a++) {
+        PetscInt v = m->cellVerts[4 * cell + a] - m->vStart;
+        if (v != tv[0] && v != tv[1] && v != tv[2]) opp = v;
+      }
+      for (int i = 0; i < 3; i++) {
+        e1[i] = m->X[3 * tv[1] + i] - m->X[3 * tv[0] + i];
+        e2[i] = m->X[3 * tv[2] + i] - m->X[3 * tv[0] + i];
+        d[i]  = m->X[3 * opp + i] - m->X[3 * tv[0] + i];
+      }
+      FCCross(e1, e2, nn);
+      if (FCDot(nn, d) > 0) {
+        PetscInt t = tv[1];
+        tv[1]      = tv[2];
+        tv[2]      = t;
+      }
+      fem->ntri++;
+    }
+    PetscCall(DMCreateLocalVector(m->dm, &fem->vloc));
+    PetscCall(VecDuplicate(fem->vloc, &fem->dvloc));
     PetscCall(PetscFree(isb));
     PetscCall(PetscMalloc4(3 * fem->nbv + 1, &fem->bx0, 3 * fem->nbv + 1, &fem->bxf, 3 * fem->nbv + 1, &fem->bkey,
                            fem->nbv + 1, &fem->bprox));
@@ -474,6 +520,63 @@ static PetscErrorCode ContactPoints_FEM(FCBody body, PetscInt *n, FCProximity **
   *x0   = fem->bx0;
   *xf   = fem->bxf;
   *key  = fem->bkey;
+  PetscFunctionReturn(0);
+}
+
+/* Boundary triangles held by this rank with their positions at the start of the step and
+   after the free motion (ghost vertices included, through the local vectors) */
+static PetscErrorCode SurfaceTriangles_FEM(FCBody body, PetscInt *n, FCSurfaceTriangle **tri)
+{
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  const PetscScalar *u, *v, *dv;
+
+  PetscFunctionBegin;
+  PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
+  PetscCall(DMGlobalToLocal(m->dm, fem->v, INSERT_VALUES, fem->vloc));
+  PetscCall(DMGlobalToLocal(m->dm, fem->dv, INSERT_VALUES, fem->dvloc));
+  PetscCall(VecGetArrayRead(fem->uloc, &u));
+  PetscCall(VecGetArrayRead(fem->vloc, &v));
+  PetscCall(VecGetArrayRead(fem->dvloc, &dv));
+  for (PetscInt t = 0; t < fem->ntri; t++) {
+    FCSurfaceTriangle *T = &fem->tri[t];
+    for (int a = 0; a < 3; a++) {
+      PetscInt vtx = fem->triv[3 * t + a], o = fem->ldof[vtx];
+      T->gdof[a] = fem->gdof[vtx];
+      for (int d = 0; d < 3; d++) {
+        PetscReal X = m->X[3 * vtx + d], uu = fem->fixed[vtx] ? 0.0 : PetscRealPart(u[o + d]);
+        T->X[a][d]  = X;
+        T->x0[a][d] = X + uu;
+        T->xf[a][d] = T->x0[a][d] + (fem->fixed[vtx] ? 0.0 : body->h * PetscRealPart(v[o + d] + dv[o + d]));
+      }
+    }
+  }
+  PetscCall(VecRestoreArrayRead(fem->uloc, &u));
+  PetscCall(VecRestoreArrayRead(fem->vloc, &v));
+  PetscCall(VecRestoreArrayRead(fem->dvloc, &dv));
+  *n   = fem->ntri;
+  *tri = fem->tri;
+  PetscFunctionReturn(0);
+}
+
+/* x += sum of w_k x_k over the vertices of p owned by this rank (current positions) */
+static PetscErrorCode PartialPosition_FEM(FCBody body, const FCProximity *p, PetscReal x[3])
+{
+  FEM               *fem = (FEM *)body->data;
+  const PetscScalar *u, *X;
+  PetscInt           lo, hi;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, &hi));
+  PetscCall(VecGetArrayRead(fem->u, &u));
+  PetscCall(VecGetArrayRead(fem->Xg, &X));
+  for (PetscInt k = 0; k < p->nv; k++) {
+    PetscInt g = p->gdof[k];
+    if (g < lo || g >= hi) continue;
+    for (int d = 0; d < 3; d++) x[d] += p->w[k] * PetscRealPart(X[g - lo + d] + u[g - lo + d]);
+  }
+  PetscCall(VecRestoreArrayRead(fem->u, &u));
+  PetscCall(VecRestoreArrayRead(fem->Xg, &X));
   PetscFunctionReturn(0);
 }
 
@@ -773,6 +876,10 @@ static PetscErrorCode Destroy_FEM(FCBody body)
   PetscCall(PetscFree3(fem->ldof, fem->gdof, fem->fixed));
   PetscCall(PetscFree2(fem->Dminv, fem->vol));
   PetscCall(PetscFree(fem->bv));
+  PetscCall(PetscFree(fem->triv));
+  PetscCall(PetscFree(fem->tri));
+  PetscCall(VecDestroy(&fem->vloc));
+  PetscCall(VecDestroy(&fem->dvloc));
   PetscCall(PetscFree4(fem->bx0, fem->bxf, fem->bkey, fem->bprox));
   PetscCall(PetscFree(fem->cols));
   PetscCall(MatDestroy(&fem->JT));
@@ -807,6 +914,8 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.proximityposition  = ProximityPosition_FEM;
   body->ops.addcompliance      = AddCompliance_FEM;
   body->ops.applycorrection    = ApplyCorrection_FEM;
+  body->ops.surfacetriangles   = SurfaceTriangles_FEM;
+  body->ops.partialposition    = PartialPosition_FEM;
   PetscFunctionReturn(0);
 }
 

@@ -5,6 +5,7 @@
    the shape's outward normal at the closest point. The proximity point on the shape side is that
    closest point, fixed in the shape's body frame (so it moves rigidly with it within the step). */
 #include "../fcimpl.h"
+#include <stdint.h>
 
 static PetscBool HasShape(FCBody b)
 {
@@ -33,6 +34,257 @@ static PetscErrorCode Sides(FCBody a, FCBody b, PetscInt ia, PetscInt ib, PetscI
   PetscFunctionReturn(0);
 }
 
+/* ---- FE against FE: each owned boundary vertex of one body against the boundary triangles of
+   the other (both ways). Triangles are gathered on every rank (a surface, not the volume) and
+   bucketed in a sort-based spatial hash, so detection costs O(n log n) in the surface size. ---- */
+typedef struct {
+  int64_t  key;
+  PetscInt tri;
+} CellEntry;
+
+static int CompareCell(const void *a, const void *b)
+{
+  const CellEntry *x = (const CellEntry *)a, *y = (const CellEntry *)b;
+  if (x->key != y->key) return x->key < y->key ? -1 : 1;
+  return (x->tri > y->tri) - (x->tri < y->tri);
+}
+
+static int64_t CellKey(int64_t i, int64_t j, int64_t k)
+{
+  const int64_t off = (int64_t)1 << 20, mask = ((int64_t)1 << 21) - 1;
+  return (((i + off) & mask) << 42) | (((j + off) & mask) << 21) | ((k + off) & mask);
+}
+
+typedef struct {
+  PetscInt           n, nentries;
+  FCSurfaceTriangle *tri;
+  CellEntry         *cells;
+  PetscReal          h;
+} Surface;
+
+static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, PetscReal distance, Surface *S)
+{
+  PetscMPIInt        size, nloc, *counts, *displs, total = 0;
+  PetscInt           n;
+  FCSurfaceTriangle *loc;
+  PetscReal          len = 0.0;
+
+  PetscFunctionBegin;
+  PetscCall((*b->ops.surfacetriangles)(b, &n, &loc));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  nloc = (PetscMPIInt)n;
+  PetscCall(PetscMalloc2(size, &counts, size, &displs));
+  PetscCallMPI(MPI_Allgather(&nloc, 1, MPI_INT, counts, 1, MPI_INT, comm));
+  for (PetscMPIInt r = 0; r < size; r++) {
+    displs[r] = total * (PetscMPIInt)sizeof(FCSurfaceTriangle);
+    total += counts[r];
+    counts[r] *= (PetscMPIInt)sizeof(FCSurfaceTriangle);
+  }
+  S->n = total;
+  PetscCall(PetscMalloc1(total + 1, &S->tri));
+  PetscCallMPI(MPI_Allgatherv(loc, nloc * (PetscMPIInt)sizeof(FCSurfaceTriangle), MPI_BYTE, S->tri, counts, displs,
+                              MPI_BYTE, comm));
+  PetscCall(PetscFree2(counts, displs));
+  /* cell size: the mean edge length (at least twice the alarm distance) */
+  for (PetscInt t = 0; t < S->n; t++)
+    for (int a = 0; a < 3; a++) {
+      PetscReal e = 0.0;
+      for (int d = 0; d < 3; d++) e += PetscSqr(S->tri[t].x0[(a + 1) % 3][d] - S->tri[t].x0[a][d]);
+      len += PetscSqrtReal(e);
+    }
+  S->h = PetscMax(S->n ? len / (3 * S->n) : 1.0, 2 * distance);
+  if (!(S->h > 0)) S->h = 1.0;
+  /* entries: every cell the inflated bounding box of a triangle overlaps (two passes: count, fill) */
+  S->nentries = 0;
+  S->cells    = NULL;
+  for (int pass = 0; pass < 2; pass++) {
+    PetscInt e = 0;
+    for (PetscInt t = 0; t < S->n; t++) {
+      int64_t lo[3], hi[3];
+      for (int d = 0; d < 3; d++) {
+        PetscReal mn = PetscMin(PetscMin(S->tri[t].x0[0][d], S->tri[t].x0[1][d]), S->tri[t].x0[2][d]) - distance;
+        PetscReal mx = PetscMax(PetscMax(S->tri[t].x0[0][d], S->tri[t].x0[1][d]), S->tri[t].x0[2][d]) + distance;
+        lo[d]        = (int64_t)PetscFloorReal(mn / S->h);
+        hi[d]        = (int64_t)PetscFloorReal(mx / S->h);
+      }
+      for (int64_t i = lo[0]; i <= hi[0]; i++)
+        for (int64_t j = lo[1]; j <= hi[1]; j++)
+          for (int64_t k = lo[2]; k <= hi[2]; k++) {
+            if (pass) {
+              S->cells[e].key = CellKey(i, j, k);
+              S->cells[e].tri = t;
+            }
+            e++;
+          }
+    }
+    if (!pass) {
+      S->nentries = e;
+      PetscCall(PetscMalloc1(e + 1, &S->cells));
+    }
+  }
+  qsort(S->cells, S->nentries, sizeof(CellEntry), CompareCell);
+  PetscFunctionReturn(0);
+}
+
+static void SurfaceQuery(const Surface *S, const PetscReal x[3], PetscInt *begin, PetscInt *end)
+{
+  int64_t  key = CellKey((int64_t)PetscFloorReal(x[0] / S->h), (int64_t)PetscFloorReal(x[1] / S->h),
+                         (int64_t)PetscFloorReal(x[2] / S->h));
+  PetscInt lo = 0, hi = S->nentries;
+  while (lo < hi) {
+    PetscInt mid = (lo + hi) / 2;
+    if (S->cells[mid].key < key)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  *begin = lo;
+  while (lo < S->nentries && S->cells[lo].key == key) lo++;
+  *end = lo;
+}
+
+static PetscErrorCode SurfaceDestroy(Surface *S)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree(S->tri));
+  PetscCall(PetscFree(S->cells));
+  PetscFunctionReturn(0);
+}
+
+/* Closest point to p on triangle (a, b, c), with its barycentric weights (Ericson, 5.1.5) */
+static void ClosestPointTriangle(const PetscReal p[3], const PetscReal a[3], const PetscReal b[3], const PetscReal c[3],
+                                 PetscReal cp[3], PetscReal w[3])
+{
+  PetscReal ab[3], ac[3], ap[3], bp[3], cpv[3], d1, d2, d3, d4, d5, d6, va, vb, vc, v, t, den;
+  for (int i = 0; i < 3; i++) {
+    ab[i]  = b[i] - a[i];
+    ac[i]  = c[i] - a[i];
+    ap[i]  = p[i] - a[i];
+    bp[i]  = p[i] - b[i];
+    cpv[i] = p[i] - c[i];
+  }
+  d1 = FCDot(ab, ap);
+  d2 = FCDot(ac, ap);
+  d3 = FCDot(ab, bp);
+  d4 = FCDot(ac, bp);
+  d5 = FCDot(ab, cpv);
+  d6 = FCDot(ac, cpv);
+  vc = d1 * d4 - d3 * d2;
+  vb = d5 * d2 - d1 * d6;
+  va = d3 * d6 - d5 * d4;
+  if (d1 <= 0 && d2 <= 0) {
+    w[0] = 1;
+    w[1] = 0;
+    w[2] = 0;
+  } else if (d3 >= 0 && d4 <= d3) {
+    w[0] = 0;
+    w[1] = 1;
+    w[2] = 0;
+  } else if (d6 >= 0 && d5 <= d6) {
+    w[0] = 0;
+    w[1] = 0;
+    w[2] = 1;
+  } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    v    = d1 / (d1 - d3);
+    w[0] = 1 - v;
+    w[1] = v;
+    w[2] = 0;
+  } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    t    = d2 / (d2 - d6);
+    w[0] = 1 - t;
+    w[1] = 0;
+    w[2] = t;
+  } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    t    = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    w[0] = 0;
+    w[1] = 1 - t;
+    w[2] = t;
+  } else {
+    den  = 1.0 / (va + vb + vc);
+    w[1] = vb * den;
+    w[2] = vc * den;
+    w[0] = 1 - w[1] - w[2];
+  }
+  for (int i = 0; i < 3; i++) cp[i] = w[0] * a[i] + w[1] * b[i] + w[2] * c[i];
+}
+
+static void TriangleNormal(const PetscReal x[3][3], PetscReal n[3])
+{
+  PetscReal e1[3], e2[3], l;
+  for (int i = 0; i < 3; i++) {
+    e1[i] = x[1][i] - x[0][i];
+    e2[i] = x[2][i] - x[0][i];
+  }
+  FCCross(e1, e2, n);
+  l = PetscSqrtReal(FCDot(n, n));
+  for (int i = 0; i < 3; i++) n[i] /= l > 0 ? l : 1.0;
+}
+
+/* Owned boundary vertices of body P (index ipts) against the surface S of body ishp: the
+   nearest triangle within the alarm distance gives the contact, with the triangle's outward
+   normal and the closest point's barycentric weights as the proximity map (eq. 6) */
+static PetscErrorCode VerticesAgainstSurface(FCBody P, PetscInt ipts, PetscInt ishp, const Surface *S, PetscInt pair,
+                                             PetscReal mu, PetscReal distance, PetscMPIInt rank, FCContactSet *set)
+{
+  PetscInt     n;
+  FCProximity *prox;
+  PetscReal   *x0, *xf, *key;
+
+  PetscFunctionBegin;
+  PetscCall((*P->ops.contactpoints)(P, &n, &prox, &x0, &xf, &key));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscInt  b, e, best = -1;
+    PetscReal bestd = PETSC_MAX_REAL, bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
+    SurfaceQuery(S, &x0[3 * i], &b, &e);
+    for (PetscInt k = b; k < e; k++) {
+      const FCSurfaceTriangle *T = &S->tri[S->cells[k].tri];
+      PetscReal                cp[3], w[3], d2 = 0.0;
+      ClosestPointTriangle(&x0[3 * i], T->x0[0], T->x0[1], T->x0[2], cp, w);
+      for (int d = 0; d < 3; d++) d2 += PetscSqr(x0[3 * i + d] - cp[d]);
+      if (d2 < bestd) {
+        bestd = d2;
+        best  = S->cells[k].tri;
+        for (int d = 0; d < 3; d++) {
+          bw[d]  = w[d];
+          bcp[d] = cp[d];
+        }
+      }
+    }
+    if (best < 0 || bestd > distance * distance) continue;
+    {
+      const FCSurfaceTriangle *T = &S->tri[best];
+      FCContact                c;
+      PetscReal                nrm[3], diff[3];
+      TriangleNormal(T->x0, nrm);
+      for (int d = 0; d < 3; d++) diff[d] = x0[3 * i + d] - bcp[d];
+      PetscCall(PetscMemzero(&c, sizeof(c)));
+      c.pair       = pair;
+      c.body[0]    = ipts;
+      c.body[1]    = ishp;
+      c.prox[0]    = prox[i];
+      c.prox[1].nv = 3;
+      for (int a = 0; a < 3; a++) {
+        c.prox[1].gdof[a] = T->gdof[a];
+        c.prox[1].w[a]    = bw[a];
+        for (int d = 0; d < 3; d++) c.prox[1].X[a][d] = T->X[a][d];
+      }
+      for (int d = 0; d < 3; d++) {
+        c.key[d]      = key[3 * i + d];
+        c.n[d]        = nrm[d];
+        c.p0[0][d]    = x0[3 * i + d];
+        c.pfree[0][d] = xf[3 * i + d];
+        c.p0[1][d]    = bcp[d];
+        c.pfree[1][d] = bw[0] * T->xf[0][d] + bw[1] * T->xf[1][d] + bw[2] * T->xf[2][d];
+      }
+      c.gap0  = FCDot(nrm, diff);
+      c.mu    = mu;
+      c.owner = rank;
+      PetscCall(FCContactSetAdd(set, &c));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], const FCContactPairs *pairs,
                                  FCContactSet *set)
 {
@@ -47,6 +299,16 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     FCProximity *prox;
     PetscReal   *x0, *xf, *key;
 
+    if (bodies[pairs->body[p][0]]->ops.surfacetriangles && bodies[pairs->body[p][1]]->ops.surfacetriangles) {
+      for (int side = 0; side < 2; side++) { /* the vertices of each body against the other's surface */
+        Surface  S;
+        PetscInt a = pairs->body[p][side], b2 = pairs->body[p][1 - side];
+        PetscCall(SurfaceBuild(comm, bodies[b2], pairs->distance, &S));
+        PetscCall(VerticesAgainstSurface(bodies[a], a, b2, &S, p, pairs->mu[p], pairs->distance, rank, set));
+        PetscCall(SurfaceDestroy(&S));
+      }
+      continue;
+    }
     PetscCall(Sides(bodies[pairs->body[p][0]], bodies[pairs->body[p][1]], pairs->body[p][0], pairs->body[p][1], &ipts,
                     &ishp));
     P = bodies[ipts];
@@ -96,11 +358,50 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
   for (PetscInt k = 0; k < set->n; k++) {
     FCContact *c = &set->c[k];
     PetscReal  x[3], n[3], cpb[3];
-    if (c->owner != rank) continue;
+    if (c->prox[1].nv || c->owner != rank) continue; /* FE surfaces below */
     PetscCall((*bodies[c->body[0]]->ops.proximityposition)(bodies[c->body[0]], &c->prox[0], FC_AT_NOW, x));
     PetscCall((*bodies[c->body[1]]->ops.shapedistance)(bodies[c->body[1]], x, &g[k], n, cpb));
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, g, set->n, MPIU_REAL, MPIU_SUM, comm));
+  { /* contacts against FE triangles: the point and the triangle's vertices now, summed over the
+       ranks that own them; the gap is measured along the triangle's end-of-step normal */
+    PetscInt   nfe = 0, *idx;
+    PetscReal *xs;
+    for (PetscInt k = 0; k < set->n; k++) nfe += set->c[k].prox[1].nv > 0;
+    PetscCall(PetscMalloc2(nfe + 1, &idx, 12 * nfe + 1, &xs));
+    PetscCall(PetscArrayzero(xs, 12 * nfe + 1));
+    nfe = 0;
+    for (PetscInt k = 0; k < set->n; k++) {
+      FCContact *c = &set->c[k];
+      if (!c->prox[1].nv) continue;
+      idx[nfe] = k;
+      PetscCall((*bodies[c->body[0]]->ops.partialposition)(bodies[c->body[0]], &c->prox[0], &xs[12 * nfe]));
+      for (int a = 0; a < 3; a++) {
+        FCProximity v = {0};
+        v.nv          = 1;
+        v.gdof[0]     = c->prox[1].gdof[a];
+        v.w[0]        = 1.0;
+        PetscCall((*bodies[c->body[1]]->ops.partialposition)(bodies[c->body[1]], &v, &xs[12 * nfe + 3 + 3 * a]));
+      }
+      nfe++;
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, xs, 12 * nfe, MPIU_REAL, MPIU_SUM, comm));
+    for (PetscInt j = 0; j < nfe; j++) {
+      FCContact *c = &set->c[idx[j]];
+      PetscReal  tri[3][3], p2[3] = {0, 0, 0}, nrm[3], diff[3], *x1 = &xs[12 * j];
+      if (c->prox[0].nv == 1 && c->prox[0].gdof[0] < 0)
+        for (int d = 0; d < 3; d++) x1[d] = c->prox[0].r[d]; /* fixed vertex */
+      for (int a = 0; a < 3; a++)
+        for (int d = 0; d < 3; d++)
+          tri[a][d] = c->prox[1].gdof[a] < 0 ? c->prox[1].X[a][d] : xs[12 * j + 3 + 3 * a + d];
+      for (int a = 0; a < 3; a++)
+        for (int d = 0; d < 3; d++) p2[d] += c->prox[1].w[a] * tri[a][d];
+      TriangleNormal(tri, nrm);
+      for (int d = 0; d < 3; d++) diff[d] = x1[d] - p2[d];
+      g[idx[j]] = FCDot(nrm, diff);
+    }
+    PetscCall(PetscFree2(idx, xs));
+  }
   for (PetscInt k = 0; k < set->n; k++) {
     set->c[k].gap_end = g[k];
     minimum           = PetscMin(minimum, g[k]);
