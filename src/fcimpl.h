@@ -158,6 +158,13 @@ typedef struct {
   PetscReal X[3][3], x0[3][3], xf[3][3];
 } FCSurfaceTriangle;
 
+/* Spatial hash of triangles (src/collision/collision.c), also used by the benchmark tool */
+typedef struct _FCSurface   FCSurface;
+PETSC_EXTERN PetscErrorCode FCSurfaceCreate(PetscInt n, FCSurfaceTriangle *tri, PetscReal distance, FCSurface **);
+PETSC_EXTERN void           FCSurfaceClosest(const FCSurface *, const PetscReal x[3], PetscInt *tri, PetscReal w[3],
+                                             PetscReal cp[3], PetscReal *dist2);
+PETSC_EXTERN PetscErrorCode FCSurfaceDestroy(FCSurface **);
+
 /* ---------------------------------------------------------------------------------------
    Body
    --------------------------------------------------------------------------------------- */

@@ -55,19 +55,20 @@ static int64_t CellKey(int64_t i, int64_t j, int64_t k)
   return (((i + off) & mask) << 42) | (((j + off) & mask) << 21) | ((k + off) & mask);
 }
 
-typedef struct {
+struct _FCSurface {
   PetscInt           n, nentries;
   FCSurfaceTriangle *tri;
   CellEntry         *cells;
   PetscReal          h;
-} Surface;
+};
+typedef struct _FCSurface Surface;
 
-static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, PetscReal distance, Surface *S)
+/* The surface of an FE body, gathered on every rank */
+static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, PetscReal distance, Surface **S)
 {
   PetscMPIInt        size, nloc, *counts, *displs, total = 0;
   PetscInt           n;
-  FCSurfaceTriangle *loc;
-  PetscReal          len = 0.0;
+  FCSurfaceTriangle *loc, *all;
 
   PetscFunctionBegin;
   PetscCall((*b->ops.surfacetriangles)(b, &n, &loc));
@@ -80,11 +81,25 @@ static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, PetscReal distance, 
     total += counts[r];
     counts[r] *= (PetscMPIInt)sizeof(FCSurfaceTriangle);
   }
-  S->n = total;
-  PetscCall(PetscMalloc1(total + 1, &S->tri));
-  PetscCallMPI(MPI_Allgatherv(loc, nloc * (PetscMPIInt)sizeof(FCSurfaceTriangle), MPI_BYTE, S->tri, counts, displs,
+  PetscCall(PetscMalloc1(total + 1, &all));
+  PetscCallMPI(MPI_Allgatherv(loc, nloc * (PetscMPIInt)sizeof(FCSurfaceTriangle), MPI_BYTE, all, counts, displs,
                               MPI_BYTE, comm));
   PetscCall(PetscFree2(counts, displs));
+  PetscCall(FCSurfaceCreate(total, all, distance, S));
+  PetscFunctionReturn(0);
+}
+
+/* The spatial hash of n triangles (taken over): cells of the mean edge length, at least twice
+   the alarm distance; each triangle is listed in every cell its inflated box overlaps */
+PetscErrorCode FCSurfaceCreate(PetscInt n, FCSurfaceTriangle *tri, PetscReal distance, FCSurface **surface)
+{
+  Surface  *S;
+  PetscReal len = 0.0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&S));
+  S->n   = n;
+  S->tri = tri;
   /* cell size: the mean edge length (at least twice the alarm distance) */
   for (PetscInt t = 0; t < S->n; t++)
     for (int a = 0; a < 3; a++) {
@@ -123,6 +138,7 @@ static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, PetscReal distance, 
     }
   }
   qsort(S->cells, S->nentries, sizeof(CellEntry), CompareCell);
+  *surface = S;
   PetscFunctionReturn(0);
 }
 
@@ -143,11 +159,13 @@ static void SurfaceQuery(const Surface *S, const PetscReal x[3], PetscInt *begin
   *end = lo;
 }
 
-static PetscErrorCode SurfaceDestroy(Surface *S)
+PetscErrorCode FCSurfaceDestroy(FCSurface **S)
 {
   PetscFunctionBegin;
-  PetscCall(PetscFree(S->tri));
-  PetscCall(PetscFree(S->cells));
+  if (!*S) PetscFunctionReturn(0);
+  PetscCall(PetscFree((*S)->tri));
+  PetscCall(PetscFree((*S)->cells));
+  PetscCall(PetscFree(*S));
   PetscFunctionReturn(0);
 }
 
@@ -223,6 +241,31 @@ static void TriangleNormal(const PetscReal x[3][3], PetscReal n[3])
 /* Owned boundary vertices of body P (index ipts) against the surface S of body ishp: the
    nearest triangle within the alarm distance gives the contact, with the triangle's outward
    normal and the closest point's barycentric weights as the proximity map (eq. 6) */
+/* Nearest triangle to x among those hashed in x's cell: index (-1: none), weights, closest
+   point and squared distance */
+void FCSurfaceClosest(const FCSurface *S, const PetscReal x[3], PetscInt *best, PetscReal bw[3], PetscReal bcp[3],
+                      PetscReal *bestd)
+{
+  PetscInt b, e;
+  *best  = -1;
+  *bestd = PETSC_MAX_REAL;
+  SurfaceQuery(S, x, &b, &e);
+  for (PetscInt k = b; k < e; k++) {
+    const FCSurfaceTriangle *T = &S->tri[S->cells[k].tri];
+    PetscReal                cp[3], w[3], d2 = 0.0;
+    ClosestPointTriangle(x, T->x0[0], T->x0[1], T->x0[2], cp, w);
+    for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
+    if (d2 < *bestd) {
+      *bestd = d2;
+      *best  = S->cells[k].tri;
+      for (int d = 0; d < 3; d++) {
+        bw[d]  = w[d];
+        bcp[d] = cp[d];
+      }
+    }
+  }
+}
+
 static PetscErrorCode VerticesAgainstSurface(FCBody P, PetscInt ipts, PetscInt ishp, const Surface *S, PetscInt pair,
                                              PetscReal mu, PetscReal distance, PetscMPIInt rank, FCContactSet *set)
 {
@@ -233,23 +276,9 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, PetscInt ipts, PetscInt i
   PetscFunctionBegin;
   PetscCall((*P->ops.contactpoints)(P, &n, &prox, &x0, &xf, &key));
   for (PetscInt i = 0; i < n; i++) {
-    PetscInt  b, e, best = -1;
-    PetscReal bestd = PETSC_MAX_REAL, bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
-    SurfaceQuery(S, &x0[3 * i], &b, &e);
-    for (PetscInt k = b; k < e; k++) {
-      const FCSurfaceTriangle *T = &S->tri[S->cells[k].tri];
-      PetscReal                cp[3], w[3], d2 = 0.0;
-      ClosestPointTriangle(&x0[3 * i], T->x0[0], T->x0[1], T->x0[2], cp, w);
-      for (int d = 0; d < 3; d++) d2 += PetscSqr(x0[3 * i + d] - cp[d]);
-      if (d2 < bestd) {
-        bestd = d2;
-        best  = S->cells[k].tri;
-        for (int d = 0; d < 3; d++) {
-          bw[d]  = w[d];
-          bcp[d] = cp[d];
-        }
-      }
-    }
+    PetscInt  best;
+    PetscReal bestd, bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
+    FCSurfaceClosest(S, &x0[3 * i], &best, bw, bcp, &bestd);
     if (best < 0 || bestd > distance * distance) continue;
     {
       const FCSurfaceTriangle *T = &S->tri[best];
@@ -301,11 +330,11 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
 
     if (bodies[pairs->body[p][0]]->ops.surfacetriangles && bodies[pairs->body[p][1]]->ops.surfacetriangles) {
       for (int side = 0; side < 2; side++) { /* the vertices of each body against the other's surface */
-        Surface  S;
+        Surface *S;
         PetscInt a = pairs->body[p][side], b2 = pairs->body[p][1 - side];
         PetscCall(SurfaceBuild(comm, bodies[b2], pairs->distance, &S));
-        PetscCall(VerticesAgainstSurface(bodies[a], a, b2, &S, p, pairs->mu[p], pairs->distance, rank, set));
-        PetscCall(SurfaceDestroy(&S));
+        PetscCall(VerticesAgainstSurface(bodies[a], a, b2, S, p, pairs->mu[p], pairs->distance, rank, set));
+        PetscCall(FCSurfaceDestroy(&S));
       }
       continue;
     }
