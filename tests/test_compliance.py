@@ -1,6 +1,7 @@
-"""Compliance builders: -compliance_type dense and sparse give the same contact forces and positions
-(1e-10 relative) on an FE cube dropped on a plane; sparse is refused with a clear error on more
-than one rank. Usage: test_compliance.py [--np N]"""
+"""Compliance builders: -compliance_type dense, sparse and schur give the same contact forces
+and positions (1e-10 relative) on an FE cube dropped on a plane (the same W to round-off drives
+the same solver path); on more than one rank dense and schur agree and sparse is refused with a
+clear error. Usage: test_compliance.py [--np N]"""
 import numpy as np
 import h5py
 from fctest import run, out, Checker, np_from_argv, sorted_positions
@@ -8,20 +9,26 @@ from fctest import run, out, Checker, np_from_argv, sorted_positions
 NP = np_from_argv()
 c = Checker("compliance np%d" % NP)
 base = ["-options_file", "input/cube_drop.opts", "-time_steps", "40", "-pgs_tol", "1e-12", "-pgs_max_it", "20000", "-quiet"]
-fd = out("comp_dense_np%d.h5" % NP)
-run(base + ["-compliance_type", "dense", "-output_file", fd], np_=NP)
-if NP == 1:
-    fs = out("comp_sparse.h5")
-    run(base + ["-compliance_type", "sparse", "-output_file", fs])
-    a, b = h5py.File(fd, "r"), h5py.File(fs, "r")
+
+
+def result(ctype):
+    f = out("comp_%s_np%d.h5" % (ctype, NP))
+    run(base + ["-compliance_type", ctype, "-output_file", f], np_=NP)
+    return h5py.File(f, "r")
+
+
+a = result("dense")
+others = ["sparse", "schur"] if NP == 1 else ["schur"]
+for ctype in others:
+    b = result(ctype)
     same = np.array_equal(a["contacts/offset"][:], b["contacts/offset"][:])
-    c.check(same and a["contacts/offset"][-1] > 0, "same contacts with both builders (%d records)" % a["contacts/offset"][-1])
+    c.check(same and a["contacts/offset"][-1] > 0, "%s: same contacts as dense (%d records)" % (ctype, a["contacts/offset"][-1]))
     fa, fb = a["contacts/force"][:], b["contacts/force"][:]
     err = np.abs(fa - fb).max() / np.abs(fa).max() if same else np.inf
-    c.check(err < 1e-10, "forces dense vs sparse: rel. diff %.2e < 1e-10" % err)
+    c.check(err < 1e-10, "%s vs dense: forces rel. diff %.2e < 1e-10" % (ctype, err))
     pa, pb = sorted_positions(a, "cube")[1], sorted_positions(b, "cube")[1]
-    c.check(np.abs(pa - pb).max() / np.abs(pa).max() < 1e-10, "positions dense vs sparse agree")
-else:
+    c.check(np.abs(pa - pb).max() / np.abs(pa).max() < 1e-10, "%s vs dense: positions agree" % ctype)
+if NP > 1:
     p = run(base + ["-compliance_type", "sparse", "-output_file", out("comp_sparse_np%d.h5" % NP)], np_=NP, check=False)
     c.check(p.returncode != 0 and "one MPI rank only" in p.stderr + p.stdout, "sparse on %d ranks: clear error, exit %d" % (NP, p.returncode))
 p = run(base + ["-compliance_type", "magic", "-output_file", out("comp_bad.h5")], check=False)

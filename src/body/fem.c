@@ -615,6 +615,75 @@ static void Direction(const FCContact *c, PetscInt side, PetscInt a, PetscReal e
   for (int i = 0; i < 3; i++) e[i] = (side == 0 ? 1.0 : -1.0) * f[i];
 }
 
+/* Compliance, MUMPS Schur builder: the augmented symmetric matrix K = [[0, J_b], [J_b^T, A]]
+   (constraint rows first, so that the Schur indices live on rank 0) is factored with
+   MatFactorSetSchurIS on the constraint rows; MUMPS returns S = -J_b A^-1 J_b^T, centralized on
+   rank 0, which is broadcast. A is copied into K every call (the pattern changes with the
+   contacts), and the correction then needs one solve with A's own factor. */
+static PetscErrorCode SchurCompliance(FCBody body, PetscInt ncols, PetscReal *Wb)
+{
+  FEM               *fem = (FEM *)body->data;
+  PetscMPIInt        rank;
+  PetscInt           nloc, N, lo, hi, mloc;
+  Mat                K, F, S;
+  IS                 is;
+  MatFactorInfo      info;
+  const PetscScalar *jt;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
+  PetscCall(VecGetLocalSize(fem->u, &nloc));
+  PetscCall(VecGetSize(fem->u, &N));
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, &hi));
+  mloc = nloc + (rank ? 0 : ncols);
+  PetscCall(MatCreateAIJ(body->comm, mloc, mloc, N + ncols, N + ncols, 96, NULL, 96, NULL, &K));
+  PetscCall(MatSetOption(K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  for (PetscInt r = lo; r < hi; r++) { /* A, shifted by ncols */
+    PetscInt           nc;
+    const PetscInt    *cols;
+    const PetscScalar *vals;
+    PetscInt           row = r + ncols, shifted[512];
+    PetscCall(MatGetRow(fem->A, r, &nc, &cols, &vals));
+    PetscCheck(nc <= 512, PETSC_COMM_SELF, PETSC_ERR_SUP, "Row of A with %" PetscInt_FMT " entries", nc);
+    for (PetscInt k = 0; k < nc; k++) shifted[k] = cols[k] + ncols;
+    PetscCall(MatSetValues(K, 1, &row, nc, shifted, vals, INSERT_VALUES));
+    PetscCall(MatRestoreRow(fem->A, r, &nc, &cols, &vals));
+  }
+  PetscCall(MatDenseGetArrayRead(fem->JT, &jt));
+  for (PetscInt i = 0; i < ncols; i++) {
+    if (rank == 0) PetscCall(MatSetValue(K, i, i, 0.0, INSERT_VALUES)); /* structural diagonal */
+    for (PetscInt r = 0; r < nloc; r++)
+      if (jt[r + i * nloc] != 0.0) {
+        PetscCall(MatSetValue(K, lo + r + ncols, i, jt[r + i * nloc], INSERT_VALUES));
+        PetscCall(MatSetValue(K, i, lo + r + ncols, jt[r + i * nloc], INSERT_VALUES));
+      }
+  }
+  PetscCall(MatDenseRestoreArrayRead(fem->JT, &jt));
+  PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatSetOption(K, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatGetFactor(K, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F));
+  PetscCall(ISCreateStride(PETSC_COMM_SELF, rank ? 0 : ncols, 0, 1, &is));
+  PetscCall(MatFactorSetSchurIS(F, is));
+  PetscCall(MatFactorInfoInitialize(&info));
+  PetscCall(MatCholeskyFactorSymbolic(F, K, NULL, &info));
+  PetscCall(MatCholeskyFactorNumeric(F, K, &info));
+  PetscCall(MatFactorCreateSchurComplement(F, &S, NULL));
+  if (rank == 0) {
+    const PetscScalar *sa;
+    PetscCall(MatDenseGetArrayRead(S, &sa));
+    for (PetscInt i = 0; i < ncols; i++) /* column-major, symmetric */
+      for (PetscInt j = 0; j < ncols; j++) Wb[i * ncols + j] = -PetscRealPart(sa[i + j * ncols]);
+    PetscCall(MatDenseRestoreArrayRead(S, &sa));
+  }
+  PetscCallMPI(MPI_Bcast(Wb, (PetscMPIInt)(ncols * ncols), MPIU_REAL, 0, body->comm));
+  PetscCall(MatDestroy(&S));
+  PetscCall(MatDestroy(&F));
+  PetscCall(MatDestroy(&K));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(0);
+}
+
 /* Compliance, "dense multi-RHS" builder: J_b^T (dense, n_b x m_b) is solved with the factor of
    A in one MatMatSolve, X = A^-1 J_b^T is kept for the correction, and
    W_b = J_b X accumulates only the rows of J_b that are non-zero (3 per vertex). */
@@ -662,6 +731,14 @@ static PetscErrorCode AddCompliance_FEM(FCBody body, PetscInt self, const FCCont
     }
   fem->ncols = ncols;
   PetscCall(MatDenseRestoreArray(fem->JT, &jt));
+  if (!strcmp(fem->compliance, "schur")) {
+    PetscCall(PetscCalloc1(ncols * ncols, &Wb));
+    PetscCall(SchurCompliance(body, ncols, Wb));
+    for (PetscInt i = 0; i < ncols; i++)
+      for (PetscInt j = 0; j < ncols; j++) W[fem->cols[i] * M + fem->cols[j]] += Wb[i * ncols + j];
+    PetscCall(PetscFree(Wb));
+    PetscFunctionReturn(0);
+  }
   PetscCall(MatDuplicate(fem->JT, MAT_DO_NOT_COPY_VALUES, &fem->X));
   PetscCall(KSPGetPC(fem->ksp, &pc));
   PetscCall(PCFactorGetMatrix(pc, &F));
@@ -714,6 +791,22 @@ static PetscErrorCode ApplyCorrection_FEM(FCBody body, PetscInt self, const FCCo
 
   PetscFunctionBegin;
   if (!fem->ncols) PetscFunctionReturn(0);
+  if (!fem->X) { /* Schur builder: dv += h A^-1 (J_b^T lambda_b), one solve with A's factor */
+    Vec          lam, rhs;
+    PetscScalar *l;
+    PetscInt     c0, c1;
+    PetscCall(MatCreateVecs(fem->JT, &lam, &rhs));
+    PetscCall(VecGetOwnershipRange(lam, &c0, &c1));
+    PetscCall(VecGetArray(lam, &l));
+    for (PetscInt i = c0; i < c1; i++) l[i - c0] = body->h * lambda[fem->cols[i]];
+    PetscCall(VecRestoreArray(lam, &l));
+    PetscCall(MatMult(fem->JT, lam, rhs));
+    PetscCall(KSPSolve(fem->ksp, rhs, fem->work));
+    PetscCall(VecAXPY(fem->dv, 1.0, fem->work));
+    PetscCall(VecDestroy(&lam));
+    PetscCall(VecDestroy(&rhs));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecGetLocalSize(fem->u, &nloc));
   PetscCall(MatDenseGetArrayRead(fem->X, &x));
   PetscCall(VecGetArray(fem->dv, &dv));
@@ -984,8 +1077,9 @@ PetscErrorCode FCBodyFEMSetComplianceType(FCBody body, const char type[])
   FEM *fem = NULL;
   PetscFunctionBegin;
   PetscCall(GetFEM(body, &fem));
-  PetscCheck(!strcmp(type, "dense") || !strcmp(type, "sparse"), body->comm, PETSC_ERR_USER_INPUT,
-             "Unknown compliance type '%s' in -compliance_type (known: dense, sparse)", type);
+  PetscCheck(!strcmp(type, "dense") || !strcmp(type, "sparse") || !strcmp(type, "schur"), body->comm,
+             PETSC_ERR_USER_INPUT, "Unknown compliance type '%s' in -compliance_type (known: dense, sparse, schur)",
+             type);
   if (!strcmp(type, "sparse")) {
     PetscMPIInt size;
     PetscCallMPI(MPI_Comm_size(body->comm, &size));

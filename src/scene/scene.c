@@ -12,8 +12,9 @@
                               one constraint row per contact; default 0)
      -contact_distance d      alarm distance: points closer than d are contacts (>= 0, default 0.01 m)
      -pgs_tol, -pgs_max_it    the contact solver (src/contact/pgs.c)
-     -compliance_type dense|sparse   how FE bodies compute A^-1 J^T for W: one MUMPS solve with
-                              dense right-hand sides, or with sparse ones (default dense)
+     -compliance_type dense|sparse|schur   how FE bodies compute J A^-1 J^T for W: MUMPS solves
+                              with dense or sparse right-hand sides, or the Schur complement of
+                              the augmented matrix (default dense; see src/body/fem.c)
    One step (../shared/design/DESIGN.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
    contact resolution slots in between. */
 #include "../fcimpl.h"
