@@ -111,6 +111,7 @@ PETSC_INTERN PetscErrorCode FCMeshCheckCells(FCMesh *, const char bodyname[]);
 PETSC_INTERN PetscErrorCode FCMeshComputeMassProperties(FCMesh *, PetscReal *volume, PetscReal centroid[3],
                                                         PetscReal J[9]);
 PETSC_INTERN PetscErrorCode FCMeshCreateVisual(FCMesh *, FCBodyVisual *);
+PETSC_INTERN PetscErrorCode FCMeshGetBoundary(FCMesh *, PetscInt *nbv, PetscInt **bv, PetscInt *ntri, PetscInt **triv);
 PETSC_INTERN PetscErrorCode FCMeshDestroy(FCMesh *);
 
 /* ---------------------------------------------------------------------------------------

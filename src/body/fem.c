@@ -409,75 +409,13 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   PetscCall(FormAndFactorA(body));
   PetscCall(FCMeshCreateVisual(m, &body->visual));
   PetscCall(FCBodyFEMGetReferenceCoordinates(body, &fem->Xg));
-  { /* owned vertices of boundary faces: the candidate contact points */
-    DMLabel    label;
-    PetscInt   fStart, fEnd;
-    PetscBool *isb;
-    PetscCall(DMCreateLabel(m->dm, "fc_boundary"));
-    PetscCall(DMGetLabel(m->dm, "fc_boundary", &label));
-    PetscCall(DMPlexMarkBoundaryFaces(m->dm, 1, label));
-    PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
-    PetscCall(PetscCalloc1(nv, &isb));
-    for (PetscInt f = fStart; f < fEnd; f++) {
-      PetscInt val, *closure = NULL, ncl;
-      PetscCall(DMLabelGetValue(label, f, &val));
-      if (val != 1) continue;
-      PetscCall(DMPlexGetTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
-      for (PetscInt i = 0; i < ncl; i++)
-        if (closure[2 * i] >= m->vStart && closure[2 * i] < m->vEnd) isb[closure[2 * i] - m->vStart] = PETSC_TRUE;
-      PetscCall(DMPlexRestoreTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
-    }
-    for (PetscInt v = 0; v < nv; v++) fem->nbv += (isb[v] && m->owned[v]);
-    PetscCall(PetscMalloc1(fem->nbv + 1, &fem->bv));
-    fem->nbv = 0;
-    for (PetscInt v = 0; v < nv; v++)
-      if (isb[v] && m->owned[v]) fem->bv[fem->nbv++] = v;
-    /* boundary triangles, ordered so that (x1 - x0) x (x2 - x0) points out of the body */
-    fem->ntri = 0;
-    for (PetscInt f = fStart; f < fEnd; f++) {
-      PetscInt val;
-      PetscCall(DMLabelGetValue(label, f, &val));
-      if (val == 1) fem->ntri++;
-    }
-    PetscCall(PetscMalloc1(3 * fem->ntri + 1, &fem->triv));
-    PetscCall(PetscMalloc1(fem->ntri + 1, &fem->tri));
-    fem->ntri = 0;
-    for (PetscInt f = fStart; f < fEnd; f++) {
-      PetscInt        val, *closure = NULL, ncl, k = 0, *tv = &fem->triv[3 * fem->ntri], ns, cell, opp = -1;
-      const PetscInt *supp;
-      PetscReal       e1[3], e2[3], nn[3], d[3];
-      PetscCall(DMLabelGetValue(label, f, &val));
-      if (val != 1) continue;
-      PetscCall(DMPlexGetTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
-      for (PetscInt i = 0; i < ncl && k < 3; i++)
-        if (closure[2 * i] >= m->vStart && closure[2 * i] < m->vEnd) tv[k++] = closure[2 * i] - m->vStart;
-      PetscCall(DMPlexRestoreTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
-      PetscCall(DMPlexGetSupportSize(m->dm, f, &ns));
-      PetscCall(DMPlexGetSupport(m->dm, f, &supp));
-      cell = supp[0] - m->cStart;
-      for (int a = 0; a < 4; a++) {
-        PetscInt v = m->cellVerts[4 * cell + a] - m->vStart;
-        if (v != tv[0] && v != tv[1] && v != tv[2]) opp = v;
-      }
-      for (int i = 0; i < 3; i++) {
-        e1[i] = m->X[3 * tv[1] + i] - m->X[3 * tv[0] + i];
-        e2[i] = m->X[3 * tv[2] + i] - m->X[3 * tv[0] + i];
-        d[i]  = m->X[3 * opp + i] - m->X[3 * tv[0] + i];
-      }
-      FCCross(e1, e2, nn);
-      if (FCDot(nn, d) > 0) {
-        PetscInt t = tv[1];
-        tv[1]      = tv[2];
-        tv[2]      = t;
-      }
-      fem->ntri++;
-    }
-    PetscCall(DMCreateLocalVector(m->dm, &fem->vloc));
-    PetscCall(VecDuplicate(fem->vloc, &fem->dvloc));
-    PetscCall(PetscFree(isb));
-    PetscCall(PetscMalloc4(3 * fem->nbv + 1, &fem->bx0, 3 * fem->nbv + 1, &fem->bxf, 3 * fem->nbv + 1, &fem->bkey,
-                           fem->nbv + 1, &fem->bprox));
-  }
+  /* boundary: owned vertices (candidate contact points) and outward triangles (mesh.c) */
+  PetscCall(FCMeshGetBoundary(m, &fem->nbv, &fem->bv, &fem->ntri, &fem->triv));
+  PetscCall(PetscMalloc1(fem->ntri + 1, &fem->tri));
+  PetscCall(DMCreateLocalVector(m->dm, &fem->vloc));
+  PetscCall(VecDuplicate(fem->vloc, &fem->dvloc));
+  PetscCall(PetscMalloc4(3 * fem->nbv + 1, &fem->bx0, 3 * fem->nbv + 1, &fem->bxf, 3 * fem->nbv + 1, &fem->bkey,
+                         fem->nbv + 1, &fem->bprox));
   PetscFunctionReturn(0);
 }
 

@@ -291,3 +291,70 @@ PetscErrorCode FCMeshDestroy(FCMesh *mesh)
   PetscCall(DMDestroy(&mesh->dm));
   PetscFunctionReturn(0);
 }
+
+/* Boundary of the mesh on this rank: the owned vertices of boundary faces, and the boundary
+   faces as vertex triples (local vertex indices) ordered so that (x1 - x0) x (x2 - x0) points
+   out of the body (the fourth vertex of the face's cell is behind it). */
+PetscErrorCode FCMeshGetBoundary(FCMesh *m, PetscInt *nbv, PetscInt **bv, PetscInt *ntri, PetscInt **triv)
+{
+  DMLabel    label;
+  PetscInt   fStart, fEnd, nv = m->vEnd - m->vStart, nt = 0, nb = 0;
+  PetscBool *isb, has;
+
+  PetscFunctionBegin;
+  PetscCall(DMHasLabel(m->dm, "fc_boundary", &has));
+  if (!has) {
+    PetscCall(DMCreateLabel(m->dm, "fc_boundary"));
+    PetscCall(DMGetLabel(m->dm, "fc_boundary", &label));
+    PetscCall(DMPlexMarkBoundaryFaces(m->dm, 1, label));
+  } else
+    PetscCall(DMGetLabel(m->dm, "fc_boundary", &label));
+  PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
+  PetscCall(PetscCalloc1(nv, &isb));
+  for (PetscInt f = fStart; f < fEnd; f++) {
+    PetscInt val;
+    PetscCall(DMLabelGetValue(label, f, &val));
+    if (val == 1) nt++;
+  }
+  PetscCall(PetscMalloc1(3 * nt + 1, triv));
+  nt = 0;
+  for (PetscInt f = fStart; f < fEnd; f++) {
+    PetscInt        val, *closure = NULL, ncl, k = 0, *tv = &(*triv)[3 * nt], cell, opp = -1;
+    const PetscInt *supp;
+    PetscReal       e1[3], e2[3], nn[3], d[3];
+    PetscCall(DMLabelGetValue(label, f, &val));
+    if (val != 1) continue;
+    PetscCall(DMPlexGetTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
+    for (PetscInt i = 0; i < ncl && k < 3; i++)
+      if (closure[2 * i] >= m->vStart && closure[2 * i] < m->vEnd) tv[k++] = closure[2 * i] - m->vStart;
+    PetscCall(DMPlexRestoreTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
+    PetscCall(DMPlexGetSupport(m->dm, f, &supp));
+    cell = supp[0] - m->cStart;
+    for (int a = 0; a < 4; a++) {
+      PetscInt v = m->cellVerts[4 * cell + a] - m->vStart;
+      if (v != tv[0] && v != tv[1] && v != tv[2]) opp = v;
+    }
+    for (int i = 0; i < 3; i++) {
+      e1[i] = m->X[3 * tv[1] + i] - m->X[3 * tv[0] + i];
+      e2[i] = m->X[3 * tv[2] + i] - m->X[3 * tv[0] + i];
+      d[i]  = m->X[3 * opp + i] - m->X[3 * tv[0] + i];
+    }
+    FCCross(e1, e2, nn);
+    if (FCDot(nn, d) > 0) {
+      PetscInt t = tv[1];
+      tv[1]      = tv[2];
+      tv[2]      = t;
+    }
+    for (int a = 0; a < 3; a++) isb[tv[a]] = PETSC_TRUE;
+    nt++;
+  }
+  for (PetscInt v = 0; v < nv; v++) nb += (isb[v] && m->owned[v]);
+  PetscCall(PetscMalloc1(nb + 1, bv));
+  nb = 0;
+  for (PetscInt v = 0; v < nv; v++)
+    if (isb[v] && m->owned[v]) (*bv)[nb++] = v;
+  PetscCall(PetscFree(isb));
+  *nbv  = nb;
+  *ntri = nt;
+  PetscFunctionReturn(0);
+}
