@@ -137,7 +137,10 @@ typedef struct {
   PetscInt    dim, row, owner; /* rows (1 frictionless, 3), first row, detecting rank */
   PetscReal   force[3];        /* lambda in the [n t1 t2] frame (force units)      */
   PetscInt    state;           /* 0 open, 1 stick, 2 slip */
+  PetscInt    side2;           /* what side 2 is: FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE */
+  PetscReal   nb[3];           /* FC_SIDE_RIGID_TRIANGLE: the normal in side 2's body frame             */
 } FCContact;
+enum { FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE };
 
 typedef struct {
   PetscInt   n, max, nrows;
@@ -193,7 +196,10 @@ typedef struct {
   PetscErrorCode (*shapedistance)(FCBody, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cpb[3]);
   /* FE: the boundary triangles this rank holds (start and free positions of this step) */
   PetscErrorCode (*surfacetriangles)(FCBody, PetscInt *n, FCSurfaceTriangle **);
-  /* FE: add w x (current position) of the vertices of a proximity point this rank owns */
+  /* rigid and kinematic: a world point (start of the step) or direction in the body frame */
+  PetscErrorCode (*tobody)(FCBody, const PetscReal x[3], PetscBool direction, PetscReal r[3]);
+  /* add w x (current position) of the vertices of a proximity point this rank owns (FE), or
+     the point on rank 0 (rigid, kinematic) */
   PetscErrorCode (*partialposition)(FCBody, const FCProximity *, PetscReal x[3]);
   /* dv += h A_b^-1 J_b^T lambda */
   PetscErrorCode (*applycorrection)(FCBody, PetscInt self, const FCContactSet *, const PetscReal lambda[]);

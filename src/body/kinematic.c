@@ -57,6 +57,8 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   body->ops.getrotation        = FCPoseGetRotation;
   body->ops.getvisualpositions = FCPoseGetVisualPositions;
   body->ops.destroy            = Destroy_Kinematic;
+  body->ops.tobody             = FCPoseToBody;
+  body->ops.partialposition    = FCPosePartialPosition;
   body->ops.freemotion         = FreeMotion_Kinematic;
   body->ops.contactpoints      = FCPoseContactPoints;
   body->ops.proximityposition  = FCPoseProximityPosition;

@@ -4,6 +4,67 @@
    prepares the picture. For analytic shapes the centre is -<body>_center (default origin);
    for a mesh shape it is the mesh centroid, rotated about -<body>_center when given. The
    initial velocity of the centre is v + omega x (x_centre - centre of rotation). */
+static int CompareXYZ(const void *a, const void *b)
+{
+  const PetscReal *x = (const PetscReal *)a, *y = (const PetscReal *)b;
+  for (int i = 0; i < 3; i++)
+    if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
+  return 0;
+}
+
+/* Mesh shape: its boundary triangles in the body frame (origin at the centroid c), gathered on
+   every rank; the distinct vertices are the contact points, on rank 0 */
+static PetscErrorCode MeshBoundary(FCBody body, FCPose *P, const PetscReal c[3])
+{
+  FCMesh     *mesh = (FCMesh *)P->shape->data;
+  PetscInt    nbv, *bv, nt, *tv;
+  PetscReal  *loc;
+  PetscMPIInt size, rank, n, *counts, *displs, total = 0;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(body->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
+  PetscCall(FCMeshGetBoundary(mesh, &nbv, &bv, &nt, &tv));
+  PetscCall(PetscMalloc1(9 * nt + 1, &loc));
+  for (PetscInt t = 0; t < nt; t++) /* the mesh keeps its file coordinates: body frame = X - centroid */
+    for (int a = 0; a < 3; a++)
+      for (int k = 0; k < 3; k++) loc[9 * t + 3 * a + k] = mesh->X[3 * tv[3 * t + a] + k] - c[k];
+  n = (PetscMPIInt)(9 * nt);
+  PetscCall(PetscMalloc2(size, &counts, size, &displs));
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts, 1, MPI_INT, body->comm));
+  for (PetscMPIInt r = 0; r < size; r++) {
+    displs[r] = total;
+    total += counts[r];
+  }
+  P->ntri = total / 9;
+  PetscCall(PetscMalloc1(total + 1, &P->tri9));
+  PetscCallMPI(MPI_Allgatherv(loc, n, MPIU_REAL, P->tri9, counts, displs, MPIU_REAL, body->comm));
+  PetscCall(PetscFree2(counts, displs));
+  PetscCall(PetscFree(loc));
+  PetscCall(PetscFree(bv));
+  PetscCall(PetscFree(tv));
+  PetscCall(PetscMalloc1(P->ntri + 1, &P->tri));
+  if (rank == 0) { /* distinct vertices: sort the 3 ntri corners and drop repeats */
+    PetscReal *v;
+    PetscInt   nv = 0;
+    PetscCall(PetscMalloc1(9 * P->ntri + 1, &v));
+    PetscCall(PetscArraycpy(v, P->tri9, 9 * P->ntri));
+    qsort(v, 3 * P->ntri, 3 * sizeof(PetscReal), CompareXYZ);
+    for (PetscInt i = 0; i < 3 * P->ntri; i++)
+      if (!nv || CompareXYZ(&v[3 * i], &v[3 * (nv - 1)])) {
+        for (int k = 0; k < 3; k++) v[3 * nv + k] = v[3 * i + k];
+        nv++;
+      }
+    P->npts = nv;
+    PetscCall(PetscCalloc4(nv + 1, &P->prox, 3 * nv + 1, &P->px0, 3 * nv + 1, &P->pxf, 3 * nv + 1, &P->pkey));
+    for (PetscInt i = 0; i < nv; i++)
+      for (int k = 0; k < 3; k++) P->prox[i].r[k] = P->pkey[3 * i + k] = v[3 * i + k];
+    PetscCall(PetscFree(v));
+  }
+  body->ops.surfacetriangles = FCPoseSurfaceTriangles;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCPoseSetUp(FCBody body, FCPose *P)
 {
   PetscReal R0[9], rot_center[3], c[3];
@@ -55,6 +116,7 @@ PetscErrorCode FCPoseSetUp(FCBody body, FCPose *P)
   body->shape = P->shape;
   for (int d = 0; d < 3; d++) P->xf[d] = P->x[d];
   for (int d = 0; d < 4; d++) P->qf[d] = P->q[d];
+  if (ismesh) PetscCall(MeshBoundary(body, P, c));
   /* contact points of the shape: its picture's vertices (box corners exactly), on rank 0 */
   if (!ismesh && P->shape->bounded) {
     P->npts = body->visual.nv;
@@ -83,6 +145,8 @@ PetscErrorCode FCPoseDestroy(FCPose *P)
 {
   PetscFunctionBegin;
   PetscCall(FCShapeDestroy(&P->shape));
+  PetscCall(PetscFree(P->tri9));
+  PetscCall(PetscFree(P->tri));
   PetscCall(PetscFree4(P->prox, P->px0, P->pxf, P->pkey));
   PetscCall(PetscFree(P->bodyVerts));
   PetscFunctionReturn(0);
@@ -165,5 +229,52 @@ PetscErrorCode FCPoseShapeDistance(FCBody body, const PetscReal x[3], PetscReal 
   FCMat3TVec(R, dx, xb);
   PetscCall((*P->shape->distance)(P->shape, xb, d, nb, cpb));
   FCMat3Vec(R, nb, n);
+  PetscFunctionReturn(0);
+}
+
+/* Mesh shape: its boundary triangles at the start of the step and after the free motion (rank 0
+   hands them out; the collision gathers them) */
+PetscErrorCode FCPoseSurfaceTriangles(FCBody body, PetscInt *n, FCSurfaceTriangle **tri)
+{
+  FCPose     *P = (FCPose *)body->data;
+  PetscMPIInt rank;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
+  *n   = rank ? 0 : P->ntri;
+  *tri = P->tri;
+  for (PetscInt t = 0; t < *n; t++)
+    for (int a = 0; a < 3; a++) {
+      P->tri[t].gdof[a] = -1;
+      for (int k = 0; k < 3; k++) P->tri[t].X[a][k] = P->tri9[9 * t + 3 * a + k];
+      Transform(P->x, P->q, &P->tri9[9 * t + 3 * a], P->tri[t].x0[a]);
+      Transform(P->xf, P->qf, &P->tri9[9 * t + 3 * a], P->tri[t].xf[a]);
+    }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPoseToBody(FCBody body, const PetscReal x[3], PetscBool direction, PetscReal r[3])
+{
+  FCPose   *P = (FCPose *)body->data;
+  PetscReal R[9], d[3];
+
+  PetscFunctionBegin;
+  FCQuatToMat3(P->q, R);
+  for (int k = 0; k < 3; k++) d[k] = direction ? x[k] : x[k] - P->x[k];
+  FCMat3TVec(R, d, r);
+  PetscFunctionReturn(0);
+}
+
+/* rank 0 adds the current position of the body-frame point (the state is replicated) */
+PetscErrorCode FCPosePartialPosition(FCBody body, const FCProximity *p, PetscReal x[3])
+{
+  PetscMPIInt rank;
+  PetscReal   y[3];
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
+  if (rank) PetscFunctionReturn(0);
+  PetscCall(FCPoseProximityPosition(body, p, FC_AT_NOW, y));
+  for (int k = 0; k < 3; k++) x[k] += y[k];
   PetscFunctionReturn(0);
 }

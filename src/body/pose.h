@@ -4,15 +4,18 @@
 #include "../fcimpl.h"
 
 typedef struct {
-  FCShape      shape;
-  PetscReal    x[3], q[4], v[3], w[3]; /* centre, orientation, velocity, angular velocity (world) */
-  PetscReal    x0[3], q0[4];           /* at t = 0 */
-  PetscReal    volume, J[9];           /* volume and inertia per unit density, body frame */
-  PetscReal   *bodyVerts;              /* visual vertices in the body frame (nv x 3) */
-  PetscReal    xf[3], qf[4];           /* after the free motion of the current step */
-  PetscInt     npts;                   /* contact points (the picture's vertices), rank 0 */
-  FCProximity *prox;
-  PetscReal   *px0, *pxf, *pkey;
+  FCShape            shape;
+  PetscReal          x[3], q[4], v[3], w[3]; /* centre, orientation, velocity, angular velocity (world) */
+  PetscReal          x0[3], q0[4];           /* at t = 0 */
+  PetscReal          volume, J[9];           /* volume and inertia per unit density, body frame */
+  PetscReal         *bodyVerts;              /* visual vertices in the body frame (nv x 3) */
+  PetscReal          xf[3], qf[4];           /* after the free motion of the current step */
+  PetscInt           npts;                   /* contact points (the picture's vertices), rank 0 */
+  FCProximity       *prox;
+  PetscReal         *px0, *pxf, *pkey;
+  PetscInt           ntri; /* mesh shape: boundary triangles in the body frame (every rank) */
+  PetscReal         *tri9;
+  FCSurfaceTriangle *tri; /* their world positions of the step (rank 0) */
 } FCPose;
 
 PETSC_INTERN PetscErrorCode FCPoseSetUp(FCBody, FCPose *);
@@ -25,8 +28,14 @@ PETSC_INTERN PetscErrorCode FCPoseGetVisualPositions(FCBody, PetscReal[]);
 PETSC_INTERN PetscErrorCode FCPoseContactPoints(FCBody, PetscInt *, FCProximity **, PetscReal **, PetscReal **,
                                                 PetscReal **);
 PETSC_INTERN PetscErrorCode FCPoseProximityPosition(FCBody, const FCProximity *, PetscInt, PetscReal[3]);
+PETSC_INTERN PetscErrorCode FCPoseSurfaceTriangles(FCBody, PetscInt *, FCSurfaceTriangle **);
+PETSC_INTERN PetscErrorCode FCPoseToBody(FCBody, const PetscReal[3], PetscBool, PetscReal[3]);
+PETSC_INTERN PetscErrorCode FCPosePartialPosition(FCBody, const FCProximity *, PetscReal[3]);
 PETSC_INTERN PetscErrorCode FCPoseShapeDistance(FCBody, const PetscReal[3], PetscReal *, PetscReal[3], PetscReal[3]);
 PETSC_INTERN PetscErrorCode FCPoseContactPoints(FCBody, PetscInt *, FCProximity **, PetscReal **, PetscReal **,
                                                 PetscReal **);
 PETSC_INTERN PetscErrorCode FCPoseProximityPosition(FCBody, const FCProximity *, PetscInt, PetscReal[3]);
+PETSC_INTERN PetscErrorCode FCPoseSurfaceTriangles(FCBody, PetscInt *, FCSurfaceTriangle **);
+PETSC_INTERN PetscErrorCode FCPoseToBody(FCBody, const PetscReal[3], PetscBool, PetscReal[3]);
+PETSC_INTERN PetscErrorCode FCPosePartialPosition(FCBody, const FCProximity *, PetscReal[3]);
 PETSC_INTERN PetscErrorCode FCPoseShapeDistance(FCBody, const PetscReal[3], PetscReal *, PetscReal[3], PetscReal[3]);

@@ -213,6 +213,8 @@ PetscErrorCode FCBodyCreate_Rigid(FCBody body)
   body->ops.getvisualpositions = FCPoseGetVisualPositions;
   body->ops.checkstate         = CheckState_Rigid;
   body->ops.destroy            = Destroy_Rigid;
+  body->ops.tobody             = FCPoseToBody;
+  body->ops.partialposition    = FCPosePartialPosition;
   body->ops.contactpoints      = FCPoseContactPoints;
   body->ops.proximityposition  = FCPoseProximityPosition;
   body->ops.shapedistance      = FCPoseShapeDistance;

@@ -266,8 +266,9 @@ void FCSurfaceClosest(const FCSurface *S, const PetscReal x[3], PetscInt *best, 
   }
 }
 
-static PetscErrorCode VerticesAgainstSurface(FCBody P, PetscInt ipts, PetscInt ishp, const Surface *S, PetscInt pair,
-                                             PetscReal mu, PetscReal distance, PetscMPIInt rank, FCContactSet *set)
+static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp, const Surface *S,
+                                             PetscInt pair, PetscReal mu, PetscReal distance, PetscMPIInt rank,
+                                             FCContactSet *set)
 {
   PetscInt     n;
   FCProximity *prox;
@@ -305,6 +306,14 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, PetscInt ipts, PetscInt i
         c.p0[1][d]    = bcp[d];
         c.pfree[1][d] = bw[0] * T->xf[0][d] + bw[1] * T->xf[1][d] + bw[2] * T->xf[2][d];
       }
+      if (Sb->ops.tobody) { /* a rigid or kinematic mesh: the point is fixed in its body frame */
+        c.side2      = FC_SIDE_RIGID_TRIANGLE;
+        c.prox[1].nv = 0;
+        PetscCall((*Sb->ops.tobody)(Sb, bcp, PETSC_FALSE, c.prox[1].r));
+        PetscCall((*Sb->ops.tobody)(Sb, nrm, PETSC_TRUE, c.nb));
+        PetscCall((*Sb->ops.proximityposition)(Sb, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+      } else
+        c.side2 = FC_SIDE_FE_TRIANGLE;
       c.gap0  = FCDot(nrm, diff);
       c.mu    = mu;
       c.owner = rank;
@@ -333,7 +342,7 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
         Surface *S;
         PetscInt a = pairs->body[p][side], b2 = pairs->body[p][1 - side];
         PetscCall(SurfaceBuild(comm, bodies[b2], pairs->distance, &S));
-        PetscCall(VerticesAgainstSurface(bodies[a], a, b2, S, p, pairs->mu[p], pairs->distance, rank, set));
+        PetscCall(VerticesAgainstSurface(bodies[a], bodies[b2], a, b2, S, p, pairs->mu[p], pairs->distance, rank, set));
         PetscCall(FCSurfaceDestroy(&S));
       }
       continue;
@@ -387,7 +396,7 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
   for (PetscInt k = 0; k < set->n; k++) {
     FCContact *c = &set->c[k];
     PetscReal  x[3], n[3], cpb[3];
-    if (c->prox[1].nv || c->owner != rank) continue; /* FE surfaces below */
+    if (c->side2 != FC_SIDE_SHAPE || c->owner != rank) continue; /* triangles below */
     PetscCall((*bodies[c->body[0]]->ops.proximityposition)(bodies[c->body[0]], &c->prox[0], FC_AT_NOW, x));
     PetscCall((*bodies[c->body[1]]->ops.shapedistance)(bodies[c->body[1]], x, &g[k], n, cpb));
   }
@@ -396,16 +405,16 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
        ranks that own them; the gap is measured along the triangle's end-of-step normal */
     PetscInt   nfe = 0, *idx;
     PetscReal *xs;
-    for (PetscInt k = 0; k < set->n; k++) nfe += set->c[k].prox[1].nv > 0;
+    for (PetscInt k = 0; k < set->n; k++) nfe += set->c[k].side2 != FC_SIDE_SHAPE;
     PetscCall(PetscMalloc2(nfe + 1, &idx, 12 * nfe + 1, &xs));
     PetscCall(PetscArrayzero(xs, 12 * nfe + 1));
     nfe = 0;
     for (PetscInt k = 0; k < set->n; k++) {
       FCContact *c = &set->c[k];
-      if (!c->prox[1].nv) continue;
+      if (c->side2 == FC_SIDE_SHAPE) continue;
       idx[nfe] = k;
       PetscCall((*bodies[c->body[0]]->ops.partialposition)(bodies[c->body[0]], &c->prox[0], &xs[12 * nfe]));
-      for (int a = 0; a < 3; a++) {
+      for (int a = 0; a < 3 && c->side2 == FC_SIDE_FE_TRIANGLE; a++) {
         FCProximity v = {0};
         v.nv          = 1;
         v.gdof[0]     = c->prox[1].gdof[a];
@@ -420,6 +429,21 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
       PetscReal  tri[3][3], p2[3] = {0, 0, 0}, nrm[3], diff[3], *x1 = &xs[12 * j];
       if (c->prox[0].nv == 1 && c->prox[0].gdof[0] < 0)
         for (int d = 0; d < 3; d++) x1[d] = c->prox[0].r[d]; /* fixed vertex */
+      if (c->side2 == FC_SIDE_RIGID_TRIANGLE) {              /* the triangle moved rigidly: rotate its normal */
+        FCProximity o = {0}, e = {0};
+        PetscReal   p0[3], pe[3];
+        FCBody      B = bodies[c->body[1]];
+        for (int d = 0; d < 3; d++) e.r[d] = c->nb[d];
+        PetscCall((*B->ops.proximityposition)(B, &c->prox[1], FC_AT_NOW, p2));
+        PetscCall((*B->ops.proximityposition)(B, &o, FC_AT_NOW, p0));
+        PetscCall((*B->ops.proximityposition)(B, &e, FC_AT_NOW, pe));
+        for (int d = 0; d < 3; d++) {
+          nrm[d]  = pe[d] - p0[d];
+          diff[d] = x1[d] - p2[d];
+        }
+        g[idx[j]] = FCDot(nrm, diff);
+        continue;
+      }
       for (int a = 0; a < 3; a++)
         for (int d = 0; d < 3; d++)
           tri[a][d] = c->prox[1].gdof[a] < 0 ? c->prox[1].X[a][d] : xs[12 * j + 3 + 3 * a + d];
