@@ -17,7 +17,9 @@ import numpy as np
 import siconos.numerics as sn
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SRC = os.path.join(ROOT, "..", "shared", "data", "fclib")
+SRC = os.environ.get("FCLIB_DIR", os.path.join(ROOT, "..", "shared", "data", "fclib"))
+if not os.path.isdir(SRC):
+    sys.exit("bench_contact_solver: no fclib problems in %s (the project's shared/data/fclib beside the repository, or set FCLIB_DIR)" % SRC)
 
 
 def siconos_solve(path, tol, max_it):
