@@ -27,6 +27,8 @@ typedef enum {
   FC_PHASE_COMPLIANCE,    /* W = sum J A^-1 J^T (eq. 17)                           */
   FC_PHASE_CONTACT_SOLVE, /* projected Gauss-Seidel (eq. 19)                       */
   FC_PHASE_CORRECTION,    /* dv += h A^-1 J^T lambda (eq. 20)                      */
+  FC_PHASE_REBUILD_W,     /* recursive schemes: W_k = C_k W_H C_k^T, or J_k A^-1 J_k^T */
+  FC_PHASE_PROXIMITY,     /* recursive schemes: proximity update (eq. 31)         */
   FC_PHASE_INTEGRATION,   /* v += dv, q += h v (eq. 2)                            */
   FC_PHASE_OUTPUT,        /* HDF5 writes                                          */
   FC_PHASE_NUM
@@ -36,6 +38,7 @@ PETSC_EXTERN PetscErrorCode    FCPhaseBegin(FCPhase);
 PETSC_EXTERN PetscErrorCode    FCPhaseEnd(FCPhase);
 PETSC_EXTERN PetscErrorCode    FCPhaseGetTimes(PetscReal[FC_PHASE_NUM]); /* seconds since last reset */
 PETSC_EXTERN PetscErrorCode    FCPhaseResetTimes(void);
+PETSC_EXTERN PetscLogEvent     FC_EVENT_NEWTON; /* one Newton iteration of a recursive scheme */
 
 /* ---------------------------------------------------------------------------------------
    Options helpers: every numeric option is checked for NaN/Inf and range, errors name it

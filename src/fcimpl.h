@@ -194,6 +194,8 @@ typedef struct {
   /* signed distance of a world point to this body's shape now: outward normal (world) and the
      closest point (body frame) */
   PetscErrorCode (*shapedistance)(FCBody, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cpb[3]);
+  /* the same against the shape at its pose after the free motion (end of the step for a kinematic body) */
+  PetscErrorCode (*shapedistancefree)(FCBody, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cpb[3]);
   /* FE: the boundary triangles this rank holds (start and free positions of this step) */
   PetscErrorCode (*surfacetriangles)(FCBody, PetscInt *n, FCSurfaceTriangle **);
   /* rigid and kinematic: a world point (start of the step) or direction in the body frame */
@@ -273,15 +275,36 @@ PETSC_INTERN PetscErrorCode FCCollisionEndGaps(MPI_Comm, PetscInt nbodies, FCBod
 typedef struct {
   PetscInt  contacts, rows, sweeps;
   PetscReal residual;
+  PetscInt  newton; /* Newton iterations (recursive schemes; 1 for explicit) */
 } FCSchemeStats;
 /* Algorithm 1: W = sum J A^-1 J^T, PGS on (h^2 W, delta_free, mu), correction (eq. 20) */
 PETSC_INTERN PetscErrorCode FCSchemeExplicit(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCContactSet *,
                                              const FCContactSet *previous, FCContactSolver, FCSchemeStats *);
 
+/* What a constraint scheme works on in one step (-constraint_scheme explicit|standard|fast) */
+typedef struct {
+  MPI_Comm            comm;
+  PetscInt            nbodies;
+  FCBody             *bodies;
+  FCContactSet       *set;
+  const FCContactSet *previous;
+  FCContactSolver     solver;
+  PetscInt            newton_max_it;
+  PetscReal           newton_tol;
+} FCSchemeContext;
+typedef PetscErrorCode (*FCSchemeFunction)(FCSchemeContext *, FCSchemeStats *);
+PETSC_EXTERN PetscFunctionList FCSchemeList;
+PETSC_INTERN PetscErrorCode    FCSchemeRegisterAll(void);
+PETSC_INTERN PetscErrorCode    FCSchemeExplicitStep(FCSchemeContext *, FCSchemeStats *);
+PETSC_INTERN PetscErrorCode    FCSchemeFast(FCSchemeContext *, FCSchemeStats *);
+/* Tangents completing a normal: the frame C_i = [n t1 t2] (src/contact/contactset.c) */
+PETSC_INTERN void FCContactFrame(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3]);
+
 struct _FCContactSetView {
   const FCContactSet  *set;
   const FCSchemeStats *stats;
   PetscReal            max_penetration;
+  PetscReal            violation;
 };
 
 /* Progress line on rank 0 (src/util/progress.c) */

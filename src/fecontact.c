@@ -16,6 +16,7 @@ PetscErrorCode FCInitializePackage(void)
   PetscCall(FCBodyRegisterAll());
   PetscCall(FCMaterialRegisterAll());
   PetscCall(FCShapeRegisterAll());
+  PetscCall(FCSchemeRegisterAll());
   PetscCall(PetscRegisterFinalize(FCFinalizePackage));
   PetscFunctionReturn(0);
 }
@@ -26,6 +27,7 @@ PetscErrorCode FCFinalizePackage(void)
   PetscCall(PetscFunctionListDestroy(&FCBodyList));
   PetscCall(PetscFunctionListDestroy(&FCMaterialList));
   PetscCall(PetscFunctionListDestroy(&FCShapeList));
+  PetscCall(PetscFunctionListDestroy(&FCSchemeList));
   initialized = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

@@ -1,38 +1,69 @@
-/* Kinematic body: a shape moved by a prescribed constant twist (-<body>_velocity of its centre
-   and -<body>_angular_velocity about it), never solved for:
-       x(t) = x0 + v t,   q(t) = exp(t w / 2) q0   (exact, no drift). */
+/* Kinematic body: a shape moved by a prescribed constant twist, never solved for: it turns with
+   -<body>_angular_velocity w about -<body>_pivot c (default: its centre) and translates with
+   -<body>_velocity v:
+       x(t) = c + v t + R(w t) (x0 - c),   q(t) = exp(t w / 2) q0   (exact, no drift). */
 #include "pose.h"
 
 typedef struct {
-  FCPose pose;
+  FCPose    pose;
+  PetscReal pivot[3];
 } Kinematic;
+
+static PetscErrorCode SetFromOptions_Kinematic(FCBody body)
+{
+  Kinematic *k = (Kinematic *)body->data;
+  PetscBool  set;
+
+  PetscFunctionBegin;
+  PetscOptionsBegin(body->comm, body->prefix, "Kinematic body options", "FCBody");
+  PetscCall(FCOptionsRealArray(PetscOptionsObject, "-pivot", "Point the angular velocity turns the body about", 3,
+                               k->pivot, &set));
+  PetscOptionsEnd();
+  if (!set) k->pivot[0] = PETSC_MAX_REAL; /* the centre, known after set-up */
+  PetscFunctionReturn(0);
+}
+
+/* Pose at time t */
+static void PoseAt(Kinematic *k, PetscReal t, PetscReal x[3], PetscReal q[4])
+{
+  FCPose   *P = &k->pose;
+  PetscReal dq[4], R[9], r[3], Rr[3], n = PetscSqrtReal(FCDot(P->w, P->w));
+  FCQuatFromAxisAngle(P->w, n * t, dq);
+  FCQuatMult(dq, P->q0, q);
+  FCQuatNormalize(q);
+  FCQuatToMat3(dq, R);
+  for (int d = 0; d < 3; d++) r[d] = P->x0[d] - k->pivot[d];
+  FCMat3Vec(R, r, Rr);
+  for (int d = 0; d < 3; d++) x[d] = k->pivot[d] + P->v[d] * t + Rr[d];
+}
 
 static PetscErrorCode SetUp_Kinematic(FCBody body)
 {
+  Kinematic *k = (Kinematic *)body->data;
+
   PetscFunctionBegin;
-  PetscCall(FCPoseSetUp(body, &((Kinematic *)body->data)->pose));
+  PetscCall(FCPoseSetUp(body, &k->pose));
+  if (k->pivot[0] == PETSC_MAX_REAL)
+    for (int d = 0; d < 3; d++) k->pivot[d] = k->pose.x0[d];
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode Integrate_Kinematic(FCBody body, PetscReal t)
 {
-  FCPose   *P  = &((Kinematic *)body->data)->pose;
-  PetscReal tn = t + body->h;
+  Kinematic *k = (Kinematic *)body->data;
 
   PetscFunctionBegin;
-  for (int d = 0; d < 3; d++) P->x[d] = P->x0[d] + tn * P->v[d];
-  FCQuatIntegrate(P->q0, P->w, tn, P->q);
+  PoseAt(k, t + body->h, k->pose.x, k->pose.q);
   PetscFunctionReturn(0);
 }
 
 /* The pose at the end of the step, which the free motion of the others is compared with */
 static PetscErrorCode FreeMotion_Kinematic(FCBody body, PetscReal t)
 {
-  FCPose *P = &((Kinematic *)body->data)->pose;
+  Kinematic *k = (Kinematic *)body->data;
 
   PetscFunctionBegin;
-  for (int d = 0; d < 3; d++) P->xf[d] = P->x0[d] + (t + body->h) * P->v[d];
-  FCQuatIntegrate(P->q0, P->w, t + body->h, P->qf);
+  PoseAt(k, t + body->h, k->pose.xf, k->pose.qf);
   PetscFunctionReturn(0);
 }
 
@@ -51,6 +82,7 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   PetscFunctionBegin;
   PetscCall(PetscNew(&k));
   body->data                   = k;
+  body->ops.setfromoptions     = SetFromOptions_Kinematic;
   body->ops.setup              = SetUp_Kinematic;
   body->ops.integrate          = Integrate_Kinematic;
   body->ops.getcentroid        = FCPoseGetCentroid;
@@ -63,5 +95,6 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   body->ops.contactpoints      = FCPoseContactPoints;
   body->ops.proximityposition  = FCPoseProximityPosition;
   body->ops.shapedistance      = FCPoseShapeDistance;
+  body->ops.shapedistancefree  = FCPoseShapeDistanceFree;
   PetscFunctionReturn(0);
 }

@@ -278,3 +278,18 @@ PetscErrorCode FCPosePartialPosition(FCBody body, const FCProximity *p, PetscRea
   for (int k = 0; k < 3; k++) x[k] += y[k];
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode FCPoseShapeDistanceFree(FCBody body, const PetscReal x[3], PetscReal *d, PetscReal n[3],
+                                       PetscReal cpb[3])
+{
+  FCPose   *P = (FCPose *)body->data;
+  PetscReal R[9], xb[3], nb[3], dx[3];
+
+  PetscFunctionBegin;
+  FCQuatToMat3(P->qf, R);
+  for (int i = 0; i < 3; i++) dx[i] = x[i] - P->xf[i];
+  FCMat3TVec(R, dx, xb);
+  PetscCall((*P->shape->distance)(P->shape, xb, d, nb, cpb));
+  FCMat3Vec(R, nb, n);
+  PetscFunctionReturn(0);
+}

@@ -218,6 +218,7 @@ PetscErrorCode FCBodyCreate_Rigid(FCBody body)
   body->ops.contactpoints      = FCPoseContactPoints;
   body->ops.proximityposition  = FCPoseProximityPosition;
   body->ops.shapedistance      = FCPoseShapeDistance;
+  body->ops.shapedistancefree  = FCPoseShapeDistanceFree;
   body->ops.addcompliance      = AddCompliance_Rigid;
   body->ops.applycorrection    = ApplyCorrection_Rigid;
   PetscFunctionReturn(0);

@@ -93,22 +93,27 @@ PetscErrorCode FCContactSetGather(FCContactSet *set, MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
+void FCContactFrame(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3])
+{
+  PetscReal e[3] = {1, 0, 0}, nn;
+  if (PetscAbsReal(n[0]) > 0.6) {
+    e[0] = 0;
+    e[1] = 1;
+  }
+  FCCross(n, e, t1);
+  nn = PetscSqrtReal(FCDot(t1, t1));
+  for (int i = 0; i < 3; i++) t1[i] /= nn;
+  FCCross(n, t1, t2);
+}
+
 /* Tangents t1, t2 completing n (frame C_i = [n t1 t2], only n when mu = 0) and row offsets */
 PetscErrorCode FCContactSetFinalize(FCContactSet *set)
 {
   PetscFunctionBegin;
   set->nrows = 0;
   for (PetscInt k = 0; k < set->n; k++) {
-    FCContact *c    = &set->c[k];
-    PetscReal  e[3] = {1, 0, 0}, nn;
-    if (PetscAbsReal(c->n[0]) > 0.6) {
-      e[0] = 0;
-      e[1] = 1;
-    }
-    FCCross(c->n, e, c->t1);
-    nn = PetscSqrtReal(FCDot(c->t1, c->t1));
-    for (int i = 0; i < 3; i++) c->t1[i] /= nn;
-    FCCross(c->n, c->t1, c->t2);
+    FCContact *c = &set->c[k];
+    FCContactFrame(c->n, c->t1, c->t2);
     c->dim = c->mu > 0.0 ? 3 : 1;
     c->row = set->nrows;
     set->nrows += c->dim;

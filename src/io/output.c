@@ -28,7 +28,7 @@ struct _p_FCOutput {
   /* contacts (scenes with contact pairs only) */
   PetscBool contacts;
   hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state;
-  hid_t     s_contacts, s_rows, s_sweeps, s_residual, s_maxpen;
+  hid_t     s_contacts, s_rows, s_sweeps, s_residual, s_maxpen, s_newton, s_violation;
   long long ctotal;             /* contacts recorded so far */
   PetscInt  nc, maxc, ns, maxs; /* buffered contact records and per-step rows */
   struct {
@@ -36,8 +36,8 @@ struct _p_FCOutput {
     double    point[3], normal[3], force[3], gap, gap_end;
   } * cbuf;
   struct {
-    long long contacts, rows, sweeps, offset;
-    double    residual, maxpen;
+    long long contacts, rows, sweeps, offset, newton;
+    double    residual, maxpen, violation;
   } * sbuf;
   double  *frametimes;
   PetscInt maxframes;
@@ -261,6 +261,8 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     PetscCall(CreateRows(gs, "pgs_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_sweeps));
     PetscCall(CreateRows(gs, "residual", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_residual));
     PetscCall(CreateRows(gs, "max_penetration", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_maxpen));
+    PetscCall(CreateRows(gs, "newton_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_newton));
+    PetscCall(CreateRows(gs, "violation", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_violation));
     PetscCall(AppendRows(out, out->c_offset, H5T_NATIVE_LLONG, 1, &zero));
     H5Gclose(gs);
     H5Gclose(gc);
@@ -400,12 +402,14 @@ PetscErrorCode FCOutputRecordContacts(FCOutput out, const struct _FCContactSetVi
     out->nc++;
   }
   out->ctotal += set->n;
-  out->sbuf[out->ns].contacts = set->n;
-  out->sbuf[out->ns].rows     = v->stats->rows;
-  out->sbuf[out->ns].sweeps   = v->stats->sweeps;
-  out->sbuf[out->ns].residual = v->stats->residual;
-  out->sbuf[out->ns].maxpen   = v->max_penetration;
-  out->sbuf[out->ns].offset   = out->ctotal;
+  out->sbuf[out->ns].contacts  = set->n;
+  out->sbuf[out->ns].rows      = v->stats->rows;
+  out->sbuf[out->ns].sweeps    = v->stats->sweeps;
+  out->sbuf[out->ns].residual  = v->stats->residual;
+  out->sbuf[out->ns].maxpen    = v->max_penetration;
+  out->sbuf[out->ns].newton    = v->stats->newton;
+  out->sbuf[out->ns].violation = v->violation;
+  out->sbuf[out->ns].offset    = out->ctotal;
   out->ns++;
   PetscFunctionReturn(0);
 }
@@ -449,6 +453,10 @@ static PetscErrorCode FlushContacts(FCOutput out)
   PetscCall(AppendRows(out, out->s_residual, H5T_NATIVE_DOUBLE, m, d));
   for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].maxpen;
   PetscCall(AppendRows(out, out->s_maxpen, H5T_NATIVE_DOUBLE, m, d));
+  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].newton;
+  PetscCall(AppendRows(out, out->s_newton, H5T_NATIVE_LLONG, m, l));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].violation;
+  PetscCall(AppendRows(out, out->s_violation, H5T_NATIVE_DOUBLE, m, d));
   PetscCall(PetscFree2(d, l));
   out->nc = out->ns = 0;
   PetscFunctionReturn(0);
@@ -577,9 +585,9 @@ PetscErrorCode FCOutputDestroy(FCOutput *output)
     H5Dclose(out->ftime);
     H5Dclose(out->fstep);
     if (out->contacts) {
-      hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point, out->c_normal,   out->c_force,
-                    out->c_gap,    out->c_gapend,   out->c_state, out->s_contacts, out->s_rows,
-                    out->s_sweeps, out->s_residual, out->s_maxpen};
+      hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,   out->c_force,
+                    out->c_gap,    out->c_gapend,   out->c_state,  out->s_contacts, out->s_rows,
+                    out->s_sweeps, out->s_residual, out->s_maxpen, out->s_newton,   out->s_violation};
       for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) H5Dclose(ds[i]);
     }
     PetscCall(PetscFree(out->cbuf));

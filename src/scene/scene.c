@@ -12,6 +12,10 @@
                               one constraint row per contact; default 0)
      -contact_distance d      alarm distance: points closer than d are contacts (>= 0, default 0.01 m)
      -pgs_tol, -pgs_max_it    the contact solver (src/contact/pgs.c)
+     -constraint_scheme explicit|fast   Algorithm 1, or Algorithm 3 (recursive, fast update) (default explicit)
+     -newton_max_it n         Newton iterations of a recursive scheme (>= 1, default 5)
+     -newton_tol t            stop them when frames and right-hand sides change by less than t
+                              (>= 0, default 1e-10; 0: always newton_max_it, as the paper's Table 1)
      -compliance_type dense|sparse|schur   how FE bodies compute J A^-1 J^T for W: MUMPS solves
                               with dense or sparse right-hand sides, or the Schur complement of
                               the augmented matrix (default dense; see src/body/fem.c)
@@ -33,12 +37,16 @@ struct _p_FCScene {
   FCProgress progress;
   PetscReal  phase_total[FC_PHASE_NUM];
   /* contact */
-  FCContactPairs  pairs;
-  FCContactSet    set;
-  FCContactSet    previous; /* last step's contacts and forces: warm start of the solver */
-  FCContactSolver solver;
-  FCSchemeStats   stats;
-  PetscReal       maxpen;
+  FCContactPairs   pairs;
+  FCContactSet     set;
+  FCContactSet     previous; /* last step's contacts and forces: warm start of the solver */
+  FCContactSolver  solver;
+  FCSchemeStats    stats;
+  PetscReal        maxpen;
+  FCSchemeFunction scheme;
+  char             scheme_name[FC_MAX_NAME];
+  PetscInt         newton_max_it;
+  PetscReal        newton_tol, violation;
 };
 
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
@@ -178,6 +186,25 @@ PetscErrorCode FCSceneSetUp(FCScene s)
       PetscCall(PetscStrcmp(s->bodies[i]->type, FCBODYFEM, &isfem));
       if (isfem) PetscCall(FCBodyFEMSetComplianceType(s->bodies[i], ctype));
     }
+    PetscCall(PetscStrncpy(s->scheme_name, "explicit", sizeof(s->scheme_name)));
+    s->newton_max_it = 5;
+    s->newton_tol    = 1e-10;
+    PetscOptionsBegin(s->comm, NULL, "Constraint scheme", "FCScene");
+    PetscCall(PetscOptionsFList("-constraint_scheme", "Constraint scheme", NULL, FCSchemeList, s->scheme_name,
+                                s->scheme_name, sizeof(s->scheme_name), NULL));
+    PetscCall(FCOptionsInt(PetscOptionsObject, "-newton_max_it", "Newton iterations of a recursive scheme",
+                           &s->newton_max_it, NULL));
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-newton_tol",
+                            "Stop the Newton iterations when frames and right-hand sides change less", &s->newton_tol,
+                            NULL));
+    PetscOptionsEnd();
+    PetscCall(PetscFunctionListFind(FCSchemeList, s->scheme_name, &s->scheme));
+    PetscCheck(s->scheme, s->comm, PETSC_ERR_USER_INPUT,
+               "Unknown constraint scheme '%s' in -constraint_scheme (known: explicit, fast)", s->scheme_name);
+    PetscCheck(s->newton_max_it >= 1, s->comm, PETSC_ERR_USER_INPUT,
+               "Option -newton_max_it must be >= 1, got %" PetscInt_FMT, s->newton_max_it);
+    PetscCheck(s->newton_tol >= 0, s->comm, PETSC_ERR_USER_INPUT, "Option -newton_tol must be >= 0, got %g",
+               (double)s->newton_tol);
     PetscCall(FCContactSolverCreate(s->comm, &s->solver));
     PetscCall(FCContactSolverSetFromOptions(s->solver));
   }
@@ -212,13 +239,24 @@ PetscErrorCode FCSceneStep(FCScene s)
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
     PetscCall(FCCollisionDetect(s->comm, s->nbodies, s->bodies, &s->pairs, &s->set));
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
-    PetscCall(FCSchemeExplicit(s->comm, s->nbodies, s->bodies, &s->set, &s->previous, s->solver, &s->stats));
+    {
+      FCSchemeContext ctx = {s->comm,      s->nbodies, s->bodies,        &s->set,
+                             &s->previous, s->solver,  s->newton_max_it, s->newton_tol};
+      PetscCall((*s->scheme)(&ctx, &s->stats));
+    }
     PetscCall(FCContactSetCopy(&s->set, &s->previous));
   }
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyIntegrate(s->bodies[i], s->t));
   if (s->pairs.n) {
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
     PetscCall(FCCollisionEndGaps(s->comm, s->nbodies, s->bodies, &s->set, &s->maxpen));
+    /* complementarity on the real end-of-step geometry: a pushing contact should be closed
+       (|gap| small), an open one should not penetrate */
+    s->violation = 0.0;
+    for (PetscInt k = 0; k < s->set.n; k++) {
+      const FCContact *c = &s->set.c[k];
+      s->violation = PetscMax(s->violation, c->force[0] > 0.0 ? PetscAbsReal(c->gap_end) : PetscMax(0.0, -c->gap_end));
+    }
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
   }
   s->step++;
@@ -231,7 +269,7 @@ PetscErrorCode FCSceneStep(FCScene s)
   /* the output of this step (frame and flush) is counted in the next step's row */
   PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, s->nbodies, s->bodies));
   if (s->pairs.n) {
-    struct _FCContactSetView v = {&s->set, &s->stats, s->maxpen};
+    struct _FCContactSetView v = {&s->set, &s->stats, s->maxpen, s->violation};
     PetscCall(FCOutputRecordContacts(s->output, &v));
   }
   if (s->step % s->every == 0 || s->step == s->nsteps)

@@ -2,23 +2,25 @@
    wall-clock accumulator per phase that the scene writes to /steps/timing/<phase>. */
 #include "../fcimpl.h"
 
-const char *const FCPhaseNames[] = {"assembly",   "factorization",  "free_motion", "collision",
-                                    "compliance", "contact_solver", "correction",  "integration",
-                                    "output",     "FCPhase",        "FC_PHASE_",   NULL};
+const char *const FCPhaseNames[] = {
+    "assembly",  "factorization",    "free_motion", "collision", "compliance", "contact_solver", "correction",
+    "rebuild_w", "proximity_update", "integration", "output",    "FCPhase",    "FC_PHASE_",      NULL};
 
 static PetscLogEvent  events[FC_PHASE_NUM];
 static PetscLogDouble started[FC_PHASE_NUM], total[FC_PHASE_NUM];
 static PetscBool      registered = PETSC_FALSE;
+PetscLogEvent         FC_EVENT_NEWTON;
 
 PETSC_INTERN PetscErrorCode FCPhaseRegisterEvents(PetscClassId classid)
 {
-  static const char *eventnames[] = {"FCAssembly",   "FCFactorization", "FCFreeMotion",
-                                     "FCCollision",  "FCCompliance",    "FCContactSolve",
-                                     "FCCorrection", "FCIntegration",   "FCOutput"};
+  static const char *eventnames[] = {"FCAssembly", "FCFactorization", "FreeMotion", "Collision",       "BuildWH",
+                                     "PGS",        "Correction",      "RebuildW",   "ProximityUpdate", "FCIntegration",
+                                     "FCOutput"};
 
   PetscFunctionBegin;
   if (registered) PetscFunctionReturn(0);
   for (int p = 0; p < FC_PHASE_NUM; p++) PetscCall(PetscLogEventRegister(eventnames[p], classid, &events[p]));
+  PetscCall(PetscLogEventRegister("NewtonIteration", classid, &FC_EVENT_NEWTON));
   registered = PETSC_TRUE;
   PetscFunctionReturn(0);
 }

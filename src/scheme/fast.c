@@ -1,0 +1,257 @@
+/* Algorithm 3: recursive corrective motion with the fast update of the constraint matrices.
+   Notation (../shared/design/DESIGN.md, section 2): per contact, d = p1 - p2 (world), F the
+   world force on side 1, H the proximity maps (constant in the step), so that
+       d(F) = d_free + h^2 W_H F,   W_H = sum_b H_b A_b^-1 H_b^T      (eq. 28, 31)
+   W_H is built once per step by the bodies' compliance builders applied to the contact set in
+   identity frames (3 rows x, y, z per contact). Newton iteration k:
+       frames C_k from the proximity positions p_k (eq. 26)
+       W_k = C_k W_H C_k^T                          MatMatMult (AIJ x dense), twice
+       PGS on delta = q_k + W_k lambda, warm-started from C_k F_{k-1}; F_k = C_k^T lambda
+       d_{k+1} = d_free + h^2 W_H F_k              MatMult (eq. 31)
+   The normal of a contact against a kinematic shape is re-evaluated at p1 against the shape at
+   its end-of-step pose, and so is its gap: q_n = gap(p1_k) - n_k . (d_k - d_free). Against FE
+   triangles and rigid shapes the start-of-step normal is kept (their surfaces move with DOFs that
+   the proximity points do not carry). The loop stops when frames and right-hand sides change by
+   less than -newton_tol (0: always -newton_max_it). One correction per body at the end:
+   dv = dv_free + h A^-1 H^T F. */
+#include "../fcimpl.h"
+
+/* Frames of every contact at the current F (d = d_free + W_H F already computed) and the
+   right-hand side q of the contact problem in those frames */
+static PetscErrorCode Linearize(FCSchemeContext *ctx, const PetscReal dfree[], const PetscReal d0[],
+                                const PetscReal d[], PetscReal q[], PetscReal *frame_change)
+{
+  FCContactSet *set = ctx->set;
+
+  PetscFunctionBegin;
+  *frame_change = 0.0;
+  for (PetscInt k = 0; k < set->n; k++) {
+    FCContact *c   = &set->c[k];
+    FCBody     B   = ctx->bodies[c->body[1]];
+    PetscReal  gap = 0.0, dd[3];
+    PetscBool  kin;
+    PetscCall(PetscStrcmp(B->type, FCBODYKINEMATIC, &kin));
+    for (int i = 0; i < 3; i++) dd[i] = d[3 * k + i] - dfree[3 * k + i];
+    if (c->side2 == FC_SIDE_SHAPE && kin && B->ops.shapedistancefree && B->shape->distance) {
+      PetscReal p1[3], n[3], cpb[3];
+      for (int i = 0; i < 3; i++) p1[i] = c->pfree[0][i] + dd[i];
+      PetscCall((*B->ops.shapedistancefree)(B, p1, &gap, n, cpb));
+      for (int i = 0; i < 3; i++) *frame_change = PetscMax(*frame_change, PetscAbsReal(n[i] - c->n[i]));
+      for (int i = 0; i < 3; i++) c->n[i] = n[i];
+      FCContactFrame(c->n, c->t1, c->t2);
+      q[c->row] = gap - FCDot(c->n, dd);
+    } else
+      q[c->row] = FCDot(c->n, &dfree[3 * k]);
+    if (c->dim == 3) {
+      PetscReal rel[3];
+      for (int i = 0; i < 3; i++) rel[i] = dfree[3 * k + i] - d0[3 * k + i];
+      q[c->row + 1] = FCDot(c->t1, rel);
+      q[c->row + 2] = FCDot(c->t2, rel);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* C (rows x 3 nc, AIJ): the frame rows of every contact */
+static PetscErrorCode AssembleFrames(const FCContactSet *set, Mat C)
+{
+  PetscFunctionBegin;
+  PetscCall(MatZeroEntries(C));
+  for (PetscInt k = 0; k < set->n; k++) {
+    const FCContact *c       = &set->c[k];
+    PetscInt         cols[3] = {3 * k, 3 * k + 1, 3 * k + 2};
+    for (PetscInt a = 0; a < c->dim; a++) {
+      const PetscReal *f   = a == 0 ? c->n : (a == 1 ? c->t1 : c->t2);
+      PetscInt         row = c->row + a;
+      PetscCall(MatSetValues(C, 1, &row, 3, cols, f, INSERT_VALUES));
+    }
+  }
+  PetscCall(MatAssemblyBegin(C, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(C, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
+{
+  FCContactSet    *set = ctx->set, H = {0};
+  PetscInt         nc = set->n, n3 = 3 * set->n, M = set->nrows, *dims;
+  PetscReal        h = ctx->bodies[0]->h, *WH, *dfree, *d0, *q, *qold, *mu, *lambda, change = 0.0;
+  Mat              WHm, C = NULL, U = NULL, Ut = NULL, Wk = NULL;
+  Vec              F, Fold, dvec, lam;
+  FCContactProblem prob;
+  PetscBool        conv;
+
+  PetscFunctionBegin;
+  st->contacts = nc;
+  st->rows     = M;
+  st->sweeps   = 0;
+  st->residual = 0.0;
+  st->newton   = 0;
+  if (!nc) PetscFunctionReturn(0);
+
+  /* W_H once per step: the bodies' builders on the contacts in identity frames */
+  PetscCall(FCContactSetCopy(set, &H));
+  for (PetscInt k = 0; k < nc; k++) {
+    FCContact *c = &H.c[k];
+    for (int i = 0; i < 3; i++) c->n[i] = c->t1[i] = c->t2[i] = 0.0;
+    c->n[0] = c->t1[1] = c->t2[2] = 1.0;
+    c->dim                        = 3;
+    c->row                        = 3 * k;
+  }
+  H.nrows = n3;
+  PetscCall(PetscCalloc1(n3 * n3, &WH));
+  PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
+  for (PetscInt b = 0; b < ctx->nbodies; b++)
+    if (ctx->bodies[b]->ops.addcompliance) PetscCall((*ctx->bodies[b]->ops.addcompliance)(ctx->bodies[b], b, &H, WH));
+  for (PetscInt k = 0; k < n3 * n3; k++) WH[k] *= h * h;
+  PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n3, n3, WH, &WHm)); /* symmetric: row/column-major alike */
+
+  PetscCall(PetscMalloc6(n3, &dfree, n3, &d0, M, &q, M, &qold, nc, &mu, nc, &dims));
+  PetscCall(PetscMalloc1(M, &lambda));
+  for (PetscInt k = 0; k < nc; k++) {
+    for (int i = 0; i < 3; i++) {
+      dfree[3 * k + i] = set->c[k].pfree[0][i] - set->c[k].pfree[1][i];
+      d0[3 * k + i]    = set->c[k].p0[0][i] - set->c[k].p0[1][i];
+    }
+    mu[k]   = set->c[k].mu;
+    dims[k] = set->c[k].dim;
+  }
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n3, &F));
+  PetscCall(VecDuplicate(F, &Fold));
+  PetscCall(VecDuplicate(F, &dvec));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, M, &lam));
+  { /* warm start: the previous step's force of the same contact, in the world frame */
+    PetscScalar *f;
+    PetscCall(VecGetArray(F, &f));
+    for (PetscInt k = 0; k < nc; k++) {
+      const FCContact *old = ctx->previous ? FCContactSetFind(ctx->previous, &set->c[k]) : NULL;
+      for (int i = 0; i < 3; i++)
+        f[3 * k + i] = old ? old->force[0] * old->n[i] + old->force[1] * old->t1[i] + old->force[2] * old->t2[i] : 0.0;
+    }
+    PetscCall(VecRestoreArray(F, &f));
+  }
+  PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, M, n3, 3, NULL, &C));
+  PetscCall(MatSetOption(C, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+
+  /* first linearization: the frames of the collision detection, gaps at the start of the step */
+  {
+    PetscReal dummy;
+    for (PetscInt k = 0; k < nc; k++) {
+      FCContact *c = &set->c[k];
+      PetscReal  rel[3];
+      q[c->row] = FCDot(c->n, &dfree[3 * k]);
+      for (int i = 0; i < 3; i++) rel[i] = dfree[3 * k + i] - d0[3 * k + i];
+      if (c->dim == 3) {
+        q[c->row + 1] = FCDot(c->t1, rel);
+        q[c->row + 2] = FCDot(c->t2, rel);
+      }
+    }
+    (void)dummy;
+  }
+  for (PetscInt it = 1; it <= ctx->newton_max_it; it++) {
+    const PetscScalar *w;
+    PetscReal          dq = 0.0, qs = 0.0;
+    PetscInt           sweeps;
+    PetscCall(PetscLogEventBegin(FC_EVENT_NEWTON, 0, 0, 0, 0));
+    /* W_k = C_k W_H C_k^T: U = C W_H (AIJ x dense), W_k = C U^T */
+    PetscCall(FCPhaseBegin(FC_PHASE_REBUILD_W));
+    PetscCall(AssembleFrames(set, C));
+    if (!U)
+      PetscCall(MatMatMult(C, WHm, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &U));
+    else
+      PetscCall(MatMatMult(C, WHm, MAT_REUSE_MATRIX, PETSC_DEFAULT, &U));
+    PetscCall(MatDestroy(&Ut));
+    PetscCall(MatTranspose(U, MAT_INITIAL_MATRIX, &Ut));
+    if (!Wk)
+      PetscCall(MatMatMult(C, Ut, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &Wk));
+    else
+      PetscCall(MatMatMult(C, Ut, MAT_REUSE_MATRIX, PETSC_DEFAULT, &Wk));
+    PetscCall(FCPhaseEnd(FC_PHASE_REBUILD_W));
+    /* PGS on the total force, warm-started from C_k F_{k-1} */
+    PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
+    PetscCall(MatMult(C, F, lam));
+    {
+      const PetscScalar *l;
+      PetscCall(VecGetArrayRead(lam, &l));
+      for (PetscInt r = 0; r < M; r++) lambda[r] = PetscRealPart(l[r]);
+      PetscCall(VecRestoreArrayRead(lam, &l));
+    }
+    PetscCall(MatDenseGetArrayRead(Wk, &w)); /* symmetric */
+    PetscCall(FCContactProblemCreateDense(nc, dims, mu, w, q, &prob));
+    PetscCall(MatDenseRestoreArrayRead(Wk, &w));
+    PetscCall(FCContactSolverSolve(ctx->solver, prob, lambda));
+    PetscCall(FCContactSolverGetConvergence(ctx->solver, &sweeps, &st->residual, &conv));
+    PetscCall(FCContactProblemDestroy(&prob));
+    st->sweeps += sweeps;
+    PetscCall(FCPhaseEnd(FC_PHASE_CONTACT_SOLVE));
+    for (PetscInt k = 0; k < nc; k++) /* forces in the frames they were solved in */
+      for (PetscInt a = 0; a < 3; a++) set->c[k].force[a] = a < set->c[k].dim ? lambda[set->c[k].row + a] : 0.0;
+    /* F_k = C_k^T lambda; proximity update d = d_free + h^2 W_H F_k (eq. 31) */
+    PetscCall(FCPhaseBegin(FC_PHASE_PROXIMITY));
+    {
+      PetscScalar *l;
+      PetscCall(VecGetArray(lam, &l));
+      for (PetscInt r = 0; r < M; r++) l[r] = lambda[r];
+      PetscCall(VecRestoreArray(lam, &l));
+    }
+    PetscCall(VecCopy(F, Fold));
+    PetscCall(MatMultTranspose(C, lam, F));
+    PetscCall(MatMult(WHm, F, dvec));
+    PetscCall(FCPhaseEnd(FC_PHASE_PROXIMITY));
+    st->newton = it;
+    PetscCall(PetscLogEventEnd(FC_EVENT_NEWTON, 0, 0, 0, 0));
+    if (it == ctx->newton_max_it) break;
+    /* frames and right-hand side at the new proximity positions */
+    PetscCall(PetscArraycpy(qold, q, M));
+    {
+      const PetscScalar *dv;
+      PetscReal         *d;
+      PetscCall(PetscMalloc1(n3, &d));
+      PetscCall(VecGetArrayRead(dvec, &dv));
+      for (PetscInt i = 0; i < n3; i++) d[i] = dfree[i] + PetscRealPart(dv[i]);
+      PetscCall(VecRestoreArrayRead(dvec, &dv));
+      PetscCall(Linearize(ctx, dfree, d0, d, q, &change));
+      PetscCall(PetscFree(d));
+    }
+    for (PetscInt r = 0; r < M; r++) {
+      dq = PetscMax(dq, PetscAbsReal(q[r] - qold[r]));
+      qs = PetscMax(qs, PetscAbsReal(q[r]));
+    }
+    if (ctx->newton_tol > 0 && change <= ctx->newton_tol && dq <= ctx->newton_tol * PetscMax(qs, PETSC_SMALL)) break;
+  }
+  for (PetscInt k = 0; k < nc; k++) {
+    FCContact *c  = &set->c[k];
+    PetscReal  ft = PetscSqrtReal(c->force[1] * c->force[1] + c->force[2] * c->force[2]);
+    c->state      = c->force[0] <= 0.0 ? 0 : (c->dim == 3 && ft >= c->mu * c->force[0] * (1.0 - 1e-6) ? 2 : 1);
+  }
+  /* one correction per body: dv = dv_free + h A^-1 H^T F (identity frames: lambda = F) */
+  PetscCall(FCPhaseBegin(FC_PHASE_CORRECTION));
+  {
+    const PetscScalar *f;
+    PetscReal         *Fw;
+    PetscCall(PetscMalloc1(n3, &Fw));
+    PetscCall(VecGetArrayRead(F, &f));
+    for (PetscInt i = 0; i < n3; i++) Fw[i] = PetscRealPart(f[i]);
+    PetscCall(VecRestoreArrayRead(F, &f));
+    for (PetscInt b = 0; b < ctx->nbodies; b++)
+      if (ctx->bodies[b]->ops.applycorrection)
+        PetscCall((*ctx->bodies[b]->ops.applycorrection)(ctx->bodies[b], b, &H, Fw));
+    PetscCall(PetscFree(Fw));
+  }
+  PetscCall(FCPhaseEnd(FC_PHASE_CORRECTION));
+  PetscCall(MatDestroy(&C));
+  PetscCall(MatDestroy(&U));
+  PetscCall(MatDestroy(&Ut));
+  PetscCall(MatDestroy(&Wk));
+  PetscCall(MatDestroy(&WHm));
+  PetscCall(VecDestroy(&F));
+  PetscCall(VecDestroy(&Fold));
+  PetscCall(VecDestroy(&dvec));
+  PetscCall(VecDestroy(&lam));
+  PetscCall(PetscFree(WH));
+  PetscCall(PetscFree6(dfree, d0, q, qold, mu, dims));
+  PetscCall(PetscFree(lambda));
+  PetscCall(FCContactSetDestroy(&H));
+  PetscFunctionReturn(0);
+}

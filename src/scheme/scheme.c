@@ -1,0 +1,23 @@
+/* Constraint schemes, -constraint_scheme <type> (read by the scene):
+     explicit  Algorithm 1: linearize once, W = sum J A^-1 J^T, PGS, correction   (explicit.c)
+     fast      Algorithm 3: W_H = H A^-1 H^T once per step, then Newton iterations with
+               W_k = C_k W_H C_k^T and p = p_free + h^2 W_H C_k^T lambda         (fast.c)      */
+#include "../fcimpl.h"
+
+PetscFunctionList FCSchemeList = NULL;
+
+PetscErrorCode FCSchemeExplicitStep(FCSchemeContext *ctx, FCSchemeStats *st)
+{
+  PetscFunctionBegin;
+  PetscCall(FCSchemeExplicit(ctx->comm, ctx->nbodies, ctx->bodies, ctx->set, ctx->previous, ctx->solver, st));
+  st->newton = ctx->set->n ? 1 : 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeRegisterAll(void)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFunctionListAdd(&FCSchemeList, "explicit", FCSchemeExplicitStep));
+  PetscCall(PetscFunctionListAdd(&FCSchemeList, "fast", FCSchemeFast));
+  PetscFunctionReturn(0);
+}
