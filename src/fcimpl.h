@@ -203,6 +203,11 @@ typedef struct {
   /* add w x (current position) of the vertices of a proximity point this rank owns (FE), or
      the point on rank 0 (rigid, kinematic) */
   PetscErrorCode (*partialposition)(FCBody, const FCProximity *, PetscReal x[3]);
+  /* recursive schemes: keep dv_free, go back to it, and add w x of a proximity point at the
+     trial state q + h (v + dv) (owned FE vertices; rigid on rank 0) */
+  PetscErrorCode (*savefree)(FCBody);
+  PetscErrorCode (*restorefree)(FCBody);
+  PetscErrorCode (*trialposition)(FCBody, const FCProximity *, PetscReal x[3]);
   /* dv += h A_b^-1 J_b^T lambda */
   PetscErrorCode (*applycorrection)(FCBody, PetscInt self, const FCContactSet *, const PetscReal lambda[]);
 } FCBodyOps;
@@ -297,6 +302,9 @@ PETSC_EXTERN PetscFunctionList FCSchemeList;
 PETSC_INTERN PetscErrorCode    FCSchemeRegisterAll(void);
 PETSC_INTERN PetscErrorCode    FCSchemeExplicitStep(FCSchemeContext *, FCSchemeStats *);
 PETSC_INTERN PetscErrorCode    FCSchemeFast(FCSchemeContext *, FCSchemeStats *);
+PETSC_INTERN PetscErrorCode    FCSchemeStandard(FCSchemeContext *, FCSchemeStats *);
+PETSC_INTERN PetscErrorCode    FCSchemeLinearize(FCSchemeContext *, const PetscReal dfree[], const PetscReal d0[],
+                                                 const PetscReal d[], PetscReal q[], PetscReal *frame_change);
 /* Tangents completing a normal: the frame C_i = [n t1 t2] (src/contact/contactset.c) */
 PETSC_INTERN void FCContactFrame(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3]);
 

@@ -4,6 +4,9 @@
 - the grasp scene (input/grasp_rotate.opts, normals turning fast within a step): the end-of-step
   constraint violation on the real geometry (/steps/violation) is at least 10 times smaller with the
   fast scheme than with the explicit one, and within the contact solver's tolerance scale (1e-6 m).
+- linear material, vertex proximity points (the grasp scene with a linear object): the standard
+  scheme (W_k rebuilt by solves, proximity measured on the corrected state) and the fast scheme
+  (W_k = C_k W_H C_k^T, proximity by W_H) give the same forces and positions to 1e-9 relative.
 Usage: test_schemes.py [--np N]"""
 import numpy as np
 import h5py
@@ -33,4 +36,22 @@ for sch in ["explicit", "fast"]:
     viol[sch] = v[H["steps/contacts"][:] > 0].max()
 c.check(viol["fast"] * 10 <= viol["explicit"], "grasp: end-of-step violation fast %.2e m vs explicit %.2e m (ratio %.1e)" % (viol["fast"], viol["explicit"], viol["explicit"] / max(viol["fast"], 1e-300)))
 c.check(viol["fast"] < 1e-6, "grasp: fast violation %.2e m within the solver tolerance scale" % viol["fast"])
+lin = {}
+for sch in ["standard", "fast"]:
+    f = out("grasp_linear_%s_np%d.h5" % (sch, NP))
+    run(["-options_file", "input/grasp_rotate.opts", "-time_steps", "25", "-constraint_scheme", sch, "-newton_tol", "0",
+         "-object_material", "linear", "-finger1_angular_velocity", "0,0,3", "-finger2_angular_velocity", "0,0,3",
+         "-pgs_tol", "1e-13", "-pgs_max_it", "50000", "-output_file", f, "-quiet"], np_=NP)
+    lin[sch] = h5py.File(f, "r")
+a, b = lin["standard"], lin["fast"]
+same = np.array_equal(a["contacts/offset"][:], b["contacts/offset"][:]) and a["contacts/offset"][-1] > 0
+c.check(same, "linear grasp: same contacts with both schemes (%d records)" % a["contacts/offset"][-1])
+if same:
+    fa, fb = a["contacts/force"][:], b["contacts/force"][:]
+    err = np.abs(fa - fb).max() / np.abs(fa).max()
+    c.check(err < 1e-9, "linear grasp: standard vs fast forces rel. diff %.2e < 1e-9" % err)
+    pa, pb = sorted_positions(a, "object")[1], sorted_positions(b, "object")[1]
+    err = np.abs(pa - pb).max() / np.abs(pa).max()
+    c.check(err < 1e-9, "linear grasp: standard vs fast positions rel. diff %.2e < 1e-9" % err)
+    c.check(np.all(a["steps/newton_iterations"][:][a["steps/contacts"][:] > 0] == 5), "newton_tol 0: always 5 Newton iterations")
 c.done()

@@ -48,6 +48,7 @@ typedef struct {
   PetscInt          *triv;
   FCSurfaceTriangle *tri;
   Vec                vloc, dvloc;
+  Vec                dvfree; /* recursive schemes: dv_free kept while corrections are tried */
 } FEM;
 
 static PetscErrorCode SetFromOptions_FEM(FCBody body)
@@ -518,6 +519,49 @@ static PetscErrorCode PartialPosition_FEM(FCBody body, const FCProximity *p, Pet
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SaveFree_FEM(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+  PetscFunctionBegin;
+  if (!fem->dvfree) PetscCall(VecDuplicate(fem->dv, &fem->dvfree));
+  PetscCall(VecCopy(fem->dv, fem->dvfree));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode RestoreFree_FEM(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+  PetscFunctionBegin;
+  PetscCall(VecCopy(fem->dvfree, fem->dv));
+  PetscFunctionReturn(0);
+}
+
+/* x += sum of w_k (X + u + h (v + dv)) over the owned vertices of p: G(q) at the trial state */
+static PetscErrorCode TrialPosition_FEM(FCBody body, const FCProximity *p, PetscReal x[3])
+{
+  FEM               *fem = (FEM *)body->data;
+  const PetscScalar *u, *X, *v, *dv;
+  PetscInt           lo, hi;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, &hi));
+  PetscCall(VecGetArrayRead(fem->u, &u));
+  PetscCall(VecGetArrayRead(fem->v, &v));
+  PetscCall(VecGetArrayRead(fem->dv, &dv));
+  PetscCall(VecGetArrayRead(fem->Xg, &X));
+  for (PetscInt k = 0; k < p->nv; k++) {
+    PetscInt g = p->gdof[k];
+    if (g < lo || g >= hi) continue;
+    for (int d = 0; d < 3; d++)
+      x[d] += p->w[k] * PetscRealPart(X[g - lo + d] + u[g - lo + d] + body->h * (v[g - lo + d] + dv[g - lo + d]));
+  }
+  PetscCall(VecRestoreArrayRead(fem->u, &u));
+  PetscCall(VecRestoreArrayRead(fem->v, &v));
+  PetscCall(VecRestoreArrayRead(fem->dv, &dv));
+  PetscCall(VecRestoreArrayRead(fem->Xg, &X));
+  PetscFunctionReturn(0);
+}
+
 /* Current position of a proximity point whose vertices this rank owns */
 static PetscErrorCode ProximityPosition_FEM(FCBody body, const FCProximity *p, PetscInt when, PetscReal x[3])
 {
@@ -911,6 +955,7 @@ static PetscErrorCode Destroy_FEM(FCBody body)
   PetscCall(PetscFree(fem->tri));
   PetscCall(VecDestroy(&fem->vloc));
   PetscCall(VecDestroy(&fem->dvloc));
+  PetscCall(VecDestroy(&fem->dvfree));
   PetscCall(PetscFree4(fem->bx0, fem->bxf, fem->bkey, fem->bprox));
   PetscCall(PetscFree(fem->cols));
   PetscCall(MatDestroy(&fem->JT));
@@ -947,6 +992,9 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.applycorrection    = ApplyCorrection_FEM;
   body->ops.surfacetriangles   = SurfaceTriangles_FEM;
   body->ops.partialposition    = PartialPosition_FEM;
+  body->ops.savefree           = SaveFree_FEM;
+  body->ops.restorefree        = RestoreFree_FEM;
+  body->ops.trialposition      = TrialPosition_FEM;
   PetscFunctionReturn(0);
 }
 

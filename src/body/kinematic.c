@@ -67,6 +67,20 @@ static PetscErrorCode FreeMotion_Kinematic(FCBody body, PetscReal t)
   PetscFunctionReturn(0);
 }
 
+/* rank 0 adds the point at the end-of-step pose (the motion is prescribed) */
+static PetscErrorCode TrialPosition_Kinematic(FCBody body, const FCProximity *p, PetscReal x[3])
+{
+  PetscMPIInt rank;
+  PetscReal   y[3];
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
+  if (rank) PetscFunctionReturn(0);
+  PetscCall(FCPoseProximityPosition(body, p, FC_AT_FREE, y));
+  for (int d = 0; d < 3; d++) x[d] += y[d];
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy_Kinematic(FCBody body)
 {
   PetscFunctionBegin;
@@ -91,6 +105,7 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   body->ops.destroy            = Destroy_Kinematic;
   body->ops.tobody             = FCPoseToBody;
   body->ops.partialposition    = FCPosePartialPosition;
+  body->ops.trialposition      = TrialPosition_Kinematic;
   body->ops.freemotion         = FreeMotion_Kinematic;
   body->ops.contactpoints      = FCPoseContactPoints;
   body->ops.proximityposition  = FCPoseProximityPosition;

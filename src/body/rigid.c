@@ -10,8 +10,9 @@
 typedef struct {
   FCPose     pose; /* first: the shared pose ops of pose.c read body->data as an FCPose */
   PetscReal  mass, dv[3], dw[3];
-  PetscInt   ncols, *cols; /* constraint rows touching this body in the step */
-  PetscReal *AiJT;         /* A^-1 J_b^T (6 x ncols), kept for the correction */
+  PetscReal  dv0[3], dw0[3]; /* dv_free kept by the recursive schemes */
+  PetscInt   ncols, *cols;   /* constraint rows touching this body in the step */
+  PetscReal *AiJT;           /* A^-1 J_b^T (6 x ncols), kept for the correction */
 } Rigid;
 
 static PetscErrorCode SetFromOptions_Rigid(FCBody body)
@@ -170,6 +171,46 @@ static PetscErrorCode AddCompliance_Rigid(FCBody body, PetscInt self, const FCCo
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SaveFree_Rigid(FCBody body)
+{
+  Rigid *r = (Rigid *)body->data;
+  PetscFunctionBegin;
+  for (int d = 0; d < 3; d++) {
+    r->dv0[d] = r->dv[d];
+    r->dw0[d] = r->dw[d];
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode RestoreFree_Rigid(FCBody body)
+{
+  Rigid *r = (Rigid *)body->data;
+  PetscFunctionBegin;
+  for (int d = 0; d < 3; d++) {
+    r->dv[d] = r->dv0[d];
+    r->dw[d] = r->dw0[d];
+  }
+  PetscFunctionReturn(0);
+}
+
+/* rank 0 adds the body-frame point at the trial pose x + h (v + dv), exp(h (w + dw)) q */
+static PetscErrorCode TrialPosition_Rigid(FCBody body, const FCProximity *p, PetscReal x[3])
+{
+  Rigid      *r = (Rigid *)body->data;
+  PetscMPIInt rank;
+  PetscReal   w[3], q[4], R[9], y[3];
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
+  if (rank) PetscFunctionReturn(0);
+  for (int d = 0; d < 3; d++) w[d] = r->pose.w[d] + r->dw[d];
+  FCQuatIntegrate(r->pose.q, w, body->h, q);
+  FCQuatToMat3(q, R);
+  FCMat3Vec(R, p->r, y);
+  for (int d = 0; d < 3; d++) x[d] += y[d] + r->pose.x[d] + body->h * (r->pose.v[d] + r->dv[d]);
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ApplyCorrection_Rigid(FCBody body, PetscInt self, const FCContactSet *set,
                                             const PetscReal lambda[])
 {
@@ -221,5 +262,8 @@ PetscErrorCode FCBodyCreate_Rigid(FCBody body)
   body->ops.shapedistancefree  = FCPoseShapeDistanceFree;
   body->ops.addcompliance      = AddCompliance_Rigid;
   body->ops.applycorrection    = ApplyCorrection_Rigid;
+  body->ops.savefree           = SaveFree_Rigid;
+  body->ops.restorefree        = RestoreFree_Rigid;
+  body->ops.trialposition      = TrialPosition_Rigid;
   PetscFunctionReturn(0);
 }

@@ -12,8 +12,8 @@
                               one constraint row per contact; default 0)
      -contact_distance d      alarm distance: points closer than d are contacts (>= 0, default 0.01 m)
      -pgs_tol, -pgs_max_it    the contact solver (src/contact/pgs.c)
-     -constraint_scheme explicit|fast   Algorithm 1, or Algorithm 3 (recursive, fast update) (default explicit)
-     -newton_max_it n         Newton iterations of a recursive scheme (>= 1, default 5)
+     -constraint_scheme explicit|standard|fast   Algorithm 1, 2 (recursive, standard update) or 3 (recursive, fast
+   update) (default explicit) -newton_max_it n         Newton iterations of a recursive scheme (>= 1, default 5)
      -newton_tol t            stop them when frames and right-hand sides change by less than t
                               (>= 0, default 1e-10; 0: always newton_max_it, as the paper's Table 1)
      -compliance_type dense|sparse|schur   how FE bodies compute J A^-1 J^T for W: MUMPS solves
@@ -200,7 +200,8 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscOptionsEnd();
     PetscCall(PetscFunctionListFind(FCSchemeList, s->scheme_name, &s->scheme));
     PetscCheck(s->scheme, s->comm, PETSC_ERR_USER_INPUT,
-               "Unknown constraint scheme '%s' in -constraint_scheme (known: explicit, fast)", s->scheme_name);
+               "Unknown constraint scheme '%s' in -constraint_scheme (known: explicit, standard, fast)",
+               s->scheme_name);
     PetscCheck(s->newton_max_it >= 1, s->comm, PETSC_ERR_USER_INPUT,
                "Option -newton_max_it must be >= 1, got %" PetscInt_FMT, s->newton_max_it);
     PetscCheck(s->newton_tol >= 0, s->comm, PETSC_ERR_USER_INPUT, "Option -newton_tol must be >= 0, got %g",

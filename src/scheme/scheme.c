@@ -1,5 +1,7 @@
 /* Constraint schemes, -constraint_scheme <type> (read by the scene):
      explicit  Algorithm 1: linearize once, W = sum J A^-1 J^T, PGS, correction   (explicit.c)
+     standard  Algorithm 2: the same Newton iterations, W_k rebuilt by solves and the proximity
+               measured on the corrected state                                       (standard.c)
      fast      Algorithm 3: W_H = H A^-1 H^T once per step, then Newton iterations with
                W_k = C_k W_H C_k^T and p = p_free + h^2 W_H C_k^T lambda         (fast.c)      */
 #include "../fcimpl.h"
@@ -18,6 +20,7 @@ PetscErrorCode FCSchemeRegisterAll(void)
 {
   PetscFunctionBegin;
   PetscCall(PetscFunctionListAdd(&FCSchemeList, "explicit", FCSchemeExplicitStep));
+  PetscCall(PetscFunctionListAdd(&FCSchemeList, "standard", FCSchemeStandard));
   PetscCall(PetscFunctionListAdd(&FCSchemeList, "fast", FCSchemeFast));
   PetscFunctionReturn(0);
 }

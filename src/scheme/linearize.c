@@ -1,0 +1,40 @@
+/* Re-linearization of the contacts at the proximity positions of a Newton iteration, shared by the
+   recursive schemes (fast.c, standard.c). d = p1 - p2 per contact (world), d_free and d0 its
+   values after the free motion and at the start of the step. */
+#include "../fcimpl.h"
+
+/* Frames of every contact at the current F (d = d_free + W_H F already computed) and the
+   right-hand side q of the contact problem in those frames */
+PetscErrorCode FCSchemeLinearize(FCSchemeContext *ctx, const PetscReal dfree[], const PetscReal d0[],
+                                 const PetscReal d[], PetscReal q[], PetscReal *frame_change)
+{
+  FCContactSet *set = ctx->set;
+
+  PetscFunctionBegin;
+  *frame_change = 0.0;
+  for (PetscInt k = 0; k < set->n; k++) {
+    FCContact *c   = &set->c[k];
+    FCBody     B   = ctx->bodies[c->body[1]];
+    PetscReal  gap = 0.0, dd[3];
+    PetscBool  kin;
+    PetscCall(PetscStrcmp(B->type, FCBODYKINEMATIC, &kin));
+    for (int i = 0; i < 3; i++) dd[i] = d[3 * k + i] - dfree[3 * k + i];
+    if (c->side2 == FC_SIDE_SHAPE && kin && B->ops.shapedistancefree && B->shape->distance) {
+      PetscReal p1[3], n[3], cpb[3];
+      for (int i = 0; i < 3; i++) p1[i] = c->pfree[0][i] + dd[i];
+      PetscCall((*B->ops.shapedistancefree)(B, p1, &gap, n, cpb));
+      for (int i = 0; i < 3; i++) *frame_change = PetscMax(*frame_change, PetscAbsReal(n[i] - c->n[i]));
+      for (int i = 0; i < 3; i++) c->n[i] = n[i];
+      FCContactFrame(c->n, c->t1, c->t2);
+      q[c->row] = gap - FCDot(c->n, dd);
+    } else
+      q[c->row] = FCDot(c->n, &dfree[3 * k]);
+    if (c->dim == 3) {
+      PetscReal rel[3];
+      for (int i = 0; i < 3; i++) rel[i] = dfree[3 * k + i] - d0[3 * k + i];
+      q[c->row + 1] = FCDot(c->t1, rel);
+      q[c->row + 2] = FCDot(c->t2, rel);
+    }
+  }
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,129 @@
+/* Algorithm 2: recursive corrective motion with the standard update, the honest baseline of the
+   fast scheme. Newton iteration k:
+       W_k = sum_b J_b,k A_b^-1 J_b,k^T, rebuilt through solves with the step's factorization by
+             the bodies' compliance builder (-compliance_type)                          (eq. 17)
+       PGS on the total force lambda (warm-started from the previous iteration)
+       dv_b = dv_free,b + h A_b^-1 J_b,k^T lambda                                       (eq. 22, 24)
+       proximity positions p_{k+1} = G(q_{k+1}) measured on the corrected state         (eq. 6)
+       frames and gaps re-linearized at p_{k+1} as in the fast scheme (linearize.c)
+   With a fixed A in the step (both schemes assemble A at its start) and fixed proximity maps it
+   gives the fast scheme's forces and positions to round-off; it costs a solve per contact row
+   per iteration instead of two matrix products. */
+#include "../fcimpl.h"
+
+PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
+{
+  FCContactSet    *set = ctx->set;
+  PetscInt         nc = set->n, n3 = 3 * set->n, M = set->nrows, *dims;
+  PetscReal        h = ctx->bodies[0]->h, *W, *dfree, *d0, *d, *q, *qold, *mu, *lambda, *x, change = 0.0;
+  FCContactProblem prob;
+  PetscBool        conv;
+
+  PetscFunctionBegin;
+  st->contacts = nc;
+  st->rows     = M;
+  st->sweeps   = 0;
+  st->residual = 0.0;
+  st->newton   = 0;
+  if (!nc) PetscFunctionReturn(0);
+  for (PetscInt b = 0; b < ctx->nbodies; b++)
+    if (ctx->bodies[b]->ops.savefree) PetscCall((*ctx->bodies[b]->ops.savefree)(ctx->bodies[b]));
+  PetscCall(PetscMalloc6(n3, &dfree, n3, &d0, n3, &d, M, &q, M, &qold, nc, &mu));
+  PetscCall(PetscMalloc4(nc, &dims, M, &lambda, M * M, &W, 6 * nc, &x));
+  for (PetscInt k = 0; k < nc; k++) {
+    FCContact *c = &set->c[k];
+    PetscReal  rel[3];
+    for (int i = 0; i < 3; i++) {
+      dfree[3 * k + i] = c->pfree[0][i] - c->pfree[1][i];
+      d0[3 * k + i]    = c->p0[0][i] - c->p0[1][i];
+      rel[i]           = dfree[3 * k + i] - d0[3 * k + i];
+    }
+    mu[k]     = c->mu;
+    dims[k]   = c->dim;
+    q[c->row] = FCDot(c->n, &dfree[3 * k]);
+    if (c->dim == 3) {
+      q[c->row + 1] = FCDot(c->t1, rel);
+      q[c->row + 2] = FCDot(c->t2, rel);
+    }
+    /* warm start: the previous step's force of the same contact, projected on the frame */
+    {
+      const FCContact *old = ctx->previous ? FCContactSetFind(ctx->previous, c) : NULL;
+      PetscReal        Fw[3];
+      for (int i = 0; i < 3; i++)
+        Fw[i] = old ? old->force[0] * old->n[i] + old->force[1] * old->t1[i] + old->force[2] * old->t2[i] : 0.0;
+      for (PetscInt a = 0; a < c->dim; a++) lambda[c->row + a] = FCDot(a == 0 ? c->n : (a == 1 ? c->t1 : c->t2), Fw);
+    }
+  }
+  for (PetscInt it = 1; it <= ctx->newton_max_it; it++) {
+    PetscReal dq = 0.0, qs = 0.0;
+    PetscInt  sweeps;
+    PetscCall(PetscLogEventBegin(FC_EVENT_NEWTON, 0, 0, 0, 0));
+    PetscCall(FCPhaseBegin(FC_PHASE_REBUILD_W));
+    PetscCall(PetscArrayzero(W, M * M));
+    for (PetscInt b = 0; b < ctx->nbodies; b++)
+      if (ctx->bodies[b]->ops.addcompliance) PetscCall((*ctx->bodies[b]->ops.addcompliance)(ctx->bodies[b], b, set, W));
+    for (PetscInt k = 0; k < M * M; k++) W[k] *= h * h;
+    PetscCall(FCPhaseEnd(FC_PHASE_REBUILD_W));
+    PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
+    PetscCall(FCContactProblemCreateDense(nc, dims, mu, W, q, &prob));
+    PetscCall(FCContactSolverSolve(ctx->solver, prob, lambda));
+    PetscCall(FCContactSolverGetConvergence(ctx->solver, &sweeps, &st->residual, &conv));
+    PetscCall(FCContactProblemDestroy(&prob));
+    st->sweeps += sweeps;
+    PetscCall(FCPhaseEnd(FC_PHASE_CONTACT_SOLVE));
+    for (PetscInt k = 0; k < nc; k++)
+      for (PetscInt a = 0; a < 3; a++) set->c[k].force[a] = a < set->c[k].dim ? lambda[set->c[k].row + a] : 0.0;
+    /* corrective motion of the total force from dv_free */
+    PetscCall(FCPhaseBegin(FC_PHASE_CORRECTION));
+    for (PetscInt b = 0; b < ctx->nbodies; b++) {
+      FCBody B = ctx->bodies[b];
+      if (B->ops.restorefree) PetscCall((*B->ops.restorefree)(B));
+      if (B->ops.applycorrection) PetscCall((*B->ops.applycorrection)(B, b, set, lambda));
+    }
+    PetscCall(FCPhaseEnd(FC_PHASE_CORRECTION));
+    st->newton = it;
+    PetscCall(PetscLogEventEnd(FC_EVENT_NEWTON, 0, 0, 0, 0));
+    if (it == ctx->newton_max_it) break;
+    /* p_{k+1} = G(q_{k+1}): the proximity points on the corrected state, summed over the ranks */
+    PetscCall(FCPhaseBegin(FC_PHASE_PROXIMITY));
+    PetscCall(PetscArrayzero(x, 6 * nc));
+    for (PetscInt k = 0; k < nc; k++)
+      for (int s = 0; s < 2; s++) {
+        FCBody B = ctx->bodies[set->c[k].body[s]];
+        PetscCheck(B->ops.trialposition, ctx->comm, PETSC_ERR_SUP, "Body '%s' cannot report trial positions", B->name);
+        PetscCall((*B->ops.trialposition)(B, &set->c[k].prox[s], &x[6 * k + 3 * s]));
+        if (set->c[k].prox[s].nv == 1 && set->c[k].prox[s].gdof[0] < 0)
+          for (int i = 0; i < 3; i++)
+            x[6 * k + 3 * s + i] = set->c[k].prox[s].r[i] / 1.0; /* fixed vertex: every rank */
+      }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, x, 6 * nc, MPIU_REAL, MPIU_SUM, ctx->comm));
+    for (PetscInt k = 0; k < nc; k++)
+      for (int i = 0; i < 3; i++) d[3 * k + i] = x[6 * k + i] - x[6 * k + 3 + i];
+    PetscCall(PetscArraycpy(qold, q, M));
+    PetscCall(FCSchemeLinearize(ctx, dfree, d0, d, q, &change));
+    PetscCall(FCPhaseEnd(FC_PHASE_PROXIMITY));
+    for (PetscInt r = 0; r < M; r++) {
+      dq = PetscMax(dq, PetscAbsReal(q[r] - qold[r]));
+      qs = PetscMax(qs, PetscAbsReal(q[r]));
+    }
+    if (ctx->newton_tol > 0 && change <= ctx->newton_tol && dq <= ctx->newton_tol * PetscMax(qs, PETSC_SMALL)) break;
+    /* warm start in the new frames: project the force of this iteration */
+    for (PetscInt k = 0; k < nc; k++) {
+      FCContact *c = &set->c[k];
+      PetscReal  Fw[3];
+      PetscInt   r = c->row;
+      for (int i = 0; i < 3; i++) Fw[i] = 0.0;
+      for (PetscInt a = 0; a < c->dim; a++) /* the force was solved in the previous frame: kept in force[] */
+        for (int i = 0; i < 3; i++) Fw[i] += c->force[a] * (a == 0 ? c->n[i] : (a == 1 ? c->t1[i] : c->t2[i]));
+      for (PetscInt a = 0; a < c->dim; a++) lambda[r + a] = FCDot(a == 0 ? c->n : (a == 1 ? c->t1 : c->t2), Fw);
+    }
+  }
+  for (PetscInt k = 0; k < nc; k++) {
+    FCContact *c  = &set->c[k];
+    PetscReal  ft = PetscSqrtReal(c->force[1] * c->force[1] + c->force[2] * c->force[2]);
+    c->state      = c->force[0] <= 0.0 ? 0 : (c->dim == 3 && ft >= c->mu * c->force[0] * (1.0 - 1e-6) ? 2 : 1);
+  }
+  PetscCall(PetscFree6(dfree, d0, d, q, qold, mu));
+  PetscCall(PetscFree4(dims, lambda, W, x));
+  PetscFunctionReturn(0);
+}
