@@ -8,7 +8,7 @@ from fctest import run, out, Checker, np_from_argv, sorted_positions
 
 NP = np_from_argv()
 c = Checker("compliance np%d" % NP)
-base = ["-options_file", "input/cube_drop.opts", "-time_steps", "40", "-pgs_tol", "1e-12", "-pgs_max_it", "20000", "-quiet"]
+base = ["-options_file", "input/cube_drop.opts", "-time_steps", "28", "-pgs_tol", "1e-10", "-pgs_max_it", "20000", "-quiet"]
 
 
 def result(ctype):

@@ -76,7 +76,7 @@ if NP > 1:
     files = []
     for n in [1, NP]:
         f = out("forces_np%d.h5" % n)
-        run(["-options_file", "input/cube_drop.opts", "-time_steps", "40", "-pgs_tol", "1e-12", "-pgs_max_it", "20000",
+        run(["-options_file", "input/cube_drop.opts", "-time_steps", "30", "-pgs_tol", "1e-10", "-pgs_max_it", "20000",
              "-output_file", f, "-quiet"], np_=n)
         files.append(h5py.File(f, "r"))
     a, b = files

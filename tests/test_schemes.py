@@ -17,8 +17,8 @@ c = Checker("schemes np%d" % NP)
 res = {}
 for sch in ["explicit", "fast"]:
     f = out("plane_%s_np%d.h5" % (sch, NP))
-    run(["-options_file", "input/cube_drop.opts", "-time_steps", "60", "-constraint_scheme", sch, "-newton_tol", "1e-10",
-         "-pgs_tol", "1e-12", "-pgs_max_it", "20000", "-output_file", f, "-quiet"], np_=NP)
+    run(["-options_file", "input/cube_drop.opts", "-time_steps", "45", "-constraint_scheme", sch, "-newton_tol", "1e-10",
+         "-output_file", f, "-quiet"], np_=NP)
     res[sch] = h5py.File(f, "r")
 nit = res["fast"]["steps/newton_iterations"][:]
 nc = res["fast"]["steps/contacts"][:]
@@ -30,7 +30,7 @@ c.check(err < 1e-9, "plane: fast and explicit give the same positions (max diff 
 viol = {}
 for sch in ["explicit", "fast"]:
     f = out("grasp_%s_np%d.h5" % (sch, NP))
-    run(["-options_file", "input/grasp_rotate.opts", "-time_steps", "40", "-constraint_scheme", sch, "-output_file", f, "-quiet"], np_=NP)
+    run(["-options_file", "input/grasp_rotate.opts", "-time_steps", "25", "-constraint_scheme", sch, "-output_file", f, "-quiet"], np_=NP)
     H = h5py.File(f, "r")
     v = H["steps/violation"][:]
     viol[sch] = v[H["steps/contacts"][:] > 0].max()
@@ -39,9 +39,9 @@ c.check(viol["fast"] < 1e-6, "grasp: fast violation %.2e m within the solver tol
 lin = {}
 for sch in ["standard", "fast"]:
     f = out("grasp_linear_%s_np%d.h5" % (sch, NP))
-    run(["-options_file", "input/grasp_rotate.opts", "-time_steps", "25", "-constraint_scheme", sch, "-newton_tol", "0",
+    run(["-options_file", "input/grasp_rotate.opts", "-time_steps", "12", "-constraint_scheme", sch, "-newton_tol", "0",
          "-object_material", "linear", "-finger1_angular_velocity", "0,0,3", "-finger2_angular_velocity", "0,0,3",
-         "-pgs_tol", "1e-13", "-pgs_max_it", "50000", "-output_file", f, "-quiet"], np_=NP)
+         "-pgs_tol", "1e-11", "-pgs_max_it", "50000", "-output_file", f, "-quiet"], np_=NP)
     lin[sch] = h5py.File(f, "r")
 a, b = lin["standard"], lin["fast"]
 same = np.array_equal(a["contacts/offset"][:], b["contacts/offset"][:]) and a["contacts/offset"][-1] > 0
