@@ -28,6 +28,17 @@ for ctype in others:
     c.check(err < 1e-10, "%s vs dense: forces rel. diff %.2e < 1e-10" % (ctype, err))
     pa, pb = sorted_positions(a, "cube")[1], sorted_positions(b, "cube")[1]
     c.check(np.abs(pa - pb).max() / np.abs(pa).max() < 1e-10, "%s vs dense: positions agree" % ctype)
+# W_H of the fast scheme comes from the same builders (identity frames): dense and schur agree
+wh = {}
+for ctype in ["dense", "schur"]:
+    f = out("wh_%s_np%d.h5" % (ctype, NP))
+    run(["-options_file", "input/grasp_rotate.opts", "-time_steps", "10", "-constraint_scheme", "fast", "-pgs_tol", "1e-11",
+         "-pgs_max_it", "50000", "-compliance_type", ctype, "-output_file", f, "-quiet"], np_=NP)
+    wh[ctype] = h5py.File(f, "r")
+fa, fb = wh["dense"]["contacts/force"][:], wh["schur"]["contacts/force"][:]
+same = fa.shape == fb.shape and fa.size > 0
+err = np.abs(fa - fb).max() / np.abs(fa).max() if same else np.inf
+c.check(err < 1e-9, "fast scheme, W_H by dense vs schur: forces rel. diff %.2e" % err)
 if NP > 1:
     p = run(base + ["-compliance_type", "sparse", "-output_file", out("comp_sparse_np%d.h5" % NP)], np_=NP, check=False)
     c.check(p.returncode != 0 and "one MPI rank only" in p.stderr + p.stdout, "sparse on %d ranks: clear error, exit %d" % (NP, p.returncode))
