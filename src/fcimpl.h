@@ -305,6 +305,9 @@ PETSC_INTERN PetscErrorCode    FCSchemeFast(FCSchemeContext *, FCSchemeStats *);
 PETSC_INTERN PetscErrorCode    FCSchemeStandard(FCSchemeContext *, FCSchemeStats *);
 PETSC_INTERN PetscErrorCode    FCSchemeLinearize(FCSchemeContext *, const PetscReal dfree[], const PetscReal d0[],
                                                  const PetscReal d[], PetscReal q[], PetscReal *frame_change);
+PETSC_INTERN PetscBool         FCSchemeConverged(const FCSchemeContext *, PetscInt M, const PetscReal q[],
+                                                 const PetscReal qold[], PetscReal frame_change);
+PETSC_INTERN void              FCContactSetUpdateStates(FCContactSet *);
 /* Tangents completing a normal: the frame C_i = [n t1 t2] (src/contact/contactset.c) */
 PETSC_INTERN void FCContactFrame(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3]);
 

@@ -115,7 +115,6 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
   }
   for (PetscInt it = 1; it <= ctx->newton_max_it; it++) {
     const PetscScalar *w;
-    PetscReal          dq = 0.0, qs = 0.0;
     PetscInt           sweeps;
     PetscCall(PetscLogEventBegin(FC_EVENT_NEWTON, 0, 0, 0, 0));
     /* W_k = C_k W_H C_k^T: U = C W_H (AIJ x dense), W_k = C U^T */
@@ -178,17 +177,9 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
       PetscCall(FCSchemeLinearize(ctx, dfree, d0, d, q, &change));
       PetscCall(PetscFree(d));
     }
-    for (PetscInt r = 0; r < M; r++) {
-      dq = PetscMax(dq, PetscAbsReal(q[r] - qold[r]));
-      qs = PetscMax(qs, PetscAbsReal(q[r]));
-    }
-    if (ctx->newton_tol > 0 && change <= ctx->newton_tol && dq <= ctx->newton_tol * PetscMax(qs, PETSC_SMALL)) break;
+    if (FCSchemeConverged(ctx, M, q, qold, change)) break;
   }
-  for (PetscInt k = 0; k < nc; k++) {
-    FCContact *c  = &set->c[k];
-    PetscReal  ft = PetscSqrtReal(c->force[1] * c->force[1] + c->force[2] * c->force[2]);
-    c->state      = c->force[0] <= 0.0 ? 0 : (c->dim == 3 && ft >= c->mu * c->force[0] * (1.0 - 1e-6) ? 2 : 1);
-  }
+  FCContactSetUpdateStates(set);
   /* one correction per body: dv = dv_free + h A^-1 H^T F (identity frames: lambda = F) */
   PetscCall(FCPhaseBegin(FC_PHASE_CORRECTION));
   {

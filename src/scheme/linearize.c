@@ -38,3 +38,28 @@ PetscErrorCode FCSchemeLinearize(FCSchemeContext *ctx, const PetscReal dfree[], 
   }
   PetscFunctionReturn(0);
 }
+
+/* The Newton loop stops when the frames moved by at most newton_tol and the right-hand side
+   changed by at most newton_tol relative to its size (never when newton_tol = 0) */
+PetscBool FCSchemeConverged(const FCSchemeContext *ctx, PetscInt M, const PetscReal q[], const PetscReal qold[],
+                            PetscReal frame_change)
+{
+  PetscReal dq = 0.0, qs = 0.0;
+  for (PetscInt r = 0; r < M; r++) {
+    dq = PetscMax(dq, PetscAbsReal(q[r] - qold[r]));
+    qs = PetscMax(qs, PetscAbsReal(q[r]));
+  }
+  return ctx->newton_tol > 0 && frame_change <= ctx->newton_tol && dq <= ctx->newton_tol * PetscMax(qs, PETSC_SMALL)
+             ? PETSC_TRUE
+             : PETSC_FALSE;
+}
+
+/* Contact states from the forces: 0 open, 1 stick, 2 slip (on the cone up to 1e-6) */
+void FCContactSetUpdateStates(FCContactSet *set)
+{
+  for (PetscInt k = 0; k < set->n; k++) {
+    FCContact *c  = &set->c[k];
+    PetscReal  ft = PetscSqrtReal(c->force[1] * c->force[1] + c->force[2] * c->force[2]);
+    c->state      = c->force[0] <= 0.0 ? 0 : (c->dim == 3 && ft >= c->mu * c->force[0] * (1.0 - 1e-6) ? 2 : 1);
+  }
+}

@@ -15,7 +15,7 @@ PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
 {
   FCContactSet    *set = ctx->set;
   PetscInt         nc = set->n, n3 = 3 * set->n, M = set->nrows, *dims;
-  PetscReal        h = ctx->bodies[0]->h, *W, *dfree, *d0, *d, *q, *qold, *mu, *lambda, *x, change = 0.0;
+  PetscReal        h = ctx->bodies[0]->h, *W, *dfree, *d0, *d, *q, *qold, *mu, *lambda, *x, *Fw, change = 0.0;
   FCContactProblem prob;
   PetscBool        conv;
 
@@ -29,7 +29,7 @@ PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
   for (PetscInt b = 0; b < ctx->nbodies; b++)
     if (ctx->bodies[b]->ops.savefree) PetscCall((*ctx->bodies[b]->ops.savefree)(ctx->bodies[b]));
   PetscCall(PetscMalloc6(n3, &dfree, n3, &d0, n3, &d, M, &q, M, &qold, nc, &mu));
-  PetscCall(PetscMalloc4(nc, &dims, M, &lambda, M * M, &W, 6 * nc, &x));
+  PetscCall(PetscMalloc5(nc, &dims, M, &lambda, M * M, &W, 6 * nc, &x, 3 * nc, &Fw));
   for (PetscInt k = 0; k < nc; k++) {
     FCContact *c = &set->c[k];
     PetscReal  rel[3];
@@ -48,15 +48,14 @@ PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
     /* warm start: the previous step's force of the same contact, projected on the frame */
     {
       const FCContact *old = ctx->previous ? FCContactSetFind(ctx->previous, c) : NULL;
-      PetscReal        Fw[3];
+      PetscReal        Fo[3];
       for (int i = 0; i < 3; i++)
-        Fw[i] = old ? old->force[0] * old->n[i] + old->force[1] * old->t1[i] + old->force[2] * old->t2[i] : 0.0;
-      for (PetscInt a = 0; a < c->dim; a++) lambda[c->row + a] = FCDot(a == 0 ? c->n : (a == 1 ? c->t1 : c->t2), Fw);
+        Fo[i] = old ? old->force[0] * old->n[i] + old->force[1] * old->t1[i] + old->force[2] * old->t2[i] : 0.0;
+      for (PetscInt a = 0; a < c->dim; a++) lambda[c->row + a] = FCDot(a == 0 ? c->n : (a == 1 ? c->t1 : c->t2), Fo);
     }
   }
   for (PetscInt it = 1; it <= ctx->newton_max_it; it++) {
-    PetscReal dq = 0.0, qs = 0.0;
-    PetscInt  sweeps;
+    PetscInt sweeps;
     PetscCall(PetscLogEventBegin(FC_EVENT_NEWTON, 0, 0, 0, 0));
     PetscCall(FCPhaseBegin(FC_PHASE_REBUILD_W));
     PetscCall(PetscArrayzero(W, M * M));
@@ -99,31 +98,22 @@ PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, x, 6 * nc, MPIU_REAL, MPIU_SUM, ctx->comm));
     for (PetscInt k = 0; k < nc; k++)
       for (int i = 0; i < 3; i++) d[3 * k + i] = x[6 * k + i] - x[6 * k + 3 + i];
+    for (PetscInt k = 0; k < nc; k++) { /* the force in the world, before the frames move */
+      FCContact *c = &set->c[k];
+      for (int i = 0; i < 3; i++)
+        Fw[3 * k + i] = c->force[0] * c->n[i] + c->force[1] * c->t1[i] + c->force[2] * c->t2[i];
+    }
     PetscCall(PetscArraycpy(qold, q, M));
     PetscCall(FCSchemeLinearize(ctx, dfree, d0, d, q, &change));
     PetscCall(FCPhaseEnd(FC_PHASE_PROXIMITY));
-    for (PetscInt r = 0; r < M; r++) {
-      dq = PetscMax(dq, PetscAbsReal(q[r] - qold[r]));
-      qs = PetscMax(qs, PetscAbsReal(q[r]));
-    }
-    if (ctx->newton_tol > 0 && change <= ctx->newton_tol && dq <= ctx->newton_tol * PetscMax(qs, PETSC_SMALL)) break;
-    /* warm start in the new frames: project the force of this iteration */
-    for (PetscInt k = 0; k < nc; k++) {
-      FCContact *c = &set->c[k];
-      PetscReal  Fw[3];
-      PetscInt   r = c->row;
-      for (int i = 0; i < 3; i++) Fw[i] = 0.0;
-      for (PetscInt a = 0; a < c->dim; a++) /* the force was solved in the previous frame: kept in force[] */
-        for (int i = 0; i < 3; i++) Fw[i] += c->force[a] * (a == 0 ? c->n[i] : (a == 1 ? c->t1[i] : c->t2[i]));
-      for (PetscInt a = 0; a < c->dim; a++) lambda[r + a] = FCDot(a == 0 ? c->n : (a == 1 ? c->t1 : c->t2), Fw);
-    }
+    if (FCSchemeConverged(ctx, M, q, qold, change)) break;
+    /* warm start in the new frames: the force of this iteration, projected */
+    for (PetscInt k = 0; k < nc; k++)
+      for (PetscInt a = 0; a < set->c[k].dim; a++)
+        lambda[set->c[k].row + a] = FCDot(a == 0 ? set->c[k].n : (a == 1 ? set->c[k].t1 : set->c[k].t2), &Fw[3 * k]);
   }
-  for (PetscInt k = 0; k < nc; k++) {
-    FCContact *c  = &set->c[k];
-    PetscReal  ft = PetscSqrtReal(c->force[1] * c->force[1] + c->force[2] * c->force[2]);
-    c->state      = c->force[0] <= 0.0 ? 0 : (c->dim == 3 && ft >= c->mu * c->force[0] * (1.0 - 1e-6) ? 2 : 1);
-  }
+  FCContactSetUpdateStates(set);
   PetscCall(PetscFree6(dfree, d0, d, q, qold, mu));
-  PetscCall(PetscFree4(dims, lambda, W, x));
+  PetscCall(PetscFree5(dims, lambda, W, x, Fw));
   PetscFunctionReturn(0);
 }
