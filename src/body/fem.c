@@ -445,6 +445,7 @@ static PetscErrorCode ContactPoints_FEM(FCBody body, PetscInt *n, FCProximity **
     for (int d = 0; d < 3; d++) {
       PetscReal X          = m->X[3 * vtx + d];
       p->r[d]              = X;
+      p->X[0][d]           = X;
       fem->bkey[3 * i + d] = X;
       fem->bx0[3 * i + d]  = X + (g < 0 ? 0.0 : PetscRealPart(u[g - lo + d]));
       fem->bxf[3 * i + d] =
@@ -498,24 +499,58 @@ static PetscErrorCode SurfaceTriangles_FEM(FCBody body, PetscInt *n, FCSurfaceTr
   PetscFunctionReturn(0);
 }
 
-/* x += sum of w_k x_k over the vertices of p owned by this rank (current positions) */
-static PetscErrorCode PartialPosition_FEM(FCBody body, const FCProximity *p, PetscReal x[3])
+/* x += sum of w_k x_k over the vertices of p: owned vertices at the current state X + u, or at
+   the trial state X + u + h (v + dv); fixed vertices (never moving, X kept in the proximity) are
+   added by rank 0 only, so that a sum over the ranks counts every vertex once */
+static PetscErrorCode AddVertexPositions(FCBody body, const FCProximity *p, PetscBool trial, PetscReal x[3])
 {
   FEM               *fem = (FEM *)body->data;
-  const PetscScalar *u, *X;
+  const PetscScalar *u, *X, *v = NULL, *dv = NULL;
   PetscInt           lo, hi;
+  PetscMPIInt        rank;
 
   PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
   PetscCall(VecGetOwnershipRange(fem->u, &lo, &hi));
   PetscCall(VecGetArrayRead(fem->u, &u));
   PetscCall(VecGetArrayRead(fem->Xg, &X));
+  if (trial) {
+    PetscCall(VecGetArrayRead(fem->v, &v));
+    PetscCall(VecGetArrayRead(fem->dv, &dv));
+  }
   for (PetscInt k = 0; k < p->nv; k++) {
     PetscInt g = p->gdof[k];
+    if (g < 0) {
+      if (!rank)
+        for (int d = 0; d < 3; d++) x[d] += p->w[k] * p->X[k][d];
+      continue;
+    }
     if (g < lo || g >= hi) continue;
-    for (int d = 0; d < 3; d++) x[d] += p->w[k] * PetscRealPart(X[g - lo + d] + u[g - lo + d]);
+    for (int d = 0; d < 3; d++)
+      x[d] += p->w[k] *
+              PetscRealPart(X[g - lo + d] + u[g - lo + d] + (trial ? body->h * (v[g - lo + d] + dv[g - lo + d]) : 0.0));
   }
   PetscCall(VecRestoreArrayRead(fem->u, &u));
   PetscCall(VecRestoreArrayRead(fem->Xg, &X));
+  if (trial) {
+    PetscCall(VecRestoreArrayRead(fem->v, &v));
+    PetscCall(VecRestoreArrayRead(fem->dv, &dv));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode PartialPosition_FEM(FCBody body, const FCProximity *p, PetscReal x[3])
+{
+  PetscFunctionBegin;
+  PetscCall(AddVertexPositions(body, p, PETSC_FALSE, x));
+  PetscFunctionReturn(0);
+}
+
+/* G(q) at the trial state of a recursive scheme */
+static PetscErrorCode TrialPosition_FEM(FCBody body, const FCProximity *p, PetscReal x[3])
+{
+  PetscFunctionBegin;
+  PetscCall(AddVertexPositions(body, p, PETSC_TRUE, x));
   PetscFunctionReturn(0);
 }
 
@@ -536,32 +571,6 @@ static PetscErrorCode RestoreFree_FEM(FCBody body)
   PetscFunctionReturn(0);
 }
 
-/* x += sum of w_k (X + u + h (v + dv)) over the owned vertices of p: G(q) at the trial state */
-static PetscErrorCode TrialPosition_FEM(FCBody body, const FCProximity *p, PetscReal x[3])
-{
-  FEM               *fem = (FEM *)body->data;
-  const PetscScalar *u, *X, *v, *dv;
-  PetscInt           lo, hi;
-
-  PetscFunctionBegin;
-  PetscCall(VecGetOwnershipRange(fem->u, &lo, &hi));
-  PetscCall(VecGetArrayRead(fem->u, &u));
-  PetscCall(VecGetArrayRead(fem->v, &v));
-  PetscCall(VecGetArrayRead(fem->dv, &dv));
-  PetscCall(VecGetArrayRead(fem->Xg, &X));
-  for (PetscInt k = 0; k < p->nv; k++) {
-    PetscInt g = p->gdof[k];
-    if (g < lo || g >= hi) continue;
-    for (int d = 0; d < 3; d++)
-      x[d] += p->w[k] * PetscRealPart(X[g - lo + d] + u[g - lo + d] + body->h * (v[g - lo + d] + dv[g - lo + d]));
-  }
-  PetscCall(VecRestoreArrayRead(fem->u, &u));
-  PetscCall(VecRestoreArrayRead(fem->v, &v));
-  PetscCall(VecRestoreArrayRead(fem->dv, &dv));
-  PetscCall(VecRestoreArrayRead(fem->Xg, &X));
-  PetscFunctionReturn(0);
-}
-
 /* Current position of a proximity point whose vertices this rank owns */
 static PetscErrorCode ProximityPosition_FEM(FCBody body, const FCProximity *p, PetscInt when, PetscReal x[3])
 {
@@ -578,8 +587,8 @@ static PetscErrorCode ProximityPosition_FEM(FCBody body, const FCProximity *p, P
   for (int d = 0; d < 3; d++) x[d] = 0.0;
   for (PetscInt k = 0; k < p->nv; k++) {
     PetscInt g = p->gdof[k];
-    if (g < 0) { /* fixed vertex: its reference position is kept in r (vertex contacts) */
-      for (int d = 0; d < 3; d++) x[d] += p->w[k] * p->r[d];
+    if (g < 0) { /* fixed vertex: it stays at its reference position */
+      for (int d = 0; d < 3; d++) x[d] += p->w[k] * p->X[k][d];
       continue;
     }
     PetscCheck(g >= lo && g < hi, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Proximity vertex not owned by this rank");

@@ -419,6 +419,7 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
         v.nv          = 1;
         v.gdof[0]     = c->prox[1].gdof[a];
         v.w[0]        = 1.0;
+        for (int d = 0; d < 3; d++) v.X[0][d] = c->prox[1].X[a][d];
         PetscCall((*bodies[c->body[1]]->ops.partialposition)(bodies[c->body[1]], &v, &xs[12 * nfe + 3 + 3 * a]));
       }
       nfe++;
@@ -427,9 +428,7 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
     for (PetscInt j = 0; j < nfe; j++) {
       FCContact *c = &set->c[idx[j]];
       PetscReal  tri[3][3], p2[3] = {0, 0, 0}, nrm[3], diff[3], *x1 = &xs[12 * j];
-      if (c->prox[0].nv == 1 && c->prox[0].gdof[0] < 0)
-        for (int d = 0; d < 3; d++) x1[d] = c->prox[0].r[d]; /* fixed vertex */
-      if (c->side2 == FC_SIDE_RIGID_TRIANGLE) {              /* the triangle moved rigidly: rotate its normal */
+      if (c->side2 == FC_SIDE_RIGID_TRIANGLE) { /* the triangle moved rigidly: rotate its normal */
         FCProximity o = {0}, e = {0};
         PetscReal   p0[3], pe[3];
         FCBody      B = bodies[c->body[1]];
@@ -445,8 +444,7 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
         continue;
       }
       for (int a = 0; a < 3; a++)
-        for (int d = 0; d < 3; d++)
-          tri[a][d] = c->prox[1].gdof[a] < 0 ? c->prox[1].X[a][d] : xs[12 * j + 3 + 3 * a + d];
+        for (int d = 0; d < 3; d++) tri[a][d] = xs[12 * j + 3 + 3 * a + d];
       for (int a = 0; a < 3; a++)
         for (int d = 0; d < 3; d++) p2[d] += c->prox[1].w[a] * tri[a][d];
       TriangleNormal(tri, nrm);

@@ -91,9 +91,6 @@ PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
         FCBody B = ctx->bodies[set->c[k].body[s]];
         PetscCheck(B->ops.trialposition, ctx->comm, PETSC_ERR_SUP, "Body '%s' cannot report trial positions", B->name);
         PetscCall((*B->ops.trialposition)(B, &set->c[k].prox[s], &x[6 * k + 3 * s]));
-        if (set->c[k].prox[s].nv == 1 && set->c[k].prox[s].gdof[0] < 0)
-          for (int i = 0; i < 3; i++)
-            x[6 * k + 3 * s + i] = set->c[k].prox[s].r[i] / 1.0; /* fixed vertex: every rank */
       }
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, x, 6 * nc, MPIU_REAL, MPIU_SUM, ctx->comm));
     for (PetscInt k = 0; k < nc; k++)
