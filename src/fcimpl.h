@@ -308,6 +308,10 @@ PETSC_INTERN PetscErrorCode    FCSchemeLinearize(FCSchemeContext *, const PetscR
 PETSC_INTERN PetscBool         FCSchemeConverged(const FCSchemeContext *, PetscInt M, const PetscReal q[],
                                                  const PetscReal qold[], PetscReal frame_change);
 PETSC_INTERN void              FCContactSetUpdateStates(FCContactSet *);
+PETSC_INTERN PetscErrorCode FCSchemeCompliance(PetscInt nbodies, FCBody bodies[], const FCContactSet *, PetscReal W[]);
+PETSC_INTERN void FCSchemeStartLinearization(const FCContactSet *, PetscReal dfree[], PetscReal d0[], PetscReal q[],
+                                             PetscReal mu[], PetscInt dims[]);
+PETSC_INTERN void FCContactPreviousForce(const FCContactSet *previous, const FCContact *, PetscReal F[3]);
 /* Tangents completing a normal: the frame C_i = [n t1 t2] (src/contact/contactset.c) */
 PETSC_INTERN void FCContactFrame(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3]);
 

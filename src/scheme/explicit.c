@@ -9,7 +9,7 @@ PetscErrorCode FCSchemeExplicit(MPI_Comm comm, PetscInt nbodies, FCBody bodies[]
                                 const FCContactSet *previous, FCContactSolver solver, FCSchemeStats *st)
 {
   PetscInt         M = set->nrows, *dims;
-  PetscReal       *W, *q, *mu, *lambda, h = nbodies ? bodies[0]->h : 0.0;
+  PetscReal       *W, *q, *mu, *lambda, *dfree, *d0;
   FCContactProblem prob;
   PetscBool        conv;
 
@@ -19,28 +19,12 @@ PetscErrorCode FCSchemeExplicit(MPI_Comm comm, PetscInt nbodies, FCBody bodies[]
   st->sweeps   = 0;
   st->residual = 0.0;
   if (!set->n) PetscFunctionReturn(0);
-  PetscCall(PetscCalloc1(M * M, &W));
-  PetscCall(PetscMalloc4(M, &q, set->n, &mu, set->n, &dims, M, &lambda));
+  PetscCall(PetscMalloc1(M * M, &W));
+  PetscCall(PetscMalloc6(M, &q, set->n, &mu, set->n, &dims, M, &lambda, 3 * set->n, &dfree, 3 * set->n, &d0));
   PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
-  for (PetscInt b = 0; b < nbodies; b++)
-    if (bodies[b]->ops.addcompliance) PetscCall((*bodies[b]->ops.addcompliance)(bodies[b], b, set, W));
+  PetscCall(FCSchemeCompliance(nbodies, bodies, set, W));
   PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
-  for (PetscInt k = 0; k < M * M; k++) W[k] *= h * h;
-  for (PetscInt k = 0; k < set->n; k++) {
-    FCContact *c = &set->c[k];
-    PetscReal  dp[3], df[3];
-    for (int i = 0; i < 3; i++) {
-      dp[i] = c->pfree[0][i] - c->pfree[1][i];
-      df[i] = (c->pfree[0][i] - c->p0[0][i]) - (c->pfree[1][i] - c->p0[1][i]);
-    }
-    q[c->row] = FCDot(c->n, dp);
-    if (c->dim == 3) {
-      q[c->row + 1] = FCDot(c->t1, df);
-      q[c->row + 2] = FCDot(c->t2, df);
-    }
-    mu[k]   = c->mu;
-    dims[k] = c->dim;
-  }
+  FCSchemeStartLinearization(set, dfree, d0, q, mu, dims);
   PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
   PetscCall(FCContactProblemCreateDense(set->n, dims, mu, W, q, &prob));
   /* warm start: the force of the same contact (pair, side-1 point) in the previous step */
@@ -66,6 +50,6 @@ PetscErrorCode FCSchemeExplicit(MPI_Comm comm, PetscInt nbodies, FCBody bodies[]
     if (bodies[b]->ops.applycorrection) PetscCall((*bodies[b]->ops.applycorrection)(bodies[b], b, set, lambda));
   PetscCall(FCPhaseEnd(FC_PHASE_CORRECTION));
   PetscCall(PetscFree(W));
-  PetscCall(PetscFree4(q, mu, dims, lambda));
+  PetscCall(PetscFree6(q, mu, dims, lambda, dfree, d0));
   PetscFunctionReturn(0);
 }

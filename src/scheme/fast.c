@@ -39,9 +39,9 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
 {
   FCContactSet    *set = ctx->set, H = {0};
   PetscInt         nc = set->n, n3 = 3 * set->n, M = set->nrows, *dims;
-  PetscReal        h = ctx->bodies[0]->h, *WH, *dfree, *d0, *q, *qold, *mu, *lambda, change = 0.0;
+  PetscReal       *WH, *dfree, *d0, *q, *qold, *mu, *lambda, change = 0.0;
   Mat              WHm, C = NULL, U = NULL, Ut = NULL, Wk = NULL;
-  Vec              F, Fold, dvec, lam;
+  Vec              F, dvec, lam;
   FCContactProblem prob;
   PetscBool        conv;
 
@@ -63,56 +63,32 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
     c->row                        = 3 * k;
   }
   H.nrows = n3;
-  PetscCall(PetscCalloc1(n3 * n3, &WH));
+  PetscCall(PetscMalloc1(n3 * n3, &WH));
   PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
-  for (PetscInt b = 0; b < ctx->nbodies; b++)
-    if (ctx->bodies[b]->ops.addcompliance) PetscCall((*ctx->bodies[b]->ops.addcompliance)(ctx->bodies[b], b, &H, WH));
-  for (PetscInt k = 0; k < n3 * n3; k++) WH[k] *= h * h;
+  PetscCall(FCSchemeCompliance(ctx->nbodies, ctx->bodies, &H, WH));
   PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
   PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n3, n3, WH, &WHm)); /* symmetric: row/column-major alike */
 
   PetscCall(PetscMalloc6(n3, &dfree, n3, &d0, M, &q, M, &qold, nc, &mu, nc, &dims));
   PetscCall(PetscMalloc1(M, &lambda));
-  for (PetscInt k = 0; k < nc; k++) {
-    for (int i = 0; i < 3; i++) {
-      dfree[3 * k + i] = set->c[k].pfree[0][i] - set->c[k].pfree[1][i];
-      d0[3 * k + i]    = set->c[k].p0[0][i] - set->c[k].p0[1][i];
-    }
-    mu[k]   = set->c[k].mu;
-    dims[k] = set->c[k].dim;
-  }
+  /* first linearization: the frames of the collision detection, gaps at the start of the step */
+  FCSchemeStartLinearization(set, dfree, d0, q, mu, dims);
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, n3, &F));
-  PetscCall(VecDuplicate(F, &Fold));
   PetscCall(VecDuplicate(F, &dvec));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, M, &lam));
   { /* warm start: the previous step's force of the same contact, in the world frame */
     PetscScalar *f;
     PetscCall(VecGetArray(F, &f));
     for (PetscInt k = 0; k < nc; k++) {
-      const FCContact *old = ctx->previous ? FCContactSetFind(ctx->previous, &set->c[k]) : NULL;
-      for (int i = 0; i < 3; i++)
-        f[3 * k + i] = old ? old->force[0] * old->n[i] + old->force[1] * old->t1[i] + old->force[2] * old->t2[i] : 0.0;
+      PetscReal Fw[3];
+      FCContactPreviousForce(ctx->previous, &set->c[k], Fw);
+      for (int i = 0; i < 3; i++) f[3 * k + i] = Fw[i];
     }
     PetscCall(VecRestoreArray(F, &f));
   }
   PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, M, n3, 3, NULL, &C));
   PetscCall(MatSetOption(C, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
 
-  /* first linearization: the frames of the collision detection, gaps at the start of the step */
-  {
-    PetscReal dummy;
-    for (PetscInt k = 0; k < nc; k++) {
-      FCContact *c = &set->c[k];
-      PetscReal  rel[3];
-      q[c->row] = FCDot(c->n, &dfree[3 * k]);
-      for (int i = 0; i < 3; i++) rel[i] = dfree[3 * k + i] - d0[3 * k + i];
-      if (c->dim == 3) {
-        q[c->row + 1] = FCDot(c->t1, rel);
-        q[c->row + 2] = FCDot(c->t2, rel);
-      }
-    }
-    (void)dummy;
-  }
   for (PetscInt it = 1; it <= ctx->newton_max_it; it++) {
     const PetscScalar *w;
     PetscInt           sweeps;
@@ -158,7 +134,6 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
       for (PetscInt r = 0; r < M; r++) l[r] = lambda[r];
       PetscCall(VecRestoreArray(lam, &l));
     }
-    PetscCall(VecCopy(F, Fold));
     PetscCall(MatMultTranspose(C, lam, F));
     PetscCall(MatMult(WHm, F, dvec));
     PetscCall(FCPhaseEnd(FC_PHASE_PROXIMITY));
@@ -201,7 +176,6 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
   PetscCall(MatDestroy(&Wk));
   PetscCall(MatDestroy(&WHm));
   PetscCall(VecDestroy(&F));
-  PetscCall(VecDestroy(&Fold));
   PetscCall(VecDestroy(&dvec));
   PetscCall(VecDestroy(&lam));
   PetscCall(PetscFree(WH));

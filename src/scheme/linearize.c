@@ -63,3 +63,47 @@ void FCContactSetUpdateStates(FCContactSet *set)
     c->state      = c->force[0] <= 0.0 ? 0 : (c->dim == 3 && ft >= c->mu * c->force[0] * (1.0 - 1e-6) ? 2 : 1);
   }
 }
+
+/* W = h^2 sum_b J_b A_b^-1 J_b^T of the contact set in its frames (identity frames give W_H) */
+PetscErrorCode FCSchemeCompliance(PetscInt nbodies, FCBody bodies[], const FCContactSet *set, PetscReal W[])
+{
+  PetscReal h = nbodies ? bodies[0]->h : 0.0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscArrayzero(W, set->nrows * set->nrows));
+  for (PetscInt b = 0; b < nbodies; b++)
+    if (bodies[b]->ops.addcompliance) PetscCall((*bodies[b]->ops.addcompliance)(bodies[b], b, set, W));
+  for (PetscInt k = 0; k < set->nrows * set->nrows; k++) W[k] *= h * h;
+  PetscFunctionReturn(0);
+}
+
+/* The linearization of the collision detection: d_free = p1 - p2 after the free motion, d0 at
+   the start of the step, q = (n . d_free, t . (d_free - d0)) in the start frames, mu and rows */
+void FCSchemeStartLinearization(const FCContactSet *set, PetscReal dfree[], PetscReal d0[], PetscReal q[],
+                                PetscReal mu[], PetscInt dims[])
+{
+  for (PetscInt k = 0; k < set->n; k++) {
+    const FCContact *c = &set->c[k];
+    PetscReal        rel[3];
+    for (int i = 0; i < 3; i++) {
+      dfree[3 * k + i] = c->pfree[0][i] - c->pfree[1][i];
+      d0[3 * k + i]    = c->p0[0][i] - c->p0[1][i];
+      rel[i]           = dfree[3 * k + i] - d0[3 * k + i];
+    }
+    q[c->row] = FCDot(c->n, &dfree[3 * k]);
+    if (c->dim == 3) {
+      q[c->row + 1] = FCDot(c->t1, rel);
+      q[c->row + 2] = FCDot(c->t2, rel);
+    }
+    mu[k]   = c->mu;
+    dims[k] = c->dim;
+  }
+}
+
+/* World force of the same contact (pair, side-1 point) in the previous step, 0 if it is new */
+void FCContactPreviousForce(const FCContactSet *previous, const FCContact *c, PetscReal F[3])
+{
+  const FCContact *old = previous ? FCContactSetFind(previous, c) : NULL;
+  for (int i = 0; i < 3; i++)
+    F[i] = old ? old->force[0] * old->n[i] + old->force[1] * old->t1[i] + old->force[2] * old->t2[i] : 0.0;
+}

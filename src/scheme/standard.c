@@ -15,7 +15,7 @@ PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
 {
   FCContactSet    *set = ctx->set;
   PetscInt         nc = set->n, n3 = 3 * set->n, M = set->nrows, *dims;
-  PetscReal        h = ctx->bodies[0]->h, *W, *dfree, *d0, *d, *q, *qold, *mu, *lambda, *x, *Fw, change = 0.0;
+  PetscReal       *W, *dfree, *d0, *d, *q, *qold, *mu, *lambda, *x, *Fw, change = 0.0;
   FCContactProblem prob;
   PetscBool        conv;
 
@@ -30,38 +30,18 @@ PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
     if (ctx->bodies[b]->ops.savefree) PetscCall((*ctx->bodies[b]->ops.savefree)(ctx->bodies[b]));
   PetscCall(PetscMalloc6(n3, &dfree, n3, &d0, n3, &d, M, &q, M, &qold, nc, &mu));
   PetscCall(PetscMalloc5(nc, &dims, M, &lambda, M * M, &W, 6 * nc, &x, 3 * nc, &Fw));
-  for (PetscInt k = 0; k < nc; k++) {
+  FCSchemeStartLinearization(set, dfree, d0, q, mu, dims);
+  for (PetscInt k = 0; k < nc; k++) { /* warm start: the previous step's force, projected on the frame */
     FCContact *c = &set->c[k];
-    PetscReal  rel[3];
-    for (int i = 0; i < 3; i++) {
-      dfree[3 * k + i] = c->pfree[0][i] - c->pfree[1][i];
-      d0[3 * k + i]    = c->p0[0][i] - c->p0[1][i];
-      rel[i]           = dfree[3 * k + i] - d0[3 * k + i];
-    }
-    mu[k]     = c->mu;
-    dims[k]   = c->dim;
-    q[c->row] = FCDot(c->n, &dfree[3 * k]);
-    if (c->dim == 3) {
-      q[c->row + 1] = FCDot(c->t1, rel);
-      q[c->row + 2] = FCDot(c->t2, rel);
-    }
-    /* warm start: the previous step's force of the same contact, projected on the frame */
-    {
-      const FCContact *old = ctx->previous ? FCContactSetFind(ctx->previous, c) : NULL;
-      PetscReal        Fo[3];
-      for (int i = 0; i < 3; i++)
-        Fo[i] = old ? old->force[0] * old->n[i] + old->force[1] * old->t1[i] + old->force[2] * old->t2[i] : 0.0;
-      for (PetscInt a = 0; a < c->dim; a++) lambda[c->row + a] = FCDot(a == 0 ? c->n : (a == 1 ? c->t1 : c->t2), Fo);
-    }
+    PetscReal  Fo[3];
+    FCContactPreviousForce(ctx->previous, c, Fo);
+    for (PetscInt a = 0; a < c->dim; a++) lambda[c->row + a] = FCDot(a == 0 ? c->n : (a == 1 ? c->t1 : c->t2), Fo);
   }
   for (PetscInt it = 1; it <= ctx->newton_max_it; it++) {
     PetscInt sweeps;
     PetscCall(PetscLogEventBegin(FC_EVENT_NEWTON, 0, 0, 0, 0));
     PetscCall(FCPhaseBegin(FC_PHASE_REBUILD_W));
-    PetscCall(PetscArrayzero(W, M * M));
-    for (PetscInt b = 0; b < ctx->nbodies; b++)
-      if (ctx->bodies[b]->ops.addcompliance) PetscCall((*ctx->bodies[b]->ops.addcompliance)(ctx->bodies[b], b, set, W));
-    for (PetscInt k = 0; k < M * M; k++) W[k] *= h * h;
+    PetscCall(FCSchemeCompliance(ctx->nbodies, ctx->bodies, set, W));
     PetscCall(FCPhaseEnd(FC_PHASE_REBUILD_W));
     PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
     PetscCall(FCContactProblemCreateDense(nc, dims, mu, W, q, &prob));
