@@ -50,6 +50,8 @@ PETSC_EXTERN PetscErrorCode FCOptionsReal(PetscOptionItems *, const char opt[], 
                                           PetscBool *);
 PETSC_EXTERN PetscErrorCode FCOptionsRealArray(PetscOptionItems *, const char opt[], const char text[], PetscInt n,
                                                PetscReal[], PetscBool *);
+PETSC_EXTERN PetscErrorCode FCOptionsRealList(PetscOptionItems *, const char opt[], const char text[], PetscInt nmax,
+                                              PetscReal[], PetscInt *n, PetscBool *);
 /* Range checks whose error names the option with its prefix */
 PETSC_EXTERN PetscErrorCode FCCheckPositive(MPI_Comm, const char prefix[], const char opt[], PetscReal);
 PETSC_EXTERN PetscErrorCode FCCheckNonNegative(MPI_Comm, const char prefix[], const char opt[], PetscReal);

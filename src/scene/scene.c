@@ -91,8 +91,8 @@ static PetscErrorCode ReadContactPairs(FCScene s)
       PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
   if (set && np > 0) {
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_distance", "Alarm distance", &s->pairs.distance, NULL));
-    PetscCall(PetscOptionsRealArray("-contact_mu", "Friction coefficient: one value, or one per pair", NULL, mu, &nmu,
-                                    &setmu));
+    PetscCall(FCOptionsRealList(PetscOptionsObject, "-contact_mu", "Friction coefficient: one value, or one per pair",
+                                FC_MAX_BODIES, mu, &nmu, &setmu));
   }
   PetscOptionsEnd();
   if (!set || np == 0) PetscFunctionReturn(0);

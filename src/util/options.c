@@ -83,6 +83,24 @@ PetscErrorCode FCOptionsRealArray(PetscOptionItems *PetscOptionsObject, const ch
   PetscFunctionReturn(0);
 }
 
+/* A list of 1 to nmax finite numbers; n returns how many were given */
+PetscErrorCode FCOptionsRealList(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[],
+                                 PetscInt nmax, PetscReal v[], PetscInt *n, PetscBool *set)
+{
+  PetscBool flg = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_FALSE));
+  *n = nmax;
+  PetscCall(PetscOptionsRealArray(opt, text, NULL, v, n, &flg));
+  for (PetscInt i = 0; flg && i < *n; i++)
+    PetscCheck(PetscIsNormalReal(v[i]) || v[i] == 0.0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT,
+               "Option -%s%s: entry %" PetscInt_FMT " must be a finite number, got %g", PrefixOf(PetscOptionsObject),
+               opt + 1, i, (double)v[i]);
+  if (set) *set = flg;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCCheckPositive(MPI_Comm comm, const char prefix[], const char opt[], PetscReal v)
 {
   PetscFunctionBegin;
