@@ -139,6 +139,8 @@ typedef struct {
   PetscInt    state;           /* 0 open, 1 stick, 2 slip */
   PetscInt    side2;           /* what side 2 is: FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE */
   PetscReal   nb[3];           /* FC_SIDE_RIGID_TRIANGLE: the normal in side 2's body frame             */
+  PetscReal   wnn;             /* normal diagonal entry of the step's W (m/N): scales the end measures  */
+  PetscReal   n_end[3], d_end[3]; /* end of the step: normal on the real geometry, d = p1 - p2 (world)  */
 } FCContact;
 enum { FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE };
 
@@ -273,9 +275,8 @@ typedef struct {
    computed, so that every contact also carries its free-motion positions) */
 PETSC_INTERN PetscErrorCode FCCollisionDetect(MPI_Comm, PetscInt nbodies, FCBody bodies[], const FCContactPairs *,
                                               FCContactSet *);
-/* Gap of every contact at the end of the step, on the real geometry (end-of-step normals) */
-PETSC_INTERN PetscErrorCode FCCollisionEndGaps(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCContactSet *,
-                                               PetscReal *max_penetration);
+/* Gap, normal and d = p1 - p2 of every contact at the end of the step, on the real geometry */
+PETSC_INTERN PetscErrorCode FCCollisionEndGaps(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCContactSet *);
 
 typedef struct {
   PetscInt  contacts, rows, sweeps;
@@ -315,11 +316,18 @@ PETSC_INTERN void FCContactPreviousForce(const FCContactSet *previous, const FCC
 /* Tangents completing a normal: the frame C_i = [n t1 t2] (src/contact/contactset.c) */
 PETSC_INTERN void FCContactFrame(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3]);
 
+/* End-of-step accuracy measures of a contact set (src/contact/measures.c, docs/output.md) */
+typedef struct {
+  PetscReal max_penetration, rms_penetration, violation, complementarity, cone_violation;
+} FCContactMeasures;
+PETSC_INTERN void FCContactSetMeasure(const FCContactSet *, FCContactMeasures *);
+/* wnn of every contact: the normal diagonal entry of W (row-major M x M, in the contacts' frames) */
+PETSC_INTERN void FCContactSetNormalCompliance(FCContactSet *, const PetscReal W[]);
+
 struct _FCContactSetView {
-  const FCContactSet  *set;
-  const FCSchemeStats *stats;
-  PetscReal            max_penetration;
-  PetscReal            violation;
+  const FCContactSet      *set;
+  const FCSchemeStats     *stats;
+  const FCContactMeasures *measures;
 };
 
 /* Progress line on rank 0 (src/util/progress.c) */

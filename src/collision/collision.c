@@ -384,23 +384,24 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCContactSet *set,
-                                  PetscReal *maxpen)
+PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCContactSet *set)
 {
   PetscMPIInt rank;
-  PetscReal  *g, minimum = PETSC_MAX_REAL;
+  PetscReal  *g; /* per contact: gap, end normal (3), d = p1 - p2 (3) */
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(PetscCalloc1(set->n + 1, &g));
+  PetscCall(PetscCalloc1(7 * set->n + 1, &g));
   for (PetscInt k = 0; k < set->n; k++) {
     FCContact *c = &set->c[k];
-    PetscReal  x[3], n[3], cpb[3];
+    PetscReal  x[3], p2[3], cpb[3];
     if (c->side2 != FC_SIDE_SHAPE || c->owner != rank) continue; /* triangles below */
     PetscCall((*bodies[c->body[0]]->ops.proximityposition)(bodies[c->body[0]], &c->prox[0], FC_AT_NOW, x));
-    PetscCall((*bodies[c->body[1]]->ops.shapedistance)(bodies[c->body[1]], x, &g[k], n, cpb));
+    PetscCall((*bodies[c->body[1]]->ops.shapedistance)(bodies[c->body[1]], x, &g[7 * k], &g[7 * k + 1], cpb));
+    PetscCall((*bodies[c->body[1]]->ops.proximityposition)(bodies[c->body[1]], &c->prox[1], FC_AT_NOW, p2));
+    for (int d = 0; d < 3; d++) g[7 * k + 4 + d] = x[d] - p2[d];
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, g, set->n, MPIU_REAL, MPIU_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, g, 7 * set->n, MPIU_REAL, MPIU_SUM, comm));
   { /* contacts against FE triangles: the point and the triangle's vertices now, summed over the
        ranks that own them; the gap is measured along the triangle's end-of-step normal */
     PetscInt   nfe = 0, *idx;
@@ -427,7 +428,7 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, xs, 12 * nfe, MPIU_REAL, MPIU_SUM, comm));
     for (PetscInt j = 0; j < nfe; j++) {
       FCContact *c = &set->c[idx[j]];
-      PetscReal  tri[3][3], p2[3] = {0, 0, 0}, nrm[3], diff[3], *x1 = &xs[12 * j];
+      PetscReal  tri[3][3], p2[3] = {0, 0, 0}, nrm[3], *x1 = &xs[12 * j], *gk = &g[7 * idx[j]];
       if (c->side2 == FC_SIDE_RIGID_TRIANGLE) { /* the triangle moved rigidly: rotate its normal */
         FCProximity o = {0}, e = {0};
         PetscReal   p0[3], pe[3];
@@ -436,28 +437,30 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
         PetscCall((*B->ops.proximityposition)(B, &c->prox[1], FC_AT_NOW, p2));
         PetscCall((*B->ops.proximityposition)(B, &o, FC_AT_NOW, p0));
         PetscCall((*B->ops.proximityposition)(B, &e, FC_AT_NOW, pe));
-        for (int d = 0; d < 3; d++) {
-          nrm[d]  = pe[d] - p0[d];
-          diff[d] = x1[d] - p2[d];
-        }
-        g[idx[j]] = FCDot(nrm, diff);
-        continue;
+        for (int d = 0; d < 3; d++) nrm[d] = pe[d] - p0[d];
+      } else {
+        for (int a = 0; a < 3; a++)
+          for (int d = 0; d < 3; d++) tri[a][d] = xs[12 * j + 3 + 3 * a + d];
+        for (int a = 0; a < 3; a++)
+          for (int d = 0; d < 3; d++) p2[d] += c->prox[1].w[a] * tri[a][d];
+        TriangleNormal(tri, nrm);
       }
-      for (int a = 0; a < 3; a++)
-        for (int d = 0; d < 3; d++) tri[a][d] = xs[12 * j + 3 + 3 * a + d];
-      for (int a = 0; a < 3; a++)
-        for (int d = 0; d < 3; d++) p2[d] += c->prox[1].w[a] * tri[a][d];
-      TriangleNormal(tri, nrm);
-      for (int d = 0; d < 3; d++) diff[d] = x1[d] - p2[d];
-      g[idx[j]] = FCDot(nrm, diff);
+      for (int d = 0; d < 3; d++) {
+        gk[1 + d] = nrm[d];
+        gk[4 + d] = x1[d] - p2[d];
+      }
+      gk[0] = FCDot(nrm, &gk[4]);
     }
     PetscCall(PetscFree2(idx, xs));
   }
   for (PetscInt k = 0; k < set->n; k++) {
-    set->c[k].gap_end = g[k];
-    minimum           = PetscMin(minimum, g[k]);
+    FCContact *c = &set->c[k];
+    c->gap_end   = g[7 * k];
+    for (int d = 0; d < 3; d++) {
+      c->n_end[d] = g[7 * k + 1 + d];
+      c->d_end[d] = g[7 * k + 4 + d];
+    }
   }
-  *maxpen = set->n ? PetscMax(0.0, -minimum) : 0.0;
   PetscCall(PetscFree(g));
   PetscFunctionReturn(0);
 }

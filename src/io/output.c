@@ -16,7 +16,7 @@ struct _p_FCOutput {
   MPI_Comm    comm;
   PetscMPIInt rank;
   char        filename[PETSC_MAX_PATH_LEN], xdmfname[PETSC_MAX_PATH_LEN];
-  hid_t       file, time, step, energy, timing[FC_PHASE_NUM], ftime, fstep;
+  hid_t       file, time, step, energy, denergy, timing[FC_PHASE_NUM], ftime, fstep;
   PetscInt    nbodies;
   FCBody     *bodies;
   BodyOut    *bo;
@@ -24,11 +24,12 @@ struct _p_FCOutput {
   PetscInt  nrows, maxrows;
   double   *rtime, *renergy, *rtiming, *rbody; /* rbody: per row, per body: centroid 3, quaternion 4, energy 3 */
   PetscInt *rstep;
+  double    elast; /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt  nframes, xdmfwritten;
   /* contacts (scenes with contact pairs only) */
   PetscBool contacts;
   hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state;
-  hid_t     s_contacts, s_rows, s_sweeps, s_residual, s_maxpen, s_newton, s_violation;
+  hid_t     s_contacts, s_rows, s_sweeps, s_residual, s_maxpen, s_newton, s_violation, s_rmspen, s_compl, s_cone;
   long long ctotal;             /* contacts recorded so far */
   PetscInt  nc, maxc, ns, maxs; /* buffered contact records and per-step rows */
   struct {
@@ -37,7 +38,8 @@ struct _p_FCOutput {
   } * cbuf;
   struct {
     long long contacts, rows, sweeps, offset, newton;
-    double    residual, maxpen, violation;
+    double    residual;
+    FCContactMeasures m;
   } * sbuf;
   double  *frametimes;
   PetscInt maxframes;
@@ -233,10 +235,21 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     PetscCall(AttrInt(out->file, "time_steps", nsteps));
     PetscCall(AttrInt(out->file, "output_every", every));
   }
+  out->elast = 0.0; /* the total energy at t = 0: the reference of /steps/energy_change */
+  for (PetscInt i = 0; i < nbodies; i++) {
+    FCEnergy E;
+    PetscCall(FCBodyGetEnergy(bodies[i], &E));
+    out->elast += E.kinetic + E.elastic + E.gravity;
+  }
+  {
+    PetscReal e0 = out->elast;
+    PetscCall(AttrReals(out->file, "initial_energy", 1, &e0));
+  }
   g = H5Gcreate2(out->file, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   PetscCall(CreateRows(g, "time", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->time));
   PetscCall(CreateRows(g, "step", H5T_NATIVE_LLONG, 1, NULL, 256, &out->step));
   PetscCall(CreateRows(g, "energy", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->energy));
+  PetscCall(CreateRows(g, "energy_change", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->denergy));
   gt = H5Gcreate2(g, "timing", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   for (int p = 0; p < FC_PHASE_NUM; p++)
     PetscCall(CreateRows(gt, FCPhaseNames[p], H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->timing[p]));
@@ -263,6 +276,9 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     PetscCall(CreateRows(gs, "max_penetration", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_maxpen));
     PetscCall(CreateRows(gs, "newton_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_newton));
     PetscCall(CreateRows(gs, "violation", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_violation));
+    PetscCall(CreateRows(gs, "rms_penetration", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_rmspen));
+    PetscCall(CreateRows(gs, "complementarity", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_compl));
+    PetscCall(CreateRows(gs, "cone_violation", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_cone));
     PetscCall(AppendRows(out, out->c_offset, H5T_NATIVE_LLONG, 1, &zero));
     H5Gclose(gs);
     H5Gclose(gc);
@@ -406,9 +422,8 @@ PetscErrorCode FCOutputRecordContacts(FCOutput out, const struct _FCContactSetVi
   out->sbuf[out->ns].rows      = v->stats->rows;
   out->sbuf[out->ns].sweeps    = v->stats->sweeps;
   out->sbuf[out->ns].residual  = v->stats->residual;
-  out->sbuf[out->ns].maxpen    = v->max_penetration;
+  out->sbuf[out->ns].m         = *v->measures;
   out->sbuf[out->ns].newton    = v->stats->newton;
-  out->sbuf[out->ns].violation = v->violation;
   out->sbuf[out->ns].offset    = out->ctotal;
   out->ns++;
   PetscFunctionReturn(0);
@@ -451,12 +466,18 @@ static PetscErrorCode FlushContacts(FCOutput out)
   PetscCall(AppendRows(out, out->s_sweeps, H5T_NATIVE_LLONG, m, l));
   for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].residual;
   PetscCall(AppendRows(out, out->s_residual, H5T_NATIVE_DOUBLE, m, d));
-  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].maxpen;
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.max_penetration;
   PetscCall(AppendRows(out, out->s_maxpen, H5T_NATIVE_DOUBLE, m, d));
   for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].newton;
   PetscCall(AppendRows(out, out->s_newton, H5T_NATIVE_LLONG, m, l));
-  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].violation;
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.violation;
   PetscCall(AppendRows(out, out->s_violation, H5T_NATIVE_DOUBLE, m, d));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.rms_penetration;
+  PetscCall(AppendRows(out, out->s_rmspen, H5T_NATIVE_DOUBLE, m, d));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.complementarity;
+  PetscCall(AppendRows(out, out->s_compl, H5T_NATIVE_DOUBLE, m, d));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.cone_violation;
+  PetscCall(AppendRows(out, out->s_cone, H5T_NATIVE_DOUBLE, m, d));
   PetscCall(PetscFree2(d, l));
   out->nc = out->ns = 0;
   PetscFunctionReturn(0);
@@ -531,6 +552,11 @@ PetscErrorCode FCOutputFlush(FCOutput out)
     PetscCall(AppendRows(out, out->time, H5T_NATIVE_DOUBLE, n, out->rtime));
     PetscCall(AppendRows(out, out->step, H5T_NATIVE_LLONG, n, steps));
     PetscCall(AppendRows(out, out->energy, H5T_NATIVE_DOUBLE, n, out->renergy));
+    for (PetscInt r = 0; r < n; r++) { /* energy change over each step: a scheme adding energy shows here */
+      tmp[r]     = out->renergy[r] - out->elast;
+      out->elast = out->renergy[r];
+    }
+    PetscCall(AppendRows(out, out->denergy, H5T_NATIVE_DOUBLE, n, tmp));
     for (int p = 0; p < FC_PHASE_NUM; p++) {
       for (PetscInt r = 0; r < n; r++) tmp[r] = out->rtiming[r * FC_PHASE_NUM + p];
       PetscCall(AppendRows(out, out->timing[p], H5T_NATIVE_DOUBLE, n, tmp));
@@ -581,13 +607,15 @@ PetscErrorCode FCOutputDestroy(FCOutput *output)
     H5Dclose(out->time);
     H5Dclose(out->step);
     H5Dclose(out->energy);
+    H5Dclose(out->denergy);
     for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
     H5Dclose(out->ftime);
     H5Dclose(out->fstep);
     if (out->contacts) {
       hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,   out->c_force,
                     out->c_gap,    out->c_gapend,   out->c_state,  out->s_contacts, out->s_rows,
-                    out->s_sweeps, out->s_residual, out->s_maxpen, out->s_newton,   out->s_violation};
+                    out->s_sweeps, out->s_residual, out->s_maxpen, out->s_newton,   out->s_violation,
+                    out->s_rmspen, out->s_compl,    out->s_cone};
       for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) H5Dclose(ds[i]);
     }
     PetscCall(PetscFree(out->cbuf));

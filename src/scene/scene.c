@@ -41,12 +41,12 @@ struct _p_FCScene {
   FCContactSet     set;
   FCContactSet     previous; /* last step's contacts and forces: warm start of the solver */
   FCContactSolver  solver;
-  FCSchemeStats    stats;
-  PetscReal        maxpen;
+  FCSchemeStats     stats;
+  FCContactMeasures measures;
   FCSchemeFunction scheme;
   char             scheme_name[FC_MAX_NAME];
   PetscInt         newton_max_it;
-  PetscReal        newton_tol, violation;
+  PetscReal        newton_tol;
 };
 
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
@@ -248,16 +248,10 @@ PetscErrorCode FCSceneStep(FCScene s)
     PetscCall(FCContactSetCopy(&s->set, &s->previous));
   }
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyIntegrate(s->bodies[i], s->t));
-  if (s->pairs.n) {
+  if (s->pairs.n) { /* accuracy of the step on the real end-of-step geometry */
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
-    PetscCall(FCCollisionEndGaps(s->comm, s->nbodies, s->bodies, &s->set, &s->maxpen));
-    /* complementarity on the real end-of-step geometry: a pushing contact should be closed
-       (|gap| small), an open one should not penetrate */
-    s->violation = 0.0;
-    for (PetscInt k = 0; k < s->set.n; k++) {
-      const FCContact *c = &s->set.c[k];
-      s->violation = PetscMax(s->violation, c->force[0] > 0.0 ? PetscAbsReal(c->gap_end) : PetscMax(0.0, -c->gap_end));
-    }
+    PetscCall(FCCollisionEndGaps(s->comm, s->nbodies, s->bodies, &s->set));
+    FCContactSetMeasure(&s->set, &s->measures);
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
   }
   s->step++;
@@ -270,7 +264,7 @@ PetscErrorCode FCSceneStep(FCScene s)
   /* the output of this step (frame and flush) is counted in the next step's row */
   PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, s->nbodies, s->bodies));
   if (s->pairs.n) {
-    struct _FCContactSetView v = {&s->set, &s->stats, s->maxpen, s->violation};
+    struct _FCContactSetView v = {&s->set, &s->stats, &s->measures};
     PetscCall(FCOutputRecordContacts(s->output, &v));
   }
   if (s->step % s->every == 0 || s->step == s->nsteps)

@@ -24,6 +24,7 @@ PetscErrorCode FCSchemeExplicit(MPI_Comm comm, PetscInt nbodies, FCBody bodies[]
   PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
   PetscCall(FCSchemeCompliance(nbodies, bodies, set, W));
   PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
+  FCContactSetNormalCompliance(set, W);
   FCSchemeStartLinearization(set, dfree, d0, q, mu, dims);
   PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
   PetscCall(FCContactProblemCreateDense(set->n, dims, mu, W, q, &prob));

@@ -118,6 +118,7 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
     }
     PetscCall(MatDenseGetArrayRead(Wk, &w)); /* symmetric */
     PetscCall(FCContactProblemCreateDense(nc, dims, mu, w, q, &prob));
+    FCContactSetNormalCompliance(set, w);
     PetscCall(MatDenseRestoreArrayRead(Wk, &w));
     PetscCall(FCContactSolverSolve(ctx->solver, prob, lambda));
     PetscCall(FCContactSolverGetConvergence(ctx->solver, &sweeps, &st->residual, &conv));

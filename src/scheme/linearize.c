@@ -107,3 +107,8 @@ void FCContactPreviousForce(const FCContactSet *previous, const FCContact *c, Pe
   for (int i = 0; i < 3; i++)
     F[i] = old ? old->force[0] * old->n[i] + old->force[1] * old->t1[i] + old->force[2] * old->t2[i] : 0.0;
 }
+
+void FCContactSetNormalCompliance(FCContactSet *set, const PetscReal W[])
+{
+  for (PetscInt k = 0; k < set->n; k++) set->c[k].wnn = W[set->c[k].row * set->nrows + set->c[k].row];
+}

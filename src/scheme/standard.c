@@ -43,6 +43,7 @@ PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
     PetscCall(FCPhaseBegin(FC_PHASE_REBUILD_W));
     PetscCall(FCSchemeCompliance(ctx->nbodies, ctx->bodies, set, W));
     PetscCall(FCPhaseEnd(FC_PHASE_REBUILD_W));
+    FCContactSetNormalCompliance(set, W);
     PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
     PetscCall(FCContactProblemCreateDense(nc, dims, mu, W, q, &prob));
     PetscCall(FCContactSolverSolve(ctx->solver, prob, lambda));

@@ -1,0 +1,48 @@
+/* Accuracy measures of a step's contacts at the end of the step, on the real geometry
+   (FCCollisionEndGaps gives each contact's end gap, end normal and d = p1 - p2). They judge what
+   a scheme delivered, independently of the linearization it solved (eq. 18 in its frames):
+     penetration      max and RMS over contacts of max(0, -gap_end)                          (m)
+     violation        max over contacts of |gap_end| if the contact pushes, else max(0, -gap_end)
+     complementarity  RMS over contacts of the natural-map error ||r - P_K(r - (u + mu |u_T| e_n))||
+                      with u = (gap_end, t1e.(d_end - d0), t2e.(d_end - d0)) in the end frame
+                      [n_end t1e t2e] and r = W_nn F (the force as the displacement it causes
+                      alone, so that r and u are both lengths)                                (m)
+     cone violation   max over contacts of (||F_T|| - mu F_n)^+ + (-F_n)^+ in the end frame,
+                      relative to the largest contact force (frictionless: any tangential part
+                      of F in the end frame is outside the cone)                              (-) */
+#include "contactimpl.h"
+
+void FCContactSetMeasure(const FCContactSet *set, FCContactMeasures *m)
+{
+  PetscReal pen2 = 0.0, e2 = 0.0, fmax = 0.0, cone = 0.0;
+
+  PetscMemzero(m, sizeof(*m));
+  for (PetscInt k = 0; k < set->n; k++) {
+    const FCContact *c = &set->c[k];
+    PetscReal        t1[3], t2[3], F[3], Fe[3], r[3], u[3], rel[3], pen = PetscMax(0.0, -c->gap_end), ft;
+    m->max_penetration = PetscMax(m->max_penetration, pen);
+    pen2 += pen * pen;
+    m->violation = PetscMax(m->violation, c->force[0] > 0.0 ? PetscAbsReal(c->gap_end) : pen);
+    FCContactFrame(c->n_end, t1, t2);
+    for (int i = 0; i < 3; i++) {
+      F[i]   = c->force[0] * c->n[i] + c->force[1] * c->t1[i] + c->force[2] * c->t2[i];
+      rel[i] = c->d_end[i] - (c->p0[0][i] - c->p0[1][i]);
+    }
+    Fe[0] = FCDot(F, c->n_end);
+    Fe[1] = FCDot(F, t1);
+    Fe[2] = FCDot(F, t2);
+    u[0]  = c->gap_end;
+    u[1]  = FCDot(rel, t1);
+    u[2]  = FCDot(rel, t2);
+    for (int i = 0; i < 3; i++) r[i] = c->wnn * Fe[i];
+    e2 += FCContactNaturalMapError2(c->dim, c->mu, r, u);
+    ft   = PetscSqrtReal(Fe[1] * Fe[1] + Fe[2] * Fe[2]);
+    fmax = PetscMax(fmax, PetscSqrtReal(FCDot(F, F)));
+    cone = PetscMax(cone, PetscMax(0.0, ft - (c->dim == 3 ? c->mu : 0.0) * PetscMax(Fe[0], 0.0)) + PetscMax(0.0, -Fe[0]));
+  }
+  if (set->n) {
+    m->rms_penetration = PetscSqrtReal(pen2 / set->n);
+    m->complementarity = PetscSqrtReal(e2 / set->n);
+    m->cone_violation  = fmax > 0.0 ? cone / fmax : 0.0;
+  }
+}
