@@ -1,0 +1,43 @@
+/* Private data of an FE body (src/body/fem.c), shared with its compliance builders
+   (src/body/fem_compliance.c). */
+#pragma once
+#include "../fcimpl.h"
+
+typedef struct {
+  FCMesh     mesh;
+  FCMaterial mat;
+  char       material[FC_MAX_NAME];
+  PetscReal  young, poisson, alpha, beta;
+  PetscBool  lumped, has_fixed_box;
+  PetscReal  fixed_box[6];
+  PetscInt   nfixed;      /* global number of fixed vertices */
+  PetscInt  *ldof;        /* per local vertex: offset in the local vector */
+  PetscInt  *gdof;        /* per local vertex: first global DOF, -1 when fixed */
+  PetscBool *fixed;       /* per local vertex */
+  PetscReal *Dminv, *vol; /* per cell */
+  Mat        M, K, A;
+  Vec        u, v, dv, b, fint, fgrav, work, uloc, floc;
+  KSP        ksp;
+  PetscInt   nassembly, nfactor;
+  PetscBool  Acurrent; /* A, K and f_int belong to the current state */
+  PetscReal  mass;
+  /* contact */
+  PetscInt           nbv, *bv;         /* owned boundary vertices (local vertex indices)          */
+  Vec                Xg;               /* placed reference coordinates, layout of u               */
+  Mat                JT, X;            /* J_b^T and A^-1 J_b^T of the step's contacts (dense)     */
+  PetscInt           ncols, *cols;     /* global constraint row of each column of JT and X        */
+  PetscReal         *bx0, *bxf, *bkey; /* contact point buffers                                   */
+  FCProximity       *bprox;
+  char               compliance[FC_MAX_NAME]; /* builder of A^-1 J^T: dense or sparse right-hand sides */
+  PetscInt           ntri;                    /* local boundary faces: vertices (local indices, outward order) */
+  PetscInt          *triv;
+  FCSurfaceTriangle *tri;
+  Vec                vloc, dvloc;
+  Vec                dvfree; /* recursive schemes: dv_free kept while corrections are tried */
+} FEM;
+
+/* Compliance builders (-compliance_type, src/body/fem_compliance.c) */
+PETSC_INTERN PetscErrorCode FCFEMAddCompliance(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
+PETSC_INTERN PetscErrorCode FCFEMApplyCorrection(FCBody, PetscInt self, const FCContactSet *, const PetscReal lambda[]);
+PETSC_INTERN PetscErrorCode FCFEMComplianceDestroy(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMGet(FCBody, FEM **); /* checks that the body is an FE body */
