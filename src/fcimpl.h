@@ -134,12 +134,12 @@ typedef struct {
   PetscReal   n[3], t1[3], t2[3];    /* frame at the start of the step */
   PetscReal   p0[2][3], pfree[2][3]; /* proximity positions at the start and after free motion */
   PetscReal   gap0, mu, gap_end;
-  PetscInt    dim, row, owner; /* rows (1 frictionless, 3), first row, detecting rank */
-  PetscReal   force[3];        /* lambda in the [n t1 t2] frame (force units)      */
-  PetscInt    state;           /* 0 open, 1 stick, 2 slip */
-  PetscInt    side2;           /* what side 2 is: FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE */
-  PetscReal   nb[3];           /* FC_SIDE_RIGID_TRIANGLE: the normal in side 2's body frame             */
-  PetscReal   wnn;             /* normal diagonal entry of the step's W (m/N): scales the end measures  */
+  PetscInt    dim, row, owner;    /* rows (1 frictionless, 3), first row, detecting rank */
+  PetscReal   force[3];           /* lambda in the [n t1 t2] frame (force units)      */
+  PetscInt    state;              /* 0 open, 1 stick, 2 slip */
+  PetscInt    side2;              /* what side 2 is: FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE */
+  PetscReal   nb[3];              /* FC_SIDE_RIGID_TRIANGLE: the normal in side 2's body frame             */
+  PetscReal   wnn;                /* normal diagonal entry of the step's W (m/N): scales the end measures  */
   PetscReal   n_end[3], d_end[3]; /* end of the step: normal on the real geometry, d = p1 - p2 (world)  */
 } FCContact;
 enum { FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE };

@@ -15,6 +15,9 @@
      -<body>_rayleigh_mass alpha      damping alpha M (>= 0, default 0)
      -<body>_rayleigh_stiffness beta  damping beta K (>= 0, default 0)
      -<body>_fixed_box x0,y0,z0,x1,y1,z1   vertices inside (placed coordinates) are fixed
+     -<body>_refactor_every k         co-rotational only: factor A every k steps (>= 1, default 1);
+                                      between, K and f_int are current but A^-1 is the older
+                                      factor's (a modified-Newton free motion, cheaper, less exact)
      -<body>_ksp_type, -<body>_pc_type, -<body>_pc_factor_mat_solver_type ...   the solver */
 #include "femimpl.h"
 
@@ -40,7 +43,12 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
   PetscCall(FCOptionsRealArray(PetscOptionsObject, "-fixed_box",
                                "Fix the vertices inside xmin,ymin,zmin,xmax,ymax,zmax", 6, fem->fixed_box,
                                &fem->has_fixed_box));
+  if (strcmp(fem->material, "linear")) /* a linear A never changes: nothing to refactor */
+    PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_every", "Factor A every k steps (co-rotational)",
+                           &fem->refactor_every, NULL));
   PetscOptionsEnd();
+  PetscCheck(fem->refactor_every >= 1, body->comm, PETSC_ERR_USER_INPUT,
+             "Option -%srefactor_every must be >= 1, got %" PetscInt_FMT, body->prefix, fem->refactor_every);
   PetscCheck(!strcmp(masstype, "consistent") || !strcmp(masstype, "lumped"), body->comm, PETSC_ERR_USER_INPUT,
              "Unknown mass type '%s' in -%smass_type (known: consistent, lumped)", masstype, body->prefix);
   fem->lumped = !strcmp(masstype, "lumped") ? PETSC_TRUE : PETSC_FALSE;
@@ -161,6 +169,7 @@ static PetscErrorCode FormAndFactorA(FCBody body)
                body->name, PCFailedReasons[reason]);
   }
   fem->nfactor++;
+  fem->factor_age = 0;
   PetscCall(FCPhaseEnd(FC_PHASE_FACTORIZATION));
   fem->Acurrent = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -573,9 +582,10 @@ static PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
   PetscReal h   = body->h;
 
   PetscFunctionBegin;
-  if (!fem->Acurrent) { /* co-rotational: K, f_int and A at q_t */
+  if (!fem->Acurrent) { /* co-rotational: K and f_int at q_t; A too every refactor_every steps */
     PetscCall(AssembleElastic(body, fem->u, fem->fint, fem->K));
-    PetscCall(FormAndFactorA(body));
+    if (fem->factor_age >= fem->refactor_every) PetscCall(FormAndFactorA(body));
+    fem->Acurrent = PETSC_TRUE;
   }
   PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));
   if (fem->mat->linear) PetscCall(MatMult(fem->K, fem->u, fem->fint)); /* f_int = K u */
@@ -606,6 +616,7 @@ static PetscErrorCode Integrate_FEM(FCBody body, PetscReal t)
   PetscCall(VecAXPY(fem->v, 1.0, fem->dv));
   PetscCall(VecAXPY(fem->u, body->h, fem->v));
   if (!fem->mat->linear) fem->Acurrent = PETSC_FALSE;
+  fem->factor_age++;
   PetscFunctionReturn(0);
 }
 
@@ -700,6 +711,7 @@ static PetscErrorCode Destroy_FEM(FCBody body)
 
   PetscFunctionBegin;
   PetscCall(KSPDestroy(&fem->ksp));
+  PetscCall(FCFEMComplianceDestroy(body));
   PetscCall(MatDestroy(&fem->M));
   PetscCall(MatDestroy(&fem->K));
   PetscCall(MatDestroy(&fem->A));
@@ -740,6 +752,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   PetscCall(PetscStrncpy(fem->material, "linear", sizeof(fem->material)));
   PetscCall(PetscStrncpy(fem->compliance, "dense", sizeof(fem->compliance)));
   fem->poisson                 = 0.3;
+  fem->refactor_every          = 1;
   body->data                   = fem;
   body->ops.setfromoptions     = SetFromOptions_FEM;
   body->ops.setup              = SetUp_FEM;

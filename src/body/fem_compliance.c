@@ -86,6 +86,234 @@ static PetscErrorCode SchurCompliance(FCBody body, PetscInt ncols, PetscReal *Wb
   PetscFunctionReturn(0);
 }
 
+/* ---- precomputed builder ---- */
+
+/* The surface (sorted first global DOFs of the non-fixed boundary vertices, on every rank) and,
+   for a co-rotational body, a factor of A_0: called at set-up, while A is still A at q = 0 */
+static PetscErrorCode PrecomputedSetUp(FCBody body)
+{
+  FEM        *fem = (FEM *)body->data;
+  PetscMPIInt size, n = 0, *counts, *displs;
+  PetscInt   *mine;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(body->comm, &size));
+  PetscCall(PetscMalloc3(fem->nbv + 1, &mine, size, &counts, size + 1, &displs));
+  for (PetscInt i = 0; i < fem->nbv; i++)
+    if (fem->gdof[fem->bv[i]] >= 0) mine[n++] = fem->gdof[fem->bv[i]];
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts, 1, MPI_INT, body->comm));
+  displs[0] = 0;
+  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
+  fem->nsurf = displs[size];
+  PetscCall(PetscMalloc2(fem->nsurf + 1, &fem->surf, fem->nsurf + 1, &fem->slot));
+  PetscCallMPI(MPI_Allgatherv(mine, n, MPIU_INT, fem->surf, counts, displs, MPIU_INT, body->comm));
+  PetscCall(PetscSortInt(fem->nsurf, fem->surf));
+  for (PetscInt i = 0; i < fem->nsurf; i++) fem->slot[i] = -1;
+  PetscCall(PetscFree3(mine, counts, displs));
+  FCMat3Identity(fem->Rwarp);
+  if (!fem->mat->linear) {
+    PC pc;
+    PetscCall(MatDuplicate(fem->A, MAT_COPY_VALUES, &fem->A0));
+    PetscCall(KSPCreate(body->comm, &fem->ksp0));
+    PetscCall(KSPSetOptionsPrefix(fem->ksp0, body->prefix));
+    PetscCall(KSPSetType(fem->ksp0, KSPPREONLY));
+    PetscCall(KSPGetPC(fem->ksp0, &pc));
+    PetscCall(PCSetType(pc, PCCHOLESKY));
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    PetscCall(KSPSetFromOptions(fem->ksp0));
+    PetscCall(KSPSetOperators(fem->ksp0, fem->A0, fem->A0));
+    PetscCall(KSPSetUp(fem->ksp0));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Best-fit rotation of the body now (shape matching: the polar factor of
+   sum (x - c)(X - C)^T over the vertices); identity for a linear material */
+static PetscErrorCode WarpRotation(FCBody body)
+{
+  FEM               *fem   = (FEM *)body->data;
+  FCMesh            *m     = &fem->mesh;
+  PetscReal          s[16] = {0}, A[9]; /* sum X, sum x, count, sum x X^T */
+  const PetscScalar *u;
+  PetscInt           lo;
+
+  PetscFunctionBegin;
+  FCMat3Identity(fem->Rwarp);
+  if (fem->mat->linear) PetscFunctionReturn(0);
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
+  PetscCall(VecGetArrayRead(fem->u, &u));
+  for (PetscInt v = 0; v < m->vEnd - m->vStart; v++) {
+    PetscReal X[3], x[3];
+    if (!m->owned[v]) continue;
+    for (int d = 0; d < 3; d++) {
+      X[d] = m->X[3 * v + d];
+      x[d] = X[d] + (fem->fixed[v] ? 0.0 : PetscRealPart(u[fem->gdof[v] - lo + d]));
+      s[d] += X[d];
+      s[3 + d] += x[d];
+    }
+    s[6] += 1.0;
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) s[7 + 3 * i + j] += x[i] * X[j];
+  }
+  PetscCall(VecRestoreArrayRead(fem->u, &u));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 16, MPIU_REAL, MPIU_SUM, body->comm));
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) A[3 * i + j] = s[7 + 3 * i + j] - s[3 + i] * s[j] / s[6];
+  FCMat3Polar(A, fem->Rwarp);
+  PetscFunctionReturn(0);
+}
+
+/* Factor of A_0: ksp0 (co-rotational) or the body's own (linear: A never changes) */
+static PetscErrorCode ReferenceSolver(FEM *fem, KSP *ksp)
+{
+  PetscFunctionBegin;
+  *ksp = fem->ksp0 ? fem->ksp0 : fem->ksp;
+  PetscFunctionReturn(0);
+}
+
+/* W_b(i, j) = sum over the vertices a of column i and b of column j of
+   w_a w_b (R^T e_i)^T C_0[a, b] (R^T e_j); columns of C_0 missing from the cache are solved for
+   first, all at once (3 right-hand sides per new surface vertex) */
+static PetscErrorCode PrecomputedCompliance(FCBody body, PetscInt self, const FCContactSet *set, PetscInt ncols,
+                                            PetscReal *Wb)
+{
+  FEM       *fem = (FEM *)body->data;
+  PetscInt  *si, nnew = 0, *newv, ns3 = 3 * fem->nsurf;
+  PetscReal *co, Rt[9];
+
+  PetscFunctionBegin;
+  if (!fem->surf) PetscCall(PrecomputedSetUp(body));
+  PetscCall(WarpRotation(body));
+  FCMat3Transpose(fem->Rwarp, Rt);
+  /* per column: up to 3 (surface vertex, coefficient 3-vector) */
+  PetscCall(PetscMalloc3(3 * ncols, &si, 9 * ncols, &co, 3 * ncols, &newv));
+  {
+    PetscInt col = 0;
+    for (PetscInt k = 0; k < set->n; k++)
+      for (PetscInt s = 0; s < 2; s++) {
+        const FCContact *c = &set->c[k];
+        if (c->body[s] != self) continue;
+        for (PetscInt a = 0; a < c->dim; a++, col++) {
+          PetscReal e[3], er[3];
+          Direction(c, s, a, e);
+          FCMat3Vec(Rt, e, er);
+          for (PetscInt vtx = 0; vtx < 3; vtx++) {
+            PetscInt g = vtx < c->prox[s].nv ? c->prox[s].gdof[vtx] : -1, idx = -1;
+            if (g >= 0) PetscCall(PetscFindInt(g, fem->nsurf, fem->surf, &idx));
+            PetscCheck(g < 0 || idx >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+                       "Contact point of body '%s' is not on its surface", body->name);
+            si[3 * col + vtx] = idx;
+            for (int d = 0; d < 3; d++) co[9 * col + 3 * vtx + d] = idx >= 0 ? c->prox[s].w[vtx] * er[d] : 0.0;
+            if (idx >= 0 && fem->slot[idx] == -1) {
+              fem->slot[idx] = -2; /* queued */
+              newv[nnew++]   = idx;
+            }
+          }
+        }
+      }
+  }
+  if (nnew) { /* C_0 columns of the new vertices: A_0^-1 [e_g e_g+1 e_g+2], kept on the surface rows */
+    KSP                ksp;
+    PC                 pc;
+    Mat                F, B, X;
+    PetscInt           nloc, N, lo;
+    PetscScalar       *b;
+    const PetscScalar *x;
+    PetscReal         *cols;
+    PetscCall(ReferenceSolver(fem, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCFactorGetMatrix(pc, &F));
+    PetscCall(VecGetLocalSize(fem->u, &nloc));
+    PetscCall(VecGetSize(fem->u, &N));
+    PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
+    PetscCall(MatCreateDense(body->comm, nloc, PETSC_DECIDE, N, 3 * nnew, NULL, &B));
+    PetscCall(MatDenseGetArray(B, &b));
+    PetscCall(PetscArrayzero(b, nloc * 3 * nnew));
+    for (PetscInt j = 0; j < nnew; j++) {
+      PetscInt g = fem->surf[newv[j]];
+      if (g >= lo && g < lo + nloc)
+        for (int d = 0; d < 3; d++) b[(g - lo + d) + nloc * (3 * j + d)] = 1.0;
+    }
+    PetscCall(MatDenseRestoreArray(B, &b));
+    PetscCall(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X));
+    PetscCall(MatMatSolve(F, B, X));
+    if (fem->ncached + nnew > fem->maxcached) {
+      PetscReal *grown;
+      fem->maxcached = PetscMax(2 * fem->maxcached, fem->ncached + nnew);
+      PetscCall(PetscMalloc1(9 * fem->nsurf * fem->maxcached, &grown));
+      if (fem->ncached) PetscCall(PetscArraycpy(grown, fem->cache, 9 * fem->nsurf * fem->ncached));
+      PetscCall(PetscFree(fem->cache));
+      fem->cache = grown;
+    }
+    cols = &fem->cache[9 * fem->nsurf * fem->ncached];
+    PetscCall(PetscArrayzero(cols, 9 * fem->nsurf * nnew));
+    PetscCall(MatDenseGetArrayRead(X, &x));
+    for (PetscInt sv = 0; sv < fem->nsurf; sv++) {
+      PetscInt g = fem->surf[sv];
+      if (g < lo || g >= lo + nloc) continue;
+      for (PetscInt c = 0; c < 3 * nnew; c++)
+        for (int d = 0; d < 3; d++) cols[(3 * sv + d) + ns3 * c] = PetscRealPart(x[(g - lo + d) + nloc * c]);
+    }
+    PetscCall(MatDenseRestoreArrayRead(X, &x));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cols, 9 * fem->nsurf * nnew, MPIU_REAL, MPIU_SUM, body->comm));
+    for (PetscInt j = 0; j < nnew; j++) fem->slot[newv[j]] = fem->ncached + j;
+    fem->ncached += nnew;
+    PetscCall(MatDestroy(&B));
+    PetscCall(MatDestroy(&X));
+  }
+  for (PetscInt i = 0; i < ncols; i++)
+    for (PetscInt j = 0; j < ncols; j++) {
+      PetscReal w = 0.0;
+      for (int va = 0; va < 3; va++) {
+        if (si[3 * i + va] < 0) continue;
+        for (int vb = 0; vb < 3; vb++) {
+          const PetscReal *C;
+          if (si[3 * j + vb] < 0) continue;
+          C = &fem->cache[9 * fem->nsurf * fem->slot[si[3 * j + vb]] + 3 * si[3 * i + va]];
+          for (int d = 0; d < 3; d++)
+            for (int e = 0; e < 3; e++) w += co[9 * i + 3 * va + d] * C[d + ns3 * e] * co[9 * j + 3 * vb + e];
+        }
+      }
+      Wb[i * ncols + j] = w;
+    }
+  PetscCall(PetscFree3(si, co, newv));
+  PetscFunctionReturn(0);
+}
+
+/* v = R v (or R^T v) on every vertex block of a global vector */
+static PetscErrorCode RotateBlocks(FEM *fem, Vec v, PetscBool transpose)
+{
+  PetscScalar *a;
+  PetscInt     n;
+
+  PetscFunctionBegin;
+  if (fem->mat->linear) PetscFunctionReturn(0);
+  PetscCall(VecGetLocalSize(v, &n));
+  PetscCall(VecGetArray(v, &a));
+  for (PetscInt i = 0; i < n; i += 3) {
+    PetscReal x[3] = {PetscRealPart(a[i]), PetscRealPart(a[i + 1]), PetscRealPart(a[i + 2])}, y[3];
+    if (transpose)
+      FCMat3TVec(fem->Rwarp, x, y);
+    else
+      FCMat3Vec(fem->Rwarp, x, y);
+    for (int d = 0; d < 3; d++) a[i + d] = y[d];
+  }
+  PetscCall(VecRestoreArray(v, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCFEMComplianceDestroy(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  PetscCall(KSPDestroy(&fem->ksp0));
+  PetscCall(MatDestroy(&fem->A0));
+  PetscCall(PetscFree2(fem->surf, fem->slot));
+  PetscCall(PetscFree(fem->cache));
+  PetscFunctionReturn(0);
+}
+
 /* Compliance, "dense multi-RHS" builder: J_b^T (dense, n_b x m_b) is solved with the factor of
    A in one MatMatSolve, X = A^-1 J_b^T is kept for the correction, and
    W_b = J_b X accumulates only the rows of J_b that are non-zero (3 per vertex). */
@@ -133,9 +361,12 @@ PetscErrorCode FCFEMAddCompliance(FCBody body, PetscInt self, const FCContactSet
     }
   fem->ncols = ncols;
   PetscCall(MatDenseRestoreArray(fem->JT, &jt));
-  if (!strcmp(fem->compliance, "schur")) {
+  if (!strcmp(fem->compliance, "schur") || !strcmp(fem->compliance, "precomputed")) {
     PetscCall(PetscCalloc1(ncols * ncols, &Wb));
-    PetscCall(SchurCompliance(body, ncols, Wb));
+    if (fem->compliance[0] == 's')
+      PetscCall(SchurCompliance(body, ncols, Wb));
+    else
+      PetscCall(PrecomputedCompliance(body, self, set, ncols, Wb));
     for (PetscInt i = 0; i < ncols; i++)
       for (PetscInt j = 0; j < ncols; j++) W[fem->cols[i] * M + fem->cols[j]] += Wb[i * ncols + j];
     PetscCall(PetscFree(Wb));
@@ -193,7 +424,8 @@ PetscErrorCode FCFEMApplyCorrection(FCBody body, PetscInt self, const FCContactS
 
   PetscFunctionBegin;
   if (!fem->ncols) PetscFunctionReturn(0);
-  if (!fem->X) { /* Schur builder: dv += h A^-1 (J_b^T lambda_b), one solve with A's factor */
+  if (!fem->X) { /* Schur builder: dv += h A^-1 (J_b^T lambda_b), one solve with A's factor;
+                    precomputed: the operator of its W, h R A_0^-1 R^T J_b^T lambda_b */
     Vec          lam, rhs;
     PetscScalar *l;
     PetscInt     c0, c1;
@@ -203,7 +435,14 @@ PetscErrorCode FCFEMApplyCorrection(FCBody body, PetscInt self, const FCContactS
     for (PetscInt i = c0; i < c1; i++) l[i - c0] = body->h * lambda[fem->cols[i]];
     PetscCall(VecRestoreArray(lam, &l));
     PetscCall(MatMult(fem->JT, lam, rhs));
-    PetscCall(KSPSolve(fem->ksp, rhs, fem->work));
+    if (fem->surf) {
+      KSP ksp;
+      PetscCall(ReferenceSolver(fem, &ksp));
+      PetscCall(RotateBlocks(fem, rhs, PETSC_TRUE));
+      PetscCall(KSPSolve(ksp, rhs, fem->work));
+      PetscCall(RotateBlocks(fem, fem->work, PETSC_FALSE));
+    } else
+      PetscCall(KSPSolve(fem->ksp, rhs, fem->work));
     PetscCall(VecAXPY(fem->dv, 1.0, fem->work));
     PetscCall(VecDestroy(&lam));
     PetscCall(VecDestroy(&rhs));
@@ -222,16 +461,16 @@ PetscErrorCode FCFEMApplyCorrection(FCBody body, PetscInt self, const FCContactS
   PetscFunctionReturn(0);
 }
 
-
 /* -compliance_type of the scene: how A^-1 J^T is computed for the compliance (eq. 17) */
 PetscErrorCode FCBodyFEMSetComplianceType(FCBody body, const char type[])
 {
   FEM *fem = NULL;
   PetscFunctionBegin;
   PetscCall(FCFEMGet(body, &fem));
-  PetscCheck(!strcmp(type, "dense") || !strcmp(type, "sparse") || !strcmp(type, "schur"), body->comm,
-             PETSC_ERR_USER_INPUT, "Unknown compliance type '%s' in -compliance_type (known: dense, sparse, schur)",
-             type);
+  PetscCheck(!strcmp(type, "dense") || !strcmp(type, "sparse") || !strcmp(type, "schur") ||
+                 !strcmp(type, "precomputed"),
+             body->comm, PETSC_ERR_USER_INPUT,
+             "Unknown compliance type '%s' in -compliance_type (known: dense, sparse, schur, precomputed)", type);
   if (!strcmp(type, "sparse")) {
     PetscMPIInt size;
     PetscCallMPI(MPI_Comm_size(body->comm, &size));
@@ -242,6 +481,6 @@ PetscErrorCode FCBodyFEMSetComplianceType(FCBody body, const char type[])
                "right-hand sides gave wrong results); use -compliance_type dense");
   }
   PetscCall(PetscStrncpy(fem->compliance, type, sizeof(fem->compliance)));
+  if (!strcmp(type, "precomputed")) PetscCall(PrecomputedSetUp(body)); /* A is still A_0 */
   PetscFunctionReturn(0);
 }
-

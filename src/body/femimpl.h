@@ -19,7 +19,9 @@ typedef struct {
   Vec        u, v, dv, b, fint, fgrav, work, uloc, floc;
   KSP        ksp;
   PetscInt   nassembly, nfactor;
-  PetscBool  Acurrent; /* A, K and f_int belong to the current state */
+  PetscBool  Acurrent;       /* K and f_int belong to the current state */
+  PetscInt   refactor_every; /* co-rotational: factor A every k steps, reuse the older factor between */
+  PetscInt   factor_age;     /* steps since A was last factored */
   PetscReal  mass;
   /* contact */
   PetscInt           nbv, *bv;         /* owned boundary vertices (local vertex indices)          */
@@ -34,6 +36,15 @@ typedef struct {
   FCSurfaceTriangle *tri;
   Vec                vloc, dvloc;
   Vec                dvfree; /* recursive schemes: dv_free kept while corrections are tried */
+  /* precomputed compliance: C_0 = A_0^-1 restricted to the surface DOFs, per surface vertex */
+  KSP        ksp0; /* co-rotational: factor of A_0 (reference state); linear: NULL (ksp) */
+  Mat        A0;
+  PetscInt   nsurf; /* non-fixed boundary vertices of the whole body */
+  PetscInt  *surf;  /* their first global DOF, sorted (replicated)    */
+  PetscInt  *slot;  /* per surface vertex: its cached columns, or -1   */
+  PetscReal *cache; /* slot j: 3 nsurf x 3, column-major              */
+  PetscInt   ncached, maxcached;
+  PetscReal  Rwarp[9]; /* best-fit rotation of the body at the start of the step */
 } FEM;
 
 /* Compliance builders (-compliance_type, src/body/fem_compliance.c) */

@@ -38,7 +38,8 @@ void FCContactSetMeasure(const FCContactSet *set, FCContactMeasures *m)
     e2 += FCContactNaturalMapError2(c->dim, c->mu, r, u);
     ft   = PetscSqrtReal(Fe[1] * Fe[1] + Fe[2] * Fe[2]);
     fmax = PetscMax(fmax, PetscSqrtReal(FCDot(F, F)));
-    cone = PetscMax(cone, PetscMax(0.0, ft - (c->dim == 3 ? c->mu : 0.0) * PetscMax(Fe[0], 0.0)) + PetscMax(0.0, -Fe[0]));
+    cone =
+        PetscMax(cone, PetscMax(0.0, ft - (c->dim == 3 ? c->mu : 0.0) * PetscMax(Fe[0], 0.0)) + PetscMax(0.0, -Fe[0]));
   }
   if (set->n) {
     m->rms_penetration = PetscSqrtReal(pen2 / set->n);

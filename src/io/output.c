@@ -37,8 +37,8 @@ struct _p_FCOutput {
     double    point[3], normal[3], force[3], gap, gap_end;
   } * cbuf;
   struct {
-    long long contacts, rows, sweeps, offset, newton;
-    double    residual;
+    long long         contacts, rows, sweeps, offset, newton;
+    double            residual;
     FCContactMeasures m;
   } * sbuf;
   double  *frametimes;
@@ -418,13 +418,13 @@ PetscErrorCode FCOutputRecordContacts(FCOutput out, const struct _FCContactSetVi
     out->nc++;
   }
   out->ctotal += set->n;
-  out->sbuf[out->ns].contacts  = set->n;
-  out->sbuf[out->ns].rows      = v->stats->rows;
-  out->sbuf[out->ns].sweeps    = v->stats->sweeps;
-  out->sbuf[out->ns].residual  = v->stats->residual;
-  out->sbuf[out->ns].m         = *v->measures;
-  out->sbuf[out->ns].newton    = v->stats->newton;
-  out->sbuf[out->ns].offset    = out->ctotal;
+  out->sbuf[out->ns].contacts = set->n;
+  out->sbuf[out->ns].rows     = v->stats->rows;
+  out->sbuf[out->ns].sweeps   = v->stats->sweeps;
+  out->sbuf[out->ns].residual = v->stats->residual;
+  out->sbuf[out->ns].m        = *v->measures;
+  out->sbuf[out->ns].newton   = v->stats->newton;
+  out->sbuf[out->ns].offset   = out->ctotal;
   out->ns++;
   PetscFunctionReturn(0);
 }
@@ -612,10 +612,9 @@ PetscErrorCode FCOutputDestroy(FCOutput *output)
     H5Dclose(out->ftime);
     H5Dclose(out->fstep);
     if (out->contacts) {
-      hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,   out->c_force,
-                    out->c_gap,    out->c_gapend,   out->c_state,  out->s_contacts, out->s_rows,
-                    out->s_sweeps, out->s_residual, out->s_maxpen, out->s_newton,   out->s_violation,
-                    out->s_rmspen, out->s_compl,    out->s_cone};
+      hid_t ds[] = {out->c_offset, out->c_bodies, out->c_point,     out->c_normal, out->c_force,  out->c_gap,
+                    out->c_gapend, out->c_state,  out->s_contacts,  out->s_rows,   out->s_sweeps, out->s_residual,
+                    out->s_maxpen, out->s_newton, out->s_violation, out->s_rmspen, out->s_compl,  out->s_cone};
       for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) H5Dclose(ds[i]);
     }
     PetscCall(PetscFree(out->cbuf));

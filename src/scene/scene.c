@@ -37,16 +37,16 @@ struct _p_FCScene {
   FCProgress progress;
   PetscReal  phase_total[FC_PHASE_NUM];
   /* contact */
-  FCContactPairs   pairs;
-  FCContactSet     set;
-  FCContactSet     previous; /* last step's contacts and forces: warm start of the solver */
-  FCContactSolver  solver;
+  FCContactPairs    pairs;
+  FCContactSet      set;
+  FCContactSet      previous; /* last step's contacts and forces: warm start of the solver */
+  FCContactSolver   solver;
   FCSchemeStats     stats;
   FCContactMeasures measures;
-  FCSchemeFunction scheme;
-  char             scheme_name[FC_MAX_NAME];
-  PetscInt         newton_max_it;
-  PetscReal        newton_tol;
+  FCSchemeFunction  scheme;
+  char              scheme_name[FC_MAX_NAME];
+  PetscInt          newton_max_it;
+  PetscReal         newton_tol;
 };
 
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
