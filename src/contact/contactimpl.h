@@ -11,5 +11,7 @@ struct _p_FCContactProblem {
   PetscReal *val;          /* blocks d_i x d_j, row-major                      */
 };
 
+/* Projection on the Coulomb cone {||x_T|| <= mu x_n} (d = 2, 3) or on R+ (d = 1) */
+PETSC_INTERN void FCContactProjectCone(PetscInt d, PetscReal mu, const PetscReal x[], PetscReal p[]);
 /* ||e||^2 of the natural map of one contact (see FCContactProblemResidual) */
 PETSC_INTERN PetscReal FCContactNaturalMapError2(PetscInt dim, PetscReal mu, const PetscReal r[], const PetscReal u[]);

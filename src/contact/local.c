@@ -9,7 +9,7 @@
 #include "contactimpl.h"
 
 /* Projection on the Coulomb cone {||x_T|| <= mu x_n} (d = 2, 3) or on R+ (d = 1) */
-static void ProjectCone(PetscInt d, PetscReal mu, const PetscReal x[], PetscReal p[])
+void FCContactProjectCone(PetscInt d, PetscReal mu, const PetscReal x[], PetscReal p[])
 {
   PetscReal t = 0.0;
   if (d == 1) {
@@ -35,7 +35,7 @@ PetscReal FCContactNaturalMapError2(PetscInt d, PetscReal mu, const PetscReal r[
   for (PetscInt a = 1; a < d; a++) uT += u[a] * u[a];
   uT = PetscSqrtReal(uT);
   for (PetscInt a = 0; a < d; a++) x[a] = r[a] - u[a] - (a == 0 ? mu * uT : 0.0);
-  ProjectCone(d, mu, x, p);
+  FCContactProjectCone(d, mu, x, p);
   for (PetscInt a = 0; a < d; a++) e2 += PetscSqr(r[a] - p[a]);
   return e2;
 }
@@ -178,7 +178,7 @@ static void FixedPoint(PetscInt d, const PetscReal W[], const PetscReal q[], Pet
     for (PetscInt a = 1; a < d; a++) uT += u[a] * u[a];
     uT = PetscSqrtReal(uT);
     for (PetscInt a = 0; a < d; a++) x[a] = r[a] - rho * (u[a] + (a == 0 ? mu * uT : 0.0));
-    ProjectCone(d, mu, x, r);
+    FCContactProjectCone(d, mu, x, r);
     if (it % 16 == 0 && Accept(d, LocalError2(d, W, q, mu, r), q, r)) break;
   }
 }
