@@ -25,6 +25,7 @@ OUTDIR="$(cd "$OUTDIR" && pwd)"
 MESHES=(
   "cube         cube.geo      lc 0.08"
   "cube_coarse  cube.geo      lc 0.2"
+  "cube_medium  cube.geo      lc 0.12"
   "beam_n2      beam.geo      n 2"
   "beam_n4      beam.geo      n 4"
   "beam_n8      beam.geo      n 8"

@@ -1,0 +1,266 @@
+#!/usr/bin/python3
+"""What accuracy costs in time: sweeps of the settings users trade (constraint scheme, Newton
+iterations, PGS sweeps, time step, mesh size, compliance option) on the fast-rotating grasp
+(input/grasp_rotate.opts) and on a Table 1 scene (input/table1_18k.opts), one setting at a time
+around a baseline, plus the full scheme x Newton-iterations grid.
+
+For every run it records the time per step (the sum of the /steps/timing rows divided by the
+steps: set-up excluded) and the errors the code measures at the end of every step (max and RMS
+penetration, complementarity of the final forces in the end-of-step frames, friction-cone
+violation, energy drift; docs/output.md), plus the distance to a converged reference run
+(quarter time step, 10 Newton iterations, PGS to 1e-12): the largest distance between the
+body's best-fit rigid pose and the reference's, evaluated at the corners of its bounding box
+(comparable across meshes), relative to the body size.
+
+Writes docs/accuracy/accuracy.csv, docs/accuracy/pareto_<scene>.png (error against time per
+step) and docs/accuracy.md (the tables and the recommended settings for a few accuracy targets).
+
+    scripts/accuracy_vs_time.py [--np 1] [--quick] [--scenes grasp,table1]
+
+--quick runs a reduced sweep (for a smoke test; its figures are not the ones in the doc)."""
+import argparse
+import csv
+import os
+import platform
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXE = os.path.join(ROOT, "build", "fecontact")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
+OUT = os.path.join(ROOT, "build", "accuracy")
+
+# scene: options file, FE body, final time T (the runs use T / h steps), baseline settings
+SCENES = {
+    "grasp": dict(opts="input/grasp_rotate.opts", body="object", T=0.6, mesh_option="-object_dm_plex_filename",
+                  meshes=["meshes/cube_coarse.msh", "meshes/cube_medium.msh", "meshes/cube.msh"],
+                  base=dict(scheme="fast", newton=5, pgs_max_it=1000, pgs_tol=1e-8, h=0.01, mesh="meshes/cube_coarse.msh",
+                            compliance="dense", refactor=1),
+                  refactor_option="-object_refactor_every"),
+    "table1": dict(opts="input/table1_18k.opts", body="box", T=0.04, mesh_option="-box_dm_plex_filename",
+                   meshes=["meshes/table1_18k.msh"],  # the other Table 1 meshes are other boxes, not refinements
+                   base=dict(scheme="fast", newton=5, pgs_max_it=1000, pgs_tol=1e-8, h=0.01, mesh="meshes/table1_18k.msh",
+                             compliance="dense", refactor=1),
+                   refactor_option=None),
+}
+FIELDS = ["scene", "group", "label", "scheme", "newton", "pgs_max_it", "pgs_tol", "h", "mesh", "compliance", "refactor",
+          "steps", "time_per_step", "wall", "pose_error", "max_penetration", "rms_penetration", "complementarity",
+          "cone_violation", "energy_drift", "pgs_sweeps_per_step", "newton_per_step"]
+
+
+def options(scene, s):
+    sc = SCENES[scene]
+    steps = int(round(sc["T"] / s["h"]))
+    o = ["-options_file", sc["opts"], "-time_step", repr(s["h"]), "-time_steps", str(steps), "-output_every", str(steps),
+         "-constraint_scheme", s["scheme"], "-newton_max_it", str(s["newton"]), "-newton_tol", "0",
+         "-pgs_max_it", str(s["pgs_max_it"]), "-pgs_tol", repr(s["pgs_tol"]), "-compliance_type", s["compliance"],
+         sc["mesh_option"], s["mesh"], "-quiet"]
+    if s["refactor"] != 1:
+        o += [sc["refactor_option"], str(s["refactor"])]
+    return o, steps
+
+
+def run(scene, s, tag, np_):
+    o, steps = options(scene, s)
+    f = os.path.join(OUT, "%s_%s.h5" % (scene, tag))
+    cmd = [EXE] + o + ["-output_file", f]
+    if np_ > 1:
+        cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
+    t0 = time.time()
+    p = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True)
+    wall = time.time() - t0
+    if p.returncode != 0:
+        sys.stderr.write(p.stdout + p.stderr)
+        raise RuntimeError("run failed: " + " ".join(cmd))
+    return f, steps, wall
+
+
+def pose(h5, body):
+    """Best-fit rigid transform (R, t) of the body's final frame onto its reference coordinates,
+    applied to the corners of the reference bounding box; and the body size"""
+    X = h5["bodies/%s/mesh/reference" % body][:]
+    x = h5["bodies/%s/positions" % body][-1]
+    C, c = X.mean(0), x.mean(0)
+    U, _, Vt = np.linalg.svd((x - c).T @ (X - C))
+    R = U @ np.diag([1, 1, np.linalg.det(U @ Vt)]) @ Vt
+    lo, hi = X.min(0), X.max(0)
+    corners = np.array([[a[0], b[1], d[2]] for a in (lo, hi) for b in (lo, hi) for d in (lo, hi)])
+    return (corners - C) @ R.T + c, np.linalg.norm(hi - lo)
+
+
+def measure(scene, f, steps, wall):
+    h5 = h5py.File(f, "r")
+    s = h5["steps"]
+    t = sum(s["timing/" + k][:].sum() for k in s["timing"])
+    E = s["energy"][:]
+    E0 = h5.attrs["initial_energy"][0]
+    scale = max(np.abs(E).max(), abs(E0), 1e-30)
+    return dict(steps=steps, time_per_step=t / steps, wall=wall, max_penetration=s["max_penetration"][:].max(),
+                rms_penetration=np.sqrt(np.mean(s["rms_penetration"][:] ** 2)), complementarity=s["complementarity"][:].max(),
+                cone_violation=s["cone_violation"][:].max(), energy_drift=(E[-1] - E0) / scale,
+                pgs_sweeps_per_step=s["pgs_iterations"][:].sum() / steps, newton_per_step=s["newton_iterations"][:].sum() / steps), h5
+
+
+def sweeps(scene, quick):
+    """(group, label, settings) around the baseline"""
+    sc = SCENES[scene]
+    b = sc["base"]
+    out = []
+
+    def add(group, label, **kw):
+        s = dict(b)
+        s.update(kw)
+        out.append((group, label, s))
+
+    newtons = [1, 2, 3, 5] if quick else ([1, 2, 3, 4, 5, 6, 8] if scene == "grasp" else [1, 2, 3, 5, 8])
+    add("scheme", "explicit", scheme="explicit", newton=1)
+    for k in newtons:
+        add("scheme", "fast n=%d" % k, scheme="fast", newton=k)
+    for k in (newtons if scene == "grasp" and not quick else [1, 3, 5]):
+        add("scheme", "standard n=%d" % k, scheme="standard", newton=k)
+    for m in ([5, 30, 1000] if quick else [3, 10, 30, 100, 300, 1000]):
+        add("pgs", "pgs %d sweeps" % m, pgs_max_it=m, pgs_tol=1e-12)
+    for h in ([0.02, 0.01] if quick else ([0.04, 0.02, 0.01, 0.005] if scene == "grasp" else [0.02, 0.01, 0.005])):
+        add("time step", "h=%g" % h, h=h)
+    if len(sc["meshes"]) > 1:
+        for m in sc["meshes"][: 2 if quick else None]:
+            add("mesh", os.path.basename(m)[:-4], mesh=m)
+    for c in ["dense", "schur", "precomputed"]:
+        add("compliance", c, compliance=c)
+    if sc["refactor_option"]:
+        for k in ([4] if quick else [2, 4, 8]):
+            add("compliance", "dense, refactor every %d" % k, refactor=k)
+        add("compliance", "precomputed, refactor every 4", compliance="precomputed", refactor=4)
+    return out
+
+
+def pareto(rows, key="pose_error"):
+    """Rows not dominated in (time per step, error)"""
+    front = []
+    for r in sorted(rows, key=lambda r: (r["time_per_step"], r[key])):
+        if not front or r[key] < front[-1][key]:
+            front.append(r)
+    return front
+
+
+def plot(scene, rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5))
+    groups = sorted(set(r["group"] for r in rows))
+    markers = dict(zip(groups, "osD^v<>"))
+    for ax, key, title in [(axes[0], "pose_error", "distance to the reference (relative to body size)"),
+                           (axes[1], "complementarity", "complementarity on the end-of-step geometry (m)")]:
+        for g in groups:
+            rr = [r for r in rows if r["group"] == g]
+            ax.scatter([r["time_per_step"] * 1e3 for r in rr], [max(r[key], 1e-16) for r in rr], marker=markers[g], label=g, s=36)
+            for r in rr:
+                ax.annotate(r["label"], (r["time_per_step"] * 1e3, max(r[key], 1e-16)), fontsize=6, xytext=(3, 2),
+                            textcoords="offset points")
+        fr = pareto(rows, key)
+        ax.plot([r["time_per_step"] * 1e3 for r in fr], [max(r[key], 1e-16) for r in fr], "k--", lw=0.8, label="Pareto front")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("time per step (ms)")
+        ax.set_ylabel(title)
+        ax.grid(True, which="both", lw=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("%s: error against time per step (%s)" % (scene, SCENES[scene]["opts"]))
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def fmt(x):
+    return "%.2e" % x if isinstance(x, float) else str(x)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--np", type=int, default=1)
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--scenes", default="grasp,table1")
+    ap.add_argument("--docdir", default=os.path.join(ROOT, "docs"))
+    a = ap.parse_args()
+    os.makedirs(OUT, exist_ok=True)
+    figdir = os.path.join(a.docdir, "accuracy")
+    os.makedirs(figdir, exist_ok=True)
+    allrows = []
+    for scene in a.scenes.split(","):
+        sc = SCENES[scene]
+        ref = dict(sc["base"], h=sc["base"]["h"] / 4, newton=10, pgs_tol=1e-12, pgs_max_it=100000)
+        f, steps, wall = run(scene, ref, "reference", a.np)
+        refm, refh5 = measure(scene, f, steps, wall)
+        refpose, size = pose(refh5, sc["body"])
+        print("%s reference: %d steps of %g s, %.1f s wall, complementarity %.2e" % (scene, steps, ref["h"], wall, refm["complementarity"]), flush=True)
+        for i, (group, label, s) in enumerate(sweeps(scene, a.quick)):
+            f, steps, wall = run(scene, s, "%02d" % i, a.np)
+            m, h5 = measure(scene, f, steps, wall)
+            p, _ = pose(h5, sc["body"])
+            m["pose_error"] = np.abs(p - refpose).max() / size
+            row = dict(scene=scene, group=group, label=label, scheme=s["scheme"], newton=s["newton"], pgs_max_it=s["pgs_max_it"],
+                       pgs_tol=s["pgs_tol"], h=s["h"], mesh=os.path.basename(s["mesh"]), compliance=s["compliance"],
+                       refactor=s["refactor"], **m)
+            allrows.append(row)
+            print("%-7s %-11s %-32s %8.2f ms/step  pose err %.2e  compl %.2e  pen %.2e  cone %.2e" % (
+                scene, group, label, m["time_per_step"] * 1e3, m["pose_error"], m["complementarity"], m["max_penetration"],
+                m["cone_violation"]), flush=True)
+        plot(scene, [r for r in allrows if r["scene"] == scene], os.path.join(figdir, "pareto_%s.png" % scene))
+    with open(os.path.join(figdir, "accuracy.csv"), "w", newline="") as fcsv:
+        w = csv.DictWriter(fcsv, fieldnames=FIELDS)
+        w.writeheader()
+        for r in allrows:
+            w.writerow({k: r[k] for k in FIELDS})
+    write_doc(a, allrows, os.path.join(a.docdir, "accuracy.md"))
+
+
+def write_doc(a, rows, path):
+    cmd = "scripts/accuracy_vs_time.py --np %d%s --scenes %s" % (a.np, " --quick" if a.quick else "", a.scenes)
+    L = ["# Accuracy against time per step", "",
+         "Generated by `%s` (%s, %s, %d core(s), %d MPI rank(s), one run per setting; wall times on this "
+         "machine are noisy, compare within a table)." % (cmd, time.strftime("%Y-%m-%d"), platform.machine(), os.cpu_count(), a.np), "",
+         "Each setting is changed alone around a baseline (fast scheme, 5 Newton iterations, PGS to 1e-8 or 1000 "
+         "sweeps, h = 0.01 s, coarsest mesh, dense compliance). Errors:", "",
+         "- **pose error**: largest distance, at the corners of the body's bounding box, between the body's "
+         "best-fit rigid pose at the final time and that of a converged reference run (h/4, 10 Newton iterations, "
+         "PGS to 1e-12), relative to the body's diagonal;",
+         "- **complementarity** (m), **penetration** (m), **cone violation** (-): the worst step of "
+         "`/steps/complementarity`, `/steps/max_penetration`, `/steps/cone_violation` (docs/output.md): how far the "
+         "final forces and positions are from a contact solution on the real end-of-step geometry;",
+         "- **energy drift**: (E_end - E_0) / max |E| (the grasp's fingers do work on the cube, so it is not zero there);",
+         "- **time per step**: the sum of the per-phase timing rows divided by the steps (set-up excluded).", ""]
+    for scene in sorted(set(r["scene"] for r in rows)):
+        rr = [r for r in rows if r["scene"] == scene]
+        sc = SCENES[scene]
+        L += ["## %s (`%s`, %g s simulated)" % (scene, sc["opts"], sc["T"]), "",
+              "![Pareto plot](accuracy/pareto_%s.png)" % scene, "",
+              "| group | setting | ms/step | pose error | complementarity (m) | max penetration (m) | cone violation | energy drift | PGS sweeps/step |",
+              "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+        for r in rr:
+            L.append("| %s | %s | %.1f | %.2e | %.2e | %.2e | %.2e | %.2e | %.0f |" % (
+                r["group"], r["label"], r["time_per_step"] * 1e3, r["pose_error"], r["complementarity"], r["max_penetration"],
+                r["cone_violation"], r["energy_drift"], r["pgs_sweeps_per_step"]))
+        L += ["", "Recommended (the cheapest measured setting meeting each target on both the pose error and the "
+              "complementarity, in metres for a 1 m body):", "",
+              "| target | setting | ms/step | pose error | complementarity (m) |", "|---|---|---:|---:|---:|"]
+        for tgt in (1e-2, 1e-3, 1e-4, 1e-6):
+            ok = [r for r in rr if r["pose_error"] <= tgt and r["complementarity"] <= tgt]
+            if ok:
+                best = min(ok, key=lambda r: r["time_per_step"])
+                L.append("| %g | %s (%s) | %.1f | %.2e | %.2e |" % (tgt, best["label"], best["group"], best["time_per_step"] * 1e3,
+                                                                   best["pose_error"], best["complementarity"]))
+            else:
+                L.append("| %g | none of the measured settings | | | |" % tgt)
+        L.append("")
+    L += ["The CSV with every column (scene, settings, time, every error) is `docs/accuracy/accuracy.csv`.", ""]
+    with open(path, "w") as f:
+        f.write("\n".join(L))
+    print("wrote", path)
+
+
+if __name__ == "__main__":
+    main()
