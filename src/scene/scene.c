@@ -11,6 +11,10 @@
      -contact_mu m[,m2,...]   Coulomb friction, one value or one per pair (>= 0; 0 = frictionless,
                               one constraint row per contact; default 0)
      -contact_distance d      alarm distance: points closer than d are contacts (>= 0, default 0.01 m)
+     -contact_fe_passes 1|2   pairs of two meshed bodies: 2 = the vertices of each against the other's
+                              surface (nothing crosses either surface, but the two constraint sets are
+                              nearly redundant and PGS may stall, docs/hard-cases.md); 1 = the first
+                              body's vertices against the second's surface only (default 2)
      -pgs_tol, -pgs_max_it    the contact solver (src/contact/pgs.c)
      -constraint_scheme explicit|standard|fast   Algorithm 1, 2 (recursive, standard update) or 3 (recursive, fast
    update) (default explicit) -newton_max_it n         Newton iterations of a recursive scheme (>= 1, default 5)
@@ -86,11 +90,14 @@ static PetscErrorCode ReadContactPairs(FCScene s)
 
   PetscFunctionBegin;
   s->pairs.distance = 0.01;
+  s->pairs.passes   = 2;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
   PetscCall(
       PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
   if (set && np > 0) {
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_distance", "Alarm distance", &s->pairs.distance, NULL));
+    PetscCall(FCOptionsInt(PetscOptionsObject, "-contact_fe_passes",
+                           "Detection passes between two meshed bodies (1 or 2)", &s->pairs.passes, NULL));
     PetscCall(FCOptionsRealList(PetscOptionsObject, "-contact_mu", "Friction coefficient: one value, or one per pair",
                                 FC_MAX_BODIES, mu, &nmu, &setmu));
   }
@@ -106,6 +113,8 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   for (PetscInt i = 0; i < nmu; i++)
     PetscCheck(mu[i] >= 0.0 && PetscIsNormalReal(mu[i] + 1.0), s->comm, PETSC_ERR_USER_INPUT,
                "Option -contact_mu: entry %" PetscInt_FMT " must be a finite number >= 0, got %g", i, (double)mu[i]);
+  PetscCheck(s->pairs.passes == 1 || s->pairs.passes == 2, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_fe_passes must be 1 or 2, got %" PetscInt_FMT, s->pairs.passes);
   PetscCheck(s->pairs.distance >= 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_distance must be >= 0, got %g",
              (double)s->pairs.distance);
   s->pairs.n = np;
