@@ -331,6 +331,11 @@ struct _FCContactSetView {
   const FCContactMeasures *measures;
 };
 
+/* SIGINT/SIGTERM: recorded by a handler, acted on between steps (src/util/signals.c) */
+PETSC_INTERN PetscErrorCode FCSignalsInstall(void);
+PETSC_INTERN PetscErrorCode FCSignalsPending(MPI_Comm, int *sig);
+PETSC_INTERN int            FCSignalsCaught(void);
+
 /* Progress line on rank 0 (src/util/progress.c) */
 typedef struct {
   PetscLogDouble start, last;

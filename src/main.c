@@ -11,7 +11,8 @@ static const char help[] = "fecontact: deformable and rigid bodies in frictional
 static PetscErrorCode UserErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n,
                                        PetscErrorType p, const char *mess, void *ctx)
 {
-  if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_ARG_UNKNOWN_TYPE) {
+  if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_ARG_UNKNOWN_TYPE || n == PETSC_ERR_SIG ||
+      n == PETSC_ERR_FP || n == PETSC_ERR_CONV_FAILED) {
     if (p == PETSC_ERROR_INITIAL) {
       PetscMPIInt rank = 0;
       if (comm != MPI_COMM_NULL) MPI_Comm_rank(comm, &rank);
@@ -41,11 +42,22 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(PetscPushErrorHandler(UserErrorHandler, NULL));
   ierr = RunScene();
-  /* input errors are detected on every rank alike: finish cleanly with exit status 1;
-     anything else may have happened on one rank only: abort them all */
+  /* input errors, a diverging run (NaN/Inf state, failed factorization, contact solver: all
+     decided collectively) and SIGINT/SIGTERM are detected on every rank alike: finish cleanly
+     with exit status 1, 2 or 128 + signal; anything else may have happened on one rank only:
+     abort them all */
   if (ierr == PETSC_ERR_USER_INPUT || ierr == PETSC_ERR_ARG_UNKNOWN_TYPE) {
     (void)PetscFinalize();
     return 1;
+  }
+  if (ierr == PETSC_ERR_FP || ierr == PETSC_ERR_CONV_FAILED) {
+    (void)PetscFinalize();
+    return 2;
+  }
+  if (ierr == PETSC_ERR_SIG) {
+    int sig = FCSignalsCaught();
+    (void)PetscFinalize();
+    return 128 + sig;
   }
   if (ierr) PETSCABORT(PETSC_COMM_WORLD, ierr);
   PetscCall(PetscFinalize());

@@ -31,7 +31,7 @@ void FCContactProjectCone(PetscInt d, PetscReal mu, const PetscReal x[], PetscRe
 
 PetscReal FCContactNaturalMapError2(PetscInt d, PetscReal mu, const PetscReal r[], const PetscReal u[])
 {
-  PetscReal x[3], p[3], uT = 0.0, e2 = 0.0;
+  PetscReal x[3] = {0, 0, 0}, p[3], uT = 0.0, e2 = 0.0;
   for (PetscInt a = 1; a < d; a++) uT += u[a] * u[a];
   uT = PetscSqrtReal(uT);
   for (PetscInt a = 0; a < d; a++) x[a] = r[a] - u[a] - (a == 0 ? mu * uT : 0.0);

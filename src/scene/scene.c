@@ -18,6 +18,9 @@
      -pgs_tol, -pgs_max_it    the contact solver (src/contact/pgs.c)
      -constraint_scheme explicit|standard|fast   Algorithm 1, 2 (recursive, standard update) or 3 (recursive, fast
    update) (default explicit) -newton_max_it n         Newton iterations of a recursive scheme (>= 1, default 5)
+     -pgs_fail_residual r     stop the run (exit status 2, the step named) when the contact solver ends
+                              a step with a residual above r: it could not solve the contact problem
+                              (> 0, default 1e-2; PGS stops below -pgs_tol, 1e-8, when it converges)
      -newton_tol t            stop them when frames and right-hand sides change by less than t
                               (>= 0, default 1e-10; 0: always newton_max_it, as the paper's Table 1)
      -compliance_type dense|sparse|schur   how FE bodies compute J A^-1 J^T for W: MUMPS solves
@@ -26,6 +29,7 @@
    One step (../shared/design/DESIGN.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
    contact resolution slots in between. */
 #include "../fcimpl.h"
+#include <signal.h>
 
 #define FC_MAX_BODIES 256
 
@@ -50,7 +54,7 @@ struct _p_FCScene {
   FCSchemeFunction  scheme;
   char              scheme_name[FC_MAX_NAME];
   PetscInt          newton_max_it;
-  PetscReal         newton_tol;
+  PetscReal         newton_tol, fail_residual;
 };
 
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
@@ -198,6 +202,7 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(PetscStrncpy(s->scheme_name, "explicit", sizeof(s->scheme_name)));
     s->newton_max_it = 5;
     s->newton_tol    = 1e-10;
+    s->fail_residual = 1e-2;
     PetscOptionsBegin(s->comm, NULL, "Constraint scheme", "FCScene");
     PetscCall(PetscOptionsFList("-constraint_scheme", "Constraint scheme", NULL, FCSchemeList, s->scheme_name,
                                 s->scheme_name, sizeof(s->scheme_name), NULL));
@@ -206,6 +211,9 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCOptionsReal(PetscOptionsObject, "-newton_tol",
                             "Stop the Newton iterations when frames and right-hand sides change less", &s->newton_tol,
                             NULL));
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-pgs_fail_residual",
+                            "Stop the run when the contact solver ends a step above this residual", &s->fail_residual,
+                            NULL));
     PetscOptionsEnd();
     PetscCall(PetscFunctionListFind(FCSchemeList, s->scheme_name, &s->scheme));
     PetscCheck(s->scheme, s->comm, PETSC_ERR_USER_INPUT,
@@ -213,6 +221,8 @@ PetscErrorCode FCSceneSetUp(FCScene s)
                s->scheme_name);
     PetscCheck(s->newton_max_it >= 1, s->comm, PETSC_ERR_USER_INPUT,
                "Option -newton_max_it must be >= 1, got %" PetscInt_FMT, s->newton_max_it);
+    PetscCheck(s->fail_residual > 0, s->comm, PETSC_ERR_USER_INPUT, "Option -pgs_fail_residual must be > 0, got %g",
+               (double)s->fail_residual);
     PetscCheck(s->newton_tol >= 0, s->comm, PETSC_ERR_USER_INPUT, "Option -newton_tol must be >= 0, got %g",
                (double)s->newton_tol);
     PetscCall(FCContactSolverCreate(s->comm, &s->solver));
@@ -254,6 +264,10 @@ PetscErrorCode FCSceneStep(FCScene s)
                              &s->previous, s->solver,  s->newton_max_it, s->newton_tol};
       PetscCall((*s->scheme)(&ctx, &s->stats));
     }
+    PetscCheck(!(s->stats.residual > s->fail_residual), s->comm, PETSC_ERR_CONV_FAILED,
+               "Step %" PetscInt_FMT ": the contact solver could not reduce its residual: %g after %" PetscInt_FMT
+               " sweeps, above -pgs_fail_residual %g (raise -pgs_max_it, lower -time_step, or see docs/hard-cases.md)",
+               s->step + 1, (double)s->stats.residual, s->stats.sweeps, (double)s->fail_residual);
     PetscCall(FCContactSetCopy(&s->set, &s->previous));
   }
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyIntegrate(s->bodies[i], s->t));
@@ -304,23 +318,39 @@ static PetscErrorCode PrintSummary(FCScene s, PetscLogDouble wall)
   PetscFunctionReturn(0);
 }
 
-/* Runs the remaining steps. If a step fails, the output file is closed cleanly first, so that
-   every completed step stays readable, then the error is returned. */
+/* Runs the remaining steps. If a step fails, or SIGINT/SIGTERM arrives, the output file is
+   closed cleanly first, so that every completed step stays readable, and the run stops with a
+   line saying at which step and why. */
 PetscErrorCode FCSceneRun(FCScene s)
 {
   PetscLogDouble t0, t1;
 
   PetscFunctionBegin;
   PetscCall(FCSceneSetUp(s));
+  PetscCall(FCSignalsInstall());
   PetscCall(PetscTime(&t0));
   PetscCall(FCProgressStart(&s->progress, s->quiet));
   while (s->step < s->nsteps) {
+    PetscInt       done = s->step;
     PetscErrorCode ierr = FCSceneStep(s);
+    int            sig;
     if (ierr) {
       (void)FCOutputDestroy(&s->output);
+      (void)PetscPrintf(s->comm,
+                        "fecontact: step %" PetscInt_FMT " (t = %g s) failed; %s holds the %" PetscInt_FMT
+                        " completed steps\n",
+                        done + 1, (double)((done + 1) * s->h), s->output_file, done);
       return ierr;
     }
     PetscCall(FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t));
+    PetscCall(FCSignalsPending(s->comm, &sig));
+    if (sig && s->step < s->nsteps) {
+      PetscCall(FCOutputDestroy(&s->output));
+      SETERRQ(s->comm, PETSC_ERR_SIG,
+              "interrupted by %s after step %" PetscInt_FMT " (t = %g s); %s is closed and holds the %" PetscInt_FMT
+              " completed steps",
+              sig == SIGINT ? "SIGINT" : "SIGTERM", s->step, (double)s->t, s->output_file, s->step);
+    }
   }
   PetscCall(PetscTime(&t1));
   if (!s->quiet) PetscCall(PrintSummary(s, t1 - t0));

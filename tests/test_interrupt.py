@@ -1,0 +1,99 @@
+"""Interrupted and failing runs keep every completed step readable (issue 6):
+- SIGINT (1 rank) and SIGTERM (through mpirun, N ranks) between steps: the step finishes, the
+  HDF5 file is closed, exit status 128 + signal (mpirun reports non-zero), a line says after
+  which step; the file holds exactly that many steps, all per-step datasets alike;
+- kill -9 at three moments: every step flushed before the kill is readable by h5py, the rows are
+  contiguous and every dataset has the same number of rows (the file is flushed after every
+  output step);
+- a diverging run stops with exit status 2 and a line naming the step and the reason: state that
+  became Inf (an absurd gravity and time step), a contact solver that cannot reduce its residual.
+Usage: test_interrupt.py [--np N]"""
+import os
+import re
+import signal
+import subprocess
+import time
+
+import h5py
+import numpy as np
+from fctest import EXE, ENV, ROOT, Checker, np_from_argv, out, run
+
+NP = np_from_argv()
+c = Checker("interrupt np%d" % NP)
+SCENE = ["-options_file", "input/grasp_rotate.opts", "-time_steps", "1000000", "-output_every", "1", "-quiet"]
+
+
+def start(args, np_):
+    cmd = [EXE] + args
+    if np_ > 1:
+        cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
+    return subprocess.Popen(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+
+
+def wait_for_steps(f, n, timeout=60):
+    """Wait until the file exists and (roughly) n steps ran: the progress is not readable while the
+    file is open, so wait on time, scaled by a first measurement"""
+    t0 = time.time()
+    while not os.path.exists(f) and time.time() - t0 < timeout:
+        time.sleep(0.05)
+    time.sleep(n)
+
+
+def consistent(f, what):
+    h = h5py.File(f, "r")
+    S = len(h["steps/step"])
+    rows = [len(h["steps/" + k]) for k in h["steps"] if isinstance(h["steps/" + k], h5py.Dataset)]
+    rows += [len(h["steps/timing/" + k]) for k in h["steps/timing"]]
+    rows += [len(h["bodies/%s/centroid" % b]) for b in h["bodies"]]
+    rows.append(len(h["contacts/offset"]) - 1)
+    F = len(h["frames/step"])
+    pos = h["bodies/object/positions"]
+    ok = (S > 0 and all(r == S for r in rows) and np.array_equal(h["steps/step"][:], np.arange(1, S + 1)) and
+          pos.shape[0] == F and h["frames/step"][-1] == S and np.isfinite(pos[F - 1]).all() and
+          np.isfinite(h["steps/energy"][:]).all() and h["contacts/offset"][-1] == len(h["contacts/force"]))
+    c.check(ok, "%s: %d steps, every per-step dataset %d rows, %d frames, the last one finite and step %d" % (
+        what, S, S, F, S))
+    return S
+
+
+# SIGINT on one process, SIGTERM through mpirun
+sig, name = (signal.SIGINT, "SIGINT") if NP == 1 else (signal.SIGTERM, "SIGTERM")
+f = out("sig_np%d.h5" % NP)
+p = start(SCENE + ["-output_file", f], NP)
+wait_for_steps(f, 2.0)
+os.killpg(p.pid, sig) if NP > 1 else p.send_signal(sig)
+o, e = p.communicate(timeout=120)
+m = re.search(r"interrupted by (SIG\w+) after step (\d+)", o + e)
+expect = 128 + sig if NP == 1 else None
+c.check(p.returncode != 0 and (expect is None or p.returncode == expect),
+        "%s: exit status %d (%s)" % (name, p.returncode, "128 + %d" % sig if expect else "non-zero"))
+c.check(m is not None, "%s: the run says where it stopped: %r" % (name, m.group(0) if m else (o + e)[-200:]))
+S = consistent(f, "%s: file closed" % name)
+c.check(m is not None and int(m.group(2)) == S, "%s: the file holds the %s steps the message names" % (name, m.group(2) if m else "?"))
+
+# kill -9 at three moments
+for delay in (0.8, 1.6, 2.4):
+    f = out("kill9_%g_np%d.h5" % (delay, NP))
+    p = start(SCENE + ["-output_file", f], NP)
+    wait_for_steps(f, delay)
+    os.killpg(p.pid, signal.SIGKILL)
+    p.communicate(timeout=60)
+    c.check(p.returncode != 0, "kill -9 after %.1f s: killed (status %d)" % (delay, p.returncode))
+    consistent(f, "kill -9 after %.1f s" % delay)
+
+# diverging runs: exit status 2 and a line naming the step
+p = run(["-options_file", "input/cube_drop.opts", "-gravity", "0,0,-1e300", "-time_step", "1e10", "-time_steps", "5", "-quiet",
+         "-output_file", out("inf_np%d.h5" % NP)], np_=NP, check=False)
+txt = p.stdout + p.stderr
+c.check(p.returncode == (2 if NP == 1 else p.returncode) and p.returncode != 0 and "NaN or Inf" in txt and "step 1" in txt,
+        "Inf state: exit %d, message names step 1 and NaN/Inf" % p.returncode)
+p = run(["-options_file", "input/cube_drop.opts", "-pgs_max_it", "1", "-pgs_fail_residual", "1e-9", "-quiet",
+         "-output_file", out("pgsfail_np%d.h5" % NP)], np_=NP, check=False)
+txt = p.stdout + p.stderr
+m = re.search(r"Step (\d+): the contact solver could not reduce its residual", txt)
+c.check(p.returncode != 0 and m is not None, "contact solver failure: exit %d, %r" % (p.returncode, m.group(0) if m else txt[-200:]))
+if m:
+    h = h5py.File(out("pgsfail_np%d.h5" % NP), "r")
+    c.check(len(h["steps/step"]) == int(m.group(1)) - 1, "contact solver failure: the file holds the %d steps before it" % (int(m.group(1)) - 1))
+c.done()
