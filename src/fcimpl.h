@@ -184,6 +184,10 @@ typedef struct {
   PetscErrorCode (*getenergy)(FCBody, FCEnergy *);
   PetscErrorCode (*getvisualpositions)(FCBody, PetscReal[]);
   PetscErrorCode (*checkstate)(FCBody, PetscInt);
+  /* restart: FE bodies 6 values (u, v) per owned vertex in the visual order; rigid and kinematic
+     bodies 13 values (x, q, v, w), the same on every rank */
+  PetscErrorCode (*getstate)(FCBody, PetscReal[]);
+  PetscErrorCode (*setstate)(FCBody, const PetscReal[]);
   PetscErrorCode (*destroy)(FCBody);
   /* contact: candidate points of this body (owned FE boundary vertices, or points of a rigid
      shape), each with its proximity map, start and free-motion positions */
@@ -258,6 +262,12 @@ PETSC_INTERN PetscErrorCode FCOutputRecordStep(FCOutput, PetscInt step, PetscRea
                                                const PetscReal timing[FC_PHASE_NUM], PetscInt nbodies, FCBody[]);
 PETSC_INTERN PetscErrorCode FCOutputWriteFrame(FCOutput, PetscInt step, PetscReal t, PetscInt nbodies, FCBody[]);
 PETSC_INTERN PetscErrorCode FCOutputFlush(FCOutput);
+/* The restart state of the end of `step` (/restart, written before the frame's flush) */
+PETSC_INTERN PetscErrorCode FCOutputWriteRestart(FCOutput, PetscInt step, PetscReal t, PetscInt nbodies, FCBody[],
+                                                 const FCContactSet *previous);
+/* Reads the newest complete restart state of a file into the bodies, previous contacts, step, t */
+PETSC_INTERN PetscErrorCode FCRestartLoad(MPI_Comm, const char file[], PetscInt nbodies, FCBody[],
+                                          FCContactSet *previous, PetscInt *step, PetscReal *t);
 PETSC_INTERN PetscErrorCode FCOutputDestroy(FCOutput *);
 PETSC_INTERN PetscErrorCode FCXdmfWrite(const char h5name[], const char xmfname[], PetscInt nbodies, FCBody[],
                                         PetscInt nframes, const PetscReal times[]);

@@ -690,6 +690,60 @@ static PetscErrorCode GetVisualPositions_FEM(FCBody body, PetscReal x[])
   PetscFunctionReturn(0);
 }
 
+/* Restart state: per owned vertex in the visual (global) order, u and v (0 on fixed vertices) */
+static PetscErrorCode GetState_FEM(FCBody body, PetscReal s[])
+{
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  const PetscScalar *u, *v;
+  PetscInt           lo;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
+  PetscCall(VecGetArrayRead(fem->u, &u));
+  PetscCall(VecGetArrayRead(fem->v, &v));
+  for (PetscInt i = 0; i < body->visual.nv; i++) {
+    PetscInt vx = m->visVert[i];
+    for (int d = 0; d < 3; d++) {
+      s[6 * i + d]     = fem->fixed[vx] ? 0.0 : PetscRealPart(u[fem->gdof[vx] - lo + d]);
+      s[6 * i + 3 + d] = fem->fixed[vx] ? 0.0 : PetscRealPart(v[fem->gdof[vx] - lo + d]);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(fem->u, &u));
+  PetscCall(VecRestoreArrayRead(fem->v, &v));
+  PetscFunctionReturn(0);
+}
+
+/* The state of a restart: A of a co-rotational body is reassembled and factored at the next step,
+   as it would have been (-refactor_every 1; with k > 1 the factor's age restarts) */
+static PetscErrorCode SetState_FEM(FCBody body, const PetscReal s[])
+{
+  FEM         *fem = (FEM *)body->data;
+  FCMesh      *m   = &fem->mesh;
+  PetscScalar *u, *v;
+  PetscInt     lo;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
+  PetscCall(VecGetArray(fem->u, &u));
+  PetscCall(VecGetArray(fem->v, &v));
+  for (PetscInt i = 0; i < body->visual.nv; i++) {
+    PetscInt vx = m->visVert[i];
+    if (fem->fixed[vx]) continue;
+    for (int d = 0; d < 3; d++) {
+      u[fem->gdof[vx] - lo + d] = s[6 * i + d];
+      v[fem->gdof[vx] - lo + d] = s[6 * i + 3 + d];
+    }
+  }
+  PetscCall(VecRestoreArray(fem->u, &u));
+  PetscCall(VecRestoreArray(fem->v, &v));
+  if (!fem->mat->linear) {
+    fem->Acurrent   = PETSC_FALSE;
+    fem->factor_age = fem->refactor_every;
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
 {
   FEM      *fem = (FEM *)body->data;
@@ -762,6 +816,8 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.getenergy          = GetEnergy_FEM;
   body->ops.getvisualpositions = GetVisualPositions_FEM;
   body->ops.checkstate         = CheckState_FEM;
+  body->ops.getstate           = GetState_FEM;
+  body->ops.setstate           = SetState_FEM;
   body->ops.destroy            = Destroy_FEM;
   body->ops.contactpoints      = ContactPoints_FEM;
   body->ops.proximityposition  = ProximityPosition_FEM;

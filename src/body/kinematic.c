@@ -102,6 +102,8 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   body->ops.getcentroid        = FCPoseGetCentroid;
   body->ops.getrotation        = FCPoseGetRotation;
   body->ops.getvisualpositions = FCPoseGetVisualPositions;
+  body->ops.getstate           = FCPoseGetState;
+  body->ops.setstate           = FCPoseSetState;
   body->ops.destroy            = Destroy_Kinematic;
   body->ops.tobody             = FCPoseToBody;
   body->ops.partialposition    = FCPosePartialPosition;

@@ -293,3 +293,32 @@ PetscErrorCode FCPoseShapeDistanceFree(FCBody body, const PetscReal x[3], PetscR
   FCMat3Vec(R, nb, n);
   PetscFunctionReturn(0);
 }
+
+/* Restart state of a rigidly moving body: x, q, v, w */
+PetscErrorCode FCPoseGetState(FCBody body, PetscReal s[])
+{
+  FCPose *P = (FCPose *)body->data;
+
+  PetscFunctionBegin;
+  for (int d = 0; d < 3; d++) {
+    s[d]      = P->x[d];
+    s[7 + d]  = P->v[d];
+    s[10 + d] = P->w[d];
+  }
+  for (int d = 0; d < 4; d++) s[3 + d] = P->q[d];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCPoseSetState(FCBody body, const PetscReal s[])
+{
+  FCPose *P = (FCPose *)body->data;
+
+  PetscFunctionBegin;
+  for (int d = 0; d < 3; d++) {
+    P->x[d] = s[d];
+    P->v[d] = s[7 + d];
+    P->w[d] = s[10 + d];
+  }
+  for (int d = 0; d < 4; d++) P->q[d] = s[3 + d];
+  PetscFunctionReturn(0);
+}

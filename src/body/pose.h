@@ -34,3 +34,5 @@ PETSC_INTERN PetscErrorCode FCPosePartialPosition(FCBody, const FCProximity *, P
 PETSC_INTERN PetscErrorCode FCPoseShapeDistanceFree(FCBody, const PetscReal[3], PetscReal *, PetscReal[3],
                                                     PetscReal[3]);
 PETSC_INTERN PetscErrorCode FCPoseShapeDistance(FCBody, const PetscReal[3], PetscReal *, PetscReal[3], PetscReal[3]);
+PETSC_INTERN PetscErrorCode FCPoseGetState(FCBody, PetscReal[]);
+PETSC_INTERN PetscErrorCode FCPoseSetState(FCBody, const PetscReal[]);

@@ -252,6 +252,8 @@ PetscErrorCode FCBodyCreate_Rigid(FCBody body)
   body->ops.getrotation        = FCPoseGetRotation;
   body->ops.getenergy          = GetEnergy_Rigid;
   body->ops.getvisualpositions = FCPoseGetVisualPositions;
+  body->ops.getstate           = FCPoseGetState;
+  body->ops.setstate           = FCPoseSetState;
   body->ops.checkstate         = CheckState_Rigid;
   body->ops.destroy            = Destroy_Rigid;
   body->ops.tobody             = FCPoseToBody;

@@ -43,6 +43,10 @@ struct _p_FCOutput {
   } * sbuf;
   double  *frametimes;
   PetscInt maxframes;
+  /* restart state (docs/output.md): two slots written alternately, the step last, so that a run
+     killed while writing one still has the other */
+  hid_t    xslot[2], xstep[2], xtime[2], xcontacts[2], xncontacts[2], *xbody[2];
+  PetscInt nrestart;
 };
 
 #define FCH5Check(call, msg)                                                                                           \
@@ -200,6 +204,129 @@ PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *ou
   PetscFunctionReturn(0);
 }
 
+#define FC_RESTART_CONTACT 17 /* pair, dim, key 3, n 3, t1 3, t2 3, force 3 */
+
+/* /restart/slot0 and slot1: per body a dataset of its state (FE: V x 6, u and v per vertex in the
+   order of mesh/reference; rigid, kinematic: 13 values x, q, v, w), the previous step's contacts
+   (warm start of the solver) and the step they belong to (-1: being written) */
+static PetscErrorCode CreateRestart(FCOutput out, PetscInt nbodies, FCBody bodies[])
+{
+  hid_t g = H5Gcreate2(out->file, "restart", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+
+  PetscFunctionBegin;
+  for (int k = 0; k < 2; k++) {
+    char      name[16];
+    hsize_t   cdims[1] = {FC_RESTART_CONTACT};
+    long long none     = -1;
+    hid_t     sp       = H5Screate(H5S_SCALAR);
+    PetscCall(PetscSNPrintf(name, sizeof(name), "slot%d", k));
+    out->xslot[k] = H5Gcreate2(g, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    out->xstep[k] = H5Dcreate2(out->xslot[k], "step", H5T_STD_I64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    out->xtime[k] = H5Dcreate2(out->xslot[k], "time", H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    out->xncontacts[k] =
+        H5Dcreate2(out->xslot[k], "ncontacts", H5T_STD_I64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Sclose(sp);
+    FCH5Check(H5Dwrite(out->xstep[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &none), "restart step");
+    PetscCall(CreateRows(out->xslot[k], "contacts", H5T_NATIVE_DOUBLE, 2, cdims, 256, &out->xcontacts[k]));
+    PetscCall(PetscMalloc1(nbodies, &out->xbody[k]));
+    for (PetscInt i = 0; i < nbodies; i++) {
+      PetscBool fem;
+      hsize_t   dims[2];
+      hid_t     space;
+      PetscCall(PetscStrcmp(bodies[i]->type, FCBODYFEM, &fem));
+      dims[0] = fem ? (hsize_t)bodies[i]->visual.nv_global : 1;
+      dims[1] = fem ? 6 : 13;
+      space   = H5Screate_simple(2, dims, NULL);
+      out->xbody[k][i] =
+          H5Dcreate2(out->xslot[k], bodies[i]->name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      FCH5Check(out->xbody[k][i], "restart body state");
+      H5Sclose(space);
+    }
+  }
+  H5Gclose(g);
+  PetscFunctionReturn(0);
+}
+
+/* The state at the end of step `step` (before the frame's flush): bodies, previous contacts, and
+   the step, written last */
+PetscErrorCode FCOutputWriteRestart(FCOutput out, PetscInt step, PetscReal t, PetscInt nbodies, FCBody bodies[],
+                                    const FCContactSet *previous)
+{
+  PetscInt  k = out->nrestart++ % 2, nc = previous ? previous->n : 0;
+  long long none = -1, st = step;
+  double    tt      = t, *buf;
+  hsize_t   dims[2] = {(hsize_t)nc, FC_RESTART_CONTACT};
+
+  PetscFunctionBegin;
+  FCH5Check(H5Dwrite(out->xstep[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &none), "restart step");
+  for (PetscInt i = 0; i < nbodies; i++) {
+    PetscBool fem;
+    hid_t     fspace   = H5Dget_space(out->xbody[k][i]), mspace;
+    hsize_t   start[2] = {0, 0}, count[2];
+    PetscCall(PetscStrcmp(bodies[i]->type, FCBODYFEM, &fem));
+    count[0] = fem ? (hsize_t)bodies[i]->visual.nv : (out->rank ? 0 : 1);
+    count[1] = fem ? 6 : 13;
+    start[0] = fem ? (hsize_t)bodies[i]->visual.vstart : 0;
+    PetscCall(PetscMalloc1(count[0] * count[1] + 13, &buf));
+    PetscCall((*bodies[i]->ops.getstate)(bodies[i], buf));
+    if (count[0]) {
+      H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL);
+      mspace = H5Screate_simple(2, count, NULL);
+    } else {
+      H5Sselect_none(fspace);
+      mspace = H5Screate(H5S_NULL);
+    }
+    FCH5Check(H5Dwrite(out->xbody[k][i], H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, buf), "restart state");
+    H5Sclose(mspace);
+    H5Sclose(fspace);
+    PetscCall(PetscFree(buf));
+  }
+  { /* the dataset only grows (shrinking a chunked dataset in parallel HDF5 1.10 broke a later
+       flush); its first ncontacts rows are this state's */
+    hid_t   space = H5Dget_space(out->xcontacts[k]);
+    hsize_t cur[2];
+    H5Sget_simple_extent_dims(space, cur, NULL);
+    H5Sclose(space);
+    if (cur[0] < dims[0]) FCH5Check(H5Dset_extent(out->xcontacts[k], dims), "restart contacts");
+  }
+  PetscCall(PetscMalloc1(FC_RESTART_CONTACT * nc + 1, &buf));
+  for (PetscInt j = 0; j < nc; j++) {
+    const FCContact *c = &previous->c[j];
+    double          *r = &buf[FC_RESTART_CONTACT * j];
+    r[0]               = c->pair;
+    r[1]               = c->dim;
+    for (int d = 0; d < 3; d++) {
+      r[2 + d]  = c->key[d];
+      r[5 + d]  = c->n[d];
+      r[8 + d]  = c->t1[d];
+      r[11 + d] = c->t2[d];
+      r[14 + d] = c->force[d];
+    }
+  }
+  if (nc) {
+    hid_t fspace = H5Dget_space(out->xcontacts[k]), mspace;
+    if (out->rank == 0) {
+      hsize_t start[2] = {0, 0};
+      H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, dims, NULL);
+      mspace = H5Screate_simple(2, dims, NULL);
+    } else {
+      H5Sselect_none(fspace);
+      mspace = H5Screate(H5S_NULL);
+    }
+    FCH5Check(H5Dwrite(out->xcontacts[k], H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, buf), "restart contacts");
+    H5Sclose(mspace);
+    H5Sclose(fspace);
+  }
+  PetscCall(PetscFree(buf));
+  {
+    long long n = nc;
+    FCH5Check(H5Dwrite(out->xncontacts[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &n), "restart ncontacts");
+  }
+  FCH5Check(H5Dwrite(out->xtime[k], H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &tt), "restart time");
+  FCH5Check(H5Dwrite(out->xstep[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &st), "restart step");
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies[], PetscReal h, PetscInt nsteps,
                                    PetscInt every, PetscBool contacts)
 {
@@ -330,6 +457,7 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     PetscCall(CreateRows(bo->group, "positions", H5T_NATIVE_DOUBLE, 3, pv, 1, &bo->positions));
   }
   H5Gclose(gb);
+  PetscCall(CreateRestart(out, nbodies, bodies));
   nrow         = 64;
   out->maxrows = (PetscInt)nrow;
   PetscCall(PetscMalloc5(nrow, &out->rtime, nrow, &out->renergy, nrow * FC_PHASE_NUM, &out->rtiming,
@@ -611,6 +739,15 @@ PetscErrorCode FCOutputDestroy(FCOutput *output)
     for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
     H5Dclose(out->ftime);
     H5Dclose(out->fstep);
+    for (int k = 0; k < 2; k++) {
+      for (PetscInt i = 0; i < out->nbodies; i++) H5Dclose(out->xbody[k][i]);
+      PetscCall(PetscFree(out->xbody[k]));
+      H5Dclose(out->xstep[k]);
+      H5Dclose(out->xtime[k]);
+      H5Dclose(out->xcontacts[k]);
+      H5Dclose(out->xncontacts[k]);
+      H5Gclose(out->xslot[k]);
+    }
     if (out->contacts) {
       hid_t ds[] = {out->c_offset, out->c_bodies, out->c_point,     out->c_normal, out->c_force,  out->c_gap,
                     out->c_gapend, out->c_state,  out->s_contacts,  out->s_rows,   out->s_sweeps, out->s_residual,

@@ -7,6 +7,9 @@
      -output_file f.h5        (default fecontact.h5; an XDMF index f.xmf is written beside it)
      -output_every k          write body positions every k steps (>= 1, default 1)
      -quiet                   no progress line, no summary
+     -restart f.h5            continue from the newest complete restart state of f.h5 (written at every
+                              output step: /restart in docs/output.md) up to -time_steps; the same scene
+                              options are needed, -output_file must be another file
      -contact_pairs a:b,c:d   pairs of bodies that may touch (none: no collision work at all)
      -contact_mu m[,m2,...]   Coulomb friction, one value or one per pair (>= 0; 0 = frictionless,
                               one constraint row per contact; default 0)
@@ -39,7 +42,7 @@ struct _p_FCScene {
   FCBody     bodies[FC_MAX_BODIES];
   PetscReal  h, t, gravity[3];
   PetscInt   nsteps, step, every;
-  char       output_file[PETSC_MAX_PATH_LEN];
+  char       output_file[PETSC_MAX_PATH_LEN], restart[PETSC_MAX_PATH_LEN];
   PetscBool  quiet, setupcalled;
   FCOutput   output;
   FCProgress progress;
@@ -161,6 +164,8 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
                                sizeof(s->output_file), NULL));
   PetscCall(FCOptionsInt(PetscOptionsObject, "-output_every", "Write body positions every k steps", &s->every, NULL));
   PetscCall(PetscOptionsBool("-quiet", "No progress line and no summary", NULL, s->quiet, &s->quiet, NULL));
+  PetscCall(PetscOptionsString("-restart", "Continue from the last complete output step of this HDF5 file", NULL,
+                               s->restart, s->restart, sizeof(s->restart), NULL));
   PetscOptionsEnd();
   PetscCheck(set && n > 0, s->comm, PETSC_ERR_USER_INPUT,
              "No bodies: give -scene_bodies name1,name2,... (see docs/options.md)");
@@ -229,10 +234,25 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCContactSolverSetFromOptions(s->solver));
   }
   PetscCall(FCOptionsCheckUnused(s->comm)); /* after every object has read its options */
+  if (s->restart[0]) {                      /* before the output is created: it may not be the file we read */
+    char a[PETSC_MAX_PATH_LEN], b[PETSC_MAX_PATH_LEN];
+    if (!realpath(s->restart, a)) PetscCall(PetscStrncpy(a, s->restart, sizeof(a)));
+    if (!realpath(s->output_file, b)) PetscCall(PetscStrncpy(b, s->output_file, sizeof(b)));
+    PetscCheck(strcmp(a, b), s->comm, PETSC_ERR_USER_INPUT,
+               "-restart %s and -output_file are the same file: the restarted run would overwrite the state it reads; "
+               "give another -output_file",
+               s->restart);
+    PetscCall(FCRestartLoad(s->comm, s->restart, s->nbodies, s->bodies, &s->previous, &s->step, &s->t));
+    PetscCheck(s->step <= s->nsteps, s->comm, PETSC_ERR_USER_INPUT,
+               "-restart %s is at step %" PetscInt_FMT ", beyond -time_steps %" PetscInt_FMT, s->restart, s->step,
+               s->nsteps);
+    s->t = s->step * s->h;
+  }
   PetscCall(FCOutputCreate(s->comm, s->output_file, &s->output));
   PetscCall(FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every,
                                 s->pairs.n ? PETSC_TRUE : PETSC_FALSE));
-  PetscCall(FCOutputWriteFrame(s->output, 0, 0.0, s->nbodies, s->bodies));
+  PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
+  PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
   PetscCall(FCPhaseResetTimes());
   s->setupcalled = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -290,8 +310,10 @@ PetscErrorCode FCSceneStep(FCScene s)
     struct _FCContactSetView v = {&s->set, &s->stats, &s->measures};
     PetscCall(FCOutputRecordContacts(s->output, &v));
   }
-  if (s->step % s->every == 0 || s->step == s->nsteps)
+  if (s->step % s->every == 0 || s->step == s->nsteps) {
+    PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
     PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -344,7 +366,11 @@ PetscErrorCode FCSceneRun(FCScene s)
     }
     PetscCall(FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t));
     PetscCall(FCSignalsPending(s->comm, &sig));
-    if (sig && s->step < s->nsteps) {
+    if (sig && s->step < s->nsteps) { /* the last step's frame and restart state, then close */
+      if (s->step % s->every) {
+        PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
+        PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
+      }
       PetscCall(FCOutputDestroy(&s->output));
       SETERRQ(s->comm, PETSC_ERR_SIG,
               "interrupted by %s after step %" PetscInt_FMT " (t = %g s); %s is closed and holds the %" PetscInt_FMT
