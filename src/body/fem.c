@@ -589,7 +589,12 @@ static PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
   }
   PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));
   if (fem->mat->linear) PetscCall(MatMult(fem->K, fem->u, fem->fint)); /* f_int = K u */
-  PetscCall(VecAXPBYPCZ(fem->b, h, -h, 0.0, fem->fgrav, fem->fint));
+  if (body->gravity[0] != 0.0 || body->gravity[1] != 0.0 || body->gravity[2] != 0.0)
+    PetscCall(VecAXPBYPCZ(fem->b, h, -h, 0.0, fem->fgrav, fem->fint));
+  else { /* no gravity work without gravity */
+    PetscCall(VecCopy(fem->fint, fem->b));
+    PetscCall(VecScale(fem->b, -h));
+  }
   if (fem->alpha != 0.0) {
     PetscCall(MatMult(fem->M, fem->v, fem->work));
     PetscCall(VecAXPY(fem->b, -h * fem->alpha, fem->work));

@@ -1,0 +1,87 @@
+"""A scene simulates only the effects it calls for (issue 6, docs/effects.md). Each line of the
+table is proved from the PETSc log (-log_view CSV: event counts of rank 0) or the HDF5 statistics:
+- no contact pairs: no Collision, BuildWH, PGS, Correction event, no /contacts;
+- a linear material is factored once per run, whatever the number of steps; a co-rotational one
+  once per step after the first (set-up's factor serves step 1), or every k steps with
+  -<body>_refactor_every k;
+- rigid and kinematic bodies need no FE assembly, factorization or linear solve;
+- Rayleigh damping costs one MatMult per step only when -<body>_rayleigh_mass is non-zero;
+- gravity costs one VecAXPBYPCZ call (PETSc logs it as VecAXPBYCZ) per FE body and step only when it is on;
+- frictionless pairs give one constraint row per contact (no tangential rows), friction three;
+- W (MatMatSolve) only for FE bodies that have contacts in the step;
+- the recursive scheme's Newton loop stops after one iteration on a plane (the frames cannot
+  change), and iterates on the grasp's spheres.
+Usage: test_effects.py [--np N]"""
+import csv
+
+import h5py
+import numpy as np
+from fctest import Checker, np_from_argv, out, run
+
+NP = np_from_argv()
+c = Checker("effects np%d" % NP)
+n = [0]
+
+
+def go(args):
+    n[0] += 1
+    f, log = out("eff%d_np%d.h5" % (n[0], NP)), out("eff%d_np%d.csv" % (n[0], NP))
+    run(args + ["-quiet", "-output_file", f, "-log_view", ":%s:ascii_csv" % log], np_=NP)
+    counts = {}
+    with open(log) as fl:
+        for row in csv.reader(fl):
+            if len(row) > 3 and row[0] == "Main Stage" and row[2] == "0":
+                counts[row[1]] = int(float(row[3]))
+    return counts, h5py.File(f, "r")
+
+
+fall = ["-options_file", "input/cube_fall.opts"]  # FE cube, rigid ball, kinematic plane; no pairs
+e, h = go(fall + ["-time_steps", "6"])
+c.check(all(e.get(k, 0) == 0 for k in ("Collision", "BuildWH", "PGS", "Correction", "RebuildW")) and "contacts" not in h,
+        "no contact pairs: Collision %d, BuildWH %d, PGS %d, Correction %d events, no /contacts" % (
+            e.get("Collision", -1), e.get("BuildWH", -1), e.get("PGS", -1), e.get("Correction", -1)))
+c.check(e.get("FCFactorization") == 6, "co-rotational, 6 steps: %d factorizations (set-up + steps 2..6)" % e.get("FCFactorization", -1))
+e4, _ = go(fall + ["-time_steps", "9", "-cube_refactor_every", "4"])
+c.check(e4.get("FCFactorization") == 3, "refactor_every 4, 9 steps: %d factorizations (set-up, steps 5 and 9)" % e4.get("FCFactorization", -1))
+lin5, _ = go(fall + ["-time_steps", "5", "-cube_material", "linear"])
+lin20, _ = go(fall + ["-time_steps", "20", "-cube_material", "linear"])
+c.check(lin5.get("FCFactorization") == 1 and lin20.get("FCFactorization") == 1 and lin5.get("FCAssembly") == lin20.get("FCAssembly"),
+        "linear: one factorization in 5 and in 20 steps, assembly only at set-up (%d and %d events)" % (
+            lin5.get("FCAssembly", -1), lin20.get("FCAssembly", -1)))
+rk, _ = go(["-options_file", "input/incline.opts", "-time_steps", "5"])  # rigid box on a kinematic plane
+c.check(all(rk.get(k, 0) == 0 for k in ("FCAssembly", "FCFactorization", "KSPSolve", "MatMult")),
+        "rigid and kinematic bodies only: no FE assembly, factorization, KSPSolve or MatMult (%d, %d, %d, %d)" % (
+            rk.get("FCAssembly", 0), rk.get("FCFactorization", 0), rk.get("KSPSolve", 0), rk.get("MatMult", 0)))
+d0, _ = go(fall + ["-time_steps", "5", "-cube_material", "linear"])
+d1, _ = go(fall + ["-time_steps", "5", "-cube_material", "linear", "-cube_rayleigh_mass", "0.5"])
+c.check(d1.get("MatMult", 0) - d0.get("MatMult", 0) == 5, "Rayleigh mass damping: +%d MatMult in 5 steps (one M v per step; none without)" % (
+    d1.get("MatMult", 0) - d0.get("MatMult", 0)))
+g0, _ = go(fall + ["-time_steps", "5", "-gravity", "0,0,0"])
+c.check(g0.get("VecAXPBYCZ", 0) == 0 and e.get("VecAXPBYCZ", 0) == 6, "gravity off: %d VecAXPBYCZ (on: %d in 6 steps, one per step)" % (
+    g0.get("VecAXPBYCZ", 0), e.get("VecAXPBYCZ", 0)))
+
+drop = ["-options_file", "input/cube_drop.opts", "-time_steps", "30"]
+_, h0 = go(drop + ["-contact_mu", "0"])
+_, h3 = go(drop + ["-contact_mu", "0.3"])
+nc0, r0 = h0["steps/contacts"][:], h0["steps/constraint_rows"][:]
+nc3, r3 = h3["steps/contacts"][:], h3["steps/constraint_rows"][:]
+c.check(nc0.sum() > 0 and np.array_equal(r0, nc0) and np.array_equal(r3, 3 * nc3),
+        "frictionless: rows = contacts (%d rows); mu = 0.3: rows = 3 x contacts (%d rows)" % (r0.sum(), r3.sum()))
+# a second FE cube far above the ground has no contact: W only for the one that has
+two = drop + ["-scene_bodies", "cube,far,ground", "-contact_pairs", "cube:ground,far:ground", "-far_type", "fem",
+              "-far_dm_plex_filename", "meshes/cube_coarse.msh", "-far_young", "1e6", "-far_density", "1000",
+              "-far_translate", "0,0,50", "-far_material", "linear"]
+ew, hw = go(two)
+steps_with = int((hw["steps/contacts"][:] > 0).sum())
+c.check(steps_with > 0 and ew.get("MatMatSolve", -1) == steps_with,
+        "W only for bodies in contact: %d MatMatSolve for %d steps with contacts (the far cube has none)" % (
+            ew.get("MatMatSolve", -1), steps_with))
+ef, hf = go(drop + ["-constraint_scheme", "fast", "-newton_max_it", "5"])
+it = hf["steps/newton_iterations"][:][hf["steps/contacts"][:] > 0]
+c.check(it.size > 0 and (it == 1).all() and ef.get("NewtonIteration") == it.sum(),
+        "fast scheme on a plane: 1 Newton iteration in each of the %d steps with contacts (of 5 allowed), %d NewtonIteration events" % (
+            it.size, ef.get("NewtonIteration", -1)))
+eg, hg = go(["-options_file", "input/grasp_rotate.opts", "-time_steps", "10"])
+itg = hg["steps/newton_iterations"][:]
+c.check(itg.max() > 1, "fast scheme on the grasp (spheres): up to %d Newton iterations (frames change)" % itg.max())
+c.done()
