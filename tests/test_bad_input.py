@@ -71,10 +71,17 @@ cases = [
     ("malformed options file", ["-options_file", badfile, "-quiet"], "bad.opts line 4"),
     ("fixed box fixes everything", opts(cube_fixed_box="-9,-9,-9,9,9,9"), "fixed"),
     ("fixed box min > max", opts(cube_fixed_box="1,0,0,0,1,1"), "-cube_fixed_box"),
+    ("surface not closed", opts(cube_dm_plex_filename="tests/data/nonmanifold.msh"), "not closed"),
+    ("contact pair, unknown body", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cube:floor", "-quiet"], "unknown body 'floor'"),
+    ("contact pair with itself", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cube:cube", "-quiet"], "with itself"),
+    ("contact pair, malformed", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cubeground", "-quiet"], "body1:body2"),
+    ("contact mu negative", ["-options_file", "input/cube_drop.opts", "-contact_mu", "-0.3", "-quiet"], "-contact_mu"),
+    ("restart file missing", opts(restart="nonexistent.h5"), "Cannot open the restart file"),
 ]
 # on several ranks, the cases whose detection involves communication or several ranks' data
 PARALLEL = {"missing mesh file", "not a gmsh file", "truncated mesh", "2D mesh", "inverted element", "zero-volume element",
-            "unknown body type", "NaN Young", "misspelt option", "unwritable output path", "fixed box fixes everything"}
+            "unknown body type", "NaN Young", "misspelt option", "unwritable output path", "fixed box fixes everything",
+            "surface not closed", "contact pair, unknown body"}
 if NP > 1:
     cases = [cs for cs in cases if cs[0] in PARALLEL]
 for what, args, expect in cases:
