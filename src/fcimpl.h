@@ -308,6 +308,10 @@ typedef struct {
   FCContactSolver     solver;
   PetscInt            newton_max_it;
   PetscReal           newton_tol;
+  /* types of the fast scheme's W_H (dense), frames C (sparse) and vectors: host by default,
+     -wh_mat_type seqdensecuda -frames_mat_type seqaijcusparse -contact_vec_type seqcuda on a GPU */
+  const char *wh_mat_type, *frames_mat_type, *vec_type;
+  PetscReal   memory_limit; /* bytes the dense contact matrices of a step may take */
 } FCSchemeContext;
 typedef PetscErrorCode (*FCSchemeFunction)(FCSchemeContext *, FCSchemeStats *);
 PETSC_EXTERN PetscFunctionList FCSchemeList;

@@ -12,7 +12,7 @@ static PetscErrorCode UserErrorHandler(MPI_Comm comm, int line, const char *fun,
                                        PetscErrorType p, const char *mess, void *ctx)
 {
   if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_ARG_UNKNOWN_TYPE || n == PETSC_ERR_SIG ||
-      n == PETSC_ERR_FP || n == PETSC_ERR_CONV_FAILED) {
+      n == PETSC_ERR_FP || n == PETSC_ERR_CONV_FAILED || n == PETSC_ERR_MEM) {
     if (p == PETSC_ERROR_INITIAL) {
       PetscMPIInt rank = 0;
       if (comm != MPI_COMM_NULL) MPI_Comm_rank(comm, &rank);
@@ -50,7 +50,7 @@ int main(int argc, char **argv)
     (void)PetscFinalize();
     return 1;
   }
-  if (ierr == PETSC_ERR_FP || ierr == PETSC_ERR_CONV_FAILED) {
+  if (ierr == PETSC_ERR_FP || ierr == PETSC_ERR_CONV_FAILED || ierr == PETSC_ERR_MEM) {
     (void)PetscFinalize();
     return 2;
   }

@@ -24,6 +24,12 @@
      -pgs_fail_residual r     stop the run (exit status 2, the step named) when the contact solver ends
                               a step with a residual above r: it could not solve the contact problem
                               (> 0, default 1e-2; PGS stops below -pgs_tol, 1e-8, when it converges)
+     -wh_mat_type, -frames_mat_type, -contact_vec_type   types of the fast scheme's dense W_H, sparse
+                              frames C and force vectors (default seqdense, seqaij, seq; on a GPU build
+                              seqdensecuda, seqaijcusparse, seqcuda: docs/gpu.md)
+     -contact_memory_limit b  bytes the dense contact matrices of a step may take per rank (W_H and W_k:
+                              8 ((3m)^2 + 2 M 3m + M^2) for m contacts, M rows); above, the step stops
+                              with a clear error (default half the machine's memory)
      -newton_tol t            stop them when frames and right-hand sides change by less than t
                               (>= 0, default 1e-10; 0: always newton_max_it, as the paper's Table 1)
      -compliance_type dense|sparse|schur   how FE bodies compute J A^-1 J^T for W: MUMPS solves
@@ -33,6 +39,7 @@
    contact resolution slots in between. */
 #include "../fcimpl.h"
 #include <signal.h>
+#include <unistd.h>
 
 #define FC_MAX_BODIES 256
 
@@ -57,7 +64,8 @@ struct _p_FCScene {
   FCSchemeFunction  scheme;
   char              scheme_name[FC_MAX_NAME];
   PetscInt          newton_max_it;
-  PetscReal         newton_tol, fail_residual;
+  PetscReal         newton_tol, fail_residual, memory_limit;
+  char              wh_mat_type[FC_MAX_NAME], frames_mat_type[FC_MAX_NAME], vec_type[FC_MAX_NAME];
 };
 
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
@@ -208,6 +216,10 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     s->newton_max_it = 5;
     s->newton_tol    = 1e-10;
     s->fail_residual = 1e-2;
+    PetscCall(PetscStrncpy(s->wh_mat_type, MATSEQDENSE, sizeof(s->wh_mat_type)));
+    PetscCall(PetscStrncpy(s->frames_mat_type, MATSEQAIJ, sizeof(s->frames_mat_type)));
+    PetscCall(PetscStrncpy(s->vec_type, VECSEQ, sizeof(s->vec_type)));
+    s->memory_limit = 0.5 * (PetscReal)sysconf(_SC_PHYS_PAGES) * (PetscReal)sysconf(_SC_PAGESIZE);
     PetscOptionsBegin(s->comm, NULL, "Constraint scheme", "FCScene");
     PetscCall(PetscOptionsFList("-constraint_scheme", "Constraint scheme", NULL, FCSchemeList, s->scheme_name,
                                 s->scheme_name, sizeof(s->scheme_name), NULL));
@@ -219,6 +231,14 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCOptionsReal(PetscOptionsObject, "-pgs_fail_residual",
                             "Stop the run when the contact solver ends a step above this residual", &s->fail_residual,
                             NULL));
+    PetscCall(PetscOptionsString("-wh_mat_type", "Matrix type of W_H (fast scheme)", NULL, s->wh_mat_type,
+                                 s->wh_mat_type, sizeof(s->wh_mat_type), NULL));
+    PetscCall(PetscOptionsString("-frames_mat_type", "Matrix type of the contact frames C (fast scheme)", NULL,
+                                 s->frames_mat_type, s->frames_mat_type, sizeof(s->frames_mat_type), NULL));
+    PetscCall(PetscOptionsString("-contact_vec_type", "Vector type of the contact forces (fast scheme)", NULL,
+                                 s->vec_type, s->vec_type, sizeof(s->vec_type), NULL));
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_memory_limit",
+                            "Bytes the dense contact matrices of a step may take per rank", &s->memory_limit, NULL));
     PetscOptionsEnd();
     PetscCall(PetscFunctionListFind(FCSchemeList, s->scheme_name, &s->scheme));
     PetscCheck(s->scheme, s->comm, PETSC_ERR_USER_INPUT,
@@ -226,6 +246,8 @@ PetscErrorCode FCSceneSetUp(FCScene s)
                s->scheme_name);
     PetscCheck(s->newton_max_it >= 1, s->comm, PETSC_ERR_USER_INPUT,
                "Option -newton_max_it must be >= 1, got %" PetscInt_FMT, s->newton_max_it);
+    PetscCheck(s->memory_limit > 0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_memory_limit must be > 0, got %g",
+               (double)s->memory_limit);
     PetscCheck(s->fail_residual > 0, s->comm, PETSC_ERR_USER_INPUT, "Option -pgs_fail_residual must be > 0, got %g",
                (double)s->fail_residual);
     PetscCheck(s->newton_tol >= 0, s->comm, PETSC_ERR_USER_INPUT, "Option -newton_tol must be >= 0, got %g",
@@ -280,8 +302,9 @@ PetscErrorCode FCSceneStep(FCScene s)
     PetscCall(FCCollisionDetect(s->comm, s->nbodies, s->bodies, &s->pairs, &s->set));
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
     {
-      FCSchemeContext ctx = {s->comm,      s->nbodies, s->bodies,        &s->set,
-                             &s->previous, s->solver,  s->newton_max_it, s->newton_tol};
+      FCSchemeContext ctx = {s->comm,        s->nbodies,         s->bodies,        &s->set,
+                             &s->previous,   s->solver,          s->newton_max_it, s->newton_tol,
+                             s->wh_mat_type, s->frames_mat_type, s->vec_type,      s->memory_limit};
       PetscCall((*s->scheme)(&ctx, &s->stats));
     }
     PetscCheck(!(s->stats.residual > s->fail_residual), s->comm, PETSC_ERR_CONV_FAILED,

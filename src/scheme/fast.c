@@ -63,19 +63,35 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
     c->row                        = 3 * k;
   }
   H.nrows = n3;
-  PetscCall(PetscMalloc1(n3 * n3, &WH));
+  { /* W_H (3m)^2, U and U^T (M x 3m), W_k (M^2), replicated on every rank */
+    PetscReal bytes = 8.0 * ((PetscReal)n3 * n3 + 2.0 * M * n3 + (PetscReal)M * M);
+    PetscCheck(bytes <= ctx->memory_limit, ctx->comm, PETSC_ERR_MEM,
+               "%" PetscInt_FMT " contacts: the fast scheme's dense W_H and W_k need %.3g GB per rank, above "
+               "-contact_memory_limit %.3g GB; use -constraint_scheme explicit (W is %" PetscInt_FMT
+               "^2), fewer contacts (-contact_distance, coarser surfaces), or raise the limit",
+               nc, (double)(bytes / 1e9), (double)(ctx->memory_limit / 1e9), M);
+  }
+  PetscCall(MatCreate(PETSC_COMM_SELF, &WHm));
+  PetscCall(MatSetSizes(WHm, n3, n3, n3, n3));
+  PetscCall(MatSetType(WHm, ctx->wh_mat_type));
+  PetscCall(MatSetUp(WHm));
+  PetscCall(MatDenseGetArrayWrite(WHm, &WH)); /* symmetric: row/column-major alike */
   PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
   PetscCall(FCSchemeCompliance(ctx->nbodies, ctx->bodies, &H, WH));
   PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
-  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n3, n3, WH, &WHm)); /* symmetric: row/column-major alike */
+  PetscCall(MatDenseRestoreArrayWrite(WHm, &WH));
 
   PetscCall(PetscMalloc6(n3, &dfree, n3, &d0, M, &q, M, &qold, nc, &mu, nc, &dims));
   PetscCall(PetscMalloc1(M, &lambda));
   /* first linearization: the frames of the collision detection, gaps at the start of the step */
   FCSchemeStartLinearization(set, dfree, d0, q, mu, dims);
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n3, &F));
+  PetscCall(VecCreate(PETSC_COMM_SELF, &F));
+  PetscCall(VecSetSizes(F, n3, n3));
+  PetscCall(VecSetType(F, ctx->vec_type));
   PetscCall(VecDuplicate(F, &dvec));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, M, &lam));
+  PetscCall(VecCreate(PETSC_COMM_SELF, &lam));
+  PetscCall(VecSetSizes(lam, M, M));
+  PetscCall(VecSetType(lam, ctx->vec_type));
   { /* warm start: the previous step's force of the same contact, in the world frame */
     PetscScalar *f;
     PetscCall(VecGetArray(F, &f));
@@ -86,7 +102,10 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
     }
     PetscCall(VecRestoreArray(F, &f));
   }
-  PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, M, n3, 3, NULL, &C));
+  PetscCall(MatCreate(PETSC_COMM_SELF, &C));
+  PetscCall(MatSetSizes(C, M, n3, M, n3));
+  PetscCall(MatSetType(C, ctx->frames_mat_type));
+  PetscCall(MatSeqAIJSetPreallocation(C, 3, NULL));
   PetscCall(MatSetOption(C, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
 
   for (PetscInt it = 1; it <= ctx->newton_max_it; it++) {
@@ -179,7 +198,6 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
   PetscCall(VecDestroy(&F));
   PetscCall(VecDestroy(&dvec));
   PetscCall(VecDestroy(&lam));
-  PetscCall(PetscFree(WH));
   PetscCall(PetscFree6(dfree, d0, q, qold, mu, dims));
   PetscCall(PetscFree(lambda));
   PetscCall(FCContactSetDestroy(&H));

@@ -10,7 +10,14 @@ PetscFunctionList FCSchemeList = NULL;
 
 PetscErrorCode FCSchemeExplicitStep(FCSchemeContext *ctx, FCSchemeStats *st)
 {
+  PetscReal bytes = 8.0 * (PetscReal)ctx->set->nrows * ctx->set->nrows; /* W, replicated */
+
   PetscFunctionBegin;
+  PetscCheck(bytes <= ctx->memory_limit, ctx->comm, PETSC_ERR_MEM,
+             "%" PetscInt_FMT " contacts: W (%" PetscInt_FMT " rows, dense) needs %.3g GB per rank, above "
+             "-contact_memory_limit %.3g GB; reduce the contacts (-contact_distance, coarser surfaces) or raise the "
+             "limit",
+             ctx->set->n, ctx->set->nrows, (double)(bytes / 1e9), (double)(ctx->memory_limit / 1e9));
   PetscCall(FCSchemeExplicit(ctx->comm, ctx->nbodies, ctx->bodies, ctx->set, ctx->previous, ctx->solver, st));
   st->newton = ctx->set->n ? 1 : 0;
   PetscFunctionReturn(0);
