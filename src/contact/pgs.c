@@ -12,6 +12,8 @@
                            s = rho tr(W_ii)/d_i. A fixed point is a solution of the original problem,
                            and the local problems stay well-posed when W_ii is (nearly) singular or
                            contacts are redundant (>= 0, default 0)
+     -pgs_ranks all|root   the problem is replicated: every rank solves it (default, no communication) or
+                           rank 0 does and broadcasts the forces (docs/scaling.md measures both)
      -pgs_acceleration none|nncg   nonsmooth nonlinear conjugate gradient on top of the sweeps
                            (Silcowitz, Niebe, Erleben 2010): after a sweep with step g = r_k+1 - r_k,
                            r += beta p, p = beta p + g, beta = |g|^2 / |g_prev|^2, restart when
@@ -24,7 +26,7 @@ struct _p_FCContactSolver {
   MPI_Comm  comm;
   PetscReal tol, residual, omega, proximal;
   PetscInt  max_it, sweeps;
-  PetscBool converged, nncg;
+  PetscBool converged, nncg, root; /* root: rank 0 solves and broadcasts (-pgs_ranks root) */
 };
 
 PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
@@ -54,6 +56,13 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
     PetscInt    a     = s->nncg ? 1 : 0; /* default nncg: docs/contact-solver.md */
     PetscCall(PetscOptionsEList("-pgs_acceleration", "Acceleration of the sweeps", NULL, acc, 2, acc[a], &a, NULL));
     s->nncg = a == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
+  {
+    const char *where[] = {"all", "root"};
+    PetscInt    a       = s->root ? 1 : 0;
+    PetscCall(PetscOptionsEList("-pgs_ranks", "Where the contact solver runs: every rank or rank 0", NULL, where, 2,
+                                where[a], &a, NULL));
+    s->root = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
   PetscOptionsEnd();
   PetscCheck(s->omega > 0.0 && s->omega < 2.0, s->comm, PETSC_ERR_USER_INPUT,
@@ -112,7 +121,34 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode SolveHere(FCContactSolver, FCContactProblem, PetscReal[]);
+
+/* The problem is replicated: every rank solves it (-pgs_ranks all, no communication), or rank 0
+   does and broadcasts the forces (-pgs_ranks root: the others wait) */
 PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, PetscReal r[])
+{
+  PetscMPIInt size, rank;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(s->comm, &size));
+  if (!s->root || size == 1) {
+    PetscCall(SolveHere(s, p, r));
+    PetscFunctionReturn(0);
+  }
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  if (!rank) PetscCall(SolveHere(s, p, r));
+  {
+    PetscReal info[3] = {(PetscReal)s->sweeps, s->residual, (PetscReal)s->converged};
+    PetscCallMPI(MPI_Bcast(info, 3, MPIU_REAL, 0, s->comm));
+    PetscCallMPI(MPI_Bcast(r, (PetscMPIInt)p->n, MPIU_REAL, 0, s->comm));
+    s->sweeps    = (PetscInt)info[0];
+    s->residual  = info[1];
+    s->converged = info[2] != 0.0 ? PETSC_TRUE : PETSC_FALSE;
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscReal *rold = NULL, *dir = NULL, *rsweep = NULL, gg_old = 0.0;
 

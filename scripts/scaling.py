@@ -1,0 +1,209 @@
+#!/usr/bin/python3
+"""Strong and weak scaling of fecontact, per phase.
+
+Strong scaling: the 36k-DOF Table 1 scene (input/table1_36k.opts: 480 contacts) and a 149k-DOF
+box of the same family (40 x 40 x 31 vertices, 1600 contacts, made here with gmsh into
+build/meshes/table1_150k.msh) at 1, 2, ... ranks. Weak scaling: a fixed DOF count per rank
+(the 18k box on 1 rank, the 36k box on 2). Also measured: the two W_H builders that run on several
+ranks (-compliance_type dense: distributed MUMPS solves with dense right-hand sides; schur: the
+MUMPS Schur complement centralized on rank 0) and where the contact solver runs (-pgs_ranks all:
+replicated; root: rank 0 and a broadcast).
+
+Per-phase times per step come from the HDF5 rows /steps/timing/<phase> (max over ranks, set-up
+excluded); the set-up (load, distribution, first assembly and factorization) from the wall time
+minus the steps; -log_view's CSV gives the message and reduction counts. Every run with more than
+one rank is checked against the 1-rank run (final vertex positions, relative).
+
+    scripts/scaling.py [--ranks 1,2] [--check-ranks 4] [--steps 3] [--markdown docs/scaling.md]
+
+Ranks beyond the machine's cores are run with --oversubscribe for correctness only; their times
+are not reported as scaling."""
+import argparse
+import csv
+import os
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXE = os.path.join(ROOT, "build", "fecontact")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
+OUT = os.path.join(ROOT, "build", "scaling")
+sys.path.insert(0, os.path.join(ROOT, "tests"))
+from fctest import sorted_positions  # noqa: E402
+
+PHASES = ["assembly", "factorization", "free_motion", "collision", "compliance", "contact_solver", "correction",
+          "rebuild_w", "proximity_update", "integration", "output"]
+
+
+def big_mesh():
+    m = os.path.join(ROOT, "build", "meshes", "table1_150k.msh")
+    if not os.path.exists(m):
+        os.makedirs(os.path.dirname(m), exist_ok=True)
+        subprocess.run(["gmsh", "-3", "-nt", "1", "-format", "msh41", "-bin", "-setnumber", "nx", "40", "-setnumber", "ny", "40",
+                        "-setnumber", "nz", "31", "-setnumber", "d", "0.05", os.path.join(ROOT, "meshes", "table1.geo"), "-o", m],
+                       check=True, capture_output=True)
+    return m
+
+
+def scene(name):
+    if name == "36k":
+        return ["-options_file", "input/table1_36k.opts"], 36000
+    if name == "18k":
+        return ["-options_file", "input/table1_36k.opts", "-box_dm_plex_filename", "meshes/table1_18k.msh"], 18000
+    return ["-options_file", "input/table1_36k.opts", "-box_dm_plex_filename", big_mesh()], 148800
+
+
+def run(tag, args, np_, steps):
+    f = os.path.join(OUT, tag + ".h5")
+    log = os.path.join(OUT, tag + ".csv")
+    cmd = [EXE] + args + ["-time_steps", str(steps), "-output_every", str(steps), "-constraint_scheme", "fast",
+                          "-newton_max_it", "5", "-quiet", "-output_file", f, "-log_view", ":%s:ascii_csv" % log]
+    if np_ > 1:
+        cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
+    t0 = time.time()
+    p = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True)
+    wall = time.time() - t0
+    if p.returncode:
+        sys.stderr.write(p.stdout + p.stderr)
+        raise RuntimeError("failed: " + " ".join(cmd))
+    h = h5py.File(f, "r")
+    s = h["steps"]
+    per = {ph: float(s["timing/" + ph][:].mean()) for ph in PHASES}
+    step = sum(per.values())
+    msgs = reds = 0.0
+    with open(log) as fl:
+        for row in csv.reader(fl):
+            if len(row) > 7 and row[0] == "Main Stage" and row[1] == "summary":
+                msgs = max(msgs, float(row[5]))
+                reds = max(reds, float(row[7]))
+    return dict(tag=tag, ranks=np_, steps=steps, wall=wall, setup=wall - step * steps, step=step,
+                contacts=int(s["contacts"][-1]), messages=msgs, reductions=reds, **per), h
+
+
+def diff(h1, h2):
+    a, b = sorted_positions(h1, "box")[1], sorted_positions(h2, "box")[1]
+    return float(np.abs(a - b).max() / np.abs(a).max())
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--ranks", default="1,2")
+    ap.add_argument("--check-ranks", default="4")
+    ap.add_argument("--steps", type=int, default=3)
+    ap.add_argument("--markdown", default=os.path.join(ROOT, "docs", "scaling.md"))
+    a = ap.parse_args()
+    os.makedirs(OUT, exist_ok=True)
+    figdir = os.path.join(os.path.dirname(a.markdown), "scaling")
+    os.makedirs(figdir, exist_ok=True)
+    ranks = [int(r) for r in a.ranks.split(",")]
+    check = [int(r) for r in a.check_ranks.split(",") if r]
+    rows = []
+
+    def rec(kind, scene_name, ctype, pgs, np_, ref=None):
+        args, dofs = scene(scene_name)
+        args = args + ["-compliance_type", ctype, "-pgs_ranks", pgs]
+        tag = "%s_%s_%s_%s_np%d" % (kind, scene_name, ctype, pgs, np_)
+        r, h = run(tag, args, np_, a.steps)
+        r.update(kind=kind, scene=scene_name, dofs=dofs, compliance=ctype, pgs_ranks=pgs,
+                 oversubscribed=np_ > (os.cpu_count() or 1), vs_np1=diff(ref, h) if ref is not None else 0.0)
+        rows.append(r)
+        print("%-6s %-5s %-6s pgs=%-4s np=%d  step %.3f s  setup %.2f s  W_H %.3f  PGS %.3f  vs np1 %.1e%s" % (
+            kind, scene_name, ctype, pgs, np_, r["step"], r["setup"], r["compliance"], r["contact_solver"], r["vs_np1"],
+            "  (oversubscribed: correctness only)" if r["oversubscribed"] else ""), flush=True)
+        return h
+
+    # strong scaling, and the two parallel W_H builders, on the 36k scene
+    for ctype in ("dense", "schur"):
+        ref = None
+        for np_ in ranks + check:
+            h = rec("strong", "36k", ctype, "all", np_, ref)
+            ref = h if ref is None else ref
+    # where the contact solver runs
+    for np_ in ranks[1:]:
+        rec("solver", "36k", "dense", "root", np_)
+    # the 149k scene (Schur builder: dense right-hand sides would need 2 x 149k x 4800 doubles)
+    ref = None
+    for np_ in ranks:
+        h = rec("strong", "150k", "schur", "all", np_, ref)
+        ref = h if ref is None else ref
+    # weak scaling: ~18k DOFs per rank
+    h18 = rec("weak", "18k", "dense", "all", 1)
+    for np_ in ranks[1:]:
+        rec("weak", "36k" if np_ == 2 else "150k", "dense" if np_ == 2 else "schur", "all", np_)
+
+    keys = ["kind", "scene", "dofs", "compliance", "pgs_ranks", "ranks", "oversubscribed", "steps", "contacts", "wall", "setup",
+            "step"] + PHASES + ["messages", "reductions", "vs_np1"]
+    with open(os.path.join(figdir, "scaling.csv"), "w", newline="") as fc:
+        w = csv.DictWriter(fc, fieldnames=keys)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: r[k] for k in keys})
+    plot(rows, figdir)
+    write_doc(a, rows)
+
+
+def plot(rows, figdir):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 3, figsize=(17, 5))
+    groups = [("36k", "dense"), ("36k", "schur"), ("150k", "schur")]
+    for ax, (sc, ct) in zip(axes, groups):
+        rr = [r for r in rows if r["kind"] == "strong" and r["scene"] == sc and r["compliance"] == ct and not r["oversubscribed"]]
+        if not rr:
+            continue
+        x = np.arange(len(rr))
+        bottom = np.zeros(len(rr))
+        for ph in PHASES:
+            v = np.array([r[ph] for r in rr])
+            if v.max() > 0.01 * max(r["step"] for r in rr):
+                ax.bar(x, v, bottom=bottom, label=ph)
+                bottom += v
+        ax.set_xticks(x)
+        ax.set_xticklabels(["%d rank%s" % (r["ranks"], "s" if r["ranks"] > 1 else "") for r in rr])
+        ax.set_ylabel("time per step (s), max over ranks")
+        ax.set_title("strong scaling: %s DOFs, %s W_H, %d contacts" % (sc, ct, rr[0]["contacts"]))
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(figdir, "strong.png"), dpi=100)
+    wk = [r for r in rows if r["kind"] == "weak"]
+    if wk:
+        fig, ax = plt.subplots(figsize=(6, 4.5))
+        ax.plot([r["ranks"] for r in wk], [r["step"] for r in wk], "o-", label="time per step")
+        ax.plot([r["ranks"] for r in wk], [r["setup"] for r in wk], "s--", label="set-up")
+        ax.set_xlabel("ranks (~18k DOFs each)")
+        ax.set_ylabel("s")
+        ax.set_title("weak scaling (Table 1 boxes)")
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(os.path.join(figdir, "weak.png"), dpi=100)
+
+
+def write_doc(a, rows):
+    import platform
+    L = ["# Scaling", "",
+         "Generated by `scripts/scaling.py --ranks %s --check-ranks %s --steps %d` on %s (%s, %d cores), one run per "
+         "line, fast scheme, 5 Newton iterations, `OPENBLAS_NUM_THREADS=1`, one rank per core. Times per step are the "
+         "means of the `/steps/timing` rows (max over ranks); set-up is the rest of the wall time (mesh load and "
+         "distribution, first assembly and factorization, output)." % (a.ranks, a.check_ranks, a.steps, time.strftime("%Y-%m-%d"),
+                                                                         platform.machine(), os.cpu_count()), "",
+         "![strong scaling](scaling/strong.png)", "",
+         "| kind | scene | W_H | PGS on | ranks | contacts | step (s) | set-up (s) | W_H (s) | PGS (s) | rebuild W (s) | free motion (s) | collision (s) | correction (s) | messages | reductions | vs 1 rank |",
+         "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in rows:
+        L.append("| %s | %s | %s | %s | %d%s | %d | %.3f | %.2f | %.3f | %.3f | %.3f | %.3f | %.4f | %.3f | %.0f | %.0f | %.1e |" % (
+            r["kind"], r["scene"], r["compliance"], r["pgs_ranks"], r["ranks"], " (oversubscribed)" if r["oversubscribed"] else "",
+            r["contacts"], r["step"], r["setup"], r["compliance"], r["contact_solver"], r["rebuild_w"], r["free_motion"],
+            r["collision"], r["correction"], r["messages"], r["reductions"], r["vs_np1"]))
+    L += ["", "![weak scaling](scaling/weak.png)", "", "The CSV is `docs/scaling/scaling.csv`.", ""]
+    with open(a.markdown, "w") as f:
+        f.write("\n".join(L))
+    print("wrote", a.markdown)
+
+
+if __name__ == "__main__":
+    main()
