@@ -246,6 +246,36 @@ PetscErrorCode FCSceneSetUp(FCScene s)
                s->scheme_name);
     PetscCheck(s->newton_max_it >= 1, s->comm, PETSC_ERR_USER_INPUT,
                "Option -newton_max_it must be >= 1, got %" PetscInt_FMT, s->newton_max_it);
+    { /* the types exist in this PETSc build (a CUDA type in a host build is an input error now, not at
+         the first contact) */
+      Mat       A;
+      Vec       v;
+      PetscBool ok = PETSC_TRUE;
+      PetscCall(MatCreate(PETSC_COMM_SELF, &A));
+      PetscCall(MatSetSizes(A, 1, 1, 1, 1));
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      if (MatSetType(A, s->wh_mat_type)) ok = PETSC_FALSE;
+      PetscCall(PetscPopErrorHandler());
+      PetscCall(MatDestroy(&A));
+      PetscCheck(ok, s->comm, PETSC_ERR_USER_INPUT, "Unknown matrix type '%s' in -wh_mat_type (in this PETSc build)",
+                 s->wh_mat_type);
+      PetscCall(MatCreate(PETSC_COMM_SELF, &A));
+      PetscCall(MatSetSizes(A, 1, 1, 1, 1));
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      if (MatSetType(A, s->frames_mat_type)) ok = PETSC_FALSE;
+      PetscCall(PetscPopErrorHandler());
+      PetscCall(MatDestroy(&A));
+      PetscCheck(ok, s->comm, PETSC_ERR_USER_INPUT,
+                 "Unknown matrix type '%s' in -frames_mat_type (in this PETSc build)", s->frames_mat_type);
+      PetscCall(VecCreate(PETSC_COMM_SELF, &v));
+      PetscCall(VecSetSizes(v, 1, 1));
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      if (VecSetType(v, s->vec_type)) ok = PETSC_FALSE;
+      PetscCall(PetscPopErrorHandler());
+      PetscCall(VecDestroy(&v));
+      PetscCheck(ok, s->comm, PETSC_ERR_USER_INPUT,
+                 "Unknown vector type '%s' in -contact_vec_type (in this PETSc build)", s->vec_type);
+    }
     PetscCheck(s->memory_limit > 0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_memory_limit must be > 0, got %g",
                (double)s->memory_limit);
     PetscCheck(s->fail_residual > 0, s->comm, PETSC_ERR_USER_INPUT, "Option -pgs_fail_residual must be > 0, got %g",

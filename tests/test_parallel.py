@@ -1,0 +1,47 @@
+"""The main scenes on N ranks (3 with --oversubscribe: an uneven split of every mesh) give the
+1-rank answer: final vertex positions of every FE body and poses of rigid bodies (partition-
+independent order), the number of contacts of every step, and the contact forces of the last
+step. Tolerance 1e-8 relative: different partitions sum in different orders, and contact scenes
+amplify round-off a little through the solver's stopping test (measured up to 1e-10).
+Usage: test_parallel.py --np N"""
+import h5py
+import numpy as np
+from fctest import Checker, np_from_argv, out, run, sorted_positions
+
+NP = np_from_argv(3)
+c = Checker("parallel np%d" % NP)
+# short runs: 3 ranks on 2 cores are oversubscribed (MUMPS polls), a step costs ~1-4 s here
+SCENES = [("default", ["-options_file", "input/default.opts", "-time_steps", "25"]),
+          ("cube_drop", ["-options_file", "input/cube_drop.opts", "-time_steps", "25"]),
+          ("grasp_rotate", ["-options_file", "input/grasp_rotate.opts", "-time_steps", "12"]),
+          ("two_cubes", ["-options_file", "input/two_cubes.opts", "-time_steps", "20", "-contact_fe_passes", "1"]),
+          ("box_on_slab", ["-options_file", "input/box_on_slab.opts", "-time_steps", "20"])]
+
+
+def final(h):
+    parts = []
+    for b in sorted(h["bodies"]):
+        g = h["bodies/" + b]
+        if g.attrs["type"] == b"fem":
+            parts.append(sorted_positions(h, b)[1].ravel())
+        elif g.attrs["type"] == b"rigid":
+            parts += [g["centroid"][-1], g["rotation"][-1]]
+    return np.concatenate(parts)
+
+
+for name, args in SCENES:
+    f1, fn = out("%s_np1.h5" % name), out("%s_np%d.h5" % (name, NP))
+    run(args + ["-quiet", "-output_file", f1], np_=1)
+    run(args + ["-quiet", "-output_file", fn], np_=NP, timeout=1200)
+    a, b = h5py.File(f1, "r"), h5py.File(fn, "r")
+    x, y = final(a), final(b)
+    d = np.abs(x - y).max() / np.abs(x).max()
+    c.check(d <= 1e-8, "%s: %d ranks vs 1: final state rel. diff %.1e <= 1e-8" % (name, NP, d))
+    if "contacts" in a:
+        same = np.array_equal(a["steps/contacts"][:], b["steps/contacts"][:])
+        fa = a["contacts/force"][a["contacts/offset"][-2]:]
+        fb = b["contacts/force"][b["contacts/offset"][-2]:]
+        e = np.abs(fa - fb).max() / max(np.abs(fa).max(), 1e-300) if same and fa.shape == fb.shape and fa.size else (0.0 if same else np.inf)
+        c.check(same and e <= 1e-6, "%s: same contacts every step (%d in all), last forces rel. diff %.1e <= 1e-6" % (
+            name, int(a["contacts/offset"][-1]), e))
+c.done()
