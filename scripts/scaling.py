@@ -84,6 +84,18 @@ def run(tag, args, np_, steps):
                 contacts=int(s["contacts"][-1]), messages=msgs, reductions=reds, **per), h
 
 
+def memory(mesh, np_):
+    """Peak resident memory of every rank (MB) loading the 149k box and taking one step"""
+    cmd = ["mpirun", "-n", str(np_), "--oversubscribe", "/usr/bin/time", "-f", "maxrss_kb %M", EXE,
+           "-options_file", "input/table1_36k.opts", "-box_dm_plex_filename", mesh, "-compliance_type", "schur",
+           "-time_steps", "1", "-quiet", "-output_file", os.path.join(OUT, "mem.h5")]
+    p = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True)
+    if p.returncode:
+        sys.stderr.write(p.stdout + p.stderr)
+        raise RuntimeError("failed: " + " ".join(cmd))
+    return sorted(int(l.split()[1]) / 1024.0 for l in (p.stdout + p.stderr).splitlines() if l.startswith("maxrss_kb"))
+
+
 def diff(h1, h2):
     a, b = sorted_positions(h1, "box")[1], sorted_positions(h2, "box")[1]
     return float(np.abs(a - b).max() / np.abs(a).max())
@@ -134,6 +146,16 @@ def main():
     h18 = rec("weak", "18k", "dense", "all", 1)
     for np_ in ranks[1:]:
         rec("weak", "36k" if np_ == 2 else "150k", "dense" if np_ == 2 else "schur", "all", np_)
+
+    # memory: a gmsh file is read whole on rank 0; PETSc's HDF5 format in slices on every rank
+    msh = big_mesh()
+    h5 = msh[:-4] + ".h5"
+    if not os.path.exists(h5):
+        subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "msh2h5.py"), msh, h5], check=True, capture_output=True)
+    mem = {(fmt, np_): memory(m, np_) for fmt, m in (("msh", msh), ("h5", h5)) for np_ in ranks}
+    for k, v in mem.items():
+        print("memory %s np=%d: peak RSS per rank %s MB" % (k[0], k[1], ", ".join("%.0f" % x for x in v)), flush=True)
+    a.memory = mem
 
     keys = ["kind", "scene", "dofs", "compliance", "pgs_ranks", "ranks", "oversubscribed", "steps", "contacts", "wall", "setup",
             "step"] + PHASES + ["messages", "reductions", "vs_np1"]
@@ -199,7 +221,15 @@ def write_doc(a, rows):
             r["kind"], r["scene"], r["compliance"], r["pgs_ranks"], r["ranks"], " (oversubscribed)" if r["oversubscribed"] else "",
             r["contacts"], r["step"], r["setup"], r["compliance"], r["contact_solver"], r["rebuild_w"], r["free_motion"],
             r["collision"], r["correction"], r["messages"], r["reductions"], r["vs_np1"]))
-    L += ["", "![weak scaling](scaling/weak.png)", "", "The CSV is `docs/scaling/scaling.csv`.", ""]
+    L += ["", "![weak scaling](scaling/weak.png)", "", "The CSV is `docs/scaling/scaling.csv`.", "",
+          "## Memory of the mesh", "",
+          "Peak resident memory of every rank (MB, `/usr/bin/time`) loading the 149k-DOF box and taking one step, "
+          "from the gmsh file (read whole on rank 0, then distributed) and from PETSc's HDF5 format "
+          "(`scripts/msh2h5.py`, read in slices by every rank):", "",
+          "| mesh file | ranks | peak RSS per rank (MB) |", "|---|---:|---|"]
+    for (fmt, np_), v in sorted(a.memory.items()):
+        L.append("| .%s | %d | %s |" % (fmt, np_, ", ".join("%.0f" % x for x in v)))
+    L.append("")
     with open(a.markdown, "w") as f:
         f.write("\n".join(L))
     print("wrote", a.markdown)
