@@ -64,7 +64,7 @@ seed_mesh() { # $1: corpus directory
 RUNTIME='__asan|__interceptor|__sanitizer|fuzzer::|posix_memalign|[^_]malloc|calloc|realloc|libc\.so|libc_start'
 classify() { # $1: target binary, $2: crash input; prints "petsc-gmsh <frame>" or "fecontact <frame>"
   local report frames n top
-  report="$(timeout 300 "$1" -rss_limit_mb=4096 -runs=1 "$2" 2>&1 || true)"
+  report="$(TMPDIR="$dir/tmp" timeout 300 "$1" -rss_limit_mb=4096 -timeout=60 -runs=1 "$2" 2>&1 || true)"
   printf '%s\n' "$report" >"$2.txt"
   # the stack without the sanitizer's, libFuzzer's and libc's own frames
   frames="$(grep -E '^ +#[0-9]+ ' <<<"$report" | grep -vE "$RUNTIME" || true)"
@@ -97,7 +97,8 @@ for t in "${TARGETS[@]}"; do
   set +e
   # fork mode: the campaign goes on after a crash (each is saved and classified below); from the
   # repository root, as the seeds name meshes by relative paths
-  "$bin" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 -max_total_time="$SECONDS_PER_TARGET" \
+  mkdir -p "$dir/tmp" # the targets' scratch files and libFuzzer's fork directory
+  TMPDIR="$dir/tmp" "$bin" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 -max_total_time="$SECONDS_PER_TARGET" \
     -timeout=60 -rss_limit_mb=4096 -close_fd_mask=1 -artifact_prefix="$dir/" "${extra[@]}" \
     "$dir/corpus" "$dir/seeds" >"$dir/log.txt" 2>&1
   rc=$?
@@ -116,6 +117,7 @@ for t in "${TARGETS[@]}"; do
       *) nours=$((nours + 1)); echo "  CRASH $kind  input: $f (report: $f.txt)" ;;
     esac
   done
+  rm -rf "$dir/tmp"
   # inputs that crashed PETSc's reader in fuzz_mesh's forked pre-read (skipped, not findings)
   npre=$(ls "$dir/petsc-reader" | wc -l)
   echo "fuzz: $t: exit $rc, $(($(date +%s) - start)) s, ${execs:-0} runs, ${cov:-cov: ?}," \

@@ -19,6 +19,7 @@
 #include <sys/wait.h>
 
 static char mesh[PETSC_MAX_PATH_LEN + 32];
+#define FUZZ_CHILD_SECONDS 20
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
@@ -53,6 +54,16 @@ static void ChildDeath(void)
   _exit(3);
 }
 
+/* A child that runs past its time (PETSc's reader loops forever on some files) prints where it
+   is, as a sanitizer report would, and dies */
+static void ChildTimeout(int sig)
+{
+  (void)sig;
+  fprintf(stderr, "fuzz_mesh: the child ran past %d s, at:\n", FUZZ_CHILD_SECONDS);
+  __sanitizer_print_stack_trace();
+  _exit(4);
+}
+
 /* Both loads of an input: an FE body and a rigid body shaped by the mesh */
 static void LoadBoth(void)
 {
@@ -67,8 +78,9 @@ static void LoadBoth(void)
 
 static int IsRuntimeFrame(const char *line)
 {
-  static const char *rt[] = {"__asan",  "__interceptor", "__sanitizer", "fuzzer::", "posix_memalign",
-                             " malloc", " calloc",       " realloc",    "libc.so",  NULL};
+  static const char *rt[] = {
+      "__asan",   "__interceptor", "__sanitizer",  "fuzzer::", "posix_memalign", " malloc", " calloc",
+      " realloc", "libc.so",       "ChildTimeout", NULL};
   for (int i = 0; rt[i]; i++)
     if (strstr(line, rt[i])) return 1;
   return 0;
@@ -99,7 +111,8 @@ static int CrashInPETScReader(const char *report)
 }
 
 /* Runs both loads first in a forked child, whose heap is the same as this process's, so that it
-   meets what this process would: 1 when PETSc's reader crashes there, or needs more than 768 MB
+   meets what this process would: 1 when PETSc's reader crashes there or runs past 20 s (a
+   stack through DMPlexCreateGmsh with only PETSc above it), or needs more than 768 MB
    beyond this process's own memory (a count in the file that it trusts: the run would end on
    libFuzzer's memory limit); 0 when the child finished. A child that dies anywhere else (in
    fecontact) returns 0 too: the loads then run here and the crash is libFuzzer's to report. */
@@ -119,11 +132,16 @@ static int ReaderCrashes(void)
     if (fd >= 0) dup2(fd, 2);
     signal(SIGABRT, SIG_DFL);
     signal(SIGILL, SIG_DFL);
+    signal(SIGALRM, ChildTimeout);
+    alarm(FUZZ_CHILD_SECONDS);
     __sanitizer_set_death_callback(ChildDeath);
     LoadBoth();
     _exit(0);
   }
   if (wait4(pid, &status, 0, &child) != pid) FuzzFail("wait4", 1);
+  if (getenv("FUZZ_DEBUG"))
+    fprintf(stderr, "fuzz_mesh: child status %d, max rss %ld kB (this process %ld kB)\n", status, child.ru_maxrss,
+            self.ru_maxrss);
   if (child.ru_maxrss > self.ru_maxrss + 768 * 1024) return 1; /* kB */
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return 0;
   return CrashInPETScReader(report);
