@@ -41,7 +41,7 @@ def siconos_solve(path, tol, max_it):
 
 
 def ours(h5, tol, max_it, sol):
-    exe = os.path.join(ROOT, "build", "fclib_solve")
+    exe = os.environ.get("FCLIB_SOLVE", os.path.join(ROOT, "build", "fclib_solve"))  # ctest sets it
     out = subprocess.run([exe, "-problem", h5, "-pgs_tol", str(tol), "-pgs_max_it", str(max_it), "-solution", sol],
                          capture_output=True, text=True, timeout=600, check=True).stdout.split()
     d = dict(zip(out[0::2], out[1::2]))

@@ -22,10 +22,23 @@ def run(args, np_=1, check=True, timeout=600):
     if np_ > 1:
         cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
     p = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=timeout)
+    sanitizer_check(p, cmd)
     if check and p.returncode != 0:
         sys.stderr.write(p.stdout + p.stderr)
         raise RuntimeError("fecontact failed (%d): %s" % (p.returncode, " ".join(cmd)))
     return p
+
+
+SANITIZER_REPORTS = ("ERROR: AddressSanitizer", "ERROR: LeakSanitizer", "runtime error:")
+
+
+def sanitizer_check(p, cmd):
+    """A run with an ASan/UBSan report fails the test even where a non-zero exit is expected
+    (build with -DFC_SANITIZE=address,undefined: scripts/test.sh runs the suite that way too)."""
+    text = (p.stdout or "") + (p.stderr or "")
+    if any(s in text for s in SANITIZER_REPORTS):
+        sys.stderr.write(text)
+        raise RuntimeError("sanitizer report from: %s" % " ".join(cmd))
 
 
 def out(name):

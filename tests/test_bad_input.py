@@ -40,6 +40,8 @@ cases = [
     ("2D mesh", opts(cube_dm_plex_filename="tests/data/triangle_2d.msh"), "2-dimensional"),
     ("inverted element", opts(cube_dm_plex_filename="tests/data/inverted_tet.msh"), "inverted"),
     ("zero-volume element", opts(cube_dm_plex_filename="tests/data/degenerate_tet.msh"), "degenerate"),
+    ("element with a missing node", opts(cube_dm_plex_filename="tests/data/missing_node.msh"), "4 distinct vertices"),
+    ("element with a repeated node", opts(cube_dm_plex_filename="tests/data/repeated_node.msh"), "4 distinct vertices"),
     ("unknown body type", opts(cube_type="soft"), "Unknown body type 'soft'"),
     ("missing body type", opts(cube_type=None), "-cube_type"),
     ("unknown shape", ["-scene_bodies", "b", "-b_type", "rigid", "-b_shape", "cone", "-b_density", "1", "-quiet"], "Unknown shape 'cone'"),

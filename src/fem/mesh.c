@@ -91,12 +91,18 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
       }
     }
     PetscCall(DMPlexRestoreTransitiveClosure(mesh->dm, cell, PETSC_TRUE, &n, &closure));
+    if (k < 4) bad = 1; /* an element naming a missing or repeated node: cv[k..3] unset */
     {
       PetscInt t = cv[1];
       cv[1]      = cv[2];
       cv[2]      = t;
     }
   }
+
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MAX, comm));
+  PetscCheck(!bad, comm, PETSC_ERR_USER_INPUT,
+             "Mesh '%s' of body '%s' has a tetrahedron without 4 distinct vertices (missing or repeated node)", fname,
+             bodyname);
 
   /* Reference coordinates per local vertex */
   PetscCall(PetscMalloc2(3 * (mesh->vEnd - mesh->vStart), &mesh->X, mesh->vEnd - mesh->vStart, &mesh->owned));
