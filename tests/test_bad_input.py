@@ -40,7 +40,7 @@ cases = [
     ("2D mesh", opts(cube_dm_plex_filename="tests/data/triangle_2d.msh"), "2-dimensional"),
     ("inverted element", opts(cube_dm_plex_filename="tests/data/inverted_tet.msh"), "inverted"),
     ("zero-volume element", opts(cube_dm_plex_filename="tests/data/degenerate_tet.msh"), "degenerate"),
-    ("element with a missing node", opts(cube_dm_plex_filename="tests/data/missing_node.msh"), "4 distinct vertices"),
+    ("element with a missing node", opts(cube_dm_plex_filename="tests/data/missing_node.msh"), ("4 distinct vertices", "malformed")),
     ("element with a repeated node", opts(cube_dm_plex_filename="tests/data/repeated_node.msh"), "4 distinct vertices"),
     ("unknown body type", opts(cube_type="soft"), "Unknown body type 'soft'"),
     ("missing body type", opts(cube_type=None), "-cube_type"),
@@ -74,6 +74,9 @@ cases = [
     ("fixed box fixes everything", opts(cube_fixed_box="-9,-9,-9,9,9,9"), "fixed"),
     ("fixed box min > max", opts(cube_fixed_box="1,0,0,0,1,1"), "-cube_fixed_box"),
     ("surface not closed", opts(cube_dm_plex_filename="tests/data/nonmanifold.msh"), "not closed"),
+    # PETSc 3.18's gmsh reader faults on these (docs/reliability.md): a clear error, exit 1
+    ("mesh that crashes PETSc's reader", opts(cube_dm_plex_filename="tools/fuzz/petsc-gmsh-crashes/v22_node_tag_0.msh"), "malformed"),
+    ("binary mesh, 2 bytes changed", opts(cube_dm_plex_filename="tools/fuzz/petsc-gmsh-crashes/v41bin_cube_coarse_2bytes.msh"), "malformed"),
     ("contact pair, unknown body", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cube:floor", "-quiet"], "unknown body 'floor'"),
     ("contact pair with itself", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cube:cube", "-quiet"], "with itself"),
     ("contact pair, malformed", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cubeground", "-quiet"], "body1:body2"),
@@ -83,7 +86,7 @@ cases = [
 # on several ranks, the cases whose detection involves communication or several ranks' data
 PARALLEL = {"missing mesh file", "not a gmsh file", "truncated mesh", "2D mesh", "inverted element", "zero-volume element",
             "unknown body type", "NaN Young", "misspelt option", "unwritable output path", "fixed box fixes everything",
-            "surface not closed", "contact pair, unknown body"}
+            "surface not closed", "contact pair, unknown body", "mesh that crashes PETSc's reader"}
 if NP > 1:
     cases = [cs for cs in cases if cs[0] in PARALLEL]
 for what, args, expect in cases:
@@ -91,7 +94,10 @@ for what, args, expect in cases:
             np_=NP, check=False, timeout=120)
     text = p.stdout + p.stderr
     crashed = p.returncode < 0 or p.returncode >= 128 or "Segmentation" in text or "signal" in text.lower()
-    ok = p.returncode != 0 and not crashed and expect in text
+    # expect: a string, or alternatives (PETSc's gmsh reader may fault on a malformed file, which
+    # fecontact reports as such, or read garbage that fecontact's own checks reject)
+    alts = expect if isinstance(expect, tuple) else (expect,)
+    ok = p.returncode != 0 and not crashed and any(e in text for e in alts)
     c.check(ok, "%-28s exit %d, message names '%s'%s" % (what, p.returncode, expect,
             "" if ok else "\n----\n" + text[-1500:]))
 c.done()

@@ -5,6 +5,42 @@
 #include "../fcimpl.h"
 #include <petscsf.h>
 #include <sys/stat.h>
+#include <signal.h>
+#include <unistd.h>
+
+/* PETSc 3.18's gmsh reader trusts a file's counts and indices and can crash on a malformed one
+   (tools/fuzz/petsc-gmsh-crashes, docs/reliability.md). While it reads, a memory fault ends the
+   run with a line naming the file instead of a crash report: the message is prepared before, and
+   the handler only writes it and exits (async-signal-safe). */
+static char             reader_message[2 * PETSC_MAX_PATH_LEN];
+static size_t           reader_message_len;
+static struct sigaction reader_saved[3];
+static const int        reader_signals[3] = {SIGSEGV, SIGBUS, SIGFPE};
+
+static void ReaderFault(int sig)
+{
+  (void)sig;
+  if (write(STDERR_FILENO, reader_message, reader_message_len) < 0) _exit(1);
+  _exit(1);
+}
+
+static void ReaderGuard(PetscBool on, const char fname[], const char prefix[], const char bodyname[])
+{
+  if (getenv("FECONTACT_NO_READER_GUARD")) return; /* the fuzzers watch the reader's crashes themselves */
+  if (on) {
+    struct sigaction sa;
+    snprintf(reader_message, sizeof(reader_message),
+             "fecontact: error: cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': PETSc's gmsh reader "
+             "hit a memory fault on it, the file is malformed (open it in gmsh to see where)\n",
+             fname, prefix, bodyname);
+    reader_message_len = strlen(reader_message);
+    memset(&sa, 0, sizeof(sa));
+    sa.sa_handler = ReaderFault;
+    sigemptyset(&sa.sa_mask);
+    for (int i = 0; i < 3; i++) sigaction(reader_signals[i], &sa, &reader_saved[i]);
+  } else
+    for (int i = 0; i < 3; i++) sigaction(reader_signals[i], &reader_saved[i], NULL);
+}
 
 PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodyname[], FCMesh *mesh)
 {
@@ -46,7 +82,10 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
   {
     /* reads (on rank 0), interpolates, distributes, refines; a malformed file fails on rank 0
        only, so this stays an abort-class error */
-    PetscErrorCode ierr = DMSetFromOptions(mesh->dm);
+    PetscErrorCode ierr;
+    ReaderGuard(PETSC_TRUE, fname, prefix, bodyname);
+    ierr = DMSetFromOptions(mesh->dm);
+    ReaderGuard(PETSC_FALSE, fname, prefix, bodyname);
     if (ierr) { /* PETSc has printed the reader's message; name the file and the option */
       fprintf(stderr,
               "fecontact: error: cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': not a valid or "
