@@ -31,11 +31,15 @@ def start(args, np_):
                             start_new_session=True)
 
 
-def wait_for_steps(f, n, timeout=60):
-    """Wait until the file exists and (roughly) n steps ran: the progress is not readable while the
-    file is open, so wait on time, scaled by a first measurement"""
+def wait_for_steps(f, n, timeout=300):
+    """Wait until the run has written a few frames (the file grows by ~6 kB a frame; it cannot be
+    read while open), then n seconds more: robust to a loaded machine"""
     t0 = time.time()
     while not os.path.exists(f) and time.time() - t0 < timeout:
+        time.sleep(0.05)
+    time.sleep(0.2)
+    size0 = os.path.getsize(f)
+    while os.path.getsize(f) < size0 + 20000 and time.time() - t0 < timeout:
         time.sleep(0.05)
     time.sleep(n)
 

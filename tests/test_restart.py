@@ -72,7 +72,11 @@ if NP > 1:
 p = subprocess.Popen(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
 while not os.path.exists(cut):
     time.sleep(0.05)
-time.sleep(1.0)
+time.sleep(0.2)
+size0 = os.path.getsize(cut)
+while os.path.getsize(cut) < size0 + 20000:  # a few frames written, however loaded the machine
+    time.sleep(0.05)
+time.sleep(0.5)
 os.killpg(p.pid, signal.SIGINT)
 p.communicate(timeout=120)
 S = len(h5py.File(cut, "r")["steps/step"])
