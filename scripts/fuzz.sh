@@ -5,7 +5,7 @@
 # Needs clang and its runtime (apt-get install clang libclang-rt-14-dev; scripts/setup.sh does it);
 # exits 77 (ctest: skipped) without clang. Environment:
 #   FUZZ_DIR   where corpora, logs and crash inputs go (default build-fuzz/run)
-# Seeds: the scenes of input/ (options, with the Table 1 meshes swapped for a small one) and the
+# Seeds: the scenes of input/ (options, the Table 1 meshes swapped for a small one) and the
 # repository's meshes (meshes/cube_coarse.msh, beam_n2.msh, tests/data/*.msh, plus small ASCII
 # meshes written by gmsh). A crash leaves its input as $FUZZ_DIR/<target>/crash-*; replay it with
 #   build-fuzz/tools/fuzz/<target> <crash file>
