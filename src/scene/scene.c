@@ -32,9 +32,10 @@
                               with a clear error (default half the machine's memory)
      -newton_tol t            stop them when frames and right-hand sides change by less than t
                               (>= 0, default 1e-10; 0: always newton_max_it, as the paper's Table 1)
-     -compliance_type dense|sparse|schur   how FE bodies compute J A^-1 J^T for W: MUMPS solves
-                              with dense or sparse right-hand sides, or the Schur complement of
-                              the augmented matrix (default dense; see src/body/fem.c)
+     -compliance_type dense|sparse|schur|precomputed   how FE bodies compute J A^-1 J^T for W: MUMPS
+                              solves with dense or sparse right-hand sides, the Schur complement of
+                              the augmented matrix, or cached surface columns of A_0^-1 (default
+                              dense; see src/body/fem_compliance.c)
    One step (../shared/design/DESIGN.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
    contact resolution slots in between. */
 #include "../fcimpl.h"
