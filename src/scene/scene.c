@@ -196,6 +196,31 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   PetscFunctionReturn(0);
 }
 
+/* A matrix (ismat) or vector type given by an option is known to this PETSc build */
+static PetscErrorCode CheckType(MPI_Comm comm, PetscBool ismat, const char type[], const char option[])
+{
+  Mat       A = NULL;
+  Vec       v = NULL;
+  PetscBool ok;
+
+  PetscFunctionBegin;
+  if (ismat) {
+    PetscCall(MatCreate(PETSC_COMM_SELF, &A));
+    PetscCall(MatSetSizes(A, 1, 1, 1, 1));
+  } else {
+    PetscCall(VecCreate(PETSC_COMM_SELF, &v));
+    PetscCall(VecSetSizes(v, 1, 1));
+  }
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ok = (ismat ? MatSetType(A, type) : VecSetType(v, type)) ? PETSC_FALSE : PETSC_TRUE;
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(MatDestroy(&A));
+  PetscCall(VecDestroy(&v));
+  PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "Unknown %s type '%s' in %s (in this PETSc build)",
+             ismat ? "matrix" : "vector", type, option);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCSceneSetUp(FCScene s)
 {
   PetscFunctionBegin;
@@ -247,36 +272,11 @@ PetscErrorCode FCSceneSetUp(FCScene s)
                s->scheme_name);
     PetscCheck(s->newton_max_it >= 1, s->comm, PETSC_ERR_USER_INPUT,
                "Option -newton_max_it must be >= 1, got %" PetscInt_FMT, s->newton_max_it);
-    { /* the types exist in this PETSc build (a CUDA type in a host build is an input error now, not at
-         the first contact) */
-      Mat       A;
-      Vec       v;
-      PetscBool ok = PETSC_TRUE;
-      PetscCall(MatCreate(PETSC_COMM_SELF, &A));
-      PetscCall(MatSetSizes(A, 1, 1, 1, 1));
-      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-      if (MatSetType(A, s->wh_mat_type)) ok = PETSC_FALSE;
-      PetscCall(PetscPopErrorHandler());
-      PetscCall(MatDestroy(&A));
-      PetscCheck(ok, s->comm, PETSC_ERR_USER_INPUT, "Unknown matrix type '%s' in -wh_mat_type (in this PETSc build)",
-                 s->wh_mat_type);
-      PetscCall(MatCreate(PETSC_COMM_SELF, &A));
-      PetscCall(MatSetSizes(A, 1, 1, 1, 1));
-      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-      if (MatSetType(A, s->frames_mat_type)) ok = PETSC_FALSE;
-      PetscCall(PetscPopErrorHandler());
-      PetscCall(MatDestroy(&A));
-      PetscCheck(ok, s->comm, PETSC_ERR_USER_INPUT,
-                 "Unknown matrix type '%s' in -frames_mat_type (in this PETSc build)", s->frames_mat_type);
-      PetscCall(VecCreate(PETSC_COMM_SELF, &v));
-      PetscCall(VecSetSizes(v, 1, 1));
-      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-      if (VecSetType(v, s->vec_type)) ok = PETSC_FALSE;
-      PetscCall(PetscPopErrorHandler());
-      PetscCall(VecDestroy(&v));
-      PetscCheck(ok, s->comm, PETSC_ERR_USER_INPUT,
-                 "Unknown vector type '%s' in -contact_vec_type (in this PETSc build)", s->vec_type);
-    }
+    /* the types exist in this PETSc build: a CUDA type in a host build is an input error now, not
+       at the first contact */
+    PetscCall(CheckType(s->comm, PETSC_TRUE, s->wh_mat_type, "-wh_mat_type"));
+    PetscCall(CheckType(s->comm, PETSC_TRUE, s->frames_mat_type, "-frames_mat_type"));
+    PetscCall(CheckType(s->comm, PETSC_FALSE, s->vec_type, "-contact_vec_type"));
     PetscCheck(s->memory_limit > 0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_memory_limit must be > 0, got %g",
                (double)s->memory_limit);
     PetscCheck(s->fail_residual > 0, s->comm, PETSC_ERR_USER_INPUT, "Option -pgs_fail_residual must be > 0, got %g",
