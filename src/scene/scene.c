@@ -221,6 +221,16 @@ static PetscErrorCode CheckType(MPI_Comm comm, PetscBool ismat, const char type[
   PetscFunctionReturn(0);
 }
 
+/* The state of the current step as a frame (positions) and as the restart state; the frame's
+   flush makes both durable */
+static PetscErrorCode WriteOutputStep(FCScene s)
+{
+  PetscFunctionBegin;
+  PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
+  PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCSceneSetUp(FCScene s)
 {
   PetscFunctionBegin;
@@ -304,8 +314,7 @@ PetscErrorCode FCSceneSetUp(FCScene s)
   PetscCall(FCOutputCreate(s->comm, s->output_file, &s->output));
   PetscCall(FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every,
                                 s->pairs.n ? PETSC_TRUE : PETSC_FALSE));
-  PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
-  PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
+  PetscCall(WriteOutputStep(s));
   PetscCall(FCPhaseResetTimes());
   s->setupcalled = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -364,10 +373,7 @@ PetscErrorCode FCSceneStep(FCScene s)
     struct _FCContactSetView v = {&s->set, &s->stats, &s->measures};
     PetscCall(FCOutputRecordContacts(s->output, &v));
   }
-  if (s->step % s->every == 0 || s->step == s->nsteps) {
-    PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
-    PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
-  }
+  if (s->step % s->every == 0 || s->step == s->nsteps) PetscCall(WriteOutputStep(s));
   PetscFunctionReturn(0);
 }
 
@@ -421,10 +427,7 @@ PetscErrorCode FCSceneRun(FCScene s)
     PetscCall(FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t));
     PetscCall(FCSignalsPending(s->comm, &sig));
     if (sig && s->step < s->nsteps) { /* the last step's frame and restart state, then close */
-      if (s->step % s->every) {
-        PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
-        PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
-      }
+      if (s->step % s->every) PetscCall(WriteOutputStep(s));
       PetscCall(FCOutputDestroy(&s->output));
       SETERRQ(s->comm, PETSC_ERR_SIG,
               "interrupted by %s after step %" PetscInt_FMT " (t = %g s); %s is closed and holds the %" PetscInt_FMT
