@@ -324,6 +324,7 @@ PETSC_INTERN PetscErrorCode    FCSchemeLinearize(FCSchemeContext *, const PetscR
 PETSC_INTERN PetscBool         FCSchemeConverged(const FCSchemeContext *, PetscInt M, const PetscReal q[],
                                                  const PetscReal qold[], PetscReal frame_change);
 PETSC_INTERN void              FCContactSetUpdateStates(FCContactSet *);
+PETSC_INTERN void              FCSchemeStatsReset(const FCContactSet *, FCSchemeStats *);
 PETSC_INTERN PetscErrorCode FCSchemeCompliance(PetscInt nbodies, FCBody bodies[], const FCContactSet *, PetscReal W[]);
 PETSC_INTERN void FCSchemeStartLinearization(const FCContactSet *, PetscReal dfree[], PetscReal d0[], PetscReal q[],
                                              PetscReal mu[], PetscInt dims[]);

@@ -14,10 +14,7 @@ PetscErrorCode FCSchemeExplicit(MPI_Comm comm, PetscInt nbodies, FCBody bodies[]
   PetscBool        conv;
 
   PetscFunctionBegin;
-  st->contacts = set->n;
-  st->rows     = M;
-  st->sweeps   = 0;
-  st->residual = 0.0;
+  FCSchemeStatsReset(set, st);
   if (!set->n) PetscFunctionReturn(0);
   PetscCall(PetscMalloc1(M * M, &W));
   PetscCall(PetscMalloc6(M, &q, set->n, &mu, set->n, &dims, M, &lambda, 3 * set->n, &dfree, 3 * set->n, &d0));
@@ -41,11 +38,9 @@ PetscErrorCode FCSchemeExplicit(MPI_Comm comm, PetscInt nbodies, FCBody bodies[]
   PetscCall(FCPhaseEnd(FC_PHASE_CONTACT_SOLVE));
   for (PetscInt k = 0; k < set->n; k++) {
     FCContact *c = &set->c[k];
-    PetscReal  ft;
     for (PetscInt a = 0; a < 3; a++) c->force[a] = a < c->dim ? lambda[c->row + a] : 0.0;
-    ft       = PetscSqrtReal(c->force[1] * c->force[1] + c->force[2] * c->force[2]);
-    c->state = c->force[0] <= 0.0 ? 0 : (c->dim == 3 && ft >= c->mu * c->force[0] * (1.0 - 1e-6) ? 2 : 1);
   }
+  FCContactSetUpdateStates(set);
   PetscCall(FCPhaseBegin(FC_PHASE_CORRECTION));
   for (PetscInt b = 0; b < nbodies; b++)
     if (bodies[b]->ops.applycorrection) PetscCall((*bodies[b]->ops.applycorrection)(bodies[b], b, set, lambda));

@@ -46,11 +46,7 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
   PetscBool        conv;
 
   PetscFunctionBegin;
-  st->contacts = nc;
-  st->rows     = M;
-  st->sweeps   = 0;
-  st->residual = 0.0;
-  st->newton   = 0;
+  FCSchemeStatsReset(set, st);
   if (!nc) PetscFunctionReturn(0);
 
   /* W_H once per step: the bodies' builders on the contacts in identity frames */

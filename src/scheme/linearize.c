@@ -112,3 +112,13 @@ void FCContactSetNormalCompliance(FCContactSet *set, const PetscReal W[])
 {
   for (PetscInt k = 0; k < set->n; k++) set->c[k].wnn = W[set->c[k].row * set->nrows + set->c[k].row];
 }
+
+/* The statistics of a step before any iteration: its contacts and rows, nothing solved yet */
+void FCSchemeStatsReset(const FCContactSet *set, FCSchemeStats *st)
+{
+  st->contacts = set->n;
+  st->rows     = set->nrows;
+  st->sweeps   = 0;
+  st->residual = 0.0;
+  st->newton   = 0;
+}

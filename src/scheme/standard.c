@@ -20,11 +20,7 @@ PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
   PetscBool        conv;
 
   PetscFunctionBegin;
-  st->contacts = nc;
-  st->rows     = M;
-  st->sweeps   = 0;
-  st->residual = 0.0;
-  st->newton   = 0;
+  FCSchemeStatsReset(set, st);
   if (!nc) PetscFunctionReturn(0);
   for (PetscInt b = 0; b < ctx->nbodies; b++)
     if (ctx->bodies[b]->ops.savefree) PetscCall((*ctx->bodies[b]->ops.savefree)(ctx->bodies[b]));
