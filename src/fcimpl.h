@@ -265,6 +265,9 @@ PETSC_INTERN PetscErrorCode FCOutputFlush(FCOutput);
 /* The restart state of the end of `step` (/restart, written before the frame's flush) */
 PETSC_INTERN PetscErrorCode FCOutputWriteRestart(FCOutput, PetscInt step, PetscReal t, PetscInt nbodies, FCBody[],
                                                  const FCContactSet *previous);
+/* A contact of the restart state: pair, rows, key (3), n, t1, t2 (3 each), force (3) */
+#define FC_RESTART_CONTACT 17
+PETSC_INTERN void FCRestartPackContact(const FCContact *, double[FC_RESTART_CONTACT]);
 /* Reads the newest complete restart state of a file into the bodies, previous contacts, step, t */
 PETSC_INTERN PetscErrorCode FCRestartLoad(MPI_Comm, const char file[], PetscInt nbodies, FCBody[],
                                           FCContactSet *previous, PetscInt *step, PetscReal *t);

@@ -204,8 +204,6 @@ PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *ou
   PetscFunctionReturn(0);
 }
 
-#define FC_RESTART_CONTACT 17 /* pair, dim, key 3, n 3, t1 3, t2 3, force 3 */
-
 /* /restart/slot0 and slot1: per body a dataset of its state (FE: V x 6, u and v per vertex in the
    order of mesh/reference; rigid, kinematic: 13 values x, q, v, w), the previous step's contacts
    (warm start of the solver) and the step they belong to (-1: being written) */
@@ -290,19 +288,7 @@ PetscErrorCode FCOutputWriteRestart(FCOutput out, PetscInt step, PetscReal t, Pe
     if (cur[0] < dims[0]) FCH5Check(H5Dset_extent(out->xcontacts[k], dims), "restart contacts");
   }
   PetscCall(PetscMalloc1(FC_RESTART_CONTACT * nc + 1, &buf));
-  for (PetscInt j = 0; j < nc; j++) {
-    const FCContact *c = &previous->c[j];
-    double          *r = &buf[FC_RESTART_CONTACT * j];
-    r[0]               = c->pair;
-    r[1]               = c->dim;
-    for (int d = 0; d < 3; d++) {
-      r[2 + d]  = c->key[d];
-      r[5 + d]  = c->n[d];
-      r[8 + d]  = c->t1[d];
-      r[11 + d] = c->t2[d];
-      r[14 + d] = c->force[d];
-    }
-  }
+  for (PetscInt j = 0; j < nc; j++) { FCRestartPackContact(&previous->c[j], &buf[FC_RESTART_CONTACT * j]); }
   if (nc) {
     hid_t fspace = H5Dget_space(out->xcontacts[k]), mspace;
     if (out->rank == 0) {

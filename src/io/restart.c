@@ -6,7 +6,34 @@
 #include <hdf5.h>
 #include <math.h>
 
-#define FC_RESTART_CONTACT 17
+/* The record of a contact in /restart/slot0|1/contacts: what the next step's warm start reads
+   (FCContactSetFind: pair and key; FCContactPreviousForce: frame and force) */
+void FCRestartPackContact(const FCContact *c, double r[FC_RESTART_CONTACT])
+{
+  r[0] = c->pair;
+  r[1] = c->dim;
+  for (int d = 0; d < 3; d++) {
+    r[2 + d]  = c->key[d];
+    r[5 + d]  = c->n[d];
+    r[8 + d]  = c->t1[d];
+    r[11 + d] = c->t2[d];
+    r[14 + d] = c->force[d];
+  }
+}
+
+static void UnpackContact(const double r[FC_RESTART_CONTACT], FCContact *c)
+{
+  PetscMemzero(c, sizeof(*c));
+  c->pair = (PetscInt)r[0];
+  c->dim  = (PetscInt)r[1];
+  for (int d = 0; d < 3; d++) {
+    c->key[d]   = r[2 + d];
+    c->n[d]     = r[5 + d];
+    c->t1[d]    = r[8 + d];
+    c->t2[d]    = r[11 + d];
+    c->force[d] = r[14 + d];
+  }
+}
 
 static PetscErrorCode ReadAll(hid_t d, const char what[], const char file[], hsize_t rows, hsize_t cols, double *buf)
 {
@@ -184,17 +211,7 @@ PetscErrorCode FCRestartLoad(MPI_Comm comm, const char file[], PetscInt nbodies,
     PetscCall(FCContactSetReset(previous));
     for (hsize_t j = 0; j < dims[0]; j++) {
       FCContact c;
-      double   *r = &buf[FC_RESTART_CONTACT * j];
-      PetscCall(PetscMemzero(&c, sizeof(c)));
-      c.pair = (PetscInt)r[0];
-      c.dim  = (PetscInt)r[1];
-      for (int e = 0; e < 3; e++) {
-        c.key[e]   = r[2 + e];
-        c.n[e]     = r[5 + e];
-        c.t1[e]    = r[8 + e];
-        c.t2[e]    = r[11 + e];
-        c.force[e] = r[14 + e];
-      }
+      UnpackContact(&buf[FC_RESTART_CONTACT * j], &c);
       PetscCall(FCContactSetAdd(previous, &c));
     }
     PetscCall(PetscFree(buf));
