@@ -182,7 +182,6 @@ static PetscErrorCode PrecomputedCompliance(FCBody body, PetscInt self, const FC
   PetscReal *co, Rt[9];
 
   PetscFunctionBegin;
-  if (!fem->surf) PetscCall(PrecomputedSetUp(body));
   PetscCall(WarpRotation(body));
   FCMat3Transpose(fem->Rwarp, Rt);
   /* per column: up to 3 (surface vertex, coefficient 3-vector) */
@@ -363,7 +362,7 @@ PetscErrorCode FCFEMAddCompliance(FCBody body, PetscInt self, const FCContactSet
   PetscCall(MatDenseRestoreArray(fem->JT, &jt));
   if (!strcmp(fem->compliance, "schur") || !strcmp(fem->compliance, "precomputed")) {
     PetscCall(PetscCalloc1(ncols * ncols, &Wb));
-    if (fem->compliance[0] == 's')
+    if (!strcmp(fem->compliance, "schur"))
       PetscCall(SchurCompliance(body, ncols, Wb));
     else
       PetscCall(PrecomputedCompliance(body, self, set, ncols, Wb));
