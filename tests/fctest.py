@@ -5,6 +5,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 
 import h5py
 import numpy as np
@@ -27,6 +28,44 @@ def run(args, np_=1, check=True, timeout=600):
         sys.stderr.write(p.stdout + p.stderr)
         raise RuntimeError("fecontact failed (%d): %s" % (p.returncode, " ".join(cmd)))
     return p
+
+
+def start(args, np_=1):
+    """Start fecontact without waiting (a session of its own, so that a signal reaches mpirun and
+    every rank): returns the Popen"""
+    cmd = [EXE] + [str(a) for a in args]
+    if np_ > 1:
+        cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
+    return subprocess.Popen(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+
+
+def wait_for_frames(f, extra, timeout=300):
+    """Wait until a started run has written a few frames to f (the file grows by ~6 kB a frame of
+    the coarse cube; it cannot be read while open), then `extra` seconds: robust to a loaded machine"""
+    t0 = time.time()
+    while not os.path.exists(f) and time.time() - t0 < timeout:
+        time.sleep(0.05)
+    time.sleep(0.2)
+    size0 = os.path.getsize(f)
+    while os.path.getsize(f) < size0 + 20000 and time.time() - t0 < timeout:
+        time.sleep(0.05)
+    time.sleep(extra)
+
+
+def final_state(h5):
+    """The final state of a run in a partition-independent order: every FE body's vertex positions
+    (sorted_positions), then the centroid and orientation of the others, bodies by name"""
+    parts = []
+    for b in sorted(h5["bodies"]):
+        g = h5["bodies/" + b]
+        if g.attrs["type"] == b"fem":
+            parts.append(sorted_positions(h5, b)[1].ravel())
+        else:
+            parts.append(g["centroid"][-1])
+            if "rotation" in g:
+                parts.append(g["rotation"][-1])
+    return np.concatenate(parts)
 
 
 SANITIZER_REPORTS = ("ERROR: AddressSanitizer", "ERROR: LeakSanitizer", "runtime error:")

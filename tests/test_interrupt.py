@@ -11,37 +11,14 @@ Usage: test_interrupt.py [--np N]"""
 import os
 import re
 import signal
-import subprocess
-import time
 
 import h5py
 import numpy as np
-from fctest import EXE, ENV, ROOT, Checker, np_from_argv, out, run
+from fctest import Checker, np_from_argv, out, run, start, wait_for_frames
 
 NP = np_from_argv()
 c = Checker("interrupt np%d" % NP)
 SCENE = ["-options_file", "input/grasp_rotate.opts", "-time_steps", "1000000", "-output_every", "1", "-quiet"]
-
-
-def start(args, np_):
-    cmd = [EXE] + args
-    if np_ > 1:
-        cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
-    return subprocess.Popen(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            start_new_session=True)
-
-
-def wait_for_steps(f, n, timeout=300):
-    """Wait until the run has written a few frames (the file grows by ~6 kB a frame; it cannot be
-    read while open), then n seconds more: robust to a loaded machine"""
-    t0 = time.time()
-    while not os.path.exists(f) and time.time() - t0 < timeout:
-        time.sleep(0.05)
-    time.sleep(0.2)
-    size0 = os.path.getsize(f)
-    while os.path.getsize(f) < size0 + 20000 and time.time() - t0 < timeout:
-        time.sleep(0.05)
-    time.sleep(n)
 
 
 def consistent(f, what, killed=False):
@@ -72,7 +49,7 @@ def consistent(f, what, killed=False):
 sig, name = (signal.SIGINT, "SIGINT") if NP == 1 else (signal.SIGTERM, "SIGTERM")
 f = out("sig_np%d.h5" % NP)
 p = start(SCENE + ["-output_file", f], NP)
-wait_for_steps(f, 2.0)
+wait_for_frames(f, 2.0)
 os.killpg(p.pid, sig) if NP > 1 else p.send_signal(sig)
 o, e = p.communicate(timeout=120)
 m = re.search(r"interrupted by (SIG\w+) after step (\d+)", o + e)
@@ -87,7 +64,7 @@ c.check(m is not None and int(m.group(2)) == S, "%s: the file holds the %s steps
 for delay in (0.8, 1.6, 2.4):
     f = out("kill9_%g_np%d.h5" % (delay, NP))
     p = start(SCENE + ["-output_file", f], NP)
-    wait_for_steps(f, delay)
+    wait_for_frames(f, delay)
     os.killpg(p.pid, signal.SIGKILL)
     p.communicate(timeout=60)
     c.check(p.returncode != 0, "kill -9 after %.1f s: killed (status %d)" % (delay, p.returncode))

@@ -9,12 +9,10 @@ coordinates, not by the partition-dependent numbering). Bad restarts fail with a
 Usage: test_restart.py [--np N]"""
 import os
 import signal
-import subprocess
-import time
 
 import h5py
 import numpy as np
-from fctest import EXE, ENV, ROOT, Checker, np_from_argv, out, run, sorted_positions
+from fctest import Checker, final_state, np_from_argv, out, run, start, wait_for_frames
 
 NP = np_from_argv()
 c = Checker("restart np%d" % NP)
@@ -23,16 +21,7 @@ TOL = 1e-12
 
 def state(f):
     h = h5py.File(f, "r")
-    parts = []
-    for b in sorted(h["bodies"]):
-        g = h["bodies/" + b]
-        if g.attrs["type"] == b"fem":
-            parts.append(sorted_positions(h, b)[1].ravel())
-        else:
-            parts.append(g["centroid"][-1])
-            if "rotation" in g:
-                parts.append(g["rotation"][-1])
-    return np.concatenate(parts), h
+    return final_state(h), h
 
 
 def compare(name, full, rest):
@@ -66,17 +55,8 @@ for name, opts, N, k in SCENES:
 # from a run stopped by SIGINT (the restart state is that of its last frame)
 opts = ["-options_file", "input/grasp_rotate.opts", "-output_every", "3", "-quiet"]
 full, cut, rest = out("sig_full_np%d.h5" % NP), out("sig_cut_np%d.h5" % NP), out("sig_rest_np%d.h5" % NP)
-cmd = [EXE] + opts + ["-time_steps", "100000", "-output_file", cut]
-if NP > 1:
-    cmd = ["mpirun", "-n", str(NP), "--oversubscribe"] + cmd
-p = subprocess.Popen(cmd, cwd=ROOT, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
-while not os.path.exists(cut):
-    time.sleep(0.05)
-time.sleep(0.2)
-size0 = os.path.getsize(cut)
-while os.path.getsize(cut) < size0 + 20000:  # a few frames written, however loaded the machine
-    time.sleep(0.05)
-time.sleep(0.5)
+p = start(opts + ["-time_steps", "100000", "-output_file", cut], NP)
+wait_for_frames(cut, 0.5)
 os.killpg(p.pid, signal.SIGINT)
 p.communicate(timeout=120)
 S = len(h5py.File(cut, "r")["steps/step"])
