@@ -82,11 +82,15 @@ cases = [
     ("contact pair, malformed", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cubeground", "-quiet"], "body1:body2"),
     ("contact mu negative", ["-options_file", "input/cube_drop.opts", "-contact_mu", "-0.3", "-quiet"], "-contact_mu"),
     ("restart file missing", opts(restart="nonexistent.h5"), "Cannot open the restart file"),
+    ("contact matrices over the memory limit", ["-options_file", "input/cube_drop.opts", "-contact_memory_limit", "1e3", "-quiet"],
+     "-contact_memory_limit"),
+    ("CUDA type in a host build", ["-options_file", "input/cube_drop.opts", "-wh_mat_type", "seqdensecuda", "-quiet"], "-wh_mat_type"),
 ]
 # on several ranks, the cases whose detection involves communication or several ranks' data
 PARALLEL = {"missing mesh file", "not a gmsh file", "truncated mesh", "2D mesh", "inverted element", "zero-volume element",
             "unknown body type", "NaN Young", "misspelt option", "unwritable output path", "fixed box fixes everything",
-            "surface not closed", "contact pair, unknown body", "mesh that crashes PETSc's reader"}
+            "surface not closed", "contact pair, unknown body", "mesh that crashes PETSc's reader",
+            "contact matrices over the memory limit"}
 if NP > 1:
     cases = [cs for cs in cases if cs[0] in PARALLEL]
 for what, args, expect in cases:
