@@ -1,7 +1,8 @@
-"""Compliance builders: -compliance_type dense, sparse and schur give the same contact forces
-and positions (1e-10 relative) on an FE cube dropped on a plane (the same W to round-off drives
-the same solver path); on more than one rank dense and schur agree and sparse is refused with a
-clear error. precomputed is exact for a linear material (1e-10) and, rotation-warped, close to
+"""Compliance builders: -compliance_type dense, sparse, schur, inverse and redundant give the same
+contact forces and positions (1e-10 relative) on an FE cube dropped on a plane (the same W to
+round-off drives the same solver path); on more than one rank sparse is refused with a clear
+error. The co-rotational grasp (A refactored every step) checks that W_H follows A with every
+builder, the redundant copies of A included. precomputed is exact for a linear material (1e-10) and, rotation-warped, close to
 dense for a co-rotational one. Usage: test_compliance.py [--np N]"""
 import numpy as np
 import h5py
@@ -24,7 +25,7 @@ def result(ctype, extra=()):
 
 
 a = result("dense")
-others = ["sparse", "schur"] if NP == 1 else ["schur"]
+others = (["sparse"] if NP == 1 else []) + ["schur", "inverse", "redundant"]
 for ctype in others:
     b = result(ctype)
     same = np.array_equal(a["contacts/offset"][:], b["contacts/offset"][:])
@@ -53,17 +54,30 @@ d = np.abs(pa - pb).max()
 c.check(0 < d < 1e-4, "precomputed (warped) vs dense, co-rotational: positions differ by %.2e m (0 < d < 1e-4)" % d)
 pen = b["steps/max_penetration"][:].max()
 c.check(pen < 1e-6, "precomputed (warped): max penetration %.2e m < 1e-6" % pen)
-# W_H of the fast scheme comes from the same builders (identity frames): dense and schur agree
+# W_H of the fast scheme comes from the same builders (identity frames): all agree with dense
 wh = {}
-for ctype in ["dense", "schur"]:
+for ctype in ["dense", "schur", "inverse", "redundant"]:
     f = out("wh_%s_np%d.h5" % (ctype, NP))
     run(["-options_file", "input/grasp_rotate.opts", "-time_steps", "10", "-constraint_scheme", "fast", "-pgs_tol", "1e-11",
          "-pgs_max_it", "50000", "-compliance_type", ctype, "-output_file", f, "-quiet", "-pgs_acceleration", "none"], np_=NP)
     wh[ctype] = h5py.File(f, "r")
-fa, fb = wh["dense"]["contacts/force"][:], wh["schur"]["contacts/force"][:]
-same = fa.shape == fb.shape and fa.size > 0
-err = np.abs(fa - fb).max() / np.abs(fa).max() if same else np.inf
-c.check(err < 1e-9, "fast scheme, W_H by dense vs schur: forces rel. diff %.2e" % err)
+for ctype in ["schur", "inverse", "redundant"]:
+    fa, fb = wh["dense"]["contacts/force"][:], wh[ctype]["contacts/force"][:]
+    same = fa.shape == fb.shape and fa.size > 0
+    err = np.abs(fa - fb).max() / np.abs(fa).max() if same else np.inf
+    c.check(err < 1e-9, "fast scheme, co-rotational grasp, W_H by dense vs %s: forces rel. diff %.2e" % (ctype, err))
+# FE-FE contacts (barycentric proximities on both bodies, two bodies' blocks of S and J_S)
+fe = {}
+for ctype in ["dense", "inverse", "redundant"]:
+    f = out("fefe_%s_np%d.h5" % (ctype, NP))
+    run(["-options_file", "input/two_cubes.opts", "-time_steps", "60", "-compliance_type", ctype, "-output_file", f, "-quiet",
+         "-pgs_acceleration", "none", "-pgs_tol", "1e-11", "-pgs_max_it", "20000"], np_=NP)
+    fe[ctype] = h5py.File(f, "r")
+for ctype in ["inverse", "redundant"]:
+    fa, fb = fe["dense"]["contacts/force"][:], fe[ctype]["contacts/force"][:]
+    same = fa.shape == fb.shape and fa.size > 0
+    err = np.abs(fa - fb).max() / np.abs(fa).max() if same else np.inf
+    c.check(err < 1e-10, "FE-FE two cubes, %s vs dense: forces rel. diff %.2e < 1e-10 (%d records)" % (ctype, err, len(fa)))
 if NP > 1:
     p = run(base + ["-compliance_type", "sparse", "-output_file", out("comp_sparse_np%d.h5" % NP)], np_=NP, check=False)
     c.check(p.returncode != 0 and "one MPI rank only" in p.stderr + p.stdout, "sparse on %d ranks: clear error, exit %d" % (NP, p.returncode))

@@ -3,6 +3,10 @@
                   for the correction (eq. 20)
      sparse       the same with J_b handed to MUMPS as sparse right-hand sides (1 rank)
      schur        MUMPS Schur complement of the augmented matrix [[0, J_b], [J_b^T, A]]
+     inverse      the block of A^-1 on the contact DOFs from MUMPS (selected entries of the
+                  inverse, ICNTL(30)), then J_S (A^-1)_SS J_S^T
+     redundant    the same with a sequential factor of A on every rank, each computing 1/p of
+                  the columns
      precomputed  columns of A_0^-1 restricted to the body's surface, computed once per surface
                   vertex (the first time it is in contact) and reused; A_0 is A at the
                   reference state. Co-rotational bodies warp them with the body's best-fit
@@ -83,6 +87,217 @@ static PetscErrorCode SchurCompliance(FCBody body, PetscInt ncols, PetscReal *Wb
   PetscCall(MatDestroy(&F));
   PetscCall(MatDestroy(&K));
   PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(0);
+}
+
+/* Compliance, selected-inverse builders: W_b = J_S C J_S^T with C = (A^-1)_{SS} the block of the
+   inverse on the DOFs S that the body's contacts touch, from MUMPS (ICNTL(30),
+   MatMumpsGetInverse). MUMPS prunes its elimination tree to the paths of S, so the cost follows
+   |S| and the tree, not |S| full solves.
+     inverse    with the factor A already has (distributed): the entries come back on rank 0,
+                which forms W_b;
+     redundant  every rank keeps its own sequential factor of the whole A (PCREDUNDANT's idea:
+                memory for parallelism) and computes the columns of C for its 1/p share of S;
+                the partial W_b are summed. A linear A is factored once; a co-rotational one
+                again whenever the body refactors A.
+   The correction does one solve with the distributed factor. */
+
+/* S (sorted DOFs of the proximity vertices, the same on every rank: contacts are replicated),
+   and J_S by columns of S: for S index j, the rows a of J_b with J_b(a, S_j) != 0 */
+static PetscErrorCode ContactDofs(const FCContactSet *set, PetscInt self, PetscInt *ns_, PetscInt **S_,
+                                  PetscInt **cptr_, PetscInt **crow_, PetscReal **cval_)
+{
+  PetscInt   n = 0, ns = 0, *S, *cptr, *crow = NULL, *cnt;
+  PetscReal *cval = NULL;
+
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < set->n; k++)
+    for (PetscInt s = 0; s < 2; s++)
+      if (set->c[k].body[s] == self) n += 3 * set->c[k].prox[s].nv;
+  PetscCall(PetscMalloc1(n + 1, &S));
+  for (PetscInt k = 0; k < set->n; k++)
+    for (PetscInt s = 0; s < 2; s++)
+      if (set->c[k].body[s] == self)
+        for (PetscInt v = 0; v < set->c[k].prox[s].nv; v++)
+          if (set->c[k].prox[s].gdof[v] >= 0) /* fixed vertices have no DOF */
+            for (int d = 0; d < 3; d++) S[ns++] = set->c[k].prox[s].gdof[v] + d;
+  PetscCall(PetscSortRemoveDupsInt(&ns, S));
+  PetscCall(PetscCalloc1(ns + 1, &cptr));
+  PetscCall(PetscCalloc1(ns + 1, &cnt));
+  for (int pass = 0; pass < 2; pass++) { /* count, then fill */
+    PetscInt a = 0;
+    for (PetscInt k = 0; k < set->n; k++)
+      for (PetscInt s = 0; s < 2; s++) {
+        const FCContact *c = &set->c[k];
+        if (c->body[s] != self) continue;
+        for (PetscInt dir = 0; dir < c->dim; dir++, a++) {
+          PetscReal e[3];
+          Direction(c, s, dir, e);
+          for (PetscInt v = 0; v < c->prox[s].nv; v++) {
+            PetscInt at;
+            if (c->prox[s].gdof[v] < 0) continue;
+            PetscCall(PetscFindInt(c->prox[s].gdof[v], ns, S, &at));
+            for (int d = 0; d < 3; d++) {
+              if (!pass)
+                cptr[at + d + 1]++;
+              else {
+                PetscInt q = cptr[at + d] + cnt[at + d]++;
+                crow[q]    = a;
+                cval[q]    = c->prox[s].w[v] * e[d];
+              }
+            }
+          }
+        }
+      }
+    if (!pass) {
+      for (PetscInt j = 0; j < ns; j++) cptr[j + 1] += cptr[j];
+      PetscCall(PetscMalloc1(cptr[ns] + 1, &crow));
+      PetscCall(PetscMalloc1(cptr[ns] + 1, &cval));
+    }
+  }
+  PetscCall(PetscFree(cnt));
+  *ns_   = ns;
+  *S_    = S;
+  *cptr_ = cptr;
+  *crow_ = crow;
+  *cval_ = cval;
+  PetscFunctionReturn(0);
+}
+
+/* Adds to Wb the part of J_S C J_S^T from the columns j0 <= j < j1 of C = (A^-1)_{SS}, computed
+   with the factor F; a rank with j1 > j0 must hold every row of F (rank 0 of a distributed
+   factor, or a sequential factor) */
+static PetscErrorCode AddInverseColumns(Mat F, PetscInt N, PetscInt ns, const PetscInt S[], const PetscInt cptr[],
+                                        const PetscInt crow[], const PetscReal cval[], PetscInt j0, PetscInt j1,
+                                        PetscInt ncols, PetscReal *Wb)
+{
+  MPI_Comm    comm = PetscObjectComm((PetscObject)F);
+  PetscMPIInt size;
+  PetscInt    nloc = j1 > j0 ? N : 0, *nnz, icntl21, icntl30;
+  PetscReal  *T;
+  Mat         Bt, Btseq, spRHS;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  /* row S_j of Bt lists the entries wanted in column S_j of A^-1 */
+  PetscCall(MatCreateAIJ(comm, nloc, nloc, N, N, 0, NULL, 0, NULL, &Bt));
+  PetscCall(PetscCalloc1(nloc + 1, &nnz));
+  for (PetscInt j = j0; j < j1; j++) nnz[S[j]] = ns;
+  PetscCall(MatSeqAIJSetPreallocation(Bt, 0, nnz));
+  PetscCall(MatMPIAIJSetPreallocation(Bt, 0, nnz, 0, NULL));
+  PetscCall(PetscFree(nnz));
+  {
+    PetscScalar *zero;
+    PetscCall(PetscCalloc1(ns + 1, &zero));
+    for (PetscInt j = j0; j < j1; j++) PetscCall(MatSetValues(Bt, 1, &S[j], ns, S, zero, INSERT_VALUES));
+    PetscCall(PetscFree(zero));
+  }
+  PetscCall(MatAssemblyBegin(Bt, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Bt, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateTranspose(Bt, &spRHS));
+  /* PETSc 3.18 leaves ICNTL(30) = 1 and ICNTL(21) = 0 (centralized solution) set after the call,
+     which breaks the later solves with a distributed factor: restore both */
+  PetscCall(MatMumpsGetIcntl(F, 21, &icntl21));
+  PetscCall(MatMumpsGetIcntl(F, 30, &icntl30));
+  PetscCall(MatMumpsGetInverse(F, spRHS));
+  PetscCall(MatMumpsSetIcntl(F, 21, icntl21));
+  PetscCall(MatMumpsSetIcntl(F, 30, icntl30));
+  if (size > 1)
+    PetscCall(MatMPIAIJGetSeqAIJ(Bt, &Btseq, NULL, NULL));
+  else
+    Btseq = Bt;
+  /* per own column j: T = (J_S C)(:, j), then Wb(a, b) += T(a) J_S(b, j) */
+  PetscCall(PetscMalloc1(ncols + 1, &T));
+  for (PetscInt j = j0; j < j1; j++) {
+    PetscInt           nc;
+    const PetscInt    *cols;
+    const PetscScalar *vals;
+    PetscCall(MatGetRow(Btseq, S[j], &nc, &cols, &vals)); /* C(:, j), in the order of S */
+    PetscCheck(nc == ns, PETSC_COMM_SELF, PETSC_ERR_LIB,
+               "MUMPS returned %" PetscInt_FMT " of %" PetscInt_FMT " entries", nc, ns);
+    PetscCall(PetscArrayzero(T, ncols));
+    for (PetscInt i = 0; i < ns; i++)
+      for (PetscInt q = cptr[i]; q < cptr[i + 1]; q++) T[crow[q]] += cval[q] * PetscRealPart(vals[i]);
+    PetscCall(MatRestoreRow(Btseq, S[j], &nc, &cols, &vals));
+    for (PetscInt q = cptr[j]; q < cptr[j + 1]; q++)
+      for (PetscInt a = 0; a < ncols; a++) Wb[a * ncols + crow[q]] += T[a] * cval[q];
+  }
+  PetscCall(PetscFree(T));
+  PetscCall(MatDestroy(&spRHS));
+  PetscCall(MatDestroy(&Bt));
+  PetscFunctionReturn(0);
+}
+
+/* redundant: the sequential copy of A on this rank and its factor, current with A's factor */
+static PetscErrorCode RedundantFactor(FCBody body, Mat *F)
+{
+  FEM          *fem = (FEM *)body->data;
+  PetscMPIInt   size;
+  MatFactorInfo info;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(body->comm, &size));
+  if (size == 1) { /* A's own factor is already sequential */
+    PC pc;
+    PetscCall(KSPGetPC(fem->ksp, &pc));
+    PetscCall(PCFactorGetMatrix(pc, F));
+    PetscFunctionReturn(0);
+  }
+  if (!fem->Fr || fem->rfactor != fem->nfactor) {
+    /* size subcommunicators of one rank each: every rank gets all of A */
+    PetscCall(MatCreateRedundantMatrix(fem->A, size, MPI_COMM_NULL, fem->Ar ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX,
+                                       &fem->Ar));
+    PetscCall(MatSetOption(fem->Ar, MAT_SYMMETRIC, PETSC_TRUE));
+    PetscCall(MatFactorInfoInitialize(&info));
+    if (!fem->Fr) { /* the pattern of A never changes: one analysis */
+      PetscCall(MatGetFactor(fem->Ar, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &fem->Fr));
+      PetscCall(MatCholeskyFactorSymbolic(fem->Fr, fem->Ar, NULL, &info));
+    }
+    PetscCall(MatCholeskyFactorNumeric(fem->Fr, fem->Ar, &info));
+    fem->rfactor = fem->nfactor;
+  }
+  *F = fem->Fr;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode InverseCompliance(FCBody body, PetscInt self, const FCContactSet *set, PetscInt ncols,
+                                        PetscReal *Wb)
+{
+  FEM          *fem = (FEM *)body->data;
+  PetscMPIInt   rank, size;
+  PetscInt      N, ns, *S, *cptr, *crow, j0, j1;
+  PetscReal    *cval;
+  Mat           F;
+  PC            pc;
+  MatSolverType stype;
+  PetscBool     mumps;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
+  PetscCallMPI(MPI_Comm_size(body->comm, &size));
+  PetscCall(VecGetSize(fem->u, &N));
+  PetscCall(KSPGetPC(fem->ksp, &pc));
+  PetscCall(PCFactorGetMatrix(pc, &F));
+  PetscCall(MatFactorGetSolverType(F, &stype));
+  PetscCall(PetscStrcmp(stype, MATSOLVERMUMPS, &mumps));
+  PetscCheck(mumps, body->comm, PETSC_ERR_USER_INPUT,
+             "-compliance_type %s needs MUMPS as the factorization of body '%s' (it has '%s')", fem->compliance,
+             body->name, stype);
+  PetscCall(ContactDofs(set, self, &ns, &S, &cptr, &crow, &cval));
+  if (!strcmp(fem->compliance, "redundant")) { /* this rank's share of S, with its own factor */
+    PetscCall(RedundantFactor(body, &F));
+    j0 = (ns * rank) / size;
+    j1 = (ns * (rank + 1)) / size;
+  } else { /* all of S on rank 0 of the distributed factor */
+    j0 = 0;
+    j1 = rank ? 0 : ns;
+  }
+  PetscCall(AddInverseColumns(F, N, ns, S, cptr, crow, cval, j0, j1, ncols, Wb));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, Wb, ncols * ncols, MPIU_REAL, MPIU_SUM, body->comm));
+  PetscCall(PetscFree(S));
+  PetscCall(PetscFree(cptr));
+  PetscCall(PetscFree(crow));
+  PetscCall(PetscFree(cval));
   PetscFunctionReturn(0);
 }
 
@@ -310,6 +525,8 @@ PetscErrorCode FCFEMComplianceDestroy(FCBody body)
   PetscCall(MatDestroy(&fem->A0));
   PetscCall(PetscFree2(fem->surf, fem->slot));
   PetscCall(PetscFree(fem->cache));
+  PetscCall(MatDestroy(&fem->Fr));
+  PetscCall(MatDestroy(&fem->Ar));
   PetscFunctionReturn(0);
 }
 
@@ -360,10 +577,13 @@ PetscErrorCode FCFEMAddCompliance(FCBody body, PetscInt self, const FCContactSet
     }
   fem->ncols = ncols;
   PetscCall(MatDenseRestoreArray(fem->JT, &jt));
-  if (!strcmp(fem->compliance, "schur") || !strcmp(fem->compliance, "precomputed")) {
+  if (!strcmp(fem->compliance, "schur") || !strcmp(fem->compliance, "inverse") ||
+      !strcmp(fem->compliance, "redundant") || !strcmp(fem->compliance, "precomputed")) {
     PetscCall(PetscCalloc1(ncols * ncols, &Wb));
     if (!strcmp(fem->compliance, "schur"))
       PetscCall(SchurCompliance(body, ncols, Wb));
+    else if (!strcmp(fem->compliance, "inverse") || !strcmp(fem->compliance, "redundant"))
+      PetscCall(InverseCompliance(body, self, set, ncols, Wb));
     else
       PetscCall(PrecomputedCompliance(body, self, set, ncols, Wb));
     for (PetscInt i = 0; i < ncols; i++)
@@ -466,10 +686,15 @@ PetscErrorCode FCBodyFEMSetComplianceType(FCBody body, const char type[])
   FEM *fem = NULL;
   PetscFunctionBegin;
   PetscCall(FCFEMGet(body, &fem));
-  PetscCheck(!strcmp(type, "dense") || !strcmp(type, "sparse") || !strcmp(type, "schur") ||
-                 !strcmp(type, "precomputed"),
-             body->comm, PETSC_ERR_USER_INPUT,
-             "Unknown compliance type '%s' in -compliance_type (known: dense, sparse, schur, precomputed)", type);
+  {
+    static const char *const known[] = {"dense", "sparse", "schur", "inverse", "redundant", "precomputed"};
+    PetscBool                found   = PETSC_FALSE;
+    for (size_t k = 0; k < sizeof(known) / sizeof(known[0]); k++) found = found || !strcmp(type, known[k]);
+    PetscCheck(found, body->comm, PETSC_ERR_USER_INPUT,
+               "Unknown compliance type '%s' in -compliance_type (known: dense, sparse, schur, inverse, redundant, "
+               "precomputed)",
+               type);
+  }
   if (!strcmp(type, "sparse")) {
     PetscMPIInt size;
     PetscCallMPI(MPI_Comm_size(body->comm, &size));

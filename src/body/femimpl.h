@@ -45,6 +45,9 @@ typedef struct {
   PetscReal *cache; /* slot j: 3 nsurf x 3, column-major              */
   PetscInt   ncached, maxcached;
   PetscReal  Rwarp[9]; /* best-fit rotation of the body at the start of the step */
+  /* redundant compliance: a sequential copy of A and its factor on every rank */
+  Mat      Ar, Fr;
+  PetscInt rfactor; /* nfactor when Fr was factored */
 } FEM;
 
 /* Compliance builders (-compliance_type, src/body/fem_compliance.c) */
