@@ -5,6 +5,7 @@ step. Tolerance 1e-8 relative: different partitions sum in different orders, and
 amplify round-off a little through the solver's stopping test (measured up to 1e-10).
 Usage: test_parallel.py --np N"""
 import h5py
+import re
 import numpy as np
 from fctest import Checker, final_state, np_from_argv, out, run
 
@@ -17,11 +18,14 @@ SCENES = [("default", ["-options_file", "input/default.opts", "-time_steps", "25
           ("two_cubes", ["-options_file", "input/two_cubes.opts", "-time_steps", "20", "-contact_fe_passes", "1"]),
           ("box_on_slab", ["-options_file", "input/box_on_slab.opts", "-time_steps", "20"]),
           # the contact problem solved on rank 0 and broadcast instead of on every rank
-          ("cube_drop, -pgs_ranks root", ["-options_file", "input/cube_drop.opts", "-time_steps", "25", "-pgs_ranks", "root"])]
+          ("cube_drop, -pgs_ranks root", ["-options_file", "input/cube_drop.opts", "-time_steps", "25", "-pgs_ranks", "root"]),
+          # W_H from a sequential factor on every rank, 1/3 of the contact DOFs each (uneven shares)
+          ("grasp_rotate, -compliance_type redundant", ["-options_file", "input/grasp_rotate.opts", "-time_steps", "12",
+                                                        "-constraint_scheme", "fast", "-compliance_type", "redundant"])]
 
 
 for name, args in SCENES:
-    tag = name.split(",")[0] + ("_root" if "root" in name else "")
+    tag = re.sub(r"\W+", "_", name)
     f1, fn = out("%s_np1.h5" % tag), out("%s_np%d.h5" % (tag, NP))
     run(args + ["-quiet", "-output_file", f1], np_=1)
     run(args + ["-quiet", "-output_file", fn], np_=NP, timeout=1200)

@@ -170,6 +170,7 @@ static PetscErrorCode FormAndFactorA(FCBody body)
   }
   fem->nfactor++;
   fem->factor_age = 0;
+  PetscCall(FCFEMComplianceFactor(body)); /* builders that keep their own factor of A */
   PetscCall(FCPhaseEnd(FC_PHASE_FACTORIZATION));
   fem->Acurrent = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -792,9 +793,6 @@ static PetscErrorCode Destroy_FEM(FCBody body)
   PetscCall(VecDestroy(&fem->dvloc));
   PetscCall(VecDestroy(&fem->dvfree));
   PetscCall(PetscFree4(fem->bx0, fem->bxf, fem->bkey, fem->bprox));
-  PetscCall(PetscFree(fem->cols));
-  PetscCall(MatDestroy(&fem->JT));
-  PetscCall(MatDestroy(&fem->X));
   PetscCall(VecDestroy(&fem->Xg));
   PetscCall(FCMaterialDestroy(&fem->mat));
   PetscCall(FCMeshDestroy(&fem->mesh));

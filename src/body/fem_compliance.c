@@ -28,13 +28,12 @@ static void Direction(const FCContact *c, PetscInt side, PetscInt a, PetscReal e
    contacts), and the correction then needs one solve with A's own factor. */
 static PetscErrorCode SchurCompliance(FCBody body, PetscInt ncols, PetscReal *Wb)
 {
-  FEM               *fem = (FEM *)body->data;
-  PetscMPIInt        rank;
-  PetscInt           nloc, N, lo, hi, mloc;
-  Mat                K, F, S;
-  IS                 is;
-  MatFactorInfo      info;
-  const PetscScalar *jt;
+  FEM          *fem = (FEM *)body->data;
+  PetscMPIInt   rank;
+  PetscInt      nloc, N, lo, hi, mloc;
+  Mat           K, F, S;
+  IS            is;
+  MatFactorInfo info;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
@@ -52,19 +51,15 @@ static PetscErrorCode SchurCompliance(FCBody body, PetscInt ncols, PetscReal *Wb
     PetscCall(MatGetRow(fem->A, r, &nc, &cols, &vals));
     PetscCheck(nc <= 512, PETSC_COMM_SELF, PETSC_ERR_SUP, "Row of A with %" PetscInt_FMT " entries", nc);
     for (PetscInt k = 0; k < nc; k++) shifted[k] = cols[k] + ncols;
-    PetscCall(MatSetValues(K, 1, &row, nc, shifted, vals, INSERT_VALUES));
+    PetscCall(MatSetValues(K, 1, &row, nc, shifted, vals, ADD_VALUES));
     PetscCall(MatRestoreRow(fem->A, r, &nc, &cols, &vals));
   }
-  PetscCall(MatDenseGetArrayRead(fem->JT, &jt));
-  for (PetscInt i = 0; i < ncols; i++) {
-    if (rank == 0) PetscCall(MatSetValue(K, i, i, 0.0, INSERT_VALUES)); /* structural diagonal */
-    for (PetscInt r = 0; r < nloc; r++)
-      if (jt[r + i * nloc] != 0.0) {
-        PetscCall(MatSetValue(K, lo + r + ncols, i, jt[r + i * nloc], INSERT_VALUES));
-        PetscCall(MatSetValue(K, i, lo + r + ncols, jt[r + i * nloc], INSERT_VALUES));
-      }
+  if (rank == 0)
+    for (PetscInt i = 0; i < ncols; i++) PetscCall(MatSetValue(K, i, i, 0.0, ADD_VALUES)); /* structural diagonal */
+  for (PetscInt q = 0; q < fem->njt; q++) {                                                /* J_b^T and J_b */
+    PetscCall(MatSetValue(K, lo + fem->jtr[q] + ncols, fem->jtc[q], fem->jtv[q], ADD_VALUES));
+    PetscCall(MatSetValue(K, fem->jtc[q], lo + fem->jtr[q] + ncols, fem->jtv[q], ADD_VALUES));
   }
-  PetscCall(MatDenseRestoreArrayRead(fem->JT, &jt));
   PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
   PetscCall(MatSetOption(K, MAT_SYMMETRIC, PETSC_TRUE));
@@ -260,13 +255,24 @@ static PetscErrorCode RedundantFactor(FCBody body, Mat *F)
   PetscFunctionReturn(0);
 }
 
+/* Called when A has been factored (in the factorization phase): the redundant copies follow */
+PetscErrorCode FCFEMComplianceFactor(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+  Mat  F;
+
+  PetscFunctionBegin;
+  if (!strcmp(fem->compliance, "redundant")) PetscCall(RedundantFactor(body, &F));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode InverseCompliance(FCBody body, PetscInt self, const FCContactSet *set, PetscInt ncols,
                                         PetscReal *Wb)
 {
   FEM          *fem = (FEM *)body->data;
   PetscMPIInt   rank, size;
-  PetscInt      N, ns, *S, *cptr, *crow, j0, j1;
-  PetscReal    *cval;
+  PetscInt      N, ns = 0, *S = NULL, *cptr = NULL, *crow = NULL, j0, j1;
+  PetscReal    *cval = NULL;
   Mat           F;
   PC            pc;
   MatSolverType stype;
@@ -516,6 +522,20 @@ static PetscErrorCode RotateBlocks(FEM *fem, Vec v, PetscBool transpose)
   PetscFunctionReturn(0);
 }
 
+/* Forgets the step's contact columns: J_b^T, A^-1 J_b^T and their rows of W */
+PetscErrorCode FCFEMComplianceReset(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  PetscCall(MatDestroy(&fem->JT));
+  PetscCall(MatDestroy(&fem->X));
+  PetscCall(PetscFree(fem->cols));
+  PetscCall(PetscFree3(fem->jtr, fem->jtc, fem->jtv));
+  fem->ncols = fem->njt = 0;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCFEMComplianceDestroy(FCBody body)
 {
   FEM *fem = (FEM *)body->data;
@@ -527,6 +547,7 @@ PetscErrorCode FCFEMComplianceDestroy(FCBody body)
   PetscCall(PetscFree(fem->cache));
   PetscCall(MatDestroy(&fem->Fr));
   PetscCall(MatDestroy(&fem->Ar));
+  PetscCall(FCFEMComplianceReset(body));
   PetscFunctionReturn(0);
 }
 
@@ -536,7 +557,7 @@ PetscErrorCode FCFEMComplianceDestroy(FCBody body)
 PetscErrorCode FCFEMAddCompliance(FCBody body, PetscInt self, const FCContactSet *set, PetscReal W[])
 {
   FEM               *fem = (FEM *)body->data;
-  PetscInt           nloc, N, lo, M = set->nrows, ncols = 0;
+  PetscInt           nloc, N, lo, M = set->nrows, ncols = 0, n = 0;
   PetscScalar       *jt;
   const PetscScalar *x;
   Mat                F;
@@ -544,21 +565,20 @@ PetscErrorCode FCFEMAddCompliance(FCBody body, PetscInt self, const FCContactSet
   PetscReal         *Wb;
 
   PetscFunctionBegin;
-  PetscCall(MatDestroy(&fem->JT));
-  PetscCall(MatDestroy(&fem->X));
-  PetscCall(PetscFree(fem->cols));
-  fem->ncols = 0;
+  PetscCall(FCFEMComplianceReset(body));
   for (PetscInt k = 0; k < set->n; k++)
     for (PetscInt s = 0; s < 2; s++)
-      if (set->c[k].body[s] == self) ncols += set->c[k].dim;
+      if (set->c[k].body[s] == self) {
+        ncols += set->c[k].dim;
+        n += set->c[k].dim * 3 * set->c[k].prox[s].nv;
+      }
   if (!ncols) PetscFunctionReturn(0);
   PetscCall(PetscMalloc1(ncols, &fem->cols));
+  PetscCall(PetscMalloc3(n, &fem->jtr, n, &fem->jtc, n, &fem->jtv));
   PetscCall(VecGetLocalSize(fem->u, &nloc));
   PetscCall(VecGetSize(fem->u, &N));
   PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
-  PetscCall(MatCreateDense(body->comm, nloc, PETSC_DECIDE, N, ncols, NULL, &fem->JT));
-  PetscCall(MatDenseGetArray(fem->JT, &jt));
-  PetscCall(PetscArrayzero(jt, nloc * ncols));
+  /* J_b^T on the owned DOFs, by entries: at most 9 per column (3 vertices x 3 components) */
   ncols = 0;
   for (PetscInt k = 0; k < set->n; k++)
     for (PetscInt s = 0; s < 2; s++) {
@@ -571,12 +591,15 @@ PetscErrorCode FCFEMAddCompliance(FCBody body, PetscInt self, const FCContactSet
         for (PetscInt vtx = 0; vtx < c->prox[s].nv; vtx++) {
           PetscInt g = c->prox[s].gdof[vtx];
           if (g < lo || g >= lo + nloc) continue; /* fixed (-1) or owned elsewhere */
-          for (int d = 0; d < 3; d++) jt[(g - lo + d) + ncols * nloc] += c->prox[s].w[vtx] * e[d];
+          for (int d = 0; d < 3; d++, fem->njt++) {
+            fem->jtr[fem->njt] = g - lo + d;
+            fem->jtc[fem->njt] = ncols;
+            fem->jtv[fem->njt] = c->prox[s].w[vtx] * e[d];
+          }
         }
       }
     }
   fem->ncols = ncols;
-  PetscCall(MatDenseRestoreArray(fem->JT, &jt));
   if (!strcmp(fem->compliance, "schur") || !strcmp(fem->compliance, "inverse") ||
       !strcmp(fem->compliance, "redundant") || !strcmp(fem->compliance, "precomputed")) {
     PetscCall(PetscCalloc1(ncols * ncols, &Wb));
@@ -591,23 +614,25 @@ PetscErrorCode FCFEMAddCompliance(FCBody body, PetscInt self, const FCContactSet
     PetscCall(PetscFree(Wb));
     PetscFunctionReturn(0);
   }
+  /* dense and sparse: J_b^T as a dense matrix, the right-hand sides of MatMatSolve */
+  PetscCall(MatCreateDense(body->comm, nloc, PETSC_DECIDE, N, ncols, NULL, &fem->JT));
+  PetscCall(MatDenseGetArray(fem->JT, &jt));
+  PetscCall(PetscArrayzero(jt, nloc * ncols));
+  for (PetscInt q = 0; q < fem->njt; q++) jt[fem->jtr[q] + fem->jtc[q] * nloc] += fem->jtv[q];
+  PetscCall(MatDenseRestoreArray(fem->JT, &jt));
   PetscCall(MatDuplicate(fem->JT, MAT_DO_NOT_COPY_VALUES, &fem->X));
   PetscCall(KSPGetPC(fem->ksp, &pc));
   PetscCall(PCFactorGetMatrix(pc, &F));
   if (!strcmp(fem->compliance, "sparse")) {
     /* sparse right-hand sides: J_b (ncols x N, at most 9 entries a row) handed to MUMPS as is */
-    Mat                Bt;
-    const PetscScalar *a;
-    PetscMPIInt        rank;
+    Mat         Bt;
+    PetscMPIInt rank;
     PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
     /* MUMPS takes sparse right-hand sides centralized on the host: rank 0 owns every row */
     PetscCall(MatCreateAIJ(body->comm, rank ? 0 : ncols, nloc, ncols, N, 9, NULL, 9, NULL, &Bt));
     PetscCall(MatSetOption(Bt, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
-    PetscCall(MatDenseGetArrayRead(fem->JT, &a));
-    for (PetscInt i = 0; i < ncols; i++)
-      for (PetscInt r = 0; r < nloc; r++)
-        if (a[r + i * nloc] != 0.0) PetscCall(MatSetValue(Bt, i, lo + r, a[r + i * nloc], INSERT_VALUES));
-    PetscCall(MatDenseRestoreArrayRead(fem->JT, &a));
+    for (PetscInt q = 0; q < fem->njt; q++)
+      PetscCall(MatSetValue(Bt, fem->jtc[q], lo + fem->jtr[q], fem->jtv[q], ADD_VALUES));
     PetscCall(MatAssemblyBegin(Bt, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(Bt, MAT_FINAL_ASSEMBLY));
     PetscCall(MatMatTransposeSolve(F, Bt, fem->X));
@@ -616,15 +641,10 @@ PetscErrorCode FCFEMAddCompliance(FCBody body, PetscInt self, const FCContactSet
     PetscCall(MatMatSolve(F, fem->JT, fem->X));
   /* W_b(i, j) = sum over the non-zero rows r of column i of J^T: JT(r, i) X(r, j) */
   PetscCall(PetscCalloc1(ncols * ncols, &Wb));
-  PetscCall(MatDenseGetArray(fem->JT, &jt));
   PetscCall(MatDenseGetArrayRead(fem->X, &x));
-  for (PetscInt i = 0; i < ncols; i++)
-    for (PetscInt r = 0; r < nloc; r++) {
-      PetscReal j = PetscRealPart(jt[r + i * nloc]);
-      if (j == 0.0) continue;
-      for (PetscInt c2 = 0; c2 < ncols; c2++) Wb[i * ncols + c2] += j * PetscRealPart(x[r + c2 * nloc]);
-    }
-  PetscCall(MatDenseRestoreArray(fem->JT, &jt));
+  for (PetscInt q = 0; q < fem->njt; q++)
+    for (PetscInt c2 = 0; c2 < ncols; c2++)
+      Wb[fem->jtc[q] * ncols + c2] += fem->jtv[q] * PetscRealPart(x[fem->jtr[q] + c2 * nloc]);
   PetscCall(MatDenseRestoreArrayRead(fem->X, &x));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, Wb, ncols * ncols, MPIU_REAL, MPIU_SUM, body->comm));
   for (PetscInt i = 0; i < ncols; i++)
@@ -645,15 +665,12 @@ PetscErrorCode FCFEMApplyCorrection(FCBody body, PetscInt self, const FCContactS
   if (!fem->ncols) PetscFunctionReturn(0);
   if (!fem->X) { /* Schur builder: dv += h A^-1 (J_b^T lambda_b), one solve with A's factor;
                     precomputed: the operator of its W, h R A_0^-1 R^T J_b^T lambda_b */
-    Vec          lam, rhs;
-    PetscScalar *l;
-    PetscInt     c0, c1;
-    PetscCall(MatCreateVecs(fem->JT, &lam, &rhs));
-    PetscCall(VecGetOwnershipRange(lam, &c0, &c1));
-    PetscCall(VecGetArray(lam, &l));
-    for (PetscInt i = c0; i < c1; i++) l[i - c0] = body->h * lambda[fem->cols[i]];
-    PetscCall(VecRestoreArray(lam, &l));
-    PetscCall(MatMult(fem->JT, lam, rhs));
+    Vec          rhs;
+    PetscScalar *r;
+    PetscCall(VecDuplicate(fem->u, &rhs)); /* J_b^T (h lambda_b), from the owned entries */
+    PetscCall(VecGetArray(rhs, &r));
+    for (PetscInt q = 0; q < fem->njt; q++) r[fem->jtr[q]] += fem->jtv[q] * body->h * lambda[fem->cols[fem->jtc[q]]];
+    PetscCall(VecRestoreArray(rhs, &r));
     if (fem->surf) {
       KSP ksp;
       PetscCall(ReferenceSolver(fem, &ksp));
@@ -663,7 +680,6 @@ PetscErrorCode FCFEMApplyCorrection(FCBody body, PetscInt self, const FCContactS
     } else
       PetscCall(KSPSolve(fem->ksp, rhs, fem->work));
     PetscCall(VecAXPY(fem->dv, 1.0, fem->work));
-    PetscCall(VecDestroy(&lam));
     PetscCall(VecDestroy(&rhs));
     PetscFunctionReturn(0);
   }
@@ -706,5 +722,10 @@ PetscErrorCode FCBodyFEMSetComplianceType(FCBody body, const char type[])
   }
   PetscCall(PetscStrncpy(fem->compliance, type, sizeof(fem->compliance)));
   if (!strcmp(type, "precomputed")) PetscCall(PrecomputedSetUp(body)); /* A is still A_0 */
+  if (!strcmp(type, "redundant")) { /* the copies of the current A, factored at set-up */
+    PetscCall(FCPhaseBegin(FC_PHASE_FACTORIZATION));
+    PetscCall(FCFEMComplianceFactor(body));
+    PetscCall(FCPhaseEnd(FC_PHASE_FACTORIZATION));
+  }
   PetscFunctionReturn(0);
 }

@@ -24,9 +24,11 @@ typedef struct {
   PetscInt   factor_age;     /* steps since A was last factored */
   PetscReal  mass;
   /* contact */
-  PetscInt           nbv, *bv;         /* owned boundary vertices (local vertex indices)          */
-  Vec                Xg;               /* placed reference coordinates, layout of u               */
-  Mat                JT, X;            /* J_b^T and A^-1 J_b^T of the step's contacts (dense)     */
+  PetscInt           nbv, *bv;        /* owned boundary vertices (local vertex indices)          */
+  Vec                Xg;              /* placed reference coordinates, layout of u               */
+  Mat                JT, X;           /* dense and sparse builders: J_b^T and A^-1 J_b^T (dense) */
+  PetscInt           njt, *jtr, *jtc; /* J_b^T on the owned DOFs by entries: local row, column  */
+  PetscReal         *jtv;
   PetscInt           ncols, *cols;     /* global constraint row of each column of JT and X        */
   PetscReal         *bx0, *bxf, *bkey; /* contact point buffers                                   */
   FCProximity       *bprox;
@@ -54,4 +56,6 @@ typedef struct {
 PETSC_INTERN PetscErrorCode FCFEMAddCompliance(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
 PETSC_INTERN PetscErrorCode FCFEMApplyCorrection(FCBody, PetscInt self, const FCContactSet *, const PetscReal lambda[]);
 PETSC_INTERN PetscErrorCode FCFEMComplianceDestroy(FCBody);
-PETSC_INTERN PetscErrorCode FCFEMGet(FCBody, FEM **); /* checks that the body is an FE body */
+PETSC_INTERN PetscErrorCode FCFEMComplianceReset(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMComplianceFactor(FCBody); /* after A is factored */
+PETSC_INTERN PetscErrorCode FCFEMGet(FCBody, FEM **);      /* checks that the body is an FE body */
