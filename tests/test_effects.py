@@ -8,7 +8,8 @@ table is proved from the PETSc log (-log_view CSV: event counts of rank 0) or th
 - Rayleigh damping costs one MatMult per step only when -<body>_rayleigh_mass is non-zero;
 - gravity costs one VecAXPBYPCZ call (PETSc logs it as VecAXPBYCZ) per FE body and step only when it is on;
 - frictionless pairs give one constraint row per contact (no tangential rows), friction three;
-- W (MatMatSolve) only for FE bodies that have contacts in the step;
+- W (MatMatSolve, dense builder) only for FE bodies that have contacts in the step; the default
+  builder's copies of a linear A are factored once;
 - the recursive scheme's Newton loop stops after one iteration on a plane (the frames cannot
   change), and iterates on the grasp's spheres.
 Usage: test_effects.py [--np N]"""
@@ -71,11 +72,18 @@ c.check(nc0.sum() > 0 and np.array_equal(r0, nc0) and np.array_equal(r3, 3 * nc3
 two = drop + ["-scene_bodies", "cube,far,ground", "-contact_pairs", "cube:ground,far:ground", "-far_type", "fem",
               "-far_dm_plex_filename", "meshes/cube_coarse.msh", "-far_young", "1e6", "-far_density", "1000",
               "-far_translate", "0,0,50", "-far_material", "linear"]
-ew, hw = go(two)
+ew, hw = go(two + ["-compliance_type", "dense"])
 steps_with = int((hw["steps/contacts"][:] > 0).sum())
 c.check(steps_with > 0 and ew.get("MatMatSolve", -1) == steps_with,
         "W only for bodies in contact: %d MatMatSolve for %d steps with contacts (the far cube has none)" % (
             ew.get("MatMatSolve", -1), steps_with))
+# the default builder (redundant) keeps a sequential copy of a linear A on every rank: factored
+# with A at set-up, never again
+l5, _ = go(drop + ["-time_steps", "5", "-cube_material", "linear"])
+l20, _ = go(drop + ["-time_steps", "20", "-cube_material", "linear"])
+c.check(l5.get("MatCholFctrNum", -1) == l20.get("MatCholFctrNum", -2) == (1 if NP == 1 else 2),
+        "contact scene, linear, default builder: %d numeric factorizations in 5 steps, %d in 20 (A%s)" % (
+            l5.get("MatCholFctrNum", -1), l20.get("MatCholFctrNum", -1), "" if NP == 1 else " and its copy"))
 ef, hf = go(drop + ["-constraint_scheme", "fast", "-newton_max_it", "5"])
 it = hf["steps/newton_iterations"][:][hf["steps/contacts"][:] > 0]
 c.check(it.size > 0 and (it == 1).all() and ef.get("NewtonIteration") == it.sum(),

@@ -807,7 +807,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   PetscFunctionBegin;
   PetscCall(PetscNew(&fem));
   PetscCall(PetscStrncpy(fem->material, "linear", sizeof(fem->material)));
-  PetscCall(PetscStrncpy(fem->compliance, "dense", sizeof(fem->compliance)));
+  PetscCall(PetscStrncpy(fem->compliance, "none", sizeof(fem->compliance))); /* set by the scene for paired bodies */
   fem->poisson                 = 0.3;
   fem->refactor_every          = 1;
   body->data                   = fem;

@@ -566,6 +566,8 @@ PetscErrorCode FCFEMAddCompliance(FCBody body, PetscInt self, const FCContactSet
 
   PetscFunctionBegin;
   PetscCall(FCFEMComplianceReset(body));
+  PetscCheck(strcmp(fem->compliance, "none"), body->comm, PETSC_ERR_PLIB,
+             "Body '%s' has contacts but no compliance type", body->name);
   for (PetscInt k = 0; k < set->n; k++)
     for (PetscInt s = 0; s < 2; s++)
       if (set->c[k].body[s] == self) {
@@ -721,11 +723,7 @@ PetscErrorCode FCBodyFEMSetComplianceType(FCBody body, const char type[])
                "right-hand sides gave wrong results); use -compliance_type dense");
   }
   PetscCall(PetscStrncpy(fem->compliance, type, sizeof(fem->compliance)));
-  if (!strcmp(type, "precomputed")) PetscCall(PrecomputedSetUp(body)); /* A is still A_0 */
-  if (!strcmp(type, "redundant")) { /* the copies of the current A, factored at set-up */
-    PetscCall(FCPhaseBegin(FC_PHASE_FACTORIZATION));
-    PetscCall(FCFEMComplianceFactor(body));
-    PetscCall(FCPhaseEnd(FC_PHASE_FACTORIZATION));
-  }
+  if (!strcmp(type, "precomputed")) PetscCall(PrecomputedSetUp(body));    /* A is still A_0 */
+  if (!strcmp(type, "redundant")) PetscCall(FCFEMComplianceFactor(body)); /* the copies of A, at set-up */
   PetscFunctionReturn(0);
 }

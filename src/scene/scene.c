@@ -32,10 +32,13 @@
                               with a clear error (default half the machine's memory)
      -newton_tol t            stop them when frames and right-hand sides change by less than t
                               (>= 0, default 1e-10; 0: always newton_max_it, as the paper's Table 1)
-     -compliance_type dense|sparse|schur|precomputed   how FE bodies compute J A^-1 J^T for W: MUMPS
-                              solves with dense or sparse right-hand sides, the Schur complement of
-                              the augmented matrix, or cached surface columns of A_0^-1 (default
-                              dense; see src/body/fem_compliance.c)
+     -compliance_type dense|sparse|schur|inverse|redundant|precomputed   how FE bodies compute
+                              J A^-1 J^T for W: MUMPS solves with dense or sparse right-hand sides,
+                              the Schur complement of the augmented matrix, the block of A^-1 on the
+                              contact DOFs (inverse: from the distributed factor; redundant: from a
+                              sequential factor on every rank, 1/p of the columns each), or cached
+                              surface columns of A_0^-1 (default redundant, the fastest on 1 and 2
+                              ranks in docs/scaling.md; see src/body/fem_compliance.c)
    One step (../shared/design/DESIGN.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
    contact resolution slots in between. */
 #include "../fcimpl.h"
@@ -241,12 +244,14 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCBodySetUp(s->bodies[i]));
   }
   if (s->pairs.n) {
-    char      ctype[FC_MAX_NAME] = "dense";
+    char      ctype[FC_MAX_NAME] = "redundant";
     PetscBool isfem;
     PetscCall(PetscOptionsGetString(NULL, NULL, "-compliance_type", ctype, sizeof(ctype), NULL));
-    for (PetscInt i = 0; i < s->nbodies; i++) {
+    for (PetscInt i = 0; i < s->nbodies; i++) { /* FE bodies named in a contact pair */
+      PetscBool paired = PETSC_FALSE;
+      for (PetscInt p = 0; p < s->pairs.n; p++) paired = paired || s->pairs.body[p][0] == i || s->pairs.body[p][1] == i;
       PetscCall(PetscStrcmp(s->bodies[i]->type, FCBODYFEM, &isfem));
-      if (isfem) PetscCall(FCBodyFEMSetComplianceType(s->bodies[i], ctype));
+      if (isfem && paired) PetscCall(FCBodyFEMSetComplianceType(s->bodies[i], ctype));
     }
     PetscCall(PetscStrncpy(s->scheme_name, "explicit", sizeof(s->scheme_name)));
     s->newton_max_it = 5;
