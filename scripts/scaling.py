@@ -4,10 +4,12 @@
 Strong scaling: the 36k-DOF Table 1 scene (input/table1_36k.opts: 480 contacts) and a 149k-DOF
 box of the same family (40 x 40 x 31 vertices, 1600 contacts, made here with gmsh into
 build/meshes/table1_150k.msh) at 1, 2, ... ranks. Weak scaling: a fixed DOF count per rank
-(the 18k box on 1 rank, the 36k box on 2). Also measured: the two W_H builders that run on several
+(the 18k box on 1 rank, the 36k box on 2). Also measured: the W_H builders that run on several
 ranks (-compliance_type dense: distributed MUMPS solves with dense right-hand sides; schur: the
-MUMPS Schur complement centralized on rank 0) and where the contact solver runs (-pgs_ranks all:
-replicated; root: rank 0 and a broadcast).
+MUMPS Schur complement centralized on rank 0; inverse: MUMPS' selected entries of A^-1 from the
+distributed factor; redundant, the default: the same from a sequential factor on every rank, 1/p
+of the columns each), their peak memory per rank, and where the contact solver runs
+(-pgs_ranks all: replicated; root: rank 0 and a broadcast).
 
 Per-phase times per step come from the HDF5 rows /steps/timing/<phase> (max over ranks, set-up
 excluded); the set-up (load, distribution, first assembly and factorization) from the wall time
@@ -35,6 +37,7 @@ OUT = os.path.join(ROOT, "build", "scaling")
 sys.path.insert(0, os.path.join(ROOT, "tests"))
 from fctest import sorted_positions  # noqa: E402
 
+BUILDERS = ["dense", "schur", "inverse", "redundant"]
 PHASES = ["assembly", "factorization", "free_motion", "collision", "compliance", "contact_solver", "correction",
           "rebuild_w", "proximity_update", "integration", "output"]
 
@@ -62,6 +65,7 @@ def run(tag, args, np_, steps):
     log = os.path.join(OUT, tag + ".csv")
     cmd = [EXE] + args + ["-time_steps", str(steps), "-output_every", str(steps), "-constraint_scheme", "fast",
                           "-newton_max_it", "5", "-quiet", "-output_file", f, "-log_view", ":%s:ascii_csv" % log]
+    cmd = ["/usr/bin/time", "-f", "maxrss_kb %M"] + cmd  # on every rank
     if np_ > 1:
         cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
     t0 = time.time()
@@ -70,6 +74,7 @@ def run(tag, args, np_, steps):
     if p.returncode:
         sys.stderr.write(p.stdout + p.stderr)
         raise RuntimeError("failed: " + " ".join(cmd))
+    rss = max(int(l.split()[1]) / 1024.0 for l in (p.stdout + p.stderr).splitlines() if l.startswith("maxrss_kb"))
     h = h5py.File(f, "r")
     s = h["steps"]
     per = {ph: float(s["timing/" + ph][:].mean()) for ph in PHASES}
@@ -81,13 +86,13 @@ def run(tag, args, np_, steps):
                 msgs = max(msgs, float(row[5]))
                 reds = max(reds, float(row[7]))
     return dict(tag=tag, ranks=np_, steps=steps, wall=wall, setup=wall - step * steps, step=step,
-                contacts=int(s["contacts"][-1]), messages=msgs, reductions=reds, **per), h
+                contacts=int(s["contacts"][-1]), messages=msgs, reductions=reds, rss_mb=rss, **per), h
 
 
 def memory(mesh, np_):
     """Peak resident memory of every rank (MB) loading the 149k box and taking one step"""
     cmd = ["mpirun", "-n", str(np_), "--oversubscribe", "/usr/bin/time", "-f", "maxrss_kb %M", EXE,
-           "-options_file", "input/table1_36k.opts", "-box_dm_plex_filename", mesh, "-compliance_type", "schur",
+           "-options_file", "input/table1_36k.opts", "-box_dm_plex_filename", mesh,
            "-time_steps", "1", "-quiet", "-output_file", os.path.join(OUT, "mem.h5")]
     p = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True)
     if p.returncode:
@@ -123,29 +128,30 @@ def main():
         r.update(kind=kind, scene=scene_name, dofs=dofs, builder=ctype, pgs_ranks=pgs,
                  oversubscribed=np_ > (os.cpu_count() or 1), vs_np1=diff(ref, h) if ref is not None else 0.0)
         rows.append(r)
-        print("%-6s %-5s %-6s pgs=%-4s np=%d  step %.3f s  setup %.2f s  W_H %.3f  PGS %.3f  vs np1 %.1e%s" % (
-            kind, scene_name, ctype, pgs, np_, r["step"], r["setup"], r["compliance"], r["contact_solver"], r["vs_np1"],
+        print("%-6s %-5s %-9s pgs=%-4s np=%d  step %.3f s  setup %.2f s  W_H %.3f  PGS %.3f  RSS %.0f MB  vs np1 %.1e%s" % (
+            kind, scene_name, ctype, pgs, np_, r["step"], r["setup"], r["compliance"], r["contact_solver"], r["rss_mb"], r["vs_np1"],
             "  (oversubscribed: correctness only)" if r["oversubscribed"] else ""), flush=True)
         return h
 
-    # strong scaling, and the two parallel W_H builders, on the 36k scene
-    for ctype in ("dense", "schur"):
+    # strong scaling, and the W_H builders, on the 36k scene
+    for ctype in BUILDERS:
         ref = None
         for np_ in ranks + check:
             h = rec("strong", "36k", ctype, "all", np_, ref)
             ref = h if ref is None else ref
     # where the contact solver runs
     for np_ in ranks[1:]:
-        rec("solver", "36k", "dense", "root", np_)
-    # the 149k scene (Schur builder: dense right-hand sides would need 2 x 149k x 4800 doubles)
-    ref = None
-    for np_ in ranks:
-        h = rec("strong", "150k", "schur", "all", np_, ref)
-        ref = h if ref is None else ref
+        rec("solver", "36k", "redundant", "root", np_)
+    # the 149k scene (not dense: J^T and A^-1 J^T would be 2 x 149k x 4800 doubles, 11 GB)
+    for ctype in BUILDERS[1:]:
+        ref = None
+        for np_ in ranks:
+            h = rec("strong", "150k", ctype, "all", np_, ref)
+            ref = h if ref is None else ref
     # weak scaling: ~18k DOFs per rank
-    h18 = rec("weak", "18k", "dense", "all", 1)
+    rec("weak", "18k", "redundant", "all", 1)
     for np_ in ranks[1:]:
-        rec("weak", "36k" if np_ == 2 else "150k", "dense" if np_ == 2 else "schur", "all", np_)
+        rec("weak", "36k" if np_ == 2 else "150k", "redundant", "all", np_)
 
     # memory: a gmsh file is read whole on rank 0; PETSc's HDF5 format in slices on every rank
     msh = big_mesh()
@@ -158,7 +164,7 @@ def main():
     a.memory = mem
 
     keys = ["kind", "scene", "dofs", "builder", "pgs_ranks", "ranks", "oversubscribed", "steps", "contacts", "wall", "setup",
-            "step"] + PHASES + ["messages", "reductions", "vs_np1"]
+            "step"] + PHASES + ["messages", "reductions", "rss_mb", "vs_np1"]
     with open(os.path.join(figdir, "scaling.csv"), "w", newline="") as fc:
         w = csv.DictWriter(fc, fieldnames=keys)
         w.writeheader()
@@ -172,9 +178,16 @@ def plot(rows, figdir):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 3, figsize=(17, 5))
-    groups = [("36k", "dense"), ("36k", "schur"), ("150k", "schur")]
-    for ax, (sc, ct) in zip(axes, groups):
+    groups = []
+    for r in rows:
+        if r["kind"] == "strong" and (r["scene"], r["builder"]) not in groups:
+            groups.append((r["scene"], r["builder"]))
+    ncol = 4
+    nrow = (len(groups) + ncol - 1) // ncol
+    fig, axes = plt.subplots(nrow, ncol, figsize=(20, 5 * nrow), squeeze=False)
+    for ax in axes.flat[len(groups):]:
+        ax.axis("off")
+    for ax, (sc, ct) in zip(axes.flat, groups):
         rr = [r for r in rows if r["kind"] == "strong" and r["scene"] == sc and r["builder"] == ct and not r["oversubscribed"]]
         if not rr:
             continue
@@ -188,7 +201,7 @@ def plot(rows, figdir):
         ax.set_xticks(x)
         ax.set_xticklabels(["%d rank%s" % (r["ranks"], "s" if r["ranks"] > 1 else "") for r in rr])
         ax.set_ylabel("time per step (s), max over ranks")
-        ax.set_title("strong scaling: %s DOFs, %s W_H, %d contacts" % (sc, ct, rr[0]["contacts"]))
+        ax.set_title("%s DOFs, %s W_H, %d contacts" % (sc, ct, rr[0]["contacts"]), fontsize=10)
         ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(figdir, "strong.png"), dpi=100)
@@ -207,64 +220,97 @@ def plot(rows, figdir):
 
 def write_doc(a, rows):
     import platform
+
+    def strong(sc, ct):
+        return {r["ranks"]: r for r in rows if r["kind"] == "strong" and r["scene"] == sc and r["builder"] == ct
+                and not r["oversubscribed"]}
+
     L = ["# Scaling", "",
          "Generated by `scripts/scaling.py --ranks %s --check-ranks %s --steps %d` on %s (%s, %d cores), one run per "
          "line, fast scheme, 5 Newton iterations, `OPENBLAS_NUM_THREADS=1`, one rank per core. Times per step are the "
          "means of the `/steps/timing` rows (max over ranks); set-up is the rest of the wall time (mesh load and "
-         "distribution, first assembly and factorization, output)." % (a.ranks, a.check_ranks, a.steps, time.strftime("%Y-%m-%d"),
-                                                                         platform.machine(), os.cpu_count()), "",
+         "distribution, first assembly and factorization, output). RSS is the largest peak resident memory of the "
+         "ranks (`/usr/bin/time`)." % (a.ranks, a.check_ranks, a.steps, time.strftime("%Y-%m-%d"), platform.machine(),
+                                        os.cpu_count()), "",
+         "W_H builders (`-compliance_type`, src/body/fem_compliance.c): `dense` solves A X = J^T with dense "
+         "right-hand sides on the distributed factor; `schur` has MUMPS factor [[0, J],[J^T, A]] and return the Schur "
+         "complement on rank 0; `inverse` asks MUMPS for the block of A^-1 on the contact DOFs S (ICNTL(30), "
+         "W_b = J_S (A^-1)_SS J_S^T) from the distributed factor, on rank 0; `redundant` (the default) does the same "
+         "from a sequential factor of A that every rank keeps, each rank computing 1/p of the columns of (A^-1)_SS, "
+         "and sums the partial W_b.", "",
          "![strong scaling](scaling/strong.png)", "",
-         "| kind | scene | W_H | PGS on | ranks | contacts | step (s) | set-up (s) | W_H (s) | PGS (s) | rebuild W (s) | free motion (s) | collision (s) | correction (s) | messages | reductions | vs 1 rank |",
-         "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+         "| kind | scene | W_H | PGS on | ranks | contacts | step (s) | set-up (s) | W_H (s) | PGS (s) | rebuild W (s) | free motion (s) | collision (s) | correction (s) | messages | reductions | RSS (MB) | vs 1 rank |",
+         "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
-        L.append("| %s | %s | %s | %s | %d%s | %d | %.3f | %.2f | %.3f | %.3f | %.3f | %.3f | %.4f | %.3f | %.0f | %.0f | %.1e |" % (
+        L.append("| %s | %s | %s | %s | %d%s | %d | %.3f | %.2f | %.3f | %.3f | %.3f | %.3f | %.4f | %.3f | %.0f | %.0f | %.0f | %.1e |" % (
             r["kind"], r["scene"], r["builder"], r["pgs_ranks"], r["ranks"], " (oversubscribed)" if r["oversubscribed"] else "",
             r["contacts"], r["step"], r["setup"], r["compliance"], r["contact_solver"], r["rebuild_w"], r["free_motion"],
-            r["collision"], r["correction"], r["messages"], r["reductions"], r["vs_np1"]))
-    L += ["", "## What the measurements predict", "",
-          "Per phase, a two-point Amdahl fit of the 1- and 2-rank times, t(p) = t_serial + t_parallel / p with "
+            r["collision"], r["correction"], r["messages"], r["reductions"], r["rss_mb"], r["vs_np1"]))
+    # sentences from the data
+    L += ["", "## What the measurements say", ""]
+    for sc in ("36k", "150k"):
+        g = {ct: strong(sc, ct) for ct in BUILDERS}
+        g = {ct: v for ct, v in g.items() if 1 in v and 2 in v}
+        if not g:
+            continue
+        best1 = min(g, key=lambda ct: g[ct][1]["compliance"])
+        best2 = min(g, key=lambda ct: g[ct][2]["compliance"])
+        L.append("- **%s DOFs, %d contacts**: W_H takes %s on 1 rank and %s on 2 ranks (s). Fastest on 1 rank: %s; on "
+                 "2 ranks: %s, whose W_H runs %.2fx faster than on 1 rank (step %.2fx)." % (
+                     sc, g[best1][1]["contacts"],
+                     ", ".join("%s %.2f" % (ct, g[ct][1]["compliance"]) for ct in g),
+                     ", ".join("%s %.2f" % (ct, g[ct][2]["compliance"]) for ct in g), best1, best2,
+                     g[best2][1]["compliance"] / g[best2][2]["compliance"], g[best2][1]["step"] / g[best2][2]["step"]))
+    L += ["", "Per phase, a two-point Amdahl fit of the 1- and 2-rank times, t(p) = t_serial + t_parallel / p with "
           "t_serial = 2 t(2) - t(1) (at least 0) and t_parallel = t(1) - t_serial, predicts the step time beyond the "
           "machine. It ignores the growth of communication with p (the W Allreduce is O(m^2) words per step on every "
           "rank, MUMPS' communication grows with p), so it is an upper bound on the speed-up:", "",
           "| scene | W_H | step 1 rank (s) | 2 ranks (s) | serial share | predicted 4 | 8 | 16 ranks (s) | speed-up at 16 |",
           "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
-    for sc, ct in [("36k", "dense"), ("36k", "schur"), ("150k", "schur")]:
-        rr = {r["ranks"]: r for r in rows if r["kind"] == "strong" and r["scene"] == sc and r["builder"] == ct and not r["oversubscribed"]}
-        if 1 not in rr or 2 not in rr:
-            continue
-        ser = par = 0.0
-        for ph in PHASES:
-            t1, t2 = rr[1][ph], rr[2][ph]
-            s_ = max(0.0, 2 * t2 - t1)
-            ser += min(s_, t1)
-            par += t1 - min(s_, t1)
-        pred = {p: ser + par / p for p in (4, 8, 16)}
-        L.append("| %s | %s | %.3f | %.3f | %.0f%% | %.3f | %.3f | %.3f | %.1fx |" % (
-            sc, ct, rr[1]["step"], rr[2]["step"], 100 * ser / max(ser + par, 1e-30), pred[4], pred[8], pred[16],
-            rr[1]["step"] / pred[16]))
-    L += ["", "The model behind it, phase by phase (m contacts, M = 3m rows with friction, N DOFs, p ranks):", "",
+    for sc in ("36k", "150k"):
+        for ct in BUILDERS:
+            rr = strong(sc, ct)
+            if 1 not in rr or 2 not in rr:
+                continue
+            ser = par = 0.0
+            for ph in PHASES:
+                t1, t2 = rr[1][ph], rr[2][ph]
+                s_ = max(0.0, 2 * t2 - t1)
+                ser += min(s_, t1)
+                par += t1 - min(s_, t1)
+            pred = {p: ser + par / p for p in (4, 8, 16)}
+            L.append("| %s | %s | %.3f | %.3f | %.0f%% | %.3f | %.3f | %.3f | %.1fx |" % (
+                sc, ct, rr[1]["step"], rr[2]["step"], 100 * ser / max(ser + par, 1e-30), pred[4], pred[8], pred[16],
+                rr[1]["step"] / pred[16]))
+    L += ["", "The model behind it, phase by phase (m contacts, M = 3m rows with friction, N DOFs, p ranks, "
+          "|S| <= 3 m contact DOFs):", "",
           "- **distributed, O(N/p)**: assembly, the free-motion solve, the factorization (MUMPS, nested dissection: "
-          "O(N^2) flops for a 3D mesh, with a parallel efficiency below 1), the correction (one solve or the product "
-          "with the kept A^-1 J^T columns), the collision detection of each rank's own surface vertices;",
-          "- **distributed then reduced**: the dense W_H builder solves the m columns of J^T on all ranks (O(m) solves "
-          "of O(N/p)) and sums W_b with an Allreduce of (3m)^2 numbers, replicated on every rank; the Schur builder "
-          "has MUMPS form the (3m)^2 Schur complement on rank 0 and broadcast it;",
+          "O(N^2) flops for a 3D mesh, with a parallel efficiency below 1), the correction (one solve, or the product "
+          "with the kept A^-1 J^T columns for `dense`), the collision detection of each rank's own surface vertices;",
+          "- **W_H, by builder**: `redundant` splits the |S| columns of (A^-1)_SS over the ranks, each computed from a "
+          "sequential factor: its time falls like 1/p (the table shows the 1 to 2 rank ratio), until the sum of the "
+          "partial W_b (an Allreduce of (3m)^2 numbers) dominates. `dense` solves all columns with the distributed "
+          "factor, whose solve phase does not speed up on these sizes; `schur` and `inverse` gather the dense part "
+          "on rank 0, so they are serial in effect;",
           "- **replicated, does not shrink with p**: the contact solver (O(sweeps (3m)^2) a Newton iteration, "
-          "`-pgs_ranks all` on every rank or `root` on rank 0 and a broadcast of 3m numbers: the table shows the "
-          "difference), the W_k rebuild (O(M 3m 3) a Newton iteration), the frame and proximity updates (O(m)), "
+          "`-pgs_ranks all` on every rank or `root` on rank 0 and a broadcast of 3m numbers: the `solver` row shows "
+          "the difference), the W_k rebuild (O(M 3m 3) a Newton iteration), the frame and proximity updates (O(m)), "
           "and the gathered contact surfaces (O(surface) per rank);",
           "- **memory**: W_H, U, U^T and W_k are 8 ((3m)^2 + 2 M 3m + M^2) bytes on every rank (-contact_memory_limit "
-          "stops a step that would exceed it); a gmsh mesh is read whole on rank 0, a PETSc HDF5 mesh in slices "
-          "(below).", "",
-          "So the contact phases set a floor: with m fixed, the step time tends to t_serial; with m growing like the "
-          "surface (N^(2/3)), the replicated O(m^2) work grows like N^(4/3) per rank while the distributed work "
-          "shrinks like N/p, and the contact solver dominates at scale. Distributing PGS (block Jacobi across ranks, "
-          "or a parallel NNCG) is the next step for large contact counts.", "",
+          "stops a step that would exceed it); `redundant` adds a sequential factor of A on every rank (its fill "
+          "grows like N^(4/3) for a 3D mesh and does not shrink with p: use `inverse` when it does not fit); "
+          "`dense` keeps J^T and A^-1 J^T, 16 N 3m / p bytes per rank; a gmsh mesh is read whole on rank 0, a PETSc "
+          "HDF5 mesh in slices (below).", "",
+          "So with `redundant` the W_H phase scales until the replicated contact phases set the floor: with m fixed, "
+          "the step time tends to t_serial (mostly PGS); with m growing like the surface (N^(2/3)), the replicated "
+          "O(m^2) work grows like N^(4/3) per rank while the distributed work shrinks like N/p, and the contact "
+          "solver dominates at scale. Distributing PGS (block Jacobi across ranks, or a parallel NNCG) is the next "
+          "step for large contact counts.", "",
           "![weak scaling](scaling/weak.png)", "", "The CSV is `docs/scaling/scaling.csv`.", "",
           "## Memory of the mesh", "",
-          "Peak resident memory of every rank (MB, `/usr/bin/time`) loading the 149k-DOF box and taking one step, "
-          "from the gmsh file (read whole on rank 0, then distributed) and from PETSc's HDF5 format "
-          "(`scripts/msh2h5.py`, read in slices by every rank):", "",
+          "Peak resident memory of every rank (MB, `/usr/bin/time`) loading the 149k-DOF box and taking one step with "
+          "the default builder, from the gmsh file (read whole on rank 0, then distributed) and from PETSc's HDF5 "
+          "format (`scripts/msh2h5.py`, read in slices by every rank):", "",
           "| mesh file | ranks | peak RSS per rank (MB) |", "|---|---:|---|"]
     for (fmt, np_), v in sorted(a.memory.items()):
         L.append("| .%s | %d | %s |" % (fmt, np_, ", ".join("%.0f" % x for x in v)))

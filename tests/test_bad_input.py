@@ -85,6 +85,8 @@ cases = [
     ("contact matrices over the memory limit", ["-options_file", "input/cube_drop.opts", "-contact_memory_limit", "1e3", "-quiet"],
      "-contact_memory_limit"),
     ("CUDA type in a host build", ["-options_file", "input/cube_drop.opts", "-wh_mat_type", "seqdensecuda", "-quiet"], "-wh_mat_type"),
+    ("default compliance without MUMPS", ["-options_file", "input/cube_drop.opts", "-cube_pc_factor_mat_solver_type", "petsc",
+                                          "-quiet"], "needs MUMPS"),
 ]
 # on several ranks, the cases whose detection involves communication or several ranks' data
 PARALLEL = {"missing mesh file", "not a gmsh file", "truncated mesh", "2D mesh", "inverted element", "zero-volume element",

@@ -269,26 +269,19 @@ PetscErrorCode FCFEMComplianceFactor(FCBody body)
 static PetscErrorCode InverseCompliance(FCBody body, PetscInt self, const FCContactSet *set, PetscInt ncols,
                                         PetscReal *Wb)
 {
-  FEM          *fem = (FEM *)body->data;
-  PetscMPIInt   rank, size;
-  PetscInt      N, ns = 0, *S = NULL, *cptr = NULL, *crow = NULL, j0, j1;
-  PetscReal    *cval = NULL;
-  Mat           F;
-  PC            pc;
-  MatSolverType stype;
-  PetscBool     mumps;
+  FEM        *fem = (FEM *)body->data;
+  PetscMPIInt rank, size;
+  PetscInt    N, ns = 0, *S = NULL, *cptr = NULL, *crow = NULL, j0, j1;
+  PetscReal  *cval = NULL;
+  Mat         F;
+  PC          pc;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
   PetscCallMPI(MPI_Comm_size(body->comm, &size));
   PetscCall(VecGetSize(fem->u, &N));
   PetscCall(KSPGetPC(fem->ksp, &pc));
-  PetscCall(PCFactorGetMatrix(pc, &F));
-  PetscCall(MatFactorGetSolverType(F, &stype));
-  PetscCall(PetscStrcmp(stype, MATSOLVERMUMPS, &mumps));
-  PetscCheck(mumps, body->comm, PETSC_ERR_USER_INPUT,
-             "-compliance_type %s needs MUMPS as the factorization of body '%s' (it has '%s')", fem->compliance,
-             body->name, stype);
+  PetscCall(PCFactorGetMatrix(pc, &F)); /* MUMPS: checked by FCBodyFEMSetComplianceType */
   PetscCall(ContactDofs(set, self, &ns, &S, &cptr, &crow, &cval));
   if (!strcmp(fem->compliance, "redundant")) { /* this rank's share of S, with its own factor */
     PetscCall(RedundantFactor(body, &F));
@@ -723,7 +716,21 @@ PetscErrorCode FCBodyFEMSetComplianceType(FCBody body, const char type[])
                "right-hand sides gave wrong results); use -compliance_type dense");
   }
   PetscCall(PetscStrncpy(fem->compliance, type, sizeof(fem->compliance)));
-  if (!strcmp(type, "precomputed")) PetscCall(PrecomputedSetUp(body));    /* A is still A_0 */
+  if (!strcmp(type, "precomputed")) PetscCall(PrecomputedSetUp(body)); /* A is still A_0 */
+  if (!strcmp(type, "inverse") || !strcmp(type, "redundant")) {        /* MUMPS' selected inverse entries */
+    PC            pc;
+    Mat           F;
+    MatSolverType stype;
+    PetscBool     mumps;
+    PetscCall(KSPGetPC(fem->ksp, &pc));
+    PetscCall(PCFactorGetMatrix(pc, &F));
+    PetscCall(MatFactorGetSolverType(F, &stype));
+    PetscCall(PetscStrcmp(stype, MATSOLVERMUMPS, &mumps));
+    PetscCheck(mumps, body->comm, PETSC_ERR_USER_INPUT,
+               "-compliance_type %s needs MUMPS as the factorization of body '%s' (it has '%s' from "
+               "-%spc_factor_mat_solver_type): use MUMPS or -compliance_type dense",
+               type, body->name, stype, body->prefix);
+  }
   if (!strcmp(type, "redundant")) PetscCall(FCFEMComplianceFactor(body)); /* the copies of A, at set-up */
   PetscFunctionReturn(0);
 }
