@@ -85,6 +85,10 @@ cases = [
     ("contact matrices over the memory limit", ["-options_file", "input/cube_drop.opts", "-contact_memory_limit", "1e3", "-quiet"],
      "-contact_memory_limit"),
     ("CUDA type in a host build", ["-options_file", "input/cube_drop.opts", "-wh_mat_type", "seqdensecuda", "-quiet"], "-wh_mat_type"),
+    ("redundant groups 0", ["-options_file", "input/cube_drop.opts", "-compliance_redundant_groups", "0", "-quiet"],
+     "-compliance_redundant_groups"),
+    ("redundant groups with another builder", ["-options_file", "input/cube_drop.opts", "-compliance_type", "dense",
+                                               "-compliance_redundant_groups", "1", "-quiet"], "compliance_redundant_groups"),
     ("default compliance without MUMPS", ["-options_file", "input/cube_drop.opts", "-cube_pc_factor_mat_solver_type", "petsc",
                                           "-quiet"], "needs MUMPS"),
 ]
@@ -92,7 +96,7 @@ cases = [
 PARALLEL = {"missing mesh file", "not a gmsh file", "truncated mesh", "2D mesh", "inverted element", "zero-volume element",
             "unknown body type", "NaN Young", "misspelt option", "unwritable output path", "fixed box fixes everything",
             "surface not closed", "contact pair, unknown body", "mesh that crashes PETSc's reader",
-            "contact matrices over the memory limit"}
+            "contact matrices over the memory limit", "redundant groups 0"}
 if NP > 1:
     cases = [cs for cs in cases if cs[0] in PARALLEL]
 for what, args, expect in cases:

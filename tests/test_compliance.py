@@ -25,9 +25,10 @@ def result(ctype, extra=()):
 
 
 a = result("dense")
-others = (["sparse"] if NP == 1 else []) + ["schur", "inverse", "redundant"]
+others = (["sparse"] if NP == 1 else []) + ["schur", "inverse", "redundant"] + (["redundant1"] if NP > 1 else [])
 for ctype in others:
-    b = result(ctype)
+    # redundant1: one copy of A, distributed over all ranks (-compliance_redundant_groups 1)
+    b = result("redundant", ("-compliance_redundant_groups", "1")) if ctype == "redundant1" else result(ctype)
     same = np.array_equal(a["contacts/offset"][:], b["contacts/offset"][:])
     c.check(same and a["contacts/offset"][-1] > 0, "%s: same contacts as dense (%d records)" % (ctype, a["contacts/offset"][-1]))
     fa, fb = a["contacts/force"][:], b["contacts/force"][:]

@@ -810,6 +810,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   PetscCall(PetscStrncpy(fem->compliance, "none", sizeof(fem->compliance))); /* set by the scene for paired bodies */
   fem->poisson                 = 0.3;
   fem->refactor_every          = 1;
+  fem->rcomm                   = MPI_COMM_NULL;
   body->data                   = fem;
   body->ops.setfromoptions     = SetFromOptions_FEM;
   body->ops.setup              = SetUp_FEM;

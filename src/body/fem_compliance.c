@@ -223,25 +223,32 @@ static PetscErrorCode AddInverseColumns(Mat F, PetscInt N, PetscInt ns, const Pe
   PetscFunctionReturn(0);
 }
 
-/* redundant: the sequential copy of A on this rank and its factor, current with A's factor */
+/* redundant: this rank's copy of A (on the rcomm of its group) and its factor, current with A's
+   factor. rgroups = size (the default): a sequential copy per rank. */
 static PetscErrorCode RedundantFactor(FCBody body, Mat *F)
 {
   FEM          *fem = (FEM *)body->data;
-  PetscMPIInt   size;
+  PetscMPIInt   size, rank;
   MatFactorInfo info;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_size(body->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
+  if (!fem->rgroups) fem->rgroups = size;
   if (size == 1) { /* A's own factor is already sequential */
     PC pc;
     PetscCall(KSPGetPC(fem->ksp, &pc));
     PetscCall(PCFactorGetMatrix(pc, F));
+    fem->group = 0;
     PetscFunctionReturn(0);
   }
+  if (fem->rcomm == MPI_COMM_NULL) { /* contiguous groups of ranks */
+    fem->group = (PetscInt)(((PetscInt64)rank * fem->rgroups) / size);
+    PetscCallMPI(MPI_Comm_split(body->comm, (PetscMPIInt)fem->group, rank, &fem->rcomm));
+  }
   if (!fem->Fr || fem->rfactor != fem->nfactor) {
-    /* size subcommunicators of one rank each: every rank gets all of A */
-    PetscCall(MatCreateRedundantMatrix(fem->A, size, MPI_COMM_NULL, fem->Ar ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX,
-                                       &fem->Ar));
+    PetscCall(MatCreateRedundantMatrix(fem->A, fem->rgroups, fem->rcomm,
+                                       fem->Ar ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &fem->Ar));
     PetscCall(MatSetOption(fem->Ar, MAT_SYMMETRIC, PETSC_TRUE));
     PetscCall(MatFactorInfoInitialize(&info));
     if (!fem->Fr) { /* the pattern of A never changes: one analysis */
@@ -283,10 +290,12 @@ static PetscErrorCode InverseCompliance(FCBody body, PetscInt self, const FCCont
   PetscCall(KSPGetPC(fem->ksp, &pc));
   PetscCall(PCFactorGetMatrix(pc, &F)); /* MUMPS: checked by FCBodyFEMSetComplianceType */
   PetscCall(ContactDofs(set, self, &ns, &S, &cptr, &crow, &cval));
-  if (!strcmp(fem->compliance, "redundant")) { /* this rank's share of S, with its own factor */
+  if (!strcmp(fem->compliance, "redundant")) { /* the group's share of S, on rank 0 of its copy */
+    PetscMPIInt grank = 0;
     PetscCall(RedundantFactor(body, &F));
-    j0 = (ns * rank) / size;
-    j1 = (ns * (rank + 1)) / size;
+    if (fem->rcomm != MPI_COMM_NULL) PetscCallMPI(MPI_Comm_rank(fem->rcomm, &grank));
+    j0 = (ns * fem->group) / fem->rgroups;
+    j1 = grank ? j0 : (ns * (fem->group + 1)) / fem->rgroups;
   } else { /* all of S on rank 0 of the distributed factor */
     j0 = 0;
     j1 = rank ? 0 : ns;
@@ -540,6 +549,7 @@ PetscErrorCode FCFEMComplianceDestroy(FCBody body)
   PetscCall(PetscFree(fem->cache));
   PetscCall(MatDestroy(&fem->Fr));
   PetscCall(MatDestroy(&fem->Ar));
+  if (fem->rcomm != MPI_COMM_NULL) PetscCallMPI(MPI_Comm_free(&fem->rcomm));
   PetscCall(FCFEMComplianceReset(body));
   PetscFunctionReturn(0);
 }
@@ -688,6 +698,24 @@ PetscErrorCode FCFEMApplyCorrection(FCBody body, PetscInt self, const FCContactS
   }
   PetscCall(VecRestoreArray(fem->dv, &dv));
   PetscCall(MatDenseRestoreArrayRead(fem->X, &x));
+  PetscFunctionReturn(0);
+}
+
+/* -compliance_redundant_groups: the number of copies of A the redundant builder keeps (before
+   FCBodyFEMSetComplianceType) */
+PetscErrorCode FCBodyFEMSetRedundantGroups(FCBody body, PetscInt groups)
+{
+  FEM        *fem = NULL;
+  PetscMPIInt size;
+
+  PetscFunctionBegin;
+  PetscCall(FCFEMGet(body, &fem));
+  PetscCallMPI(MPI_Comm_size(body->comm, &size));
+  PetscCheck(groups >= 1 && groups <= size, body->comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "Redundant groups %" PetscInt_FMT " for body '%s' not in [1, %d]", groups, body->name, size);
+  PetscCheck(!fem->Fr, body->comm, PETSC_ERR_ARG_WRONGSTATE, "Redundant groups of body '%s' set after its copies",
+             body->name);
+  fem->rgroups = groups;
   PetscFunctionReturn(0);
 }
 

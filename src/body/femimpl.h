@@ -47,9 +47,11 @@ typedef struct {
   PetscReal *cache; /* slot j: 3 nsurf x 3, column-major              */
   PetscInt   ncached, maxcached;
   PetscReal  Rwarp[9]; /* best-fit rotation of the body at the start of the step */
-  /* redundant compliance: a sequential copy of A and its factor on every rank */
+  /* redundant compliance: rgroups copies of A (one per group of ranks) and their factors */
   Mat      Ar, Fr;
-  PetscInt rfactor; /* nfactor when Fr was factored */
+  PetscInt rfactor;        /* nfactor when Fr was factored */
+  PetscInt rgroups, group; /* copies, and the one this rank belongs to */
+  MPI_Comm rcomm;          /* the ranks of this copy */
 } FEM;
 
 /* Compliance builders (-compliance_type, src/body/fem_compliance.c) */

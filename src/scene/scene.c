@@ -39,6 +39,9 @@
                               sequential factor on every rank, 1/p of the columns each), or cached
                               surface columns of A_0^-1 (default redundant, the fastest on 1 and 2
                               ranks in docs/scaling.md; see src/body/fem_compliance.c)
+     -compliance_redundant_groups k   redundant only: k copies of A, each factored on size/k
+                              ranks and computing 1/k of the columns (1 <= k <= ranks, default
+                              ranks: a sequential copy per rank; fewer copies, less memory)
    One step (../shared/design/DESIGN.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
    contact resolution slots in between. */
 #include "../fcimpl.h"
@@ -244,13 +247,25 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCBodySetUp(s->bodies[i]));
   }
   if (s->pairs.n) {
-    char      ctype[FC_MAX_NAME] = "redundant";
-    PetscBool isfem;
+    char        ctype[FC_MAX_NAME] = "redundant";
+    PetscBool   isfem, redundant;
+    PetscMPIInt size;
+    PetscInt    groups;
     PetscCall(PetscOptionsGetString(NULL, NULL, "-compliance_type", ctype, sizeof(ctype), NULL));
+    PetscCallMPI(MPI_Comm_size(s->comm, &size));
+    groups = size;
+    PetscCall(PetscStrcmp(ctype, "redundant", &redundant));
+    if (redundant) { /* read only for redundant: elsewhere it is reported as unused */
+      PetscCall(PetscOptionsGetInt(NULL, NULL, "-compliance_redundant_groups", &groups, NULL));
+      PetscCheck(groups >= 1 && groups <= size, s->comm, PETSC_ERR_USER_INPUT,
+                 "Option -compliance_redundant_groups must be in [1, %d] (the number of ranks), got %" PetscInt_FMT,
+                 size, groups);
+    }
     for (PetscInt i = 0; i < s->nbodies; i++) { /* FE bodies named in a contact pair */
       PetscBool paired = PETSC_FALSE;
       for (PetscInt p = 0; p < s->pairs.n; p++) paired = paired || s->pairs.body[p][0] == i || s->pairs.body[p][1] == i;
       PetscCall(PetscStrcmp(s->bodies[i]->type, FCBODYFEM, &isfem));
+      if (isfem && paired && redundant) PetscCall(FCBodyFEMSetRedundantGroups(s->bodies[i], groups));
       if (isfem && paired) PetscCall(FCBodyFEMSetComplianceType(s->bodies[i], ctype));
     }
     PetscCall(PetscStrncpy(s->scheme_name, "explicit", sizeof(s->scheme_name)));
