@@ -317,7 +317,7 @@ def write_doc(a, rows):
           "and the gathered contact surfaces (O(surface) per rank);",
           "- **memory**: W_H, U, U^T and W_k are 8 ((3m)^2 + 2 M 3m + M^2) bytes on every rank (-contact_memory_limit "
           "stops a step that would exceed it); `redundant` adds a sequential factor of A on every rank (its fill "
-          "grows like N^(4/3) for a 3D mesh and does not shrink with p: use `inverse` when it does not fit); "
+          "grows like N^(4/3) for a 3D mesh and does not shrink with p: MUMPS' estimate is checked against -compliance_redundant_memory_limit at set-up; use fewer copies or `inverse` when it does not fit); "
           "`dense` keeps J^T and A^-1 J^T, 16 N 3m / p bytes per rank; a gmsh mesh is read whole on rank 0, a PETSc "
           "HDF5 mesh in slices (below).", "",
           "The `redundant` prediction holds only while a sequential factor of A fits in every rank's memory and the "

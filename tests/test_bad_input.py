@@ -99,6 +99,10 @@ PARALLEL = {"missing mesh file", "not a gmsh file", "truncated mesh", "2D mesh",
             "contact matrices over the memory limit", "redundant groups 0"}
 if NP > 1:
     cases = [cs for cs in cases if cs[0] in PARALLEL]
+    # only on several ranks does the default builder keep copies of A
+    cases.append(("copies of A over the memory limit", ["-options_file", "input/cube_drop.opts",
+                                                        "-compliance_redundant_memory_limit", "1e3", "-quiet"],
+                  "-compliance_redundant_memory_limit"))
 for what, args, expect in cases:
     p = run(args + ["-output_file", out("bad_np%d.h5" % NP)] if "-output_file" not in args else args,
             np_=NP, check=False, timeout=120)

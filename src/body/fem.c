@@ -811,6 +811,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   fem->poisson                 = 0.3;
   fem->refactor_every          = 1;
   fem->rcomm                   = MPI_COMM_NULL;
+  fem->rmemory                 = PETSC_MAX_REAL;
   body->data                   = fem;
   body->ops.setfromoptions     = SetFromOptions_FEM;
   body->ops.setup              = SetUp_FEM;

@@ -223,6 +223,27 @@ static PetscErrorCode AddInverseColumns(Mat F, PetscInt N, PetscInt ns, const Pe
   PetscFunctionReturn(0);
 }
 
+/* Before the copies are factored: MUMPS' estimate of the memory of this rank's share of its copy
+   (INFO(15), MB, in-core) against -compliance_redundant_memory_limit, so that a copy that would not
+   fit stops with a clear error instead of an allocation failure or the kernel's OOM killer */
+static PetscErrorCode CheckRedundantMemory(FCBody body)
+{
+  FEM      *fem = (FEM *)body->data;
+  PetscInt  mb;
+  PetscReal need, worst;
+
+  PetscFunctionBegin;
+  PetscCall(MatMumpsGetInfo(fem->Fr, 15, &mb));
+  need = 1e6 * (PetscReal)mb;
+  PetscCall(MPIU_Allreduce(&need, &worst, 1, MPIU_REAL, MPIU_MAX, body->comm));
+  PetscCheck(worst <= fem->rmemory, body->comm, PETSC_ERR_MEM,
+             "-compliance_type redundant: the copy of A of body '%s' needs about %.3g GB per rank to factor (MUMPS "
+             "estimate), above -compliance_redundant_memory_limit %.3g GB; use fewer copies "
+             "(-compliance_redundant_groups k), -compliance_type inverse, or raise the limit",
+             body->name, (double)(worst / 1e9), (double)(fem->rmemory / 1e9));
+  PetscFunctionReturn(0);
+}
+
 /* redundant: this rank's copy of A (on the rcomm of its group) and its factor, current with A's
    factor. rgroups = size (the default): a sequential copy per rank. */
 static PetscErrorCode RedundantFactor(FCBody body, Mat *F)
@@ -254,6 +275,7 @@ static PetscErrorCode RedundantFactor(FCBody body, Mat *F)
     if (!fem->Fr) { /* the pattern of A never changes: one analysis */
       PetscCall(MatGetFactor(fem->Ar, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &fem->Fr));
       PetscCall(MatCholeskyFactorSymbolic(fem->Fr, fem->Ar, NULL, &info));
+      PetscCall(CheckRedundantMemory(body));
     }
     PetscCall(MatCholeskyFactorNumeric(fem->Fr, fem->Ar, &info));
     fem->rfactor = fem->nfactor;
@@ -701,9 +723,10 @@ PetscErrorCode FCFEMApplyCorrection(FCBody body, PetscInt self, const FCContactS
   PetscFunctionReturn(0);
 }
 
-/* -compliance_redundant_groups: the number of copies of A the redundant builder keeps (before
+/* -compliance_redundant_groups and -compliance_redundant_memory_limit: the number of copies of A
+   the redundant builder keeps, and the bytes per rank a copy's factorization may take (before
    FCBodyFEMSetComplianceType) */
-PetscErrorCode FCBodyFEMSetRedundantGroups(FCBody body, PetscInt groups)
+PetscErrorCode FCBodyFEMSetRedundantGroups(FCBody body, PetscInt groups, PetscReal memory_limit)
 {
   FEM        *fem = NULL;
   PetscMPIInt size;
@@ -715,7 +738,10 @@ PetscErrorCode FCBodyFEMSetRedundantGroups(FCBody body, PetscInt groups)
              "Redundant groups %" PetscInt_FMT " for body '%s' not in [1, %d]", groups, body->name, size);
   PetscCheck(!fem->Fr, body->comm, PETSC_ERR_ARG_WRONGSTATE, "Redundant groups of body '%s' set after its copies",
              body->name);
+  PetscCheck(memory_limit > 0, body->comm, PETSC_ERR_ARG_OUTOFRANGE, "Redundant memory limit %g for body '%s' not > 0",
+             (double)memory_limit, body->name);
   fem->rgroups = groups;
+  fem->rmemory = memory_limit;
   PetscFunctionReturn(0);
 }
 

@@ -48,10 +48,11 @@ typedef struct {
   PetscInt   ncached, maxcached;
   PetscReal  Rwarp[9]; /* best-fit rotation of the body at the start of the step */
   /* redundant compliance: rgroups copies of A (one per group of ranks) and their factors */
-  Mat      Ar, Fr;
-  PetscInt rfactor;        /* nfactor when Fr was factored */
-  PetscInt rgroups, group; /* copies, and the one this rank belongs to */
-  MPI_Comm rcomm;          /* the ranks of this copy */
+  Mat       Ar, Fr;
+  PetscInt  rfactor;        /* nfactor when Fr was factored */
+  PetscInt  rgroups, group; /* copies, and the one this rank belongs to */
+  PetscReal rmemory;        /* bytes per rank a copy's factorization may take */
+  MPI_Comm  rcomm;          /* the ranks of this copy */
 } FEM;
 
 /* Compliance builders (-compliance_type, src/body/fem_compliance.c) */

@@ -42,6 +42,10 @@
      -compliance_redundant_groups k   redundant only: k copies of A, each factored on size/k
                               ranks and computing 1/k of the columns (1 <= k <= ranks, default
                               ranks: a sequential copy per rank; fewer copies, less memory)
+     -compliance_redundant_memory_limit b   redundant only: bytes per rank a copy's factorization
+                              may take (MUMPS' estimate after the analysis; default the memory
+                              available at set-up divided by the ranks of the node); above, set-up
+                              stops with a clear error
    One step (../shared/design/DESIGN.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
    contact resolution slots in between. */
 #include "../fcimpl.h"
@@ -251,21 +255,32 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscBool   isfem, redundant;
     PetscMPIInt size;
     PetscInt    groups;
+    PetscReal   rmemory = PETSC_MAX_REAL;
     PetscCall(PetscOptionsGetString(NULL, NULL, "-compliance_type", ctype, sizeof(ctype), NULL));
     PetscCallMPI(MPI_Comm_size(s->comm, &size));
     groups = size;
     PetscCall(PetscStrcmp(ctype, "redundant", &redundant));
-    if (redundant) { /* read only for redundant: elsewhere it is reported as unused */
+    if (redundant) { /* read only for redundant: elsewhere they are reported as unused */
+      MPI_Comm    node;
+      PetscMPIInt nnode;
       PetscCall(PetscOptionsGetInt(NULL, NULL, "-compliance_redundant_groups", &groups, NULL));
       PetscCheck(groups >= 1 && groups <= size, s->comm, PETSC_ERR_USER_INPUT,
                  "Option -compliance_redundant_groups must be in [1, %d] (the number of ranks), got %" PetscInt_FMT,
                  size, groups);
+      /* default: the memory available now, shared by the ranks of this node */
+      PetscCallMPI(MPI_Comm_split_type(s->comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
+      PetscCallMPI(MPI_Comm_size(node, &nnode));
+      PetscCallMPI(MPI_Comm_free(&node));
+      rmemory = (PetscReal)sysconf(_SC_AVPHYS_PAGES) * (PetscReal)sysconf(_SC_PAGESIZE) / nnode;
+      PetscCall(PetscOptionsGetReal(NULL, NULL, "-compliance_redundant_memory_limit", &rmemory, NULL));
+      PetscCheck(rmemory > 0, s->comm, PETSC_ERR_USER_INPUT,
+                 "Option -compliance_redundant_memory_limit must be > 0, got %g", (double)rmemory);
     }
     for (PetscInt i = 0; i < s->nbodies; i++) { /* FE bodies named in a contact pair */
       PetscBool paired = PETSC_FALSE;
       for (PetscInt p = 0; p < s->pairs.n; p++) paired = paired || s->pairs.body[p][0] == i || s->pairs.body[p][1] == i;
       PetscCall(PetscStrcmp(s->bodies[i]->type, FCBODYFEM, &isfem));
-      if (isfem && paired && redundant) PetscCall(FCBodyFEMSetRedundantGroups(s->bodies[i], groups));
+      if (isfem && paired && redundant) PetscCall(FCBodyFEMSetRedundantGroups(s->bodies[i], groups, rmemory));
       if (isfem && paired) PetscCall(FCBodyFEMSetComplianceType(s->bodies[i], ctype));
     }
     PetscCall(PetscStrncpy(s->scheme_name, "explicit", sizeof(s->scheme_name)));
