@@ -89,6 +89,8 @@ cases = [
      "-compliance_redundant_groups"),
     ("redundant groups with another builder", ["-options_file", "input/cube_drop.opts", "-compliance_type", "dense",
                                                "-compliance_redundant_groups", "1", "-quiet"], "compliance_redundant_groups"),
+    ("inverse block 0", ["-options_file", "input/cube_drop.opts", "-compliance_inverse_block", "0", "-quiet"],
+     "-compliance_inverse_block"),
     ("default compliance without MUMPS", ["-options_file", "input/cube_drop.opts", "-cube_pc_factor_mat_solver_type", "petsc",
                                           "-quiet"], "needs MUMPS"),
 ]

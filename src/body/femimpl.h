@@ -52,6 +52,7 @@ typedef struct {
   PetscInt  rfactor;        /* nfactor when Fr was factored */
   PetscInt  rgroups, group; /* copies, and the one this rank belongs to */
   PetscReal rmemory;        /* bytes per rank a copy's factorization may take */
+  PetscInt  iblock;         /* MUMPS ICNTL(27) for the entries of A^-1 */
   MPI_Comm  rcomm;          /* the ranks of this copy */
 } FEM;
 
