@@ -74,6 +74,29 @@ PetscErrorCode FCSchemeCompliance(PetscInt nbodies, FCBody bodies[], const FCCon
   for (PetscInt b = 0; b < nbodies; b++)
     if (bodies[b]->ops.addcompliance) PetscCall((*bodies[b]->ops.addcompliance)(bodies[b], b, set, W));
   for (PetscInt k = 0; k < set->nrows * set->nrows; k++) W[k] *= h * h;
+  { /* a compliance is symmetric with a non-negative diagonal: anything else is a failed factorization
+       or builder, which the contact solver would turn into wrong forces without noticing */
+    PetscInt  n = set->nrows, bad = -1;
+    PetscReal wmax = 0.0, asym = 0.0;
+    for (PetscInt i = 0; i < n; i++) wmax = PetscMax(wmax, PetscAbsReal(W[i * n + i]));
+    for (PetscInt i = 0; i < n && bad < 0; i++) {
+      if (!(W[i * n + i] >= 0.0) || PetscIsInfOrNanReal(W[i * n + i])) bad = i; /* 0: a fixed vertex */
+      for (PetscInt j = i + 1; j < n; j++) asym = PetscMax(asym, PetscAbsReal(W[i * n + j] - W[j * n + i]));
+    }
+    if (bad >= 0) {
+      PetscInt k = 0;
+      while (k + 1 < set->n && set->c[k + 1].row <= bad) k++;
+      SETERRQ(bodies[0]->comm, PETSC_ERR_CONV_FAILED,
+              "The contact compliance W is not a compliance: W(%" PetscInt_FMT ",%" PetscInt_FMT
+              ") = %g (contact %" PetscInt_FMT ", bodies '%s' and '%s'); the factorization or the -compliance_type "
+              "builder failed",
+              bad, bad, (double)W[bad * n + bad], k, bodies[set->c[k].body[0]]->name, bodies[set->c[k].body[1]]->name);
+    }
+    PetscCheck(asym <= 1e-8 * wmax, bodies[0]->comm, PETSC_ERR_CONV_FAILED,
+               "The contact compliance W is not symmetric (max |W_ij - W_ji| = %g, max W_ii = %g); the factorization "
+               "or the -compliance_type builder failed",
+               (double)asym, (double)wmax);
+  }
   PetscFunctionReturn(0);
 }
 
