@@ -79,13 +79,25 @@ PetscErrorCode FCSchemeCompliance(PetscInt nbodies, FCBody bodies[], const FCCon
     PetscInt  n = set->nrows, bad = -1;
     PetscReal wmax = 0.0, asym = 0.0;
     for (PetscInt i = 0; i < n; i++) wmax = PetscMax(wmax, PetscAbsReal(W[i * n + i]));
-    for (PetscInt i = 0; i < n && bad < 0; i++) {
-      if (!(W[i * n + i] >= 0.0) || PetscIsInfOrNanReal(W[i * n + i])) bad = i; /* 0: a fixed vertex */
-      for (PetscInt j = i + 1; j < n; j++) asym = PetscMax(asym, PetscAbsReal(W[i * n + j] - W[j * n + i]));
+    for (PetscInt k = 0; k < set->n && bad < 0; k++) {
+      const FCContact *c     = &set->c[k];
+      PetscBool        moves = PETSC_FALSE; /* W_kk > 0 unless neither side can move at the contact */
+      for (PetscInt s = 0; s < 2; s++) {
+        PetscBool kinematic;
+        PetscCall(PetscStrcmp(bodies[c->body[s]]->type, FCBODYKINEMATIC, &kinematic));
+        if (!kinematic && !c->prox[s].nv) moves = PETSC_TRUE; /* rigid */
+        for (PetscInt v = 0; v < c->prox[s].nv; v++)          /* FE: a free vertex with a weight */
+          moves = moves || (c->prox[s].gdof[v] >= 0 && c->prox[s].w[v] != 0.0);
+      }
+      for (PetscInt i = c->row; i < c->row + c->dim && bad < 0; i++) {
+        PetscReal d = W[i * n + i];
+        if (PetscIsInfOrNanReal(d) || d < 0.0 || (moves && d <= 0.0)) bad = k;
+        for (PetscInt j = i + 1; j < n; j++) asym = PetscMax(asym, PetscAbsReal(W[i * n + j] - W[j * n + i]));
+      }
     }
     if (bad >= 0) {
-      PetscInt k = 0;
-      while (k + 1 < set->n && set->c[k + 1].row <= bad) k++;
+      PetscInt k = bad;
+      bad        = set->c[k].row;
       SETERRQ(bodies[0]->comm, PETSC_ERR_CONV_FAILED,
               "The contact compliance W is not a compliance: W(%" PetscInt_FMT ",%" PetscInt_FMT
               ") = %g (contact %" PetscInt_FMT ", bodies '%s' and '%s'); the factorization or the -compliance_type "
