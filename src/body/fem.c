@@ -165,8 +165,10 @@ static PetscErrorCode FormAndFactorA(FCBody body)
     PCFailedReason reason;
     PetscCall(KSPGetPC(fem->ksp, &pc));
     PetscCall(PCGetFailedReason(pc, &reason));
-    PetscCheck(reason == PC_NOERROR, body->comm, PETSC_ERR_CONV_FAILED, "Factorization of A for body '%s' failed: %s",
-               body->name, PCFailedReasons[reason]);
+    PetscCheck(reason == PC_NOERROR, body->comm, PETSC_ERR_CONV_FAILED,
+               "Factorization of A for body '%s' failed: %s (out of memory with MUMPS, which underestimates its "
+               "workspace now and then on several ranks: raise the margin, -%smat_mumps_icntl_14 50)",
+               body->name, PCFailedReasons[reason], body->prefix);
   }
   fem->nfactor++;
   fem->factor_age = 0;

@@ -21,6 +21,36 @@ static void Direction(const FCContact *c, PetscInt side, PetscInt a, PetscReal e
   for (int i = 0; i < 3; i++) e[i] = (side == 0 ? 1.0 : -1.0) * f[i];
 }
 
+/* Numeric Cholesky factorization by MUMPS of a matrix this file owns (the Schur builder's augmented
+   matrix, the redundant copies of A), checked: PETSc 3.18 records a MUMPS failure in the factor
+   instead of raising it, and parallel MUMPS intermittently underestimates its workspace (INFOG(1) =
+   -9, seen on 2 ranks: an unchecked failure gave an all-zero Schur complement). Out of memory is
+   retried with ICNTL(14), the workspace margin in percent, doubled, up to 3 times. */
+static PetscErrorCode CholeskyNumericChecked(FCBody body, Mat F, Mat K, const char what[])
+{
+  MatFactorInfo  info;
+  MatFactorError err;
+
+  PetscFunctionBegin;
+  PetscCall(MatFactorInfoInitialize(&info));
+  for (int attempt = 0;; attempt++) {
+    PetscInt icntl14;
+    PetscCall(MatCholeskyFactorNumeric(F, K, &info));
+    PetscCall(MatFactorGetError(F, &err));
+    if (err == MAT_FACTOR_NOERROR) break;
+    PetscCall(MatMumpsGetIcntl(F, 14, &icntl14));
+    PetscCheck(err == MAT_FACTOR_OUTMEMORY && attempt < 3, body->comm, PETSC_ERR_CONV_FAILED,
+               "MUMPS factorization of %s of body '%s' failed (PETSc MatFactorError %d, ICNTL(14) = %" PetscInt_FMT ")",
+               what, body->name, (int)err, icntl14);
+    PetscCall(PetscInfo(F,
+                        "MUMPS out of workspace in %s of body %s: ICNTL(14) %" PetscInt_FMT " -> %" PetscInt_FMT "\n",
+                        what, body->name, icntl14, 2 * icntl14 + 20));
+    PetscCall(MatMumpsSetIcntl(F, 14, 2 * icntl14 + 20));
+    PetscCall(MatFactorClearError(F));
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Compliance, MUMPS Schur builder: the augmented symmetric matrix K = [[0, J_b], [J_b^T, A]]
    (constraint rows first, so that the Schur indices live on rank 0) is factored with
    MatFactorSetSchurIS on the constraint rows; MUMPS returns S = -J_b A^-1 J_b^T, centralized on
@@ -68,7 +98,7 @@ static PetscErrorCode SchurCompliance(FCBody body, PetscInt ncols, PetscReal *Wb
   PetscCall(MatFactorSetSchurIS(F, is));
   PetscCall(MatFactorInfoInitialize(&info));
   PetscCall(MatCholeskyFactorSymbolic(F, K, NULL, &info));
-  PetscCall(MatCholeskyFactorNumeric(F, K, &info));
+  PetscCall(CholeskyNumericChecked(body, F, K, "the augmented matrix [[0, J], [J^T, A]]"));
   PetscCall(MatFactorCreateSchurComplement(F, &S, NULL));
   if (rank == 0) {
     const PetscScalar *sa;
@@ -280,7 +310,7 @@ static PetscErrorCode RedundantFactor(FCBody body, Mat *F)
       PetscCall(MatCholeskyFactorSymbolic(fem->Fr, fem->Ar, NULL, &info));
       PetscCall(CheckRedundantMemory(body));
     }
-    PetscCall(MatCholeskyFactorNumeric(fem->Fr, fem->Ar, &info));
+    PetscCall(CholeskyNumericChecked(body, fem->Fr, fem->Ar, "the redundant copy of A"));
     fem->rfactor = fem->nfactor;
   }
   *F = fem->Fr;
