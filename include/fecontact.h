@@ -120,7 +120,7 @@ PETSC_EXTERN PetscErrorCode FCBodyFEMGetState(FCBody, Vec *u, Vec *v);
 PETSC_EXTERN PetscErrorCode FCBodyFEMComputeElasticForce(FCBody, Vec u, Vec f);
 PETSC_EXTERN PetscErrorCode FCBodyFEMGetReferenceCoordinates(FCBody, Vec *);
 PETSC_EXTERN PetscErrorCode FCBodyFEMSetComplianceType(FCBody, const char[]);
-PETSC_EXTERN PetscErrorCode FCBodyFEMSetRedundantGroups(FCBody, PetscInt groups, PetscReal memory_limit);
+PETSC_EXTERN PetscErrorCode FCBodyFEMSetInverseOptions(FCBody, PetscInt block, PetscInt groups, PetscReal memory_limit);
 PETSC_EXTERN PetscErrorCode FCBodyFEMGetCounters(FCBody, PetscInt *nassembly, PetscInt *nfactorization);
 
 /* ---------------------------------------------------------------------------------------

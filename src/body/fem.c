@@ -814,6 +814,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   fem->refactor_every          = 1;
   fem->rcomm                   = MPI_COMM_NULL;
   fem->rmemory                 = PETSC_MAX_REAL;
+  fem->iblock                  = 256;
   body->data                   = fem;
   body->ops.setfromoptions     = SetFromOptions_FEM;
   body->ops.setup              = SetUp_FEM;

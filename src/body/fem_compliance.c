@@ -756,10 +756,11 @@ PetscErrorCode FCFEMApplyCorrection(FCBody body, PetscInt self, const FCContactS
   PetscFunctionReturn(0);
 }
 
-/* -compliance_redundant_groups and -compliance_redundant_memory_limit: the number of copies of A
-   the redundant builder keeps, and the bytes per rank a copy's factorization may take (before
-   FCBodyFEMSetComplianceType) */
-PetscErrorCode FCBodyFEMSetRedundantGroups(FCBody body, PetscInt groups, PetscReal memory_limit)
+/* The selected-inverse builders' settings (before FCBodyFEMSetComplianceType; the scene reads them
+   from -compliance_inverse_block, -compliance_redundant_groups, -compliance_redundant_memory_limit):
+   MUMPS' ICNTL(27) while it computes the entries of A^-1, the number of copies of A the redundant
+   builder keeps, and the bytes per rank a copy's factorization may take */
+PetscErrorCode FCBodyFEMSetInverseOptions(FCBody body, PetscInt block, PetscInt groups, PetscReal memory_limit)
 {
   FEM        *fem = NULL;
   PetscMPIInt size;
@@ -773,6 +774,8 @@ PetscErrorCode FCBodyFEMSetRedundantGroups(FCBody body, PetscInt groups, PetscRe
              body->name);
   PetscCheck(memory_limit > 0, body->comm, PETSC_ERR_ARG_OUTOFRANGE, "Redundant memory limit %g for body '%s' not > 0",
              (double)memory_limit, body->name);
+  PetscCheck(block != 0, body->comm, PETSC_ERR_ARG_OUTOFRANGE, "Inverse block 0 for body '%s'", body->name);
+  fem->iblock  = block;
   fem->rgroups = groups;
   fem->rmemory = memory_limit;
   PetscFunctionReturn(0);
@@ -809,14 +812,6 @@ PetscErrorCode FCBodyFEMSetComplianceType(FCBody body, const char type[])
     Mat           F;
     MatSolverType stype;
     PetscBool     mumps;
-    /* -compliance_inverse_block b: MUMPS' blocking factor ICNTL(27) while it computes the entries of
-       A^-1 (default 256: 27% less W_H time than MUMPS' automatic -32 on the 149k Table 1 box,
-       docs/options.md); read only for these builders, elsewhere it is reported as unused */
-    fem->iblock = 256;
-    PetscCall(PetscOptionsGetInt(NULL, NULL, "-compliance_inverse_block", &fem->iblock, NULL));
-    PetscCheck(fem->iblock != 0, body->comm, PETSC_ERR_USER_INPUT,
-               "Option -compliance_inverse_block must be non-zero (> 0: columns per block, < 0: MUMPS' automatic "
-               "choice with that bound), got 0");
     PetscCall(KSPGetPC(fem->ksp, &pc));
     PetscCall(PCFactorGetMatrix(pc, &F));
     PetscCall(MatFactorGetSolverType(F, &stype));

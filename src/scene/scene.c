@@ -39,6 +39,9 @@
                               sequential factor on every rank, 1/p of the columns each), or cached
                               surface columns of A_0^-1 (default redundant, the fastest on 1 and 2
                               ranks in docs/scaling.md; see src/body/fem_compliance.c)
+     -compliance_inverse_block b   inverse and redundant: MUMPS' blocking factor ICNTL(27) while it
+                              computes the entries of A^-1 (non-zero, default 256; docs/options.md
+                              has the measurement behind the default)
      -compliance_redundant_groups k   redundant only: k copies of A, each factored on size/k
                               ranks and computing 1/k of the columns (1 <= k <= ranks, default
                               ranks: a sequential copy per rank; fewer copies, less memory)
@@ -252,14 +255,21 @@ PetscErrorCode FCSceneSetUp(FCScene s)
   }
   if (s->pairs.n) {
     char        ctype[FC_MAX_NAME] = "redundant";
-    PetscBool   isfem, redundant;
+    PetscBool   isfem, redundant, inverse;
     PetscMPIInt size;
-    PetscInt    groups;
+    PetscInt    groups, block = 256;
     PetscReal   rmemory = PETSC_MAX_REAL;
     PetscCall(PetscOptionsGetString(NULL, NULL, "-compliance_type", ctype, sizeof(ctype), NULL));
     PetscCallMPI(MPI_Comm_size(s->comm, &size));
     groups = size;
     PetscCall(PetscStrcmp(ctype, "redundant", &redundant));
+    PetscCall(PetscStrcmp(ctype, "inverse", &inverse));
+    if (inverse || redundant) { /* read only for these builders: elsewhere it is reported as unused */
+      PetscCall(PetscOptionsGetInt(NULL, NULL, "-compliance_inverse_block", &block, NULL));
+      PetscCheck(block != 0, s->comm, PETSC_ERR_USER_INPUT,
+                 "Option -compliance_inverse_block must be non-zero (> 0: columns per block, < 0: MUMPS' automatic "
+                 "choice with that bound), got 0");
+    }
     if (redundant) { /* read only for redundant: elsewhere they are reported as unused */
       MPI_Comm    node;
       PetscMPIInt nnode;
@@ -280,7 +290,8 @@ PetscErrorCode FCSceneSetUp(FCScene s)
       PetscBool paired = PETSC_FALSE;
       for (PetscInt p = 0; p < s->pairs.n; p++) paired = paired || s->pairs.body[p][0] == i || s->pairs.body[p][1] == i;
       PetscCall(PetscStrcmp(s->bodies[i]->type, FCBODYFEM, &isfem));
-      if (isfem && paired && redundant) PetscCall(FCBodyFEMSetRedundantGroups(s->bodies[i], groups, rmemory));
+      if (isfem && paired && (inverse || redundant))
+        PetscCall(FCBodyFEMSetInverseOptions(s->bodies[i], block, groups, rmemory));
       if (isfem && paired) PetscCall(FCBodyFEMSetComplianceType(s->bodies[i], ctype));
     }
     PetscCall(PetscStrncpy(s->scheme_name, "explicit", sizeof(s->scheme_name)));

@@ -76,7 +76,7 @@ PetscErrorCode FCSchemeCompliance(PetscInt nbodies, FCBody bodies[], const FCCon
   for (PetscInt k = 0; k < set->nrows * set->nrows; k++) W[k] *= h * h;
   { /* a compliance is symmetric with a non-negative diagonal: anything else is a failed factorization
        or builder, which the contact solver would turn into wrong forces without noticing */
-    PetscInt  n = set->nrows, bad = -1;
+    PetscInt  n = set->nrows, bad = -1, badrow = -1;
     PetscReal wmax = 0.0, asym = 0.0;
     for (PetscInt i = 0; i < n; i++) wmax = PetscMax(wmax, PetscAbsReal(W[i * n + i]));
     for (PetscInt k = 0; k < set->n && bad < 0; k++) {
@@ -91,19 +91,20 @@ PetscErrorCode FCSchemeCompliance(PetscInt nbodies, FCBody bodies[], const FCCon
       }
       for (PetscInt i = c->row; i < c->row + c->dim && bad < 0; i++) {
         PetscReal d = W[i * n + i];
-        if (PetscIsInfOrNanReal(d) || d < 0.0 || (moves && d <= 0.0)) bad = k;
+        if (PetscIsInfOrNanReal(d) || d < 0.0 || (moves && d <= 0.0)) {
+          bad    = k;
+          badrow = i;
+        }
         for (PetscInt j = i + 1; j < n; j++) asym = PetscMax(asym, PetscAbsReal(W[i * n + j] - W[j * n + i]));
       }
     }
-    if (bad >= 0) {
-      PetscInt k = bad;
-      bad        = set->c[k].row;
+    if (bad >= 0)
       SETERRQ(bodies[0]->comm, PETSC_ERR_CONV_FAILED,
               "The contact compliance W is not a compliance: W(%" PetscInt_FMT ",%" PetscInt_FMT
               ") = %g (contact %" PetscInt_FMT ", bodies '%s' and '%s'); the factorization or the -compliance_type "
               "builder failed",
-              bad, bad, (double)W[bad * n + bad], k, bodies[set->c[k].body[0]]->name, bodies[set->c[k].body[1]]->name);
-    }
+              badrow, badrow, (double)W[badrow * n + badrow], bad, bodies[set->c[bad].body[0]]->name,
+              bodies[set->c[bad].body[1]]->name);
     PetscCheck(asym <= 1e-8 * wmax, bodies[0]->comm, PETSC_ERR_CONV_FAILED,
                "The contact compliance W is not symmetric (max |W_ij - W_ji| = %g, max W_ii = %g); the factorization "
                "or the -compliance_type builder failed",
