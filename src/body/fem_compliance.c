@@ -127,58 +127,37 @@ static PetscErrorCode SchurCompliance(FCBody body, PetscInt ncols, PetscReal *Wb
                 again whenever the body refactors A.
    The correction does one solve with the distributed factor. */
 
-/* S (sorted DOFs of the proximity vertices, the same on every rank: contacts are replicated),
-   and J_S by columns of S: for S index j, the rows a of J_b with J_b(a, S_j) != 0 */
-static PetscErrorCode ContactDofs(const FCContactSet *set, PetscInt self, PetscInt *ns_, PetscInt **S_,
-                                  PetscInt **cptr_, PetscInt **crow_, PetscReal **cval_)
+/* S (sorted DOFs that J_b touches, the same on every rank: contacts are replicated) and J_S by
+   columns of S: for S index j, the rows a of J_b with J_b(a, S_j) != 0; from all the entries of
+   J_b^T (fem->jtr + lo: global DOF) */
+static PetscErrorCode ContactDofs(FEM *fem, PetscInt lo, PetscInt *ns_, PetscInt **S_, PetscInt **cptr_,
+                                  PetscInt **crow_, PetscReal **cval_)
 {
-  PetscInt   n = 0, ns = 0, *S, *cptr, *crow = NULL, *cnt;
-  PetscReal *cval = NULL;
+  PetscInt   n = fem->nje, ns = n, *S, *cptr, *crow, *cnt;
+  PetscReal *cval;
 
   PetscFunctionBegin;
-  for (PetscInt k = 0; k < set->n; k++)
-    for (PetscInt s = 0; s < 2; s++)
-      if (set->c[k].body[s] == self) n += 3 * set->c[k].prox[s].nv;
   PetscCall(PetscMalloc1(n + 1, &S));
-  for (PetscInt k = 0; k < set->n; k++)
-    for (PetscInt s = 0; s < 2; s++)
-      if (set->c[k].body[s] == self)
-        for (PetscInt v = 0; v < set->c[k].prox[s].nv; v++)
-          if (set->c[k].prox[s].gdof[v] >= 0) /* fixed vertices have no DOF */
-            for (int d = 0; d < 3; d++) S[ns++] = set->c[k].prox[s].gdof[v] + d;
+  for (PetscInt q = 0; q < n; q++) S[q] = fem->jtr[q] + lo;
   PetscCall(PetscSortRemoveDupsInt(&ns, S));
   PetscCall(PetscCalloc1(ns + 1, &cptr));
   PetscCall(PetscCalloc1(ns + 1, &cnt));
+  PetscCall(PetscMalloc1(n + 1, &crow));
+  PetscCall(PetscMalloc1(n + 1, &cval));
   for (int pass = 0; pass < 2; pass++) { /* count, then fill */
-    PetscInt a = 0;
-    for (PetscInt k = 0; k < set->n; k++)
-      for (PetscInt s = 0; s < 2; s++) {
-        const FCContact *c = &set->c[k];
-        if (c->body[s] != self) continue;
-        for (PetscInt dir = 0; dir < c->dim; dir++, a++) {
-          PetscReal e[3];
-          Direction(c, s, dir, e);
-          for (PetscInt v = 0; v < c->prox[s].nv; v++) {
-            PetscInt at;
-            if (c->prox[s].gdof[v] < 0) continue;
-            PetscCall(PetscFindInt(c->prox[s].gdof[v], ns, S, &at));
-            for (int d = 0; d < 3; d++) {
-              if (!pass)
-                cptr[at + d + 1]++;
-              else {
-                PetscInt q = cptr[at + d] + cnt[at + d]++;
-                crow[q]    = a;
-                cval[q]    = c->prox[s].w[v] * e[d];
-              }
-            }
-          }
-        }
+    for (PetscInt q = 0; q < n; q++) {
+      PetscInt at;
+      PetscCall(PetscFindInt(fem->jtr[q] + lo, ns, S, &at));
+      if (!pass)
+        cptr[at + 1]++;
+      else {
+        PetscInt r = cptr[at] + cnt[at]++;
+        crow[r]    = fem->jtc[q];
+        cval[r]    = fem->jtv[q];
       }
-    if (!pass) {
-      for (PetscInt j = 0; j < ns; j++) cptr[j + 1] += cptr[j];
-      PetscCall(PetscMalloc1(cptr[ns] + 1, &crow));
-      PetscCall(PetscMalloc1(cptr[ns] + 1, &cval));
     }
+    if (!pass)
+      for (PetscInt j = 0; j < ns; j++) cptr[j + 1] += cptr[j];
   }
   PetscCall(PetscFree(cnt));
   *ns_   = ns;
@@ -328,12 +307,11 @@ PetscErrorCode FCFEMComplianceFactor(FCBody body)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode InverseCompliance(FCBody body, PetscInt self, const FCContactSet *set, PetscInt ncols,
-                                        PetscReal *Wb)
+static PetscErrorCode InverseCompliance(FCBody body, PetscInt ncols, PetscReal *Wb)
 {
   FEM        *fem = (FEM *)body->data;
   PetscMPIInt rank, size;
-  PetscInt    N, ns = 0, *S = NULL, *cptr = NULL, *crow = NULL, j0, j1;
+  PetscInt    N, lo, ns = 0, *S = NULL, *cptr = NULL, *crow = NULL, j0, j1;
   PetscReal  *cval = NULL;
   Mat         F;
   PC          pc;
@@ -344,7 +322,8 @@ static PetscErrorCode InverseCompliance(FCBody body, PetscInt self, const FCCont
   PetscCall(VecGetSize(fem->u, &N));
   PetscCall(KSPGetPC(fem->ksp, &pc));
   PetscCall(PCFactorGetMatrix(pc, &F)); /* MUMPS: checked by FCBodyFEMSetComplianceType */
-  PetscCall(ContactDofs(set, self, &ns, &S, &cptr, &crow, &cval));
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
+  PetscCall(ContactDofs(fem, lo, &ns, &S, &cptr, &crow, &cval));
   if (!strcmp(fem->compliance, "redundant")) { /* the group's share of S, on rank 0 of its copy */
     PetscMPIInt grank = 0;
     PetscCall(RedundantFactor(body, &F));
@@ -589,7 +568,7 @@ PetscErrorCode FCFEMComplianceReset(FCBody body)
   PetscCall(MatDestroy(&fem->X));
   PetscCall(PetscFree(fem->cols));
   PetscCall(PetscFree3(fem->jtr, fem->jtc, fem->jtv));
-  fem->ncols = fem->njt = 0;
+  fem->ncols = fem->njt = fem->nje = 0;
   PetscFunctionReturn(0);
 }
 
@@ -638,27 +617,32 @@ PetscErrorCode FCFEMAddCompliance(FCBody body, PetscInt self, const FCContactSet
   PetscCall(VecGetLocalSize(fem->u, &nloc));
   PetscCall(VecGetSize(fem->u, &N));
   PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
-  /* J_b^T on the owned DOFs, by entries: at most 9 per column (3 vertices x 3 components) */
-  ncols = 0;
-  for (PetscInt k = 0; k < set->n; k++)
-    for (PetscInt s = 0; s < 2; s++) {
-      const FCContact *c = &set->c[k];
-      if (c->body[s] != self) continue;
-      for (PetscInt a = 0; a < c->dim; a++, ncols++) {
-        PetscReal e[3];
-        fem->cols[ncols] = c->row + a;
-        Direction(c, s, a, e);
-        for (PetscInt vtx = 0; vtx < c->prox[s].nv; vtx++) {
-          PetscInt g = c->prox[s].gdof[vtx];
-          if (g < lo || g >= lo + nloc) continue; /* fixed (-1) or owned elsewhere */
-          for (int d = 0; d < 3; d++, fem->njt++) {
-            fem->jtr[fem->njt] = g - lo + d;
-            fem->jtc[fem->njt] = ncols;
-            fem->jtv[fem->njt] = c->prox[s].w[vtx] * e[d];
+  /* J_b^T by entries, at most 9 per column (3 vertices x 3 components): the owned DOFs' first (pass
+     0, fem->njt of them), then the others' (pass 1, fem->nje in all; the selected-inverse builders
+     need every entry, on every rank) */
+  for (int pass = 0; pass < 2; pass++) {
+    if (pass) fem->njt = fem->nje;
+    ncols = 0;
+    for (PetscInt k = 0; k < set->n; k++)
+      for (PetscInt s = 0; s < 2; s++) {
+        const FCContact *c = &set->c[k];
+        if (c->body[s] != self) continue;
+        for (PetscInt a = 0; a < c->dim; a++, ncols++) {
+          PetscReal e[3];
+          fem->cols[ncols] = c->row + a;
+          Direction(c, s, a, e);
+          for (PetscInt vtx = 0; vtx < c->prox[s].nv; vtx++) {
+            PetscInt g = c->prox[s].gdof[vtx];
+            if (g < 0 || (g >= lo && g < lo + nloc) == (pass == 1)) continue; /* fixed, or the other pass's */
+            for (int d = 0; d < 3; d++, fem->nje++) {
+              fem->jtr[fem->nje] = g - lo + d;
+              fem->jtc[fem->nje] = ncols;
+              fem->jtv[fem->nje] = c->prox[s].w[vtx] * e[d];
+            }
           }
         }
       }
-    }
+  }
   fem->ncols = ncols;
   if (!strcmp(fem->compliance, "schur") || !strcmp(fem->compliance, "inverse") ||
       !strcmp(fem->compliance, "redundant") || !strcmp(fem->compliance, "precomputed")) {
@@ -666,7 +650,7 @@ PetscErrorCode FCFEMAddCompliance(FCBody body, PetscInt self, const FCContactSet
     if (!strcmp(fem->compliance, "schur"))
       PetscCall(SchurCompliance(body, ncols, Wb));
     else if (!strcmp(fem->compliance, "inverse") || !strcmp(fem->compliance, "redundant"))
-      PetscCall(InverseCompliance(body, self, set, ncols, Wb));
+      PetscCall(InverseCompliance(body, ncols, Wb));
     else
       PetscCall(PrecomputedCompliance(body, self, set, ncols, Wb));
     for (PetscInt i = 0; i < ncols; i++)

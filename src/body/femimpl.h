@@ -24,10 +24,11 @@ typedef struct {
   PetscInt   factor_age;     /* steps since A was last factored */
   PetscReal  mass;
   /* contact */
-  PetscInt           nbv, *bv;        /* owned boundary vertices (local vertex indices)          */
-  Vec                Xg;              /* placed reference coordinates, layout of u               */
-  Mat                JT, X;           /* dense and sparse builders: J_b^T and A^-1 J_b^T (dense) */
-  PetscInt           njt, *jtr, *jtc; /* J_b^T on the owned DOFs by entries: local row, column  */
+  PetscInt           nbv, *bv;  /* owned boundary vertices (local vertex indices)          */
+  Vec                Xg;        /* placed reference coordinates, layout of u               */
+  Mat                JT, X;     /* dense and sparse builders: J_b^T and A^-1 J_b^T (dense) */
+  PetscInt           njt, nje;  /* J_b^T by entries: the first njt on owned DOFs, nje in all */
+  PetscInt          *jtr, *jtc; /* row (global DOF - first owned DOF), column                */
   PetscReal         *jtv;
   PetscInt           ncols, *cols;     /* global constraint row of each column of JT and X        */
   PetscReal         *bx0, *bxf, *bkey; /* contact point buffers                                   */
