@@ -106,6 +106,18 @@ def memory(mesh, np_):
     return sorted(int(l.split()[1]) / 1024.0 for l in (p.stdout + p.stderr).splitlines() if l.startswith("maxrss_kb"))
 
 
+def stored(a, name, stamp, compute):
+    """compute(), kept in build/scaling/<name>.json: --reuse takes it back when the stamp (binary, steps)
+    matches, --redraw whatever the last sweep stored"""
+    cache = os.path.join(OUT, name + ".json")
+    if a.redraw or (a.reuse and os.path.exists(cache) and json.load(open(cache))["stamp"] == stamp):
+        return json.load(open(cache))["value"]
+    value = compute()
+    with open(cache, "w") as f:
+        json.dump({"stamp": stamp, "value": value}, f)
+    return value
+
+
 def diff(h1, h2):
     a, b = sorted_positions(h1, "box")[1], sorted_positions(h2, "box")[1]
     return float(np.abs(a - b).max() / np.abs(a).max())
@@ -133,13 +145,8 @@ def main():
         args, dofs = scene(scene_name)
         args = args + ["-compliance_type", ctype, "-pgs_ranks", pgs]
         tag = "%s_%s_%s_%s_np%d" % (kind, scene_name, ctype, pgs, np_)
-        cache = os.path.join(OUT, tag + ".json")
-        stamp = [os.path.getmtime(EXE), a.steps]
-        if a.redraw or (a.reuse and os.path.exists(cache) and json.load(open(cache))["stamp"] == stamp):
-            r, h = json.load(open(cache))["row"], h5py.File(os.path.join(OUT, tag + ".h5"), "r")
-        else:
-            r, h = run(tag, args, np_, a.steps)
-            json.dump({"stamp": stamp, "row": r}, open(cache, "w"))
+        r = stored(a, tag, [os.path.getmtime(EXE), a.steps], lambda: run(tag, args, np_, a.steps)[0])
+        h = h5py.File(os.path.join(OUT, tag + ".h5"), "r")
         r.update(kind=kind, scene=scene_name, dofs=dofs, builder=ctype, pgs_ranks=pgs,
                  oversubscribed=np_ > (os.cpu_count() or 1), vs_np1=diff(ref, h) if ref is not None else 0.0)
         r["wrong"] = not (r["vs_np1"] <= 1e-8)
@@ -177,13 +184,7 @@ def main():
     mem = {}
     for fmt, m in (("msh", msh), ("h5", h5)):
         for np_ in ranks:
-            cache = os.path.join(OUT, "memory_%s_np%d.json" % (fmt, np_))
-            stamp = [os.path.getmtime(EXE)]
-            if a.redraw or (a.reuse and os.path.exists(cache) and json.load(open(cache))["stamp"] == stamp):
-                mem[(fmt, np_)] = json.load(open(cache))["rss"]
-            else:
-                mem[(fmt, np_)] = memory(m, np_)
-                json.dump({"stamp": stamp, "rss": mem[(fmt, np_)]}, open(cache, "w"))
+            mem[(fmt, np_)] = stored(a, "memory_%s_np%d" % (fmt, np_), [os.path.getmtime(EXE)], lambda: memory(m, np_))
     for k, v in mem.items():
         print("memory %s np=%d: peak RSS per rank %s MB" % (k[0], k[1], ", ".join("%.0f" % x for x in v)), flush=True)
     a.memory = mem
