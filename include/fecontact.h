@@ -1,7 +1,7 @@
 /* fecontact: deformable (P1 finite element) and rigid bodies in frictional contact with the
    implicit constraint scheme of Zeng & Courtecuisse (2023). Public interface.
 
-   One time step flows one way (../shared/design/DESIGN.md, section 2):
+   One time step flows one way (docs/method.md, section 2):
      scene -> bodies (free motion, eq. 5) -> [collision -> contacts -> compliance -> scheme]
            -> bodies (correction, eq. 20, and integration, eq. 2) -> output                    */
 #pragma once
@@ -119,8 +119,6 @@ PETSC_EXTERN PetscErrorCode FCBodyFEMGetDM(FCBody, DM *);
 PETSC_EXTERN PetscErrorCode FCBodyFEMGetState(FCBody, Vec *u, Vec *v);
 PETSC_EXTERN PetscErrorCode FCBodyFEMComputeElasticForce(FCBody, Vec u, Vec f);
 PETSC_EXTERN PetscErrorCode FCBodyFEMGetReferenceCoordinates(FCBody, Vec *);
-PETSC_EXTERN PetscErrorCode FCBodyFEMSetComplianceType(FCBody, const char[]);
-PETSC_EXTERN PetscErrorCode FCBodyFEMSetInverseOptions(FCBody, PetscInt block, PetscInt groups, PetscReal memory_limit);
 PETSC_EXTERN PetscErrorCode FCBodyFEMGetCounters(FCBody, PetscInt *nassembly, PetscInt *nfactorization);
 
 /* ---------------------------------------------------------------------------------------

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Our PGS (exact local Coulomb solve) against Siconos NSGS on the problems of
-../shared/data/fclib: sweeps, residual and time to a tolerance (default 1e-8), both residuals
+tests/data/fclib (or $FCLIB_DIR): sweeps, residual and time to a tolerance (default 1e-8), both residuals
 being the natural-map error divided by ||q|| (Siconos 4.4's fc3d_compute_error normalization),
 and Siconos' own error evaluated on our solution as an independent check (3D problems).
 Usage: scripts/bench_contact_solver.py [--tol 1e-8] [--max-it 100000] [--markdown FILE] [--json FILE]"""
@@ -17,9 +17,9 @@ import numpy as np
 import siconos.numerics as sn
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SRC = os.environ.get("FCLIB_DIR", os.path.join(ROOT, "..", "shared", "data", "fclib"))
+SRC = os.environ.get("FCLIB_DIR", os.path.join(ROOT, "tests", "data", "fclib"))
 if not os.path.isdir(SRC):
-    sys.exit("bench_contact_solver: no fclib problems in %s (the project's shared/data/fclib beside the repository, or set FCLIB_DIR)" % SRC)
+    sys.exit("bench_contact_solver: no fclib problems in %s (tests/data/fclib of the repository, or set FCLIB_DIR)" % SRC)
 
 
 def siconos_solve(path, tol, max_it):

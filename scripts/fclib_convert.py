@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Converts the Siconos text problems (*.dat) of ../shared/data/fclib into the FCLIB HDF5 local
+"""Converts the Siconos text problems (*.dat) of tests/data/fclib into the FCLIB HDF5 local
 layout (/fclib_local/W as CSR, /fclib_local/vectors/{q,mu}, /fclib_local/spacedim) that
 fecontact's FCContactProblemLoadFCLIB() reads; FCLIB *.hdf5 files are linked as they are.
 Usage: scripts/fclib_convert.py SRC_DIR DST_DIR   (skips problems already converted)"""

@@ -4,6 +4,7 @@
 #include <fecontact.h>
 
 #define FC_MAX_NAME 64
+#define FC_MAX_BODIES 256 /* bodies of a scene, and contact pairs */
 
 /* ---------------------------------------------------------------------------------------
    Small dense kernels (src/util/linalg.c): 3-vectors, 3x3 matrices (row-major), quaternions
@@ -209,6 +210,8 @@ typedef struct {
   /* add w x (current position) of the vertices of a proximity point this rank owns (FE), or
      the point on rank 0 (rigid, kinematic) */
   PetscErrorCode (*partialposition)(FCBody, const FCProximity *, PetscReal x[3]);
+  /* a body named in a contact pair: what its response needs (FE: the compliance builder) */
+  PetscErrorCode (*setupcontact)(FCBody);
   /* recursive schemes: keep dv_free, go back to it, and add w x of a proximity point at the
      trial state q + h (v + dv) (owned FE vertices; rigid on rank 0) */
   PetscErrorCode (*savefree)(FCBody);
@@ -221,6 +224,10 @@ enum { FC_AT_START, FC_AT_FREE, FC_AT_NOW };
 
 struct _p_FCBody {
   MPI_Comm  comm;
+  PetscBool deformable; /* set by the type: DOFs at mesh vertices, a surface that deforms (fem) */
+  PetscBool prescribed; /* set by the type: motion given, takes no force (kinematic)           */
+  PetscInt  state_cols;       /* set by the type: restart values per row ...                     */
+  PetscBool state_per_vertex; /* ... one row per visual vertex (else one row, on rank 0)          */
   char      name[FC_MAX_NAME];
   char      prefix[FC_MAX_NAME + 1]; /* "<name>_" */
   char      type[FC_MAX_NAME];
@@ -236,6 +243,36 @@ struct _p_FCBody {
   FCShape      shape; /* rigid and kinematic bodies: their shape (owned by the pose) */
 };
 
+/* What a body is, and what code outside src/body/ may ask of it (src/body/body_ops.c): no other
+   file reads body->ops or compares body type names. */
+PETSC_INTERN PetscBool      FCBodyIsDeformable(FCBody);    /* FE: vertex DOFs, a deforming surface     */
+PETSC_INTERN PetscBool      FCBodyIsPrescribed(FCBody);    /* kinematic: given motion, takes no force  */
+PETSC_INTERN PetscBool      FCBodyHasShape(FCBody);        /* a signed distance (rigid, kinematic)     */
+PETSC_INTERN PetscBool      FCBodyHasBoundedShape(FCBody); /* ... of a closed shape (not a plane)      */
+PETSC_INTERN PetscBool      FCBodyHasSurfaceTriangles(FCBody); /* FE bodies and mesh shapes           */
+/* Restart state: `cols` values per visual vertex (pervertex, distributed like the visual) or one
+   row of `cols` values on rank 0 */
+PETSC_INTERN PetscErrorCode FCBodyGetStateLayout(FCBody, PetscInt *cols, PetscBool *pervertex);
+PETSC_INTERN PetscErrorCode FCBodyGetState(FCBody, PetscReal[]);
+PETSC_INTERN PetscErrorCode FCBodySetState(FCBody, const PetscReal[]);
+/* Contact geometry (see FCBodyOps for the meaning of each) */
+PETSC_INTERN PetscErrorCode FCBodyGetContactPoints(FCBody, PetscInt *n, FCProximity **prox, PetscReal **x0,
+                                                   PetscReal **xfree, PetscReal **key);
+PETSC_INTERN PetscErrorCode FCBodyGetSurfaceTriangles(FCBody, PetscInt *n, FCSurfaceTriangle **);
+PETSC_INTERN PetscErrorCode FCBodyProximityPosition(FCBody, const FCProximity *, PetscInt when, PetscReal x[3]);
+/* when: FC_AT_NOW (the shape's pose now) or FC_AT_FREE (after the free motion) */
+PETSC_INTERN PetscErrorCode FCBodyShapeDistance(FCBody, PetscInt when, const PetscReal x[3], PetscReal *d,
+                                                PetscReal n[3], PetscReal cpb[3]);
+PETSC_INTERN PetscErrorCode FCBodyToBodyFrame(FCBody, const PetscReal x[3], PetscBool direction, PetscReal r[3]);
+PETSC_INTERN PetscErrorCode FCBodyAddPartialPosition(FCBody, const FCProximity *, PetscReal x[3]);
+/* Contact response */
+PETSC_INTERN PetscErrorCode FCBodySetUpContact(FCBody); /* a body named in a contact pair, after FCBodySetUp */
+PETSC_INTERN PetscErrorCode FCBodyAddCompliance(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
+PETSC_INTERN PetscErrorCode FCBodyApplyCorrection(FCBody, PetscInt self, const FCContactSet *, const PetscReal lambda[]);
+PETSC_INTERN PetscErrorCode FCBodySaveFreeMotion(FCBody);
+PETSC_INTERN PetscErrorCode FCBodyRestoreFreeMotion(FCBody);
+PETSC_INTERN PetscErrorCode FCBodyAddTrialPosition(FCBody, const FCProximity *, PetscReal x[3]);
+
 PETSC_INTERN PetscErrorCode FCBodyCreate_FEM(FCBody);
 PETSC_INTERN PetscErrorCode FCBodyCreate_Rigid(FCBody);
 PETSC_INTERN PetscErrorCode FCBodyCreate_Kinematic(FCBody);
@@ -247,6 +284,46 @@ PETSC_INTERN PetscErrorCode FCBodyReadPlacement(FCBody);
 PETSC_INTERN void           FCBodyPlacementRotation(FCBody, PetscReal R[9]);
 PETSC_INTERN PetscErrorCode FCBodyVisualFromShape(FCBody, FCShape);
 PETSC_INTERN PetscErrorCode FCBodyVisualDestroy(FCBodyVisual *);
+
+/* ---------------------------------------------------------------------------------------
+   Compliance builders (src/compliance/): W_b = J_b A_b^-1 J_b^T of an FE body (eq. 17) and its
+   correction dv += h A_b^-1 J_b^T lambda (eq. 20); one file per type, -compliance_type
+   --------------------------------------------------------------------------------------- */
+typedef struct _p_FCCompliance *FCCompliance;
+typedef const char             *FCComplianceType;
+#define FCCOMPLIANCEDENSE "dense"
+#define FCCOMPLIANCESPARSE "sparse"
+#define FCCOMPLIANCESCHUR "schur"
+#define FCCOMPLIANCEINVERSE "inverse"
+#define FCCOMPLIANCEREDUNDANT "redundant"
+#define FCCOMPLIANCEPRECOMPUTED "precomputed"
+/* What a builder gets from its FE body; it never calls the body back */
+typedef struct {
+  MPI_Comm        comm;
+  const char     *name, *prefix; /* the body's, for messages */
+  Vec             u;             /* layout of the rows of A (a global state vector)            */
+  Mat             A;             /* A = M + h B + h^2 K, current with its factor              */
+  KSP             ksp;           /* the factorization of A (preonly + Cholesky)               */
+  PetscBool       linear;        /* A never changes                                           */
+  PetscInt        nsurface;      /* first global DOF of the owned non-fixed boundary vertices */
+  const PetscInt *surface;
+} FCComplianceContext;
+PETSC_EXTERN PetscFunctionList FCComplianceList;
+PETSC_EXTERN PetscErrorCode    FCComplianceRegister(const char[], PetscErrorCode (*)(FCCompliance));
+PETSC_INTERN PetscErrorCode    FCComplianceRegisterAll(void);
+PETSC_INTERN PetscErrorCode    FCComplianceCreate(const FCComplianceContext *, FCCompliance *);
+PETSC_INTERN PetscErrorCode    FCComplianceSetType(FCCompliance, FCComplianceType);
+PETSC_INTERN PetscErrorCode    FCComplianceSetFromOptions(FCCompliance); /* -compliance_type and the type's own */
+PETSC_INTERN PetscErrorCode    FCComplianceSetUp(FCCompliance);          /* at set-up, A at the reference state */
+PETSC_INTERN PetscErrorCode    FCComplianceFactor(FCCompliance);         /* after every factorization of A     */
+/* a builder that warps a reference compliance needs the body's best-fit rotation before each Add */
+PETSC_INTERN PetscBool         FCComplianceUsesRotation(FCCompliance);
+PETSC_INTERN PetscErrorCode    FCComplianceSetRotation(FCCompliance, const PetscReal R[9]);
+/* W (M x M, row-major, replicated) += J_b A^-1 J_b^T for the contacts touching body `self` */
+PETSC_INTERN PetscErrorCode FCComplianceAdd(FCCompliance, PetscInt self, const FCContactSet *, PetscReal W[]);
+/* dv += h A^-1 J_b^T lambda for the J_b of the last Add */
+PETSC_INTERN PetscErrorCode FCComplianceCorrect(FCCompliance, PetscReal h, const PetscReal lambda[], Vec dv);
+PETSC_INTERN PetscErrorCode FCComplianceDestroy(FCCompliance *);
 
 /* ---------------------------------------------------------------------------------------
    Output (src/io/): one HDF5 file per run, an XDMF file beside it for ParaView
@@ -262,12 +339,10 @@ PETSC_INTERN PetscErrorCode FCOutputRecordStep(FCOutput, PetscInt step, PetscRea
                                                const PetscReal timing[FC_PHASE_NUM], PetscInt nbodies, FCBody[]);
 PETSC_INTERN PetscErrorCode FCOutputWriteFrame(FCOutput, PetscInt step, PetscReal t, PetscInt nbodies, FCBody[]);
 PETSC_INTERN PetscErrorCode FCOutputFlush(FCOutput);
-/* The restart state of the end of `step` (/restart, written before the frame's flush) */
+/* The restart state of the end of `step` (/restart, written before the frame's flush); the
+   restart format is written and read in src/io/restart.c */
 PETSC_INTERN PetscErrorCode FCOutputWriteRestart(FCOutput, PetscInt step, PetscReal t, PetscInt nbodies, FCBody[],
                                                  const FCContactSet *previous);
-/* A contact of the restart state: pair, rows, key (3), n, t1, t2 (3 each), force (3) */
-#define FC_RESTART_CONTACT 17
-PETSC_INTERN void FCRestartPackContact(const FCContact *, double[FC_RESTART_CONTACT]);
 /* Reads the newest complete restart state of a file into the bodies, previous contacts, step, t */
 PETSC_INTERN PetscErrorCode FCRestartLoad(MPI_Comm, const char file[], PetscInt nbodies, FCBody[],
                                           FCContactSet *previous, PetscInt *step, PetscReal *t);
@@ -297,42 +372,36 @@ typedef struct {
   PetscReal residual;
   PetscInt  newton; /* Newton iterations (recursive schemes; 1 for explicit) */
 } FCSchemeStats;
-/* Algorithm 1: W = sum J A^-1 J^T, PGS on (h^2 W, delta_free, mu), correction (eq. 20) */
-PETSC_INTERN PetscErrorCode FCSchemeExplicit(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCContactSet *,
-                                             const FCContactSet *previous, FCContactSolver, FCSchemeStats *);
 
-/* What a constraint scheme works on in one step (-constraint_scheme explicit|standard|fast) */
-typedef struct {
-  MPI_Comm            comm;
-  PetscInt            nbodies;
-  FCBody             *bodies;
-  FCContactSet       *set;
-  const FCContactSet *previous;
-  FCContactSolver     solver;
-  PetscInt            newton_max_it;
-  PetscReal           newton_tol;
-  /* types of the fast scheme's W_H (dense), frames C (sparse) and vectors: host by default,
-     -wh_mat_type seqdensecuda -frames_mat_type seqaijcusparse -contact_vec_type seqcuda on a GPU */
-  const char *wh_mat_type, *frames_mat_type, *vec_type;
-  PetscReal   memory_limit; /* bytes the dense contact matrices of a step may take */
-} FCSchemeContext;
-typedef PetscErrorCode (*FCSchemeFunction)(FCSchemeContext *, FCSchemeStats *);
+/* FCScheme: a constraint scheme (src/scheme/), -constraint_scheme explicit|standard|fast. It owns
+   the contact solver and, per step, turns the contact set into forces and corrected motions. */
+typedef struct _p_FCScheme *FCScheme;
+typedef const char         *FCSchemeType;
+#define FCSCHEMEEXPLICIT "explicit"
+#define FCSCHEMESTANDARD "standard"
+#define FCSCHEMEFAST "fast"
 PETSC_EXTERN PetscFunctionList FCSchemeList;
+PETSC_EXTERN PetscErrorCode    FCSchemeRegister(const char[], PetscErrorCode (*)(FCScheme));
 PETSC_INTERN PetscErrorCode    FCSchemeRegisterAll(void);
-PETSC_INTERN PetscErrorCode    FCSchemeExplicitStep(FCSchemeContext *, FCSchemeStats *);
-PETSC_INTERN PetscErrorCode    FCSchemeFast(FCSchemeContext *, FCSchemeStats *);
-PETSC_INTERN PetscErrorCode    FCSchemeStandard(FCSchemeContext *, FCSchemeStats *);
-PETSC_INTERN PetscErrorCode    FCSchemeLinearize(FCSchemeContext *, const PetscReal dfree[], const PetscReal d0[],
-                                                 const PetscReal d[], PetscReal q[], PetscReal *frame_change);
-PETSC_INTERN PetscBool         FCSchemeConverged(const FCSchemeContext *, PetscInt M, const PetscReal q[],
-                                                 const PetscReal qold[], PetscReal frame_change);
-PETSC_INTERN void              FCContactSetUpdateStates(FCContactSet *);
-PETSC_INTERN void              FCSchemeStatsReset(const FCContactSet *, FCSchemeStats *);
-PETSC_INTERN PetscErrorCode FCSchemeCompliance(PetscInt nbodies, FCBody bodies[], const FCContactSet *, PetscReal W[]);
-PETSC_INTERN void FCSchemeStartLinearization(const FCContactSet *, PetscReal dfree[], PetscReal d0[], PetscReal q[],
-                                             PetscReal mu[], PetscInt dims[]);
+PETSC_INTERN PetscErrorCode    FCSchemeCreate(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCScheme *);
+PETSC_INTERN PetscErrorCode    FCSchemeSetType(FCScheme, FCSchemeType);
+PETSC_INTERN PetscErrorCode    FCSchemeSetFromOptions(FCScheme);
+/* One step's contacts: forces (set->c[k].force, state) and the bodies' corrected dv; `step`
+   names the step in errors (a contact problem left unsolved stops the run, -pgs_fail_residual) */
+PETSC_INTERN PetscErrorCode FCSchemeSolve(FCScheme, PetscInt step, FCContactSet *, const FCContactSet *previous,
+                                          FCSchemeStats *);
+PETSC_INTERN PetscErrorCode FCSchemeDestroy(FCScheme *);
+
+/* Contact-set helpers of the schemes (src/contact/contactset.c) */
+PETSC_INTERN void FCContactSetUpdateStates(FCContactSet *); /* 0 open, 1 stick, 2 slip from the forces */
+/* World force of the same contact (pair, side-1 point) in the previous step, 0 if it is new */
 PETSC_INTERN void FCContactPreviousForce(const FCContactSet *previous, const FCContact *, PetscReal F[3]);
-/* Tangents completing a normal: the frame C_i = [n t1 t2] (src/contact/contactset.c) */
+/* The warm start of every scheme: the previous step's world force of each contact, projected on
+   this step's frame (lambda: M rows) */
+PETSC_INTERN void FCContactSetWarmStart(const FCContactSet *set, const FCContactSet *previous, PetscReal lambda[]);
+/* c->force of every contact from lambda (rows in the contact frames) */
+PETSC_INTERN void FCContactSetStoreForces(FCContactSet *, const PetscReal lambda[]);
+/* Tangents completing a normal: the frame C_i = [n t1 t2] */
 PETSC_INTERN void FCContactFrame(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3]);
 
 /* End-of-step accuracy measures of a contact set (src/contact/measures.c, docs/output.md) */

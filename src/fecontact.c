@@ -1,4 +1,4 @@
-/* Package registration: type registries (bodies, materials, shapes) and log events. */
+/* Package registration: type registries (bodies, materials, shapes, compliance builders, schemes) and log events. */
 #include "fcimpl.h"
 
 static PetscBool    initialized = PETSC_FALSE;
@@ -17,6 +17,7 @@ PetscErrorCode FCInitializePackage(void)
   PetscCall(FCMaterialRegisterAll());
   PetscCall(FCShapeRegisterAll());
   PetscCall(FCSchemeRegisterAll());
+  PetscCall(FCComplianceRegisterAll());
   PetscCall(PetscRegisterFinalize(FCFinalizePackage));
   PetscFunctionReturn(0);
 }
@@ -28,6 +29,7 @@ PetscErrorCode FCFinalizePackage(void)
   PetscCall(PetscFunctionListDestroy(&FCMaterialList));
   PetscCall(PetscFunctionListDestroy(&FCShapeList));
   PetscCall(PetscFunctionListDestroy(&FCSchemeList));
+  PetscCall(PetscFunctionListDestroy(&FCComplianceList));
   initialized = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

@@ -1,10 +1,11 @@
 """Contact solver on bare problems (W, q, mu):
-- the one-contact exact case (DESIGN.md section 5, FrictionContact3D_1c) to 1e-10: the given
+- the one-contact exact case (docs/method.md, section 5, FrictionContact3D_1c) to 1e-10: the given
   solution (7 digits), Siconos NSGS's answer, and the sliding conditions u_n = 0,
   r_T = -mu r_n u_T / ||u_T|| hold;
-- every problem of ../shared/data/fclib that Siconos NSGS solves to 1e-8 is solved by our PGS to
-  1e-8, measured three ways: our residual, Siconos' fc3d_compute_error on our r (3D), and an
-  independent numpy natural-map residual (all divided by ||q||);
+- every problem of tests/data/fclib (its README.md: origin, licence; $FCLIB_DIR overrides it)
+  that Siconos NSGS solves to 1e-8 is solved by our PGS to 1e-8, measured three ways: our
+  residual, Siconos' fc3d_compute_error on our r (3D), and an independent numpy natural-map
+  residual (all divided by ||q||);
 - FCLIB .hdf5 problems (which Siconos 4.4 cannot read) run without crash or hang.
 The side-by-side timing table is scripts/bench_contact_solver.py, not a test."""
 import os

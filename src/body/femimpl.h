@@ -1,5 +1,8 @@
-/* Private data of an FE body (src/body/fem.c), shared with its compliance builders
-   (src/body/fem_compliance.c). */
+/* Private data of an FE body, shared by its files:
+     fem.c          options, set-up, destroy, type registration, accessors for tests and tools
+     fem_step.c     element loops, A and its factorization, free motion (eq. 5), integration (eq. 2)
+     fem_state.c    centroid, energies, visual positions, restart state, NaN check
+     fem_contact.c  contact points, surface triangles, proximity positions, the compliance builder */
 #pragma once
 #include "../fcimpl.h"
 
@@ -24,43 +27,68 @@ typedef struct {
   PetscInt   factor_age;     /* steps since A was last factored */
   PetscReal  mass;
   /* contact */
-  PetscInt           nbv, *bv;  /* owned boundary vertices (local vertex indices)          */
-  Vec                Xg;        /* placed reference coordinates, layout of u               */
-  Mat                JT, X;     /* dense and sparse builders: J_b^T and A^-1 J_b^T (dense) */
-  PetscInt           njt, nje;  /* J_b^T by entries: the first njt on owned DOFs, nje in all */
-  PetscInt          *jtr, *jtc; /* row (global DOF - first owned DOF), column                */
-  PetscReal         *jtv;
-  PetscInt           ncols, *cols;     /* global constraint row of each column of JT and X        */
-  PetscReal         *bx0, *bxf, *bkey; /* contact point buffers                                   */
+  PetscInt           nbv, *bv; /* owned boundary vertices (local vertex indices)             */
+  PetscInt           nsurface; /* ... their first global DOF, the non-fixed ones             */
+  PetscInt          *surface;
+  Vec                Xg;               /* placed reference coordinates, layout of u                  */
+  PetscReal         *bx0, *bxf, *bkey; /* contact point buffers                                      */
   FCProximity       *bprox;
-  char               compliance[FC_MAX_NAME]; /* builder of A^-1 J^T: dense or sparse right-hand sides */
-  PetscInt           ntri;                    /* local boundary faces: vertices (local indices, outward order) */
+  PetscInt           ntri; /* local boundary faces: vertices (local indices, outward order) */
   PetscInt          *triv;
   FCSurfaceTriangle *tri;
   Vec                vloc, dvloc;
   Vec                dvfree; /* recursive schemes: dv_free kept while corrections are tried */
-  /* precomputed compliance: C_0 = A_0^-1 restricted to the surface DOFs, per surface vertex */
-  KSP        ksp0; /* co-rotational: factor of A_0 (reference state); linear: NULL (ksp) */
-  Mat        A0;
-  PetscInt   nsurf; /* non-fixed boundary vertices of the whole body */
-  PetscInt  *surf;  /* their first global DOF, sorted (replicated)    */
-  PetscInt  *slot;  /* per surface vertex: its cached columns, or -1   */
-  PetscReal *cache; /* slot j: 3 nsurf x 3, column-major              */
-  PetscInt   ncached, maxcached;
-  PetscReal  Rwarp[9]; /* best-fit rotation of the body at the start of the step */
-  /* redundant compliance: rgroups copies of A (one per group of ranks) and their factors */
-  Mat       Ar, Fr;
-  PetscInt  rfactor;        /* nfactor when Fr was factored */
-  PetscInt  rgroups, group; /* copies, and the one this rank belongs to */
-  PetscReal rmemory;        /* bytes per rank a copy's factorization may take */
-  PetscInt  iblock;         /* MUMPS ICNTL(27) for the entries of A^-1 */
-  MPI_Comm  rcomm;          /* the ranks of this copy */
+  FCCompliance       comp;   /* W_b and the correction (-compliance_type); bodies in a contact pair */
 } FEM;
 
-/* Compliance builders (-compliance_type, src/body/fem_compliance.c) */
-PETSC_INTERN PetscErrorCode FCFEMAddCompliance(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
-PETSC_INTERN PetscErrorCode FCFEMApplyCorrection(FCBody, PetscInt self, const FCContactSet *, const PetscReal lambda[]);
-PETSC_INTERN PetscErrorCode FCFEMComplianceDestroy(FCBody);
-PETSC_INTERN PetscErrorCode FCFEMComplianceReset(FCBody);
-PETSC_INTERN PetscErrorCode FCFEMComplianceFactor(FCBody); /* after A is factored */
-PETSC_INTERN PetscErrorCode FCFEMGet(FCBody, FEM **);      /* checks that the body is an FE body */
+/* Element positions: reference X and current x = X + u (fixed vertices do not move); uloc NULL: X */
+static inline void FCFEMGatherElement(FEM *fem, PetscInt c, const PetscScalar *uloc, PetscReal X[12], PetscReal x[12])
+{
+  FCMesh *m = &fem->mesh;
+  for (int a = 0; a < 4; a++) {
+    PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
+    for (int d = 0; d < 3; d++) {
+      X[3 * a + d] = m->X[3 * v + d];
+      x[3 * a + d] = X[3 * a + d] + (fem->fixed[v] || !uloc ? 0.0 : PetscRealPart(uloc[fem->ldof[v] + d]));
+    }
+  }
+}
+
+/* Global DOFs of a cell's 12 unknowns, -1 on fixed vertices */
+static inline void FCFEMElementIndices(FEM *fem, PetscInt c, PetscInt idx[12])
+{
+  FCMesh *m = &fem->mesh;
+  for (int a = 0; a < 4; a++) {
+    PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
+    for (int d = 0; d < 3; d++) idx[3 * a + d] = fem->gdof[v] < 0 ? -1 : fem->gdof[v] + d;
+  }
+}
+
+PETSC_INTERN PetscErrorCode FCFEMGet(FCBody, FEM **); /* checks that the body is an FE body */
+
+/* fem_step.c */
+PETSC_INTERN PetscErrorCode FCFEMCreateOperators(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMAssembleMass(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMAssembleElastic(FCBody, Vec u, Vec f, Mat K); /* f, K may be NULL */
+PETSC_INTERN PetscErrorCode FCFEMFormAndFactorA(FCBody);
+PETSC_INTERN PetscErrorCode FreeMotion_FEM(FCBody, PetscReal);
+PETSC_INTERN PetscErrorCode Integrate_FEM(FCBody, PetscReal);
+/* fem_state.c */
+PETSC_INTERN PetscErrorCode GetCentroid_FEM(FCBody, PetscReal[3]);
+PETSC_INTERN PetscErrorCode GetEnergy_FEM(FCBody, FCEnergy *);
+PETSC_INTERN PetscErrorCode GetVisualPositions_FEM(FCBody, PetscReal[]);
+PETSC_INTERN PetscErrorCode GetState_FEM(FCBody, PetscReal[]);
+PETSC_INTERN PetscErrorCode SetState_FEM(FCBody, const PetscReal[]);
+PETSC_INTERN PetscErrorCode CheckState_FEM(FCBody, PetscInt);
+/* fem_contact.c */
+PETSC_INTERN PetscErrorCode ContactPoints_FEM(FCBody, PetscInt *, FCProximity **, PetscReal **, PetscReal **,
+                                              PetscReal **);
+PETSC_INTERN PetscErrorCode SurfaceTriangles_FEM(FCBody, PetscInt *, FCSurfaceTriangle **);
+PETSC_INTERN PetscErrorCode PartialPosition_FEM(FCBody, const FCProximity *, PetscReal[3]);
+PETSC_INTERN PetscErrorCode TrialPosition_FEM(FCBody, const FCProximity *, PetscReal[3]);
+PETSC_INTERN PetscErrorCode SaveFree_FEM(FCBody);
+PETSC_INTERN PetscErrorCode RestoreFree_FEM(FCBody);
+PETSC_INTERN PetscErrorCode ProximityPosition_FEM(FCBody, const FCProximity *, PetscInt, PetscReal[3]);
+PETSC_INTERN PetscErrorCode SetUpContact_FEM(FCBody);
+PETSC_INTERN PetscErrorCode AddCompliance_FEM(FCBody, PetscInt, const FCContactSet *, PetscReal[]);
+PETSC_INTERN PetscErrorCode ApplyCorrection_FEM(FCBody, PetscInt, const FCContactSet *, const PetscReal[]);

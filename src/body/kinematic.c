@@ -95,6 +95,8 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&k));
+  body->prescribed             = PETSC_TRUE;
+  body->state_cols             = 13; /* x, q, v, w */
   body->data                   = k;
   body->ops.setfromoptions     = SetFromOptions_Kinematic;
   body->ops.setup              = SetUp_Kinematic;

@@ -243,6 +243,7 @@ PetscErrorCode FCBodyCreate_Rigid(FCBody body)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&r));
+  body->state_cols             = 13; /* x, q, v, w */
   body->data                   = r;
   body->ops.setfromoptions     = SetFromOptions_Rigid;
   body->ops.setup              = SetUp_Rigid;

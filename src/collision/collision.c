@@ -1,4 +1,4 @@
-/* Discrete collision detection at the start of the step (DESIGN.md section 2, step 2).
+/* Discrete collision detection at the start of the step (docs/method.md, section 2, step 2).
    For each contact pair, the candidate points of one side (owned boundary vertices of an FE
    body, or the points of a rigid shape) are tested against the signed distance of the other
    side's analytic shape; a point closer than -contact_distance makes a contact whose normal is
@@ -7,27 +7,19 @@
 #include "../fcimpl.h"
 #include <stdint.h>
 
-static PetscBool HasShape(FCBody b)
-{
-  return b->ops.shapedistance ? PETSC_TRUE : PETSC_FALSE;
-}
-
 /* Which side gives points (side 1) and which gives the shape (side 2): an FE body gives points;
    between two shape bodies, a rigid one with a bounded shape does */
 static PetscErrorCode Sides(FCBody a, FCBody b, PetscInt ia, PetscInt ib, PetscInt *ipts, PetscInt *ishp)
 {
-  PetscBool afem, bfem, arigid, brigid;
+  PetscBool afem = FCBodyIsDeformable(a), bfem = FCBodyIsDeformable(b);
+  PetscBool arigid = !afem && !FCBodyIsPrescribed(a), brigid = !bfem && !FCBodyIsPrescribed(b);
 
   PetscFunctionBegin;
-  PetscCall(PetscStrcmp(a->type, FCBODYFEM, &afem));
-  PetscCall(PetscStrcmp(b->type, FCBODYFEM, &bfem));
-  PetscCall(PetscStrcmp(a->type, FCBODYRIGID, &arigid));
-  PetscCall(PetscStrcmp(b->type, FCBODYRIGID, &brigid));
   PetscCheck(!(afem && bfem), a->comm, PETSC_ERR_SUP,
              "Contact between two FE bodies ('%s', '%s') is not implemented yet", a->name, b->name);
   *ipts = ia;
   *ishp = ib;
-  if (bfem || (!afem && !(arigid && a->shape->bounded) && brigid && b->shape->bounded)) {
+  if (bfem || (!afem && !(arigid && FCBodyHasBoundedShape(a)) && brigid && FCBodyHasBoundedShape(b))) {
     *ipts = ib;
     *ishp = ia;
   }
@@ -71,7 +63,7 @@ static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, PetscReal distance, 
   FCSurfaceTriangle *loc, *all;
 
   PetscFunctionBegin;
-  PetscCall((*b->ops.surfacetriangles)(b, &n, &loc));
+  PetscCall(FCBodyGetSurfaceTriangles(b, &n, &loc));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   nloc = (PetscMPIInt)n;
   PetscCall(PetscMalloc2(size, &counts, size, &displs));
@@ -275,7 +267,7 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
   PetscReal   *x0, *xf, *key;
 
   PetscFunctionBegin;
-  PetscCall((*P->ops.contactpoints)(P, &n, &prox, &x0, &xf, &key));
+  PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x0, &xf, &key));
   for (PetscInt i = 0; i < n; i++) {
     PetscInt  best;
     PetscReal bestd, bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
@@ -306,12 +298,12 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
         c.p0[1][d]    = bcp[d];
         c.pfree[1][d] = bw[0] * T->xf[0][d] + bw[1] * T->xf[1][d] + bw[2] * T->xf[2][d];
       }
-      if (Sb->ops.tobody) { /* a rigid or kinematic mesh: the point is fixed in its body frame */
+      if (!FCBodyIsDeformable(Sb)) { /* a rigid or kinematic mesh: the point is fixed in its body frame */
         c.side2      = FC_SIDE_RIGID_TRIANGLE;
         c.prox[1].nv = 0;
-        PetscCall((*Sb->ops.tobody)(Sb, bcp, PETSC_FALSE, c.prox[1].r));
-        PetscCall((*Sb->ops.tobody)(Sb, nrm, PETSC_TRUE, c.nb));
-        PetscCall((*Sb->ops.proximityposition)(Sb, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+        PetscCall(FCBodyToBodyFrame(Sb, bcp, PETSC_FALSE, c.prox[1].r));
+        PetscCall(FCBodyToBodyFrame(Sb, nrm, PETSC_TRUE, c.nb));
+        PetscCall(FCBodyProximityPosition(Sb, &c.prox[1], FC_AT_FREE, c.pfree[1]));
       } else
         c.side2 = FC_SIDE_FE_TRIANGLE;
       c.gap0  = FCDot(nrm, diff);
@@ -337,7 +329,7 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     FCProximity *prox;
     PetscReal   *x0, *xf, *key;
 
-    if (bodies[pairs->body[p][0]]->ops.surfacetriangles && bodies[pairs->body[p][1]]->ops.surfacetriangles) {
+    if (FCBodyHasSurfaceTriangles(bodies[pairs->body[p][0]]) && FCBodyHasSurfaceTriangles(bodies[pairs->body[p][1]])) {
       /* the vertices of each body against the other's surface, or with -contact_fe_passes 1 only
          the first body's vertices against the second's surface */
       for (int side = 0; side < pairs->passes; side++) {
@@ -353,13 +345,13 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
                     &ishp));
     P = bodies[ipts];
     S = bodies[ishp];
-    PetscCheck(P->ops.contactpoints && HasShape(S), comm, PETSC_ERR_SUP,
-               "Contact between '%s' (%s) and '%s' (%s) is not implemented yet", P->name, P->type, S->name, S->type);
-    PetscCall((*P->ops.contactpoints)(P, &n, &prox, &x0, &xf, &key));
+    PetscCheck(FCBodyHasShape(S), comm, PETSC_ERR_SUP, "Contact between '%s' and '%s' is not implemented yet", P->name,
+               S->name);
+    PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x0, &xf, &key));
     for (PetscInt i = 0; i < n; i++) {
       PetscReal d, nrm[3], cpb[3];
       FCContact c;
-      PetscCall((*S->ops.shapedistance)(S, &x0[3 * i], &d, nrm, cpb));
+      PetscCall(FCBodyShapeDistance(S, FC_AT_NOW, &x0[3 * i], &d, nrm, cpb));
       if (d >= pairs->distance) continue;
       PetscCall(PetscMemzero(&c, sizeof(c)));
       c.pair    = p;
@@ -373,8 +365,8 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
         c.p0[0][k]     = x0[3 * i + k];
         c.pfree[0][k]  = xf[3 * i + k];
       }
-      PetscCall((*S->ops.proximityposition)(S, &c.prox[1], FC_AT_START, c.p0[1]));
-      PetscCall((*S->ops.proximityposition)(S, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+      PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_START, c.p0[1]));
+      PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_FREE, c.pfree[1]));
       c.gap0  = d;
       c.mu    = pairs->mu[p];
       c.owner = rank;
@@ -398,9 +390,9 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
     FCContact *c = &set->c[k];
     PetscReal  x[3], p2[3], cpb[3];
     if (c->side2 != FC_SIDE_SHAPE || c->owner != rank) continue; /* triangles below */
-    PetscCall((*bodies[c->body[0]]->ops.proximityposition)(bodies[c->body[0]], &c->prox[0], FC_AT_NOW, x));
-    PetscCall((*bodies[c->body[1]]->ops.shapedistance)(bodies[c->body[1]], x, &g[7 * k], &g[7 * k + 1], cpb));
-    PetscCall((*bodies[c->body[1]]->ops.proximityposition)(bodies[c->body[1]], &c->prox[1], FC_AT_NOW, p2));
+    PetscCall(FCBodyProximityPosition(bodies[c->body[0]], &c->prox[0], FC_AT_NOW, x));
+    PetscCall(FCBodyShapeDistance(bodies[c->body[1]], FC_AT_NOW, x, &g[7 * k], &g[7 * k + 1], cpb));
+    PetscCall(FCBodyProximityPosition(bodies[c->body[1]], &c->prox[1], FC_AT_NOW, p2));
     for (int d = 0; d < 3; d++) g[7 * k + 4 + d] = x[d] - p2[d];
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, g, 7 * set->n, MPIU_REAL, MPIU_SUM, comm));
@@ -416,14 +408,14 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
       FCContact *c = &set->c[k];
       if (c->side2 == FC_SIDE_SHAPE) continue;
       idx[nfe] = k;
-      PetscCall((*bodies[c->body[0]]->ops.partialposition)(bodies[c->body[0]], &c->prox[0], &xs[12 * nfe]));
+      PetscCall(FCBodyAddPartialPosition(bodies[c->body[0]], &c->prox[0], &xs[12 * nfe]));
       for (int a = 0; a < 3 && c->side2 == FC_SIDE_FE_TRIANGLE; a++) {
         FCProximity v = {0};
         v.nv          = 1;
         v.gdof[0]     = c->prox[1].gdof[a];
         v.w[0]        = 1.0;
         for (int d = 0; d < 3; d++) v.X[0][d] = c->prox[1].X[a][d];
-        PetscCall((*bodies[c->body[1]]->ops.partialposition)(bodies[c->body[1]], &v, &xs[12 * nfe + 3 + 3 * a]));
+        PetscCall(FCBodyAddPartialPosition(bodies[c->body[1]], &v, &xs[12 * nfe + 3 + 3 * a]));
       }
       nfe++;
     }
@@ -436,9 +428,9 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
         PetscReal   p0[3], pe[3];
         FCBody      B = bodies[c->body[1]];
         for (int d = 0; d < 3; d++) e.r[d] = c->nb[d];
-        PetscCall((*B->ops.proximityposition)(B, &c->prox[1], FC_AT_NOW, p2));
-        PetscCall((*B->ops.proximityposition)(B, &o, FC_AT_NOW, p0));
-        PetscCall((*B->ops.proximityposition)(B, &e, FC_AT_NOW, pe));
+        PetscCall(FCBodyProximityPosition(B, &c->prox[1], FC_AT_NOW, p2));
+        PetscCall(FCBodyProximityPosition(B, &o, FC_AT_NOW, p0));
+        PetscCall(FCBodyProximityPosition(B, &e, FC_AT_NOW, pe));
         for (int d = 0; d < 3; d++) nrm[d] = pe[d] - p0[d];
       } else {
         for (int a = 0; a < 3; a++)

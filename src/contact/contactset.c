@@ -136,3 +136,43 @@ PetscErrorCode FCContactSetDestroy(FCContactSet *set)
   set->n = set->max = set->nrows = 0;
   PetscFunctionReturn(0);
 }
+
+/* Contact states from the forces: 0 open, 1 stick, 2 slip (on the cone up to 1e-6) */
+void FCContactSetUpdateStates(FCContactSet *set)
+{
+  for (PetscInt k = 0; k < set->n; k++) {
+    FCContact *c  = &set->c[k];
+    PetscReal  ft = PetscSqrtReal(c->force[1] * c->force[1] + c->force[2] * c->force[2]);
+    c->state      = c->force[0] <= 0.0 ? 0 : (c->dim == 3 && ft >= c->mu * c->force[0] * (1.0 - 1e-6) ? 2 : 1);
+  }
+}
+
+void FCContactPreviousForce(const FCContactSet *previous, const FCContact *c, PetscReal F[3])
+{
+  const FCContact *old = previous ? FCContactSetFind(previous, c) : NULL;
+  for (int i = 0; i < 3; i++)
+    F[i] = old ? old->force[0] * old->n[i] + old->force[1] * old->t1[i] + old->force[2] * old->t2[i] : 0.0;
+}
+
+void FCContactSetNormalCompliance(FCContactSet *set, const PetscReal W[])
+{
+  for (PetscInt k = 0; k < set->n; k++) set->c[k].wnn = W[set->c[k].row * set->nrows + set->c[k].row];
+}
+
+void FCContactSetWarmStart(const FCContactSet *set, const FCContactSet *previous, PetscReal lambda[])
+{
+  for (PetscInt k = 0; k < set->n; k++) {
+    const FCContact *c = &set->c[k];
+    PetscReal        F[3];
+    FCContactPreviousForce(previous, c, F);
+    for (PetscInt a = 0; a < c->dim; a++) lambda[c->row + a] = FCDot(a == 0 ? c->n : (a == 1 ? c->t1 : c->t2), F);
+  }
+}
+
+void FCContactSetStoreForces(FCContactSet *set, const PetscReal lambda[])
+{
+  for (PetscInt k = 0; k < set->n; k++) {
+    FCContact *c = &set->c[k];
+    for (PetscInt a = 0; a < 3; a++) c->force[a] = a < c->dim ? lambda[c->row + a] : 0.0;
+  }
+}

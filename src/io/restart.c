@@ -1,14 +1,35 @@
-/* -restart file.h5: the state of the newest complete restart slot of an earlier run's output
-   (src/io/output.c writes it at every output step) is read into the bodies, the previous step's
-   contacts (the warm start of the contact solver) and the step counter, so that the run continues
-   as if it had not stopped. Every rank reads the file (read-only, serial HDF5) and takes its part. */
-#include "../fcimpl.h"
-#include <hdf5.h>
+/* The restart format, written and read here (docs/output.md, "Restart state"):
+
+     /restart/slot0, /restart/slot1   two slots, written alternately at every output step (the
+                                      older one each time), so that a run killed while writing one
+                                      still has a complete state in the other; in each:
+       step       scalar int64        the step the state belongs to; -1 while the slot is being
+                                      written (it is written first as -1 and last as the step)
+       time       scalar float64      its time
+       ncontacts  scalar int64        contacts of the step (the warm start of the next step)
+       contacts   (>= ncontacts, FC_RESTART_CONTACT) float64, chunked and extendible (it only
+                                      grows); its first ncontacts rows are this state's, one per
+                                      contact: pair, rows, key (3), n, t1, t2 (3 each), force (3)
+       <body>     one dataset per body: FCBodyGetStateLayout's `cols` values a row; one row per
+                  vertex in the order of /bodies/<body>/mesh/reference (FE: u, v, V x 6), or a
+                  single row (rigid, kinematic: x, q, v, w, 1 x 13)
+
+   Writing (FCRestartWriter*, called by src/io/output.c on its open parallel file): every rank
+   writes the rows of the vertices it owns, rank 0 the single rows and the contacts.
+   Reading (-restart file.h5, FCRestartLoad): the newest complete slot of an earlier run's output
+   is read into the bodies, the previous step's contacts (the warm start of the contact solver)
+   and the step counter, so that the run continues as if it had not stopped. Every rank reads the
+   file (read-only, serial HDF5) and takes its part; FE vertices are matched by their reference
+   coordinates, so a file written on any number of ranks can be continued on any other. */
+#include "ioimpl.h"
 #include <math.h>
+
+/* values of a contact record: pair, rows, key (3), n, t1, t2 (3 each), force (3) */
+#define FC_RESTART_CONTACT 17
 
 /* The record of a contact in /restart/slot0|1/contacts: what the next step's warm start reads
    (FCContactSetFind: pair and key; FCContactPreviousForce: frame and force) */
-void FCRestartPackContact(const FCContact *c, double r[FC_RESTART_CONTACT])
+static void PackContact(const FCContact *c, double r[FC_RESTART_CONTACT])
 {
   r[0] = c->pair;
   r[1] = c->dim;
@@ -35,6 +56,164 @@ static void UnpackContact(const double r[FC_RESTART_CONTACT], FCContact *c)
   }
 }
 
+/* ---------------------------------------------------------------------------------------------
+   Writing
+   --------------------------------------------------------------------------------------------- */
+struct _p_FCRestartWriter {
+  PetscMPIInt rank;
+  PetscInt    nbodies, nwritten;
+  hid_t       slot[2], step[2], time[2], contacts[2], ncontacts[2], *body[2];
+};
+
+/* The rows of a body's state dataset and, on this rank, the first row and how many it writes */
+static PetscErrorCode StateRows(FCBody b, PetscMPIInt rank, hsize_t *rows, hsize_t *cols, hsize_t *start,
+                                hsize_t *count)
+{
+  const FCBodyVisual *vis;
+  PetscInt            c;
+  PetscBool           pervertex;
+
+  PetscFunctionBegin;
+  PetscCall(FCBodyGetStateLayout(b, &c, &pervertex));
+  PetscCall(FCBodyGetVisual(b, &vis));
+  *cols  = (hsize_t)c;
+  *rows  = pervertex ? (hsize_t)vis->nv_global : 1;
+  *start = pervertex ? (hsize_t)vis->vstart : 0;
+  *count = pervertex ? (hsize_t)vis->nv : (rank ? 0 : 1);
+  PetscFunctionReturn(0);
+}
+
+/* Creates /restart/slot0|1 with every dataset, both slots incomplete (step -1) */
+PetscErrorCode FCRestartWriterCreate(MPI_Comm comm, hid_t file, PetscInt nbodies, FCBody bodies[],
+                                     FCRestartWriter *writer)
+{
+  FCRestartWriter w;
+  hid_t           g;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&w));
+  PetscCallMPI(MPI_Comm_rank(comm, &w->rank));
+  w->nbodies = nbodies;
+  g          = H5Gcreate2(file, "restart", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  FCH5Check(g, "restart");
+  for (int k = 0; k < 2; k++) {
+    char      name[16];
+    hsize_t   cdims[1] = {FC_RESTART_CONTACT};
+    long long none     = -1;
+    hid_t     sp       = H5Screate(H5S_SCALAR);
+    PetscCall(PetscSNPrintf(name, sizeof(name), "slot%d", k));
+    w->slot[k]      = H5Gcreate2(g, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    w->step[k]      = H5Dcreate2(w->slot[k], "step", H5T_STD_I64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    w->time[k]      = H5Dcreate2(w->slot[k], "time", H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    w->ncontacts[k] = H5Dcreate2(w->slot[k], "ncontacts", H5T_STD_I64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Sclose(sp);
+    FCH5Check(H5Dwrite(w->step[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &none), "restart step");
+    PetscCall(FCH5CreateRows(w->slot[k], "contacts", H5T_NATIVE_DOUBLE, 2, cdims, 256, &w->contacts[k]));
+    PetscCall(PetscMalloc1(nbodies, &w->body[k]));
+    for (PetscInt i = 0; i < nbodies; i++) {
+      const char *bname;
+      hsize_t     dims[2], start, count;
+      hid_t       space;
+      PetscCall(FCBodyGetName(bodies[i], &bname));
+      PetscCall(StateRows(bodies[i], w->rank, &dims[0], &dims[1], &start, &count));
+      space         = H5Screate_simple(2, dims, NULL);
+      w->body[k][i] = H5Dcreate2(w->slot[k], bname, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      FCH5Check(w->body[k][i], "restart body state");
+      H5Sclose(space);
+    }
+  }
+  H5Gclose(g);
+  *writer = w;
+  PetscFunctionReturn(0);
+}
+
+/* The state at the end of step `step` into the older slot: the step as -1, the bodies, the
+   previous contacts, the time, and the step last (collective) */
+PetscErrorCode FCRestartWriterWrite(FCRestartWriter w, PetscInt step, PetscReal t, PetscInt nbodies, FCBody bodies[],
+                                    const FCContactSet *previous)
+{
+  PetscInt  k = w->nwritten++ % 2, nc = previous ? previous->n : 0;
+  long long none = -1, st = step;
+  double    tt      = t, *buf;
+  hsize_t   dims[2] = {(hsize_t)nc, FC_RESTART_CONTACT};
+
+  PetscFunctionBegin;
+  FCH5Check(H5Dwrite(w->step[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &none), "restart step");
+  for (PetscInt i = 0; i < nbodies; i++) {
+    hid_t   fspace = H5Dget_space(w->body[k][i]), mspace;
+    hsize_t rows, start[2] = {0, 0}, count[2];
+    PetscCall(StateRows(bodies[i], w->rank, &rows, &count[1], &start[0], &count[0]));
+    /* a single-row state is reported on every rank, written by rank 0 */
+    PetscCall(PetscMalloc1((count[0] ? count[0] : 1) * count[1], &buf));
+    PetscCall(FCBodyGetState(bodies[i], buf));
+    if (count[0]) {
+      H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL);
+      mspace = H5Screate_simple(2, count, NULL);
+    } else {
+      H5Sselect_none(fspace);
+      mspace = H5Screate(H5S_NULL);
+    }
+    FCH5Check(H5Dwrite(w->body[k][i], H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, buf), "restart state");
+    H5Sclose(mspace);
+    H5Sclose(fspace);
+    PetscCall(PetscFree(buf));
+  }
+  { /* the dataset only grows (shrinking a chunked dataset in parallel HDF5 1.10 broke a later
+       flush); its first ncontacts rows are this state's */
+    hid_t   space = H5Dget_space(w->contacts[k]);
+    hsize_t cur[2];
+    H5Sget_simple_extent_dims(space, cur, NULL);
+    H5Sclose(space);
+    if (cur[0] < dims[0]) FCH5Check(H5Dset_extent(w->contacts[k], dims), "restart contacts");
+  }
+  PetscCall(PetscMalloc1(FC_RESTART_CONTACT * nc + 1, &buf));
+  for (PetscInt j = 0; j < nc; j++) PackContact(&previous->c[j], &buf[FC_RESTART_CONTACT * j]);
+  if (nc) {
+    hid_t fspace = H5Dget_space(w->contacts[k]), mspace;
+    if (w->rank == 0) {
+      hsize_t start[2] = {0, 0};
+      H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, dims, NULL);
+      mspace = H5Screate_simple(2, dims, NULL);
+    } else {
+      H5Sselect_none(fspace);
+      mspace = H5Screate(H5S_NULL);
+    }
+    FCH5Check(H5Dwrite(w->contacts[k], H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, buf), "restart contacts");
+    H5Sclose(mspace);
+    H5Sclose(fspace);
+  }
+  PetscCall(PetscFree(buf));
+  {
+    long long n = nc;
+    FCH5Check(H5Dwrite(w->ncontacts[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &n), "restart ncontacts");
+  }
+  FCH5Check(H5Dwrite(w->time[k], H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &tt), "restart time");
+  FCH5Check(H5Dwrite(w->step[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &st), "restart step");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *writer)
+{
+  FCRestartWriter w = *writer;
+
+  PetscFunctionBegin;
+  if (!w) PetscFunctionReturn(0);
+  for (int k = 0; k < 2; k++) {
+    for (PetscInt i = 0; i < w->nbodies; i++) H5Dclose(w->body[k][i]);
+    PetscCall(PetscFree(w->body[k]));
+    H5Dclose(w->step[k]);
+    H5Dclose(w->time[k]);
+    H5Dclose(w->contacts[k]);
+    H5Dclose(w->ncontacts[k]);
+    H5Gclose(w->slot[k]);
+  }
+  PetscCall(PetscFree(*writer));
+  PetscFunctionReturn(0);
+}
+
+/* ---------------------------------------------------------------------------------------------
+   Reading
+   --------------------------------------------------------------------------------------------- */
 static PetscErrorCode ReadAll(hid_t d, const char what[], const char file[], hsize_t rows, hsize_t cols, double *buf)
 {
   hid_t   space   = H5Dget_space(d);
@@ -74,16 +253,18 @@ static void MakeKey(const double X[3], double scale, VertexKey *k)
 }
 
 /* The state rows (file order) of this rank's vertices (visual order) */
-static PetscErrorCode MatchVertices(FCBody b, const char file[], hsize_t V, const double *ref, const double *state,
-                                    double *mine)
+static PetscErrorCode MatchVertices(FCBody b, const char file[], hsize_t V, hsize_t cols, const double *ref,
+                                    const double *state, double *mine)
 {
   const FCBodyVisual *vis;
+  const char         *name;
   VertexKey          *keys;
   double              lo[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL},
          hi[3] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL, -PETSC_MAX_REAL}, scale = 0.0;
 
   PetscFunctionBegin;
   PetscCall(FCBodyGetVisual(b, &vis));
+  PetscCall(FCBodyGetName(b, &name));
   for (hsize_t r = 0; r < V; r++)
     for (int d = 0; d < 3; d++) {
       lo[d] = PetscMin(lo[d], ref[3 * r + d]);
@@ -104,8 +285,8 @@ static PetscErrorCode MatchVertices(FCBody b, const char file[], hsize_t V, cons
     PetscCheck(
         f, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
         "Restart file '%s': body '%s' has no vertex at (%g, %g, %g) (-restart needs the same mesh and placement)", file,
-        b->name, (double)vis->reference[3 * i], (double)vis->reference[3 * i + 1], (double)vis->reference[3 * i + 2]);
-    for (int c = 0; c < 6; c++) mine[6 * i + c] = state[6 * f->row + c];
+        name, (double)vis->reference[3 * i], (double)vis->reference[3 * i + 1], (double)vis->reference[3 * i + 2]);
+    for (hsize_t c = 0; c < cols; c++) mine[cols * i + c] = state[cols * f->row + c];
   }
   PetscCall(PetscFree(keys));
   PetscFunctionReturn(0);
@@ -159,33 +340,38 @@ PetscErrorCode FCRestartLoad(MPI_Comm comm, const char file[], PetscInt nbodies,
              PETSC_ERR_FILE_READ, "Restart file '%s': cannot read %s/time", file, path);
   H5Dclose(d);
   for (PetscInt i = 0; i < nbodies; i++) {
-    FCBody    b = bodies[i];
-    PetscBool fem;
-    hsize_t   rows, cols;
-    double   *buf;
-    PetscCall(PetscStrcmp(b->type, FCBODYFEM, &fem));
-    rows = fem ? (hsize_t)b->visual.nv_global : 1;
-    cols = fem ? 6 : 13;
-    d    = H5Dopen2(g, b->name, H5P_DEFAULT);
+    FCBody              b = bodies[i];
+    const FCBodyVisual *vis;
+    const char         *name;
+    PetscInt            c;
+    PetscBool           pervertex;
+    hsize_t             rows, cols;
+    double             *buf;
+    PetscCall(FCBodyGetStateLayout(b, &c, &pervertex));
+    PetscCall(FCBodyGetVisual(b, &vis));
+    PetscCall(FCBodyGetName(b, &name));
+    rows = pervertex ? (hsize_t)vis->nv_global : 1;
+    cols = (hsize_t)c;
+    d    = H5Dopen2(g, name, H5P_DEFAULT);
     PetscCheck(d >= 0, comm, PETSC_ERR_USER_INPUT,
-               "Restart file '%s' has no state of body '%s' (-restart needs the same scene)", file, b->name);
+               "Restart file '%s' has no state of body '%s' (-restart needs the same scene)", file, name);
     PetscCall(PetscMalloc1(rows * cols, &buf));
-    PetscCall(ReadAll(d, b->name, file, rows, cols, buf));
+    PetscCall(ReadAll(d, name, file, rows, cols, buf));
     H5Dclose(d);
-    if (fem) {
+    if (pervertex) {
       char    rpath[PETSC_MAX_PATH_LEN];
       double *ref, *mine;
-      PetscCall(PetscSNPrintf(rpath, sizeof(rpath), "/bodies/%s/mesh/reference", b->name));
+      PetscCall(PetscSNPrintf(rpath, sizeof(rpath), "/bodies/%s/mesh/reference", name));
       d = H5Dopen2(f, rpath, H5P_DEFAULT);
       PetscCheck(d >= 0, comm, PETSC_ERR_USER_INPUT, "Restart file '%s' has no %s", file, rpath);
-      PetscCall(PetscMalloc2(3 * rows, &ref, 6 * b->visual.nv + 1, &mine));
+      PetscCall(PetscMalloc2(3 * rows, &ref, cols * vis->nv + 1, &mine));
       PetscCall(ReadAll(d, rpath, file, rows, 3, ref));
       H5Dclose(d);
-      PetscCall(MatchVertices(b, file, rows, ref, buf, mine));
-      PetscCall((*b->ops.setstate)(b, mine));
+      PetscCall(MatchVertices(b, file, rows, cols, ref, buf, mine));
+      PetscCall(FCBodySetState(b, mine));
       PetscCall(PetscFree2(ref, mine));
     } else
-      PetscCall((*b->ops.setstate)(b, buf));
+      PetscCall(FCBodySetState(b, buf));
     PetscCall(PetscFree(buf));
   }
   { /* the previous step's contacts: the warm start of the contact solver */

@@ -16,17 +16,19 @@ PetscErrorCode FCXdmfWrite(const char h5name[], const char xmfname[], PetscInt n
   PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write XDMF file '%s'", tmpname);
   fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n");
   for (PetscInt i = 0; i < nbodies; i++) {
-    const FCBodyVisual *vis  = &bodies[i]->visual;
-    const char         *topo = vis->nvpc == 4 ? "Tetrahedron" : "Triangle";
-    fprintf(fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", bodies[i]->name);
+    const FCBodyVisual *vis;
+    const char         *topo, *name;
+    PetscCall(FCBodyGetVisual(bodies[i], &vis));
+    PetscCall(FCBodyGetName(bodies[i], &name));
+    topo = vis->nvpc == 4 ? "Tetrahedron" : "Triangle";
+    fprintf(fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", name);
     for (PetscInt f = 0; f < nframes; f++) {
-      fprintf(fp, "   <Grid Name=\"%s\" GridType=\"Uniform\">\n    <Time Value=\"%.10g\"/>\n", bodies[i]->name,
-              (double)times[f]);
+      fprintf(fp, "   <Grid Name=\"%s\" GridType=\"Uniform\">\n    <Time Value=\"%.10g\"/>\n", name, (double)times[f]);
       fprintf(fp, "    <Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n", topo, vis->nc_global);
       fprintf(fp,
               "     <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT
               "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">%s:/bodies/%s/mesh/cells</DataItem>\n",
-              vis->nc_global, vis->nvpc, base, bodies[i]->name);
+              vis->nc_global, vis->nvpc, base, name);
       fprintf(fp, "    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n");
       fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%" PetscInt_FMT " 3\">\n", vis->nv_global);
       fprintf(fp,
@@ -36,7 +38,7 @@ PetscErrorCode FCXdmfWrite(const char h5name[], const char xmfname[], PetscInt n
       fprintf(fp,
               "      <DataItem Dimensions=\"%" PetscInt_FMT " %" PetscInt_FMT
               " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:/bodies/%s/positions</DataItem>\n",
-              nframes, vis->nv_global, base, bodies[i]->name);
+              nframes, vis->nv_global, base, name);
       fprintf(fp, "     </DataItem>\n    </Geometry>\n   </Grid>\n");
     }
     fprintf(fp, "  </Grid>\n");

@@ -18,44 +18,15 @@
                               surface (nothing crosses either surface, but the two constraint sets are
                               nearly redundant and PGS may stall, docs/hard-cases.md); 1 = the first
                               body's vertices against the second's surface only (default 2)
-     -pgs_tol, -pgs_max_it    the contact solver (src/contact/pgs.c)
-     -constraint_scheme explicit|standard|fast   Algorithm 1, 2 (recursive, standard update) or 3 (recursive, fast
-   update) (default explicit) -newton_max_it n         Newton iterations of a recursive scheme (>= 1, default 5)
-     -pgs_fail_residual r     stop the run (exit status 2, the step named) when the contact solver ends
-                              a step with a residual above r: it could not solve the contact problem
-                              (> 0, default 1e-2; PGS stops below -pgs_tol, 1e-8, when it converges)
-     -wh_mat_type, -frames_mat_type, -contact_vec_type   types of the fast scheme's dense W_H, sparse
-                              frames C and force vectors (default seqdense, seqaij, seq; on a GPU build
-                              seqdensecuda, seqaijcusparse, seqcuda: docs/gpu.md)
-     -contact_memory_limit b  bytes the dense contact matrices of a step may take per rank (W_H and W_k:
-                              8 ((3m)^2 + 2 M 3m + M^2) for m contacts, M rows); above, the step stops
-                              with a clear error (default half the machine's memory)
-     -newton_tol t            stop them when frames and right-hand sides change by less than t
-                              (>= 0, default 1e-10; 0: always newton_max_it, as the paper's Table 1)
-     -compliance_type dense|sparse|schur|inverse|redundant|precomputed   how FE bodies compute
-                              J A^-1 J^T for W: MUMPS solves with dense or sparse right-hand sides,
-                              the Schur complement of the augmented matrix, the block of A^-1 on the
-                              contact DOFs (inverse: from the distributed factor; redundant: from a
-                              sequential factor on every rank, 1/p of the columns each), or cached
-                              surface columns of A_0^-1 (default redundant, the fastest on 1 and 2
-                              ranks in docs/scaling.md; see src/body/fem_compliance.c)
-     -compliance_inverse_block b   inverse and redundant: MUMPS' blocking factor ICNTL(27) while it
-                              computes the entries of A^-1 (non-zero, default 256; docs/options.md
-                              has the measurement behind the default)
-     -compliance_redundant_groups k   redundant only: k copies of A, each factored on size/k
-                              ranks and computing 1/k of the columns (1 <= k <= ranks, default
-                              ranks: a sequential copy per rank; fewer copies, less memory)
-     -compliance_redundant_memory_limit b   redundant only: bytes per rank a copy's factorization
-                              may take (MUMPS' estimate after the analysis; default the memory
-                              available at set-up divided by the ranks of the node); above, set-up
-                              stops with a clear error
-   One step (../shared/design/DESIGN.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
+   The options of the objects the scene creates are read where those objects live: the constraint
+   scheme and its contact solver (-constraint_scheme, -newton_*, -pgs_*, -contact_memory_limit:
+   src/scheme/), the compliance builder of each FE body in a contact pair (-compliance_*:
+   src/compliance/), each body (-<name>_*: src/body/); docs/options.md lists them all.
+   One step (docs/method.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
    contact resolution slots in between. */
 #include "../fcimpl.h"
 #include <signal.h>
-#include <unistd.h>
-
-#define FC_MAX_BODIES 256
+#include <stdlib.h>
 
 struct _p_FCScene {
   MPI_Comm   comm;
@@ -71,15 +42,10 @@ struct _p_FCScene {
   /* contact */
   FCContactPairs    pairs;
   FCContactSet      set;
-  FCContactSet      previous; /* last step's contacts and forces: warm start of the solver */
-  FCContactSolver   solver;
+  FCContactSet      previous; /* last step's contacts and forces: warm start of the scheme */
+  FCScheme          scheme;   /* owns the contact solver */
   FCSchemeStats     stats;
   FCContactMeasures measures;
-  FCSchemeFunction  scheme;
-  char              scheme_name[FC_MAX_NAME];
-  PetscInt          newton_max_it;
-  PetscReal         newton_tol, fail_residual, memory_limit;
-  char              wh_mat_type[FC_MAX_NAME], frames_mat_type[FC_MAX_NAME], vec_type[FC_MAX_NAME];
 };
 
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
@@ -157,13 +123,10 @@ static PetscErrorCode ReadContactPairs(FCScene s)
     PetscCall(BodyIndex(s, colon + 1, pairs[p], &s->pairs.body[p][1]));
     PetscCheck(s->pairs.body[p][0] != s->pairs.body[p][1], s->comm, PETSC_ERR_USER_INPUT,
                "Contact pair '%s:%s' pairs a body with itself (self-contact is not supported)", pairs[p], colon + 1);
-    {
-      PetscBool k0, k1;
-      PetscCall(PetscStrcmp(s->bodies[s->pairs.body[p][0]]->type, FCBODYKINEMATIC, &k0));
-      PetscCall(PetscStrcmp(s->bodies[s->pairs.body[p][1]]->type, FCBODYKINEMATIC, &k1));
-      PetscCheck(!(k0 && k1), s->comm, PETSC_ERR_USER_INPUT,
-                 "Contact pair '%s:%s' joins two kinematic bodies: nothing can respond", pairs[p], colon + 1);
-    }
+    PetscCheck(
+        !(FCBodyIsPrescribed(s->bodies[s->pairs.body[p][0]]) && FCBodyIsPrescribed(s->bodies[s->pairs.body[p][1]])),
+        s->comm, PETSC_ERR_USER_INPUT, "Contact pair '%s:%s' joins two kinematic bodies: nothing can respond", pairs[p],
+        colon + 1);
     s->pairs.mu[p] = mu[nmu == 1 ? 0 : p];
   }
   for (PetscInt p = 0; p < np; p++) PetscCall(PetscFree(pairs[p]));
@@ -209,31 +172,6 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   PetscFunctionReturn(0);
 }
 
-/* A matrix (ismat) or vector type given by an option is known to this PETSc build */
-static PetscErrorCode CheckType(MPI_Comm comm, PetscBool ismat, const char type[], const char option[])
-{
-  Mat       A = NULL;
-  Vec       v = NULL;
-  PetscBool ok;
-
-  PetscFunctionBegin;
-  if (ismat) {
-    PetscCall(MatCreate(PETSC_COMM_SELF, &A));
-    PetscCall(MatSetSizes(A, 1, 1, 1, 1));
-  } else {
-    PetscCall(VecCreate(PETSC_COMM_SELF, &v));
-    PetscCall(VecSetSizes(v, 1, 1));
-  }
-  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  ok = (ismat ? MatSetType(A, type) : VecSetType(v, type)) ? PETSC_FALSE : PETSC_TRUE;
-  PetscCall(PetscPopErrorHandler());
-  PetscCall(MatDestroy(&A));
-  PetscCall(VecDestroy(&v));
-  PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "Unknown %s type '%s' in %s (in this PETSc build)",
-             ismat ? "matrix" : "vector", type, option);
-  PetscFunctionReturn(0);
-}
-
 /* The state of the current step as a frame (positions) and as the restart state; the frame's
    flush makes both durable */
 static PetscErrorCode WriteOutputStep(FCScene s)
@@ -254,93 +192,13 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCBodySetUp(s->bodies[i]));
   }
   if (s->pairs.n) {
-    char        ctype[FC_MAX_NAME] = "redundant";
-    PetscBool   isfem, redundant, inverse;
-    PetscMPIInt size;
-    PetscInt    groups, block = 256;
-    PetscReal   rmemory = PETSC_MAX_REAL;
-    PetscCall(PetscOptionsGetString(NULL, NULL, "-compliance_type", ctype, sizeof(ctype), NULL));
-    PetscCallMPI(MPI_Comm_size(s->comm, &size));
-    groups = size;
-    PetscCall(PetscStrcmp(ctype, "redundant", &redundant));
-    PetscCall(PetscStrcmp(ctype, "inverse", &inverse));
-    if (inverse || redundant) { /* read only for these builders: elsewhere it is reported as unused */
-      PetscCall(PetscOptionsGetInt(NULL, NULL, "-compliance_inverse_block", &block, NULL));
-      PetscCheck(block != 0, s->comm, PETSC_ERR_USER_INPUT,
-                 "Option -compliance_inverse_block must be non-zero (> 0: columns per block, < 0: MUMPS' automatic "
-                 "choice with that bound), got 0");
-    }
-    if (redundant) { /* read only for redundant: elsewhere they are reported as unused */
-      MPI_Comm    node;
-      PetscMPIInt nnode;
-      PetscCall(PetscOptionsGetInt(NULL, NULL, "-compliance_redundant_groups", &groups, NULL));
-      PetscCheck(groups >= 1 && groups <= size, s->comm, PETSC_ERR_USER_INPUT,
-                 "Option -compliance_redundant_groups must be in [1, %d] (the number of ranks), got %" PetscInt_FMT,
-                 size, groups);
-      /* default: the memory available now, shared by the ranks of this node */
-      PetscCallMPI(MPI_Comm_split_type(s->comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
-      PetscCallMPI(MPI_Comm_size(node, &nnode));
-      PetscCallMPI(MPI_Comm_free(&node));
-      rmemory = (PetscReal)sysconf(_SC_AVPHYS_PAGES) * (PetscReal)sysconf(_SC_PAGESIZE) / nnode;
-      PetscCall(PetscOptionsGetReal(NULL, NULL, "-compliance_redundant_memory_limit", &rmemory, NULL));
-      PetscCheck(rmemory > 0, s->comm, PETSC_ERR_USER_INPUT,
-                 "Option -compliance_redundant_memory_limit must be > 0, got %g", (double)rmemory);
-    }
-    for (PetscInt i = 0; i < s->nbodies; i++) { /* FE bodies named in a contact pair */
+    for (PetscInt i = 0; i < s->nbodies; i++) { /* bodies named in a contact pair: their response */
       PetscBool paired = PETSC_FALSE;
       for (PetscInt p = 0; p < s->pairs.n; p++) paired = paired || s->pairs.body[p][0] == i || s->pairs.body[p][1] == i;
-      PetscCall(PetscStrcmp(s->bodies[i]->type, FCBODYFEM, &isfem));
-      if (isfem && paired && (inverse || redundant))
-        PetscCall(FCBodyFEMSetInverseOptions(s->bodies[i], block, groups, rmemory));
-      if (isfem && paired) PetscCall(FCBodyFEMSetComplianceType(s->bodies[i], ctype));
+      if (paired) PetscCall(FCBodySetUpContact(s->bodies[i]));
     }
-    PetscCall(PetscStrncpy(s->scheme_name, "explicit", sizeof(s->scheme_name)));
-    s->newton_max_it = 5;
-    s->newton_tol    = 1e-10;
-    s->fail_residual = 1e-2;
-    PetscCall(PetscStrncpy(s->wh_mat_type, MATSEQDENSE, sizeof(s->wh_mat_type)));
-    PetscCall(PetscStrncpy(s->frames_mat_type, MATSEQAIJ, sizeof(s->frames_mat_type)));
-    PetscCall(PetscStrncpy(s->vec_type, VECSEQ, sizeof(s->vec_type)));
-    s->memory_limit = 0.5 * (PetscReal)sysconf(_SC_PHYS_PAGES) * (PetscReal)sysconf(_SC_PAGESIZE);
-    PetscOptionsBegin(s->comm, NULL, "Constraint scheme", "FCScene");
-    PetscCall(PetscOptionsFList("-constraint_scheme", "Constraint scheme", NULL, FCSchemeList, s->scheme_name,
-                                s->scheme_name, sizeof(s->scheme_name), NULL));
-    PetscCall(FCOptionsInt(PetscOptionsObject, "-newton_max_it", "Newton iterations of a recursive scheme",
-                           &s->newton_max_it, NULL));
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-newton_tol",
-                            "Stop the Newton iterations when frames and right-hand sides change less", &s->newton_tol,
-                            NULL));
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-pgs_fail_residual",
-                            "Stop the run when the contact solver ends a step above this residual", &s->fail_residual,
-                            NULL));
-    PetscCall(PetscOptionsString("-wh_mat_type", "Matrix type of W_H (fast scheme)", NULL, s->wh_mat_type,
-                                 s->wh_mat_type, sizeof(s->wh_mat_type), NULL));
-    PetscCall(PetscOptionsString("-frames_mat_type", "Matrix type of the contact frames C (fast scheme)", NULL,
-                                 s->frames_mat_type, s->frames_mat_type, sizeof(s->frames_mat_type), NULL));
-    PetscCall(PetscOptionsString("-contact_vec_type", "Vector type of the contact forces (fast scheme)", NULL,
-                                 s->vec_type, s->vec_type, sizeof(s->vec_type), NULL));
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_memory_limit",
-                            "Bytes the dense contact matrices of a step may take per rank", &s->memory_limit, NULL));
-    PetscOptionsEnd();
-    PetscCall(PetscFunctionListFind(FCSchemeList, s->scheme_name, &s->scheme));
-    PetscCheck(s->scheme, s->comm, PETSC_ERR_USER_INPUT,
-               "Unknown constraint scheme '%s' in -constraint_scheme (known: explicit, standard, fast)",
-               s->scheme_name);
-    PetscCheck(s->newton_max_it >= 1, s->comm, PETSC_ERR_USER_INPUT,
-               "Option -newton_max_it must be >= 1, got %" PetscInt_FMT, s->newton_max_it);
-    /* the types exist in this PETSc build: a CUDA type in a host build is an input error now, not
-       at the first contact */
-    PetscCall(CheckType(s->comm, PETSC_TRUE, s->wh_mat_type, "-wh_mat_type"));
-    PetscCall(CheckType(s->comm, PETSC_TRUE, s->frames_mat_type, "-frames_mat_type"));
-    PetscCall(CheckType(s->comm, PETSC_FALSE, s->vec_type, "-contact_vec_type"));
-    PetscCheck(s->memory_limit > 0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_memory_limit must be > 0, got %g",
-               (double)s->memory_limit);
-    PetscCheck(s->fail_residual > 0, s->comm, PETSC_ERR_USER_INPUT, "Option -pgs_fail_residual must be > 0, got %g",
-               (double)s->fail_residual);
-    PetscCheck(s->newton_tol >= 0, s->comm, PETSC_ERR_USER_INPUT, "Option -newton_tol must be >= 0, got %g",
-               (double)s->newton_tol);
-    PetscCall(FCContactSolverCreate(s->comm, &s->solver));
-    PetscCall(FCContactSolverSetFromOptions(s->solver));
+    PetscCall(FCSchemeCreate(s->comm, s->nbodies, s->bodies, &s->scheme));
+    PetscCall(FCSchemeSetFromOptions(s->scheme));
   }
   PetscCall(FCOptionsCheckUnused(s->comm)); /* after every object has read its options */
   if (s->restart[0]) {                      /* before the output is created: it may not be the file we read */
@@ -387,16 +245,7 @@ PetscErrorCode FCSceneStep(FCScene s)
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
     PetscCall(FCCollisionDetect(s->comm, s->nbodies, s->bodies, &s->pairs, &s->set));
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
-    {
-      FCSchemeContext ctx = {s->comm,        s->nbodies,         s->bodies,        &s->set,
-                             &s->previous,   s->solver,          s->newton_max_it, s->newton_tol,
-                             s->wh_mat_type, s->frames_mat_type, s->vec_type,      s->memory_limit};
-      PetscCall((*s->scheme)(&ctx, &s->stats));
-    }
-    PetscCheck(!(s->stats.residual > s->fail_residual), s->comm, PETSC_ERR_CONV_FAILED,
-               "Step %" PetscInt_FMT ": the contact solver could not reduce its residual: %g after %" PetscInt_FMT
-               " sweeps, above -pgs_fail_residual %g (raise -pgs_max_it, lower -time_step, or see docs/hard-cases.md)",
-               s->step + 1, (double)s->stats.residual, s->stats.sweeps, (double)s->fail_residual);
+    PetscCall(FCSchemeSolve(s->scheme, s->step + 1, &s->set, &s->previous, &s->stats));
     PetscCall(FCContactSetCopy(&s->set, &s->previous));
   }
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyIntegrate(s->bodies[i], s->t));
@@ -491,7 +340,7 @@ PetscErrorCode FCSceneDestroy(FCScene *scene)
   PetscFunctionBegin;
   if (!*scene) PetscFunctionReturn(0);
   PetscCall(FCOutputDestroy(&(*scene)->output));
-  PetscCall(FCContactSolverDestroy(&(*scene)->solver));
+  PetscCall(FCSchemeDestroy(&(*scene)->scheme));
   PetscCall(FCContactSetDestroy(&(*scene)->set));
   PetscCall(FCContactSetDestroy(&(*scene)->previous));
   PetscCall(PetscFree2((*scene)->pairs.body, (*scene)->pairs.mu));

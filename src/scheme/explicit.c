@@ -2,11 +2,21 @@
      W = sum_b J_b A_b^-1 J_b^T                               (eq. 17, per-body builders)
      delta_free: normal gap n.(p1 - p2) and tangential displacement t.(dp1 - dp2) after the free motion
      PGS on delta = delta_free + h^2 W lambda, Signorini-Coulomb    (eq. 18-19)
-     dv_b = dv_free_b + h A_b^-1 J_b^T lambda                    (eq. 20)                     */
-#include "../fcimpl.h"
+     dv_b = dv_free_b + h A_b^-1 J_b^T lambda                    (eq. 20)
+   No options of its own. */
+#include "schemeimpl.h"
 
-PetscErrorCode FCSchemeExplicit(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCContactSet *set,
-                                const FCContactSet *previous, FCContactSolver solver, FCSchemeStats *st)
+/* W (M^2), replicated */
+static PetscErrorCode Memory_Explicit(FCScheme scheme, const FCContactSet *set, PetscReal *bytes, const char **what)
+{
+  PetscFunctionBegin;
+  *bytes = 8.0 * (PetscReal)set->nrows * set->nrows;
+  *what  = "dense W";
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Solve_Explicit(FCScheme scheme, FCContactSet *set, const FCContactSet *previous,
+                                     FCSchemeStats *st)
 {
   PetscInt         M = set->nrows, *dims;
   PetscReal       *W, *q, *mu, *lambda, *dfree, *d0;
@@ -14,38 +24,35 @@ PetscErrorCode FCSchemeExplicit(MPI_Comm comm, PetscInt nbodies, FCBody bodies[]
   PetscBool        conv;
 
   PetscFunctionBegin;
-  FCSchemeStatsReset(set, st);
-  if (!set->n) PetscFunctionReturn(0);
   PetscCall(PetscMalloc1(M * M, &W));
   PetscCall(PetscMalloc6(M, &q, set->n, &mu, set->n, &dims, M, &lambda, 3 * set->n, &dfree, 3 * set->n, &d0));
   PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
-  PetscCall(FCSchemeCompliance(nbodies, bodies, set, W));
+  PetscCall(FCSchemeCompliance(scheme, set, W));
   PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
   FCContactSetNormalCompliance(set, W);
   FCSchemeStartLinearization(set, dfree, d0, q, mu, dims);
   PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
   PetscCall(FCContactProblemCreateDense(set->n, dims, mu, W, q, &prob));
-  /* warm start: the force of the same contact (pair, side-1 point) in the previous step */
-  PetscCall(PetscArrayzero(lambda, M));
-  for (PetscInt k = 0; previous && k < set->n; k++) {
-    const FCContact *old = FCContactSetFind(previous, &set->c[k]);
-    if (old)
-      for (PetscInt a = 0; a < set->c[k].dim; a++) lambda[set->c[k].row + a] = old->force[a];
-  }
-  PetscCall(FCContactSolverSolve(solver, prob, lambda));
-  PetscCall(FCContactSolverGetConvergence(solver, &st->sweeps, &st->residual, &conv));
+  FCContactSetWarmStart(set, previous, lambda);
+  PetscCall(FCContactSolverSolve(scheme->solver, prob, lambda));
+  PetscCall(FCContactSolverGetConvergence(scheme->solver, &st->sweeps, &st->residual, &conv));
   PetscCall(FCContactProblemDestroy(&prob));
   PetscCall(FCPhaseEnd(FC_PHASE_CONTACT_SOLVE));
-  for (PetscInt k = 0; k < set->n; k++) {
-    FCContact *c = &set->c[k];
-    for (PetscInt a = 0; a < 3; a++) c->force[a] = a < c->dim ? lambda[c->row + a] : 0.0;
-  }
+  FCContactSetStoreForces(set, lambda);
   FCContactSetUpdateStates(set);
   PetscCall(FCPhaseBegin(FC_PHASE_CORRECTION));
-  for (PetscInt b = 0; b < nbodies; b++)
-    if (bodies[b]->ops.applycorrection) PetscCall((*bodies[b]->ops.applycorrection)(bodies[b], b, set, lambda));
+  PetscCall(FCSchemeCorrect(scheme, set, lambda));
   PetscCall(FCPhaseEnd(FC_PHASE_CORRECTION));
+  st->newton = 1;
   PetscCall(PetscFree(W));
   PetscCall(PetscFree6(q, mu, dims, lambda, dfree, d0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeCreate_Explicit(FCScheme scheme)
+{
+  PetscFunctionBegin;
+  scheme->ops.memory = Memory_Explicit;
+  scheme->ops.solve  = Solve_Explicit;
   PetscFunctionReturn(0);
 }

@@ -1,5 +1,5 @@
 /* Algorithm 3: recursive corrective motion with the fast update of the constraint matrices.
-   Notation (../shared/design/DESIGN.md, section 2): per contact, d = p1 - p2 (world), F the
+   Notation (docs/method.md, section 2): per contact, d = p1 - p2 (world), F the
    world force on side 1, H the proximity maps (constant in the step), so that
        d(F) = d_free + h^2 W_H F,   W_H = sum_b H_b A_b^-1 H_b^T      (eq. 28, 31)
    W_H is built once per step by the bodies' compliance builders applied to the contact set in
@@ -13,8 +13,70 @@
    triangles and rigid shapes the start-of-step normal is kept (their surfaces move with DOFs that
    the proximity points do not carry). The loop stops when frames and right-hand sides change by
    less than -newton_tol (0: always -newton_max_it). One correction per body at the end:
-   dv = dv_free + h A^-1 H^T F. */
-#include "../fcimpl.h"
+   dv = dv_free + h A^-1 H^T F.
+   Options (besides -newton_max_it and -newton_tol, recursive.c): the types of W_H (dense), the
+   frames C (sparse) and the force vectors, host by default; on a GPU build
+     -wh_mat_type seqdensecuda -frames_mat_type seqaijcusparse -contact_vec_type seqcuda (docs/gpu.md) */
+#include "schemeimpl.h"
+
+typedef struct {
+  char wh_mat_type[FC_MAX_NAME], frames_mat_type[FC_MAX_NAME], vec_type[FC_MAX_NAME];
+} Fast;
+
+/* A matrix (ismat) or vector type given by an option is known to this PETSc build: a CUDA type in
+   a host build is an input error at set-up, not at the first contact */
+static PetscErrorCode CheckType(MPI_Comm comm, PetscBool ismat, const char type[], const char option[])
+{
+  Mat       A = NULL;
+  Vec       v = NULL;
+  PetscBool ok;
+
+  PetscFunctionBegin;
+  if (ismat) {
+    PetscCall(MatCreate(PETSC_COMM_SELF, &A));
+    PetscCall(MatSetSizes(A, 1, 1, 1, 1));
+  } else {
+    PetscCall(VecCreate(PETSC_COMM_SELF, &v));
+    PetscCall(VecSetSizes(v, 1, 1));
+  }
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ok = (ismat ? MatSetType(A, type) : VecSetType(v, type)) ? PETSC_FALSE : PETSC_TRUE;
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(MatDestroy(&A));
+  PetscCall(VecDestroy(&v));
+  PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "Unknown %s type '%s' in %s (in this PETSc build)",
+             ismat ? "matrix" : "vector", type, option);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetFromOptions_Fast(FCScheme scheme, PetscOptionItems *PetscOptionsObject)
+{
+  Fast *fast = (Fast *)scheme->data;
+
+  PetscFunctionBegin;
+  PetscCall(FCSchemeRecursiveSetFromOptions(scheme, PetscOptionsObject));
+  PetscCall(PetscOptionsString("-wh_mat_type", "Matrix type of W_H (fast scheme)", NULL, fast->wh_mat_type,
+                               fast->wh_mat_type, sizeof(fast->wh_mat_type), NULL));
+  PetscCall(PetscOptionsString("-frames_mat_type", "Matrix type of the contact frames C (fast scheme)", NULL,
+                               fast->frames_mat_type, fast->frames_mat_type, sizeof(fast->frames_mat_type), NULL));
+  PetscCall(PetscOptionsString("-contact_vec_type", "Vector type of the contact forces (fast scheme)", NULL,
+                               fast->vec_type, fast->vec_type, sizeof(fast->vec_type), NULL));
+  PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->wh_mat_type, "-wh_mat_type"));
+  PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->frames_mat_type, "-frames_mat_type"));
+  PetscCall(CheckType(scheme->comm, PETSC_FALSE, fast->vec_type, "-contact_vec_type"));
+  PetscFunctionReturn(0);
+}
+
+/* W_H (3m)^2, U and U^T (M x 3m), W_k (M^2), replicated on every rank */
+static PetscErrorCode Memory_Fast(FCScheme scheme, const FCContactSet *set, PetscReal *bytes, const char **what)
+{
+  PetscReal n3 = 3.0 * set->n, M = set->nrows;
+
+  PetscFunctionBegin;
+  *bytes = 8.0 * (n3 * n3 + 2.0 * M * n3 + M * M);
+  *what  = "dense W_H and W_k";
+  PetscFunctionReturn(0);
+}
 
 /* C (rows x 3 nc, AIJ): the frame rows of every contact */
 static PetscErrorCode AssembleFrames(const FCContactSet *set, Mat C)
@@ -35,9 +97,10 @@ static PetscErrorCode AssembleFrames(const FCContactSet *set, Mat C)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
+static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCContactSet *previous, FCSchemeStats *st)
 {
-  FCContactSet    *set = ctx->set, H = {0};
+  Fast            *fast = (Fast *)scheme->data;
+  FCContactSet     H    = {0};
   PetscInt         nc = set->n, n3 = 3 * set->n, M = set->nrows, *dims;
   PetscReal       *WH, *dfree, *d0, *q, *qold, *mu, *lambda, change = 0.0;
   Mat              WHm, C = NULL, U = NULL, Ut = NULL, Wk = NULL;
@@ -46,9 +109,6 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
   PetscBool        conv;
 
   PetscFunctionBegin;
-  FCSchemeStatsReset(set, st);
-  if (!nc) PetscFunctionReturn(0);
-
   /* W_H once per step: the bodies' builders on the contacts in identity frames */
   PetscCall(FCContactSetCopy(set, &H));
   for (PetscInt k = 0; k < nc; k++) {
@@ -59,21 +119,13 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
     c->row                        = 3 * k;
   }
   H.nrows = n3;
-  { /* W_H (3m)^2, U and U^T (M x 3m), W_k (M^2), replicated on every rank */
-    PetscReal bytes = 8.0 * ((PetscReal)n3 * n3 + 2.0 * M * n3 + (PetscReal)M * M);
-    PetscCheck(bytes <= ctx->memory_limit, ctx->comm, PETSC_ERR_MEM,
-               "%" PetscInt_FMT " contacts: the fast scheme's dense W_H and W_k need %.3g GB per rank, above "
-               "-contact_memory_limit %.3g GB; use -constraint_scheme explicit (W is %" PetscInt_FMT
-               "^2), fewer contacts (-contact_distance, coarser surfaces), or raise the limit",
-               nc, (double)(bytes / 1e9), (double)(ctx->memory_limit / 1e9), M);
-  }
   PetscCall(MatCreate(PETSC_COMM_SELF, &WHm));
   PetscCall(MatSetSizes(WHm, n3, n3, n3, n3));
-  PetscCall(MatSetType(WHm, ctx->wh_mat_type));
+  PetscCall(MatSetType(WHm, fast->wh_mat_type));
   PetscCall(MatSetUp(WHm));
   PetscCall(MatDenseGetArrayWrite(WHm, &WH)); /* symmetric: row/column-major alike */
   PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
-  PetscCall(FCSchemeCompliance(ctx->nbodies, ctx->bodies, &H, WH));
+  PetscCall(FCSchemeCompliance(scheme, &H, WH));
   PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
   PetscCall(MatDenseRestoreArrayWrite(WHm, &WH));
 
@@ -83,28 +135,28 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
   FCSchemeStartLinearization(set, dfree, d0, q, mu, dims);
   PetscCall(VecCreate(PETSC_COMM_SELF, &F));
   PetscCall(VecSetSizes(F, n3, n3));
-  PetscCall(VecSetType(F, ctx->vec_type));
+  PetscCall(VecSetType(F, fast->vec_type));
   PetscCall(VecDuplicate(F, &dvec));
   PetscCall(VecCreate(PETSC_COMM_SELF, &lam));
   PetscCall(VecSetSizes(lam, M, M));
-  PetscCall(VecSetType(lam, ctx->vec_type));
+  PetscCall(VecSetType(lam, fast->vec_type));
   { /* warm start: the previous step's force of the same contact, in the world frame */
     PetscScalar *f;
     PetscCall(VecGetArray(F, &f));
     for (PetscInt k = 0; k < nc; k++) {
       PetscReal Fw[3];
-      FCContactPreviousForce(ctx->previous, &set->c[k], Fw);
+      FCContactPreviousForce(previous, &set->c[k], Fw);
       for (int i = 0; i < 3; i++) f[3 * k + i] = Fw[i];
     }
     PetscCall(VecRestoreArray(F, &f));
   }
   PetscCall(MatCreate(PETSC_COMM_SELF, &C));
   PetscCall(MatSetSizes(C, M, n3, M, n3));
-  PetscCall(MatSetType(C, ctx->frames_mat_type));
+  PetscCall(MatSetType(C, fast->frames_mat_type));
   PetscCall(MatSeqAIJSetPreallocation(C, 3, NULL));
   PetscCall(MatSetOption(C, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
 
-  for (PetscInt it = 1; it <= ctx->newton_max_it; it++) {
+  for (PetscInt it = 1; it <= scheme->newton_max_it; it++) {
     const PetscScalar *w;
     PetscInt           sweeps;
     PetscCall(PetscLogEventBegin(FC_EVENT_NEWTON, 0, 0, 0, 0));
@@ -135,13 +187,12 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
     PetscCall(FCContactProblemCreateDense(nc, dims, mu, w, q, &prob));
     FCContactSetNormalCompliance(set, w);
     PetscCall(MatDenseRestoreArrayRead(Wk, &w));
-    PetscCall(FCContactSolverSolve(ctx->solver, prob, lambda));
-    PetscCall(FCContactSolverGetConvergence(ctx->solver, &sweeps, &st->residual, &conv));
+    PetscCall(FCContactSolverSolve(scheme->solver, prob, lambda));
+    PetscCall(FCContactSolverGetConvergence(scheme->solver, &sweeps, &st->residual, &conv));
     PetscCall(FCContactProblemDestroy(&prob));
     st->sweeps += sweeps;
     PetscCall(FCPhaseEnd(FC_PHASE_CONTACT_SOLVE));
-    for (PetscInt k = 0; k < nc; k++) /* forces in the frames they were solved in */
-      for (PetscInt a = 0; a < 3; a++) set->c[k].force[a] = a < set->c[k].dim ? lambda[set->c[k].row + a] : 0.0;
+    FCContactSetStoreForces(set, lambda); /* in the frames they were solved in */
     /* F_k = C_k^T lambda; proximity update d = d_free + h^2 W_H F_k (eq. 31) */
     PetscCall(FCPhaseBegin(FC_PHASE_PROXIMITY));
     {
@@ -155,7 +206,7 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
     PetscCall(FCPhaseEnd(FC_PHASE_PROXIMITY));
     st->newton = it;
     PetscCall(PetscLogEventEnd(FC_EVENT_NEWTON, 0, 0, 0, 0));
-    if (it == ctx->newton_max_it) break;
+    if (it == scheme->newton_max_it) break;
     /* frames and right-hand side at the new proximity positions */
     PetscCall(PetscArraycpy(qold, q, M));
     {
@@ -165,10 +216,10 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
       PetscCall(VecGetArrayRead(dvec, &dv));
       for (PetscInt i = 0; i < n3; i++) d[i] = dfree[i] + PetscRealPart(dv[i]);
       PetscCall(VecRestoreArrayRead(dvec, &dv));
-      PetscCall(FCSchemeLinearize(ctx, dfree, d0, d, q, &change));
+      PetscCall(FCSchemeLinearize(scheme, set, dfree, d0, d, q, &change));
       PetscCall(PetscFree(d));
     }
-    if (FCSchemeConverged(ctx, M, q, qold, change)) break;
+    if (FCSchemeConverged(scheme, M, q, qold, change)) break;
   }
   FCContactSetUpdateStates(set);
   /* one correction per body: dv = dv_free + h A^-1 H^T F (identity frames: lambda = F) */
@@ -180,9 +231,7 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
     PetscCall(VecGetArrayRead(F, &f));
     for (PetscInt i = 0; i < n3; i++) Fw[i] = PetscRealPart(f[i]);
     PetscCall(VecRestoreArrayRead(F, &f));
-    for (PetscInt b = 0; b < ctx->nbodies; b++)
-      if (ctx->bodies[b]->ops.applycorrection)
-        PetscCall((*ctx->bodies[b]->ops.applycorrection)(ctx->bodies[b], b, &H, Fw));
+    PetscCall(FCSchemeCorrect(scheme, &H, Fw));
     PetscCall(PetscFree(Fw));
   }
   PetscCall(FCPhaseEnd(FC_PHASE_CORRECTION));
@@ -197,5 +246,29 @@ PetscErrorCode FCSchemeFast(FCSchemeContext *ctx, FCSchemeStats *st)
   PetscCall(PetscFree6(dfree, d0, q, qold, mu, dims));
   PetscCall(PetscFree(lambda));
   PetscCall(FCContactSetDestroy(&H));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy_Fast(FCScheme scheme)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree(scheme->data));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeCreate_Fast(FCScheme scheme)
+{
+  Fast *fast;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&fast));
+  PetscCall(PetscStrncpy(fast->wh_mat_type, MATSEQDENSE, sizeof(fast->wh_mat_type)));
+  PetscCall(PetscStrncpy(fast->frames_mat_type, MATSEQAIJ, sizeof(fast->frames_mat_type)));
+  PetscCall(PetscStrncpy(fast->vec_type, VECSEQ, sizeof(fast->vec_type)));
+  scheme->data               = fast;
+  scheme->ops.setfromoptions = SetFromOptions_Fast;
+  scheme->ops.memory         = Memory_Fast;
+  scheme->ops.solve          = Solve_Fast;
+  scheme->ops.destroy        = Destroy_Fast;
   PetscFunctionReturn(0);
 }

@@ -1,33 +1,192 @@
-/* Constraint schemes, -constraint_scheme <type> (read by the scene):
+/* FCScheme: a constraint scheme, -constraint_scheme <type> (default explicit), one file per type:
      explicit  Algorithm 1: linearize once, W = sum J A^-1 J^T, PGS, correction   (explicit.c)
-     standard  Algorithm 2: the same Newton iterations, W_k rebuilt by solves and the proximity
-               measured on the corrected state                                       (standard.c)
+     standard  Algorithm 2: Newton iterations, W_k rebuilt by solves and the proximity measured
+               on the corrected state                                             (standard.c)
      fast      Algorithm 3: W_H = H A^-1 H^T once per step, then Newton iterations with
-               W_k = C_k W_H C_k^T and p = p_free + h^2 W_H C_k^T lambda         (fast.c)      */
-#include "../fcimpl.h"
+               W_k = C_k W_H C_k^T and p = p_free + h^2 W_H C_k^T lambda         (fast.c)
+   recursive.c holds what the two recursive schemes share (their options, the re-linearization,
+   the convergence test). This file holds what all three share: the options below, the contact
+   solver (-pgs_*, src/contact/pgs.c), the memory check, the assembly of W and its check, the
+   correction of every body, and the check of the solver's residual. The warm start is one rule
+   for all three (FCContactSetWarmStart): the previous step's world force of the same contact,
+   projected on this step's frame.
+   Options:
+     -constraint_scheme explicit|standard|fast
+     -contact_memory_limit b  bytes the dense contact matrices of a step may take per rank (each
+                              scheme says which matrices: W, or W_H and W_k); above, the step stops
+                              with a clear error (default half the machine's memory)
+     -pgs_fail_residual r     stop the run (exit status 2, the step named) when the contact solver
+                              ends a step with a residual above r (> 0, default 1e-2)          */
+#include "schemeimpl.h"
+#include <unistd.h>
 
 PetscFunctionList FCSchemeList = NULL;
+static char       known[256]   = ""; /* the registered names, for error messages */
 
-PetscErrorCode FCSchemeExplicitStep(FCSchemeContext *ctx, FCSchemeStats *st)
+PetscErrorCode FCSchemeRegister(const char name[], PetscErrorCode (*create)(FCScheme))
 {
-  PetscReal bytes = 8.0 * (PetscReal)ctx->set->nrows * ctx->set->nrows; /* W, replicated */
-
   PetscFunctionBegin;
-  PetscCheck(bytes <= ctx->memory_limit, ctx->comm, PETSC_ERR_MEM,
-             "%" PetscInt_FMT " contacts: W (%" PetscInt_FMT " rows, dense) needs %.3g GB per rank, above "
-             "-contact_memory_limit %.3g GB; reduce the contacts (-contact_distance, coarser surfaces) or raise the "
-             "limit",
-             ctx->set->n, ctx->set->nrows, (double)(bytes / 1e9), (double)(ctx->memory_limit / 1e9));
-  PetscCall(FCSchemeExplicit(ctx->comm, ctx->nbodies, ctx->bodies, ctx->set, ctx->previous, ctx->solver, st));
-  st->newton = ctx->set->n ? 1 : 0;
+  PetscCall(PetscFunctionListAdd(&FCSchemeList, name, create));
+  if (known[0]) PetscCall(PetscStrlcat(known, ", ", sizeof(known)));
+  PetscCall(PetscStrlcat(known, name, sizeof(known)));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode FCSchemeRegisterAll(void)
 {
   PetscFunctionBegin;
-  PetscCall(PetscFunctionListAdd(&FCSchemeList, "explicit", FCSchemeExplicitStep));
-  PetscCall(PetscFunctionListAdd(&FCSchemeList, "standard", FCSchemeStandard));
-  PetscCall(PetscFunctionListAdd(&FCSchemeList, "fast", FCSchemeFast));
+  known[0] = 0;
+  PetscCall(FCSchemeRegister(FCSCHEMEEXPLICIT, FCSchemeCreate_Explicit));
+  PetscCall(FCSchemeRegister(FCSCHEMESTANDARD, FCSchemeCreate_Standard));
+  PetscCall(FCSchemeRegister(FCSCHEMEFAST, FCSchemeCreate_Fast));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeCreate(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCScheme *scheme)
+{
+  FCScheme s;
+
+  PetscFunctionBegin;
+  PetscCall(FCInitializePackage());
+  PetscCall(PetscNew(&s));
+  s->comm          = comm;
+  s->nbodies       = nbodies;
+  s->bodies        = bodies;
+  s->memory_limit  = 0.5 * (PetscReal)sysconf(_SC_PHYS_PAGES) * (PetscReal)sysconf(_SC_PAGESIZE);
+  s->fail_residual = 1e-2;
+  *scheme          = s;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeSetType(FCScheme scheme, FCSchemeType type)
+{
+  PetscErrorCode (*create)(FCScheme) = NULL;
+
+  PetscFunctionBegin;
+  PetscCheck(!scheme->type[0], scheme->comm, PETSC_ERR_ORDER, "The constraint scheme already has a type");
+  PetscCall(PetscFunctionListFind(FCSchemeList, type, &create));
+  PetscCheck(create, scheme->comm, PETSC_ERR_USER_INPUT,
+             "Unknown constraint scheme '%s' in -constraint_scheme (known: %s)", type, known);
+  PetscCall(PetscStrncpy(scheme->type, type, sizeof(scheme->type)));
+  PetscCall((*create)(scheme));
+  PetscFunctionReturn(0);
+}
+
+/* The shared options, -constraint_scheme, then the type's own: another type's options stay
+   unread and FCOptionsCheckUnused reports them */
+PetscErrorCode FCSchemeSetFromOptions(FCScheme scheme)
+{
+  char type[FC_MAX_NAME] = FCSCHEMEEXPLICIT;
+
+  PetscFunctionBegin;
+  PetscOptionsBegin(scheme->comm, NULL, "Constraint scheme", "FCScheme");
+  PetscCall(PetscOptionsFList("-constraint_scheme", "Constraint scheme", "FCSchemeSetType", FCSchemeList, type, type,
+                              sizeof(type), NULL));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-pgs_fail_residual",
+                          "Stop the run when the contact solver ends a step above this residual",
+                          &scheme->fail_residual, NULL));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_memory_limit",
+                          "Bytes the dense contact matrices of a step may take per rank", &scheme->memory_limit, NULL));
+  PetscCheck(scheme->memory_limit > 0, scheme->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_memory_limit must be > 0, got %g", (double)scheme->memory_limit);
+  PetscCheck(scheme->fail_residual > 0, scheme->comm, PETSC_ERR_USER_INPUT,
+             "Option -pgs_fail_residual must be > 0, got %g", (double)scheme->fail_residual);
+  if (!scheme->type[0]) PetscCall(FCSchemeSetType(scheme, type));
+  if (scheme->ops.setfromoptions) PetscCall((*scheme->ops.setfromoptions)(scheme, PetscOptionsObject));
+  PetscOptionsEnd();
+  PetscCall(FCContactSolverCreate(scheme->comm, &scheme->solver));
+  PetscCall(FCContactSolverSetFromOptions(scheme->solver));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeSolve(FCScheme scheme, PetscInt step, FCContactSet *set, const FCContactSet *previous,
+                             FCSchemeStats *st)
+{
+  PetscFunctionBegin;
+  st->contacts = set->n;
+  st->rows     = set->nrows;
+  st->sweeps   = 0;
+  st->residual = 0.0;
+  st->newton   = 0;
+  if (!set->n) PetscFunctionReturn(0);
+  { /* the dense contact matrices, replicated on every rank, against -contact_memory_limit */
+    PetscReal   bytes;
+    const char *what;
+    PetscCall((*scheme->ops.memory)(scheme, set, &bytes, &what));
+    PetscCheck(bytes <= scheme->memory_limit, scheme->comm, PETSC_ERR_MEM,
+               "%" PetscInt_FMT " contacts (%" PetscInt_FMT " rows): the %s scheme's %s need %.3g GB per rank, above "
+               "-contact_memory_limit %.3g GB; use fewer contacts (-contact_distance, coarser surfaces), another "
+               "-constraint_scheme (explicit needs W only, %" PetscInt_FMT "^2), or raise the limit",
+               set->n, set->nrows, scheme->type, what, (double)(bytes / 1e9), (double)(scheme->memory_limit / 1e9),
+               set->nrows);
+  }
+  PetscCall((*scheme->ops.solve)(scheme, set, previous, st));
+  PetscCheck(!(st->residual > scheme->fail_residual), scheme->comm, PETSC_ERR_CONV_FAILED,
+             "Step %" PetscInt_FMT ": the contact solver could not reduce its residual: %g after %" PetscInt_FMT
+             " sweeps, above -pgs_fail_residual %g (raise -pgs_max_it, lower -time_step, or see docs/hard-cases.md)",
+             step, (double)st->residual, st->sweeps, (double)scheme->fail_residual);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeCompliance(FCScheme scheme, const FCContactSet *set, PetscReal W[])
+{
+  FCBody   *bodies = scheme->bodies;
+  PetscReal h      = scheme->nbodies ? bodies[0]->h : 0.0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscArrayzero(W, set->nrows * set->nrows));
+  for (PetscInt b = 0; b < scheme->nbodies; b++) PetscCall(FCBodyAddCompliance(bodies[b], b, set, W));
+  for (PetscInt k = 0; k < set->nrows * set->nrows; k++) W[k] *= h * h;
+  { /* a compliance is symmetric with a non-negative diagonal: anything else is a failed factorization
+       or builder, which the contact solver would turn into wrong forces without noticing */
+    PetscInt  n = set->nrows, bad = -1, badrow = -1;
+    PetscReal wmax = 0.0, asym = 0.0;
+    for (PetscInt i = 0; i < n; i++) wmax = PetscMax(wmax, PetscAbsReal(W[i * n + i]));
+    for (PetscInt k = 0; k < set->n && bad < 0; k++) {
+      const FCContact *c     = &set->c[k];
+      PetscBool        moves = PETSC_FALSE; /* W_kk > 0 unless neither side can move at the contact */
+      for (PetscInt s = 0; s < 2; s++) {
+        if (!FCBodyIsPrescribed(bodies[c->body[s]]) && !c->prox[s].nv) moves = PETSC_TRUE; /* rigid */
+        for (PetscInt v = 0; v < c->prox[s].nv; v++) /* FE: a free vertex with a weight */
+          moves = moves || (c->prox[s].gdof[v] >= 0 && c->prox[s].w[v] != 0.0);
+      }
+      for (PetscInt i = c->row; i < c->row + c->dim && bad < 0; i++) {
+        PetscReal d = W[i * n + i];
+        if (PetscIsInfOrNanReal(d) || d < 0.0 || (moves && d <= 0.0)) {
+          bad    = k;
+          badrow = i;
+        }
+        for (PetscInt j = i + 1; j < n; j++) asym = PetscMax(asym, PetscAbsReal(W[i * n + j] - W[j * n + i]));
+      }
+    }
+    if (bad >= 0)
+      SETERRQ(scheme->comm, PETSC_ERR_CONV_FAILED,
+              "The contact compliance W is not a compliance: W(%" PetscInt_FMT ",%" PetscInt_FMT
+              ") = %g (contact %" PetscInt_FMT ", bodies '%s' and '%s'); the factorization or the -compliance_type "
+              "builder failed",
+              badrow, badrow, (double)W[badrow * n + badrow], bad, bodies[set->c[bad].body[0]]->name,
+              bodies[set->c[bad].body[1]]->name);
+    PetscCheck(asym <= 1e-8 * wmax, scheme->comm, PETSC_ERR_CONV_FAILED,
+               "The contact compliance W is not symmetric (max |W_ij - W_ji| = %g, max W_ii = %g); the factorization "
+               "or the -compliance_type builder failed",
+               (double)asym, (double)wmax);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeCorrect(FCScheme scheme, const FCContactSet *set, const PetscReal lambda[])
+{
+  PetscFunctionBegin;
+  for (PetscInt b = 0; b < scheme->nbodies; b++) PetscCall(FCBodyApplyCorrection(scheme->bodies[b], b, set, lambda));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeDestroy(FCScheme *scheme)
+{
+  PetscFunctionBegin;
+  if (!*scheme) PetscFunctionReturn(0);
+  if ((*scheme)->ops.destroy) PetscCall((*(*scheme)->ops.destroy)(*scheme));
+  PetscCall(FCContactSolverDestroy(&(*scheme)->solver));
+  PetscCall(PetscFree(*scheme));
   PetscFunctionReturn(0);
 }

@@ -8,68 +8,63 @@
        frames and gaps re-linearized at p_{k+1} as in the fast scheme (linearize.c)
    With a fixed A in the step (both schemes assemble A at its start) and fixed proximity maps it
    gives the fast scheme's forces and positions to round-off; it costs a solve per contact row
-   per iteration instead of two matrix products. */
-#include "../fcimpl.h"
+   per iteration instead of two matrix products. Options: -newton_max_it, -newton_tol (recursive.c). */
+#include "schemeimpl.h"
 
-PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
+/* W (M^2), replicated */
+static PetscErrorCode Memory_Standard(FCScheme scheme, const FCContactSet *set, PetscReal *bytes, const char **what)
 {
-  FCContactSet    *set = ctx->set;
+  PetscFunctionBegin;
+  *bytes = 8.0 * (PetscReal)set->nrows * set->nrows;
+  *what  = "dense W_k";
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Solve_Standard(FCScheme scheme, FCContactSet *set, const FCContactSet *previous,
+                                     FCSchemeStats *st)
+{
   PetscInt         nc = set->n, n3 = 3 * set->n, M = set->nrows, *dims;
   PetscReal       *W, *dfree, *d0, *d, *q, *qold, *mu, *lambda, *x, *Fw, change = 0.0;
   FCContactProblem prob;
   PetscBool        conv;
 
   PetscFunctionBegin;
-  FCSchemeStatsReset(set, st);
-  if (!nc) PetscFunctionReturn(0);
-  for (PetscInt b = 0; b < ctx->nbodies; b++)
-    if (ctx->bodies[b]->ops.savefree) PetscCall((*ctx->bodies[b]->ops.savefree)(ctx->bodies[b]));
+  for (PetscInt b = 0; b < scheme->nbodies; b++) PetscCall(FCBodySaveFreeMotion(scheme->bodies[b]));
   PetscCall(PetscMalloc6(n3, &dfree, n3, &d0, n3, &d, M, &q, M, &qold, nc, &mu));
   PetscCall(PetscMalloc5(nc, &dims, M, &lambda, M * M, &W, 6 * nc, &x, 3 * nc, &Fw));
   FCSchemeStartLinearization(set, dfree, d0, q, mu, dims);
-  for (PetscInt k = 0; k < nc; k++) { /* warm start: the previous step's force, projected on the frame */
-    FCContact *c = &set->c[k];
-    PetscReal  Fo[3];
-    FCContactPreviousForce(ctx->previous, c, Fo);
-    for (PetscInt a = 0; a < c->dim; a++) lambda[c->row + a] = FCDot(a == 0 ? c->n : (a == 1 ? c->t1 : c->t2), Fo);
-  }
-  for (PetscInt it = 1; it <= ctx->newton_max_it; it++) {
+  FCContactSetWarmStart(set, previous, lambda);
+  for (PetscInt it = 1; it <= scheme->newton_max_it; it++) {
     PetscInt sweeps;
     PetscCall(PetscLogEventBegin(FC_EVENT_NEWTON, 0, 0, 0, 0));
     PetscCall(FCPhaseBegin(FC_PHASE_REBUILD_W));
-    PetscCall(FCSchemeCompliance(ctx->nbodies, ctx->bodies, set, W));
+    PetscCall(FCSchemeCompliance(scheme, set, W));
     PetscCall(FCPhaseEnd(FC_PHASE_REBUILD_W));
     FCContactSetNormalCompliance(set, W);
     PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
     PetscCall(FCContactProblemCreateDense(nc, dims, mu, W, q, &prob));
-    PetscCall(FCContactSolverSolve(ctx->solver, prob, lambda));
-    PetscCall(FCContactSolverGetConvergence(ctx->solver, &sweeps, &st->residual, &conv));
+    PetscCall(FCContactSolverSolve(scheme->solver, prob, lambda));
+    PetscCall(FCContactSolverGetConvergence(scheme->solver, &sweeps, &st->residual, &conv));
     PetscCall(FCContactProblemDestroy(&prob));
     st->sweeps += sweeps;
     PetscCall(FCPhaseEnd(FC_PHASE_CONTACT_SOLVE));
-    for (PetscInt k = 0; k < nc; k++)
-      for (PetscInt a = 0; a < 3; a++) set->c[k].force[a] = a < set->c[k].dim ? lambda[set->c[k].row + a] : 0.0;
+    FCContactSetStoreForces(set, lambda);
     /* corrective motion of the total force from dv_free */
     PetscCall(FCPhaseBegin(FC_PHASE_CORRECTION));
-    for (PetscInt b = 0; b < ctx->nbodies; b++) {
-      FCBody B = ctx->bodies[b];
-      if (B->ops.restorefree) PetscCall((*B->ops.restorefree)(B));
-      if (B->ops.applycorrection) PetscCall((*B->ops.applycorrection)(B, b, set, lambda));
-    }
+    for (PetscInt b = 0; b < scheme->nbodies; b++) PetscCall(FCBodyRestoreFreeMotion(scheme->bodies[b]));
+    PetscCall(FCSchemeCorrect(scheme, set, lambda));
     PetscCall(FCPhaseEnd(FC_PHASE_CORRECTION));
     st->newton = it;
     PetscCall(PetscLogEventEnd(FC_EVENT_NEWTON, 0, 0, 0, 0));
-    if (it == ctx->newton_max_it) break;
+    if (it == scheme->newton_max_it) break;
     /* p_{k+1} = G(q_{k+1}): the proximity points on the corrected state, summed over the ranks */
     PetscCall(FCPhaseBegin(FC_PHASE_PROXIMITY));
     PetscCall(PetscArrayzero(x, 6 * nc));
     for (PetscInt k = 0; k < nc; k++)
       for (int s = 0; s < 2; s++) {
-        FCBody B = ctx->bodies[set->c[k].body[s]];
-        PetscCheck(B->ops.trialposition, ctx->comm, PETSC_ERR_SUP, "Body '%s' cannot report trial positions", B->name);
-        PetscCall((*B->ops.trialposition)(B, &set->c[k].prox[s], &x[6 * k + 3 * s]));
+        PetscCall(FCBodyAddTrialPosition(scheme->bodies[set->c[k].body[s]], &set->c[k].prox[s], &x[6 * k + 3 * s]));
       }
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, x, 6 * nc, MPIU_REAL, MPIU_SUM, ctx->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, x, 6 * nc, MPIU_REAL, MPIU_SUM, scheme->comm));
     for (PetscInt k = 0; k < nc; k++)
       for (int i = 0; i < 3; i++) d[3 * k + i] = x[6 * k + i] - x[6 * k + 3 + i];
     for (PetscInt k = 0; k < nc; k++) { /* the force in the world, before the frames move */
@@ -78,9 +73,9 @@ PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
         Fw[3 * k + i] = c->force[0] * c->n[i] + c->force[1] * c->t1[i] + c->force[2] * c->t2[i];
     }
     PetscCall(PetscArraycpy(qold, q, M));
-    PetscCall(FCSchemeLinearize(ctx, dfree, d0, d, q, &change));
+    PetscCall(FCSchemeLinearize(scheme, set, dfree, d0, d, q, &change));
     PetscCall(FCPhaseEnd(FC_PHASE_PROXIMITY));
-    if (FCSchemeConverged(ctx, M, q, qold, change)) break;
+    if (FCSchemeConverged(scheme, M, q, qold, change)) break;
     /* warm start in the new frames: the force of this iteration, projected */
     for (PetscInt k = 0; k < nc; k++)
       for (PetscInt a = 0; a < set->c[k].dim; a++)
@@ -89,5 +84,14 @@ PetscErrorCode FCSchemeStandard(FCSchemeContext *ctx, FCSchemeStats *st)
   FCContactSetUpdateStates(set);
   PetscCall(PetscFree6(dfree, d0, d, q, qold, mu));
   PetscCall(PetscFree5(dims, lambda, W, x, Fw));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeCreate_Standard(FCScheme scheme)
+{
+  PetscFunctionBegin;
+  scheme->ops.setfromoptions = FCSchemeRecursiveSetFromOptions;
+  scheme->ops.memory         = Memory_Standard;
+  scheme->ops.solve          = Solve_Standard;
   PetscFunctionReturn(0);
 }

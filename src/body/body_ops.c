@@ -1,0 +1,157 @@
+/* The body as the rest of the code sees it: facts about what a body is, and one wrapper per
+   operation of its type (FCBodyOps). Collision, schemes, output and restart go through these;
+   an operation a type does not have is either a no-op (responses of bodies that take no force)
+   or an error naming the body. */
+#include "../fcimpl.h"
+
+PetscBool FCBodyIsDeformable(FCBody body)
+{
+  return body->deformable;
+}
+
+PetscBool FCBodyIsPrescribed(FCBody body)
+{
+  return body->prescribed;
+}
+
+PetscBool FCBodyHasShape(FCBody body)
+{
+  return body->ops.shapedistance ? PETSC_TRUE : PETSC_FALSE;
+}
+
+PetscBool FCBodyHasBoundedShape(FCBody body)
+{
+  return body->shape && body->shape->bounded ? PETSC_TRUE : PETSC_FALSE;
+}
+
+PetscBool FCBodyHasSurfaceTriangles(FCBody body)
+{
+  return body->ops.surfacetriangles ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* An operation the body's type lacks, asked for anyway */
+static PetscErrorCode Missing(FCBody body, const char what[])
+{
+  SETERRQ(body->comm, PETSC_ERR_SUP, "Body '%s' (type %s) cannot %s", body->name, body->type, what);
+}
+
+PetscErrorCode FCBodyGetStateLayout(FCBody body, PetscInt *cols, PetscBool *pervertex)
+{
+  PetscFunctionBegin;
+  *cols      = body->state_cols;
+  *pervertex = body->state_per_vertex;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetState(FCBody body, PetscReal s[])
+{
+  PetscFunctionBegin;
+  if (!body->ops.getstate) PetscCall(Missing(body, "report its state"));
+  PetscCall((*body->ops.getstate)(body, s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodySetState(FCBody body, const PetscReal s[])
+{
+  PetscFunctionBegin;
+  if (!body->ops.setstate) PetscCall(Missing(body, "take a state"));
+  PetscCall((*body->ops.setstate)(body, s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetContactPoints(FCBody body, PetscInt *n, FCProximity **prox, PetscReal **x0, PetscReal **xf,
+                                      PetscReal **key)
+{
+  PetscFunctionBegin;
+  if (!body->ops.contactpoints) PetscCall(Missing(body, "give contact points"));
+  PetscCall((*body->ops.contactpoints)(body, n, prox, x0, xf, key));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetSurfaceTriangles(FCBody body, PetscInt *n, FCSurfaceTriangle **tri)
+{
+  PetscFunctionBegin;
+  if (!body->ops.surfacetriangles) PetscCall(Missing(body, "give surface triangles"));
+  PetscCall((*body->ops.surfacetriangles)(body, n, tri));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyProximityPosition(FCBody body, const FCProximity *p, PetscInt when, PetscReal x[3])
+{
+  PetscFunctionBegin;
+  if (!body->ops.proximityposition) PetscCall(Missing(body, "place a proximity point"));
+  PetscCall((*body->ops.proximityposition)(body, p, when, x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyShapeDistance(FCBody body, PetscInt when, const PetscReal x[3], PetscReal *d, PetscReal n[3],
+                                   PetscReal cpb[3])
+{
+  PetscErrorCode (*f)(FCBody, const PetscReal[3], PetscReal *, PetscReal[3], PetscReal[3]);
+
+  PetscFunctionBegin;
+  f = when == FC_AT_FREE ? body->ops.shapedistancefree : body->ops.shapedistance;
+  if (!f) PetscCall(Missing(body, "measure a distance to its shape"));
+  PetscCall((*f)(body, x, d, n, cpb));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyToBodyFrame(FCBody body, const PetscReal x[3], PetscBool direction, PetscReal r[3])
+{
+  PetscFunctionBegin;
+  if (!body->ops.tobody) PetscCall(Missing(body, "express a point in a body frame"));
+  PetscCall((*body->ops.tobody)(body, x, direction, r));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyAddPartialPosition(FCBody body, const FCProximity *p, PetscReal x[3])
+{
+  PetscFunctionBegin;
+  if (!body->ops.partialposition) PetscCall(Missing(body, "place a proximity point"));
+  PetscCall((*body->ops.partialposition)(body, p, x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyAddTrialPosition(FCBody body, const FCProximity *p, PetscReal x[3])
+{
+  PetscFunctionBegin;
+  if (!body->ops.trialposition) PetscCall(Missing(body, "report trial positions"));
+  PetscCall((*body->ops.trialposition)(body, p, x));
+  PetscFunctionReturn(0);
+}
+
+/* Responses: a body that takes no force (kinematic) adds nothing and is not corrected */
+PetscErrorCode FCBodySetUpContact(FCBody body)
+{
+  PetscFunctionBegin;
+  if (body->ops.setupcontact) PetscCall((*body->ops.setupcontact)(body));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyAddCompliance(FCBody body, PetscInt self, const FCContactSet *set, PetscReal W[])
+{
+  PetscFunctionBegin;
+  if (body->ops.addcompliance) PetscCall((*body->ops.addcompliance)(body, self, set, W));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyApplyCorrection(FCBody body, PetscInt self, const FCContactSet *set, const PetscReal lambda[])
+{
+  PetscFunctionBegin;
+  if (body->ops.applycorrection) PetscCall((*body->ops.applycorrection)(body, self, set, lambda));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodySaveFreeMotion(FCBody body)
+{
+  PetscFunctionBegin;
+  if (body->ops.savefree) PetscCall((*body->ops.savefree)(body));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyRestoreFreeMotion(FCBody body)
+{
+  PetscFunctionBegin;
+  if (body->ops.restorefree) PetscCall((*body->ops.restorefree)(body));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,142 @@
+/* FE body, what it reports of its state: centroid, energies, the positions of its visual mesh,
+   the restart state (get and set) and the NaN check. */
+#include "femimpl.h"
+
+/* Mass-weighted centroid: for P1, int x dV over a tet is V times the mean of its vertices */
+PetscErrorCode GetCentroid_FEM(FCBody body, PetscReal c[3])
+{
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  const PetscScalar *ul;
+  PetscReal          acc[4] = {0, 0, 0, 0};
+
+  PetscFunctionBegin;
+  PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
+  PetscCall(VecGetArrayRead(fem->uloc, &ul));
+  for (PetscInt e = 0; e < m->cEnd - m->cStart; e++) {
+    PetscReal X[12], x[12];
+    FCFEMGatherElement(fem, e, ul, X, x);
+    acc[3] += fem->vol[e];
+    for (int d = 0; d < 3; d++) acc[d] += fem->vol[e] * 0.25 * (x[d] + x[3 + d] + x[6 + d] + x[9 + d]);
+  }
+  PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, acc, 4, MPIU_REAL, MPIU_SUM, body->comm));
+  for (int d = 0; d < 3; d++) c[d] = acc[d] / acc[3];
+  PetscFunctionReturn(0);
+}
+
+/* Kinetic 1/2 v^T M v, elastic (sum of element energies), gravity -m g . x_centroid */
+PetscErrorCode GetEnergy_FEM(FCBody body, FCEnergy *E)
+{
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  const PetscScalar *ul;
+  PetscReal          c[3];
+  PetscScalar        vMv;
+
+  PetscFunctionBegin;
+  PetscCall(MatMult(fem->M, fem->v, fem->work));
+  PetscCall(VecDot(fem->v, fem->work, &vMv));
+  E->kinetic = 0.5 * PetscRealPart(vMv);
+  E->elastic = 0.0;
+  PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
+  PetscCall(VecGetArrayRead(fem->uloc, &ul));
+  for (PetscInt e = 0; e < m->cEnd - m->cStart; e++) {
+    PetscReal X[12], x[12], Ee;
+    FCFEMGatherElement(fem, e, ul, X, x);
+    PetscCall((*fem->mat->energy)(fem->mat, x, X, &fem->Dminv[9 * e], fem->vol[e], &Ee));
+    E->elastic += Ee;
+  }
+  PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &E->elastic, 1, MPIU_REAL, MPIU_SUM, body->comm));
+  PetscCall(GetCentroid_FEM(body, c));
+  E->gravity = -fem->mass * FCDot(body->gravity, c);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GetVisualPositions_FEM(FCBody body, PetscReal x[])
+{
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  const PetscScalar *ul;
+
+  PetscFunctionBegin;
+  PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
+  PetscCall(VecGetArrayRead(fem->uloc, &ul));
+  for (PetscInt i = 0; i < body->visual.nv; i++) {
+    PetscInt v = m->visVert[i];
+    for (int d = 0; d < 3; d++)
+      x[3 * i + d] = m->X[3 * v + d] + (fem->fixed[v] ? 0.0 : PetscRealPart(ul[fem->ldof[v] + d]));
+  }
+  PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
+  PetscFunctionReturn(0);
+}
+
+/* Restart state: per owned vertex in the visual (global) order, u and v (0 on fixed vertices) */
+PetscErrorCode GetState_FEM(FCBody body, PetscReal s[])
+{
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  const PetscScalar *u, *v;
+  PetscInt           lo;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
+  PetscCall(VecGetArrayRead(fem->u, &u));
+  PetscCall(VecGetArrayRead(fem->v, &v));
+  for (PetscInt i = 0; i < body->visual.nv; i++) {
+    PetscInt vx = m->visVert[i];
+    for (int d = 0; d < 3; d++) {
+      s[6 * i + d]     = fem->fixed[vx] ? 0.0 : PetscRealPart(u[fem->gdof[vx] - lo + d]);
+      s[6 * i + 3 + d] = fem->fixed[vx] ? 0.0 : PetscRealPart(v[fem->gdof[vx] - lo + d]);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(fem->u, &u));
+  PetscCall(VecRestoreArrayRead(fem->v, &v));
+  PetscFunctionReturn(0);
+}
+
+/* The state of a restart: A of a co-rotational body is reassembled and factored at the next step,
+   as it would have been (-refactor_every 1; with k > 1 the factor's age restarts) */
+PetscErrorCode SetState_FEM(FCBody body, const PetscReal s[])
+{
+  FEM         *fem = (FEM *)body->data;
+  FCMesh      *m   = &fem->mesh;
+  PetscScalar *u, *v;
+  PetscInt     lo;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
+  PetscCall(VecGetArray(fem->u, &u));
+  PetscCall(VecGetArray(fem->v, &v));
+  for (PetscInt i = 0; i < body->visual.nv; i++) {
+    PetscInt vx = m->visVert[i];
+    if (fem->fixed[vx]) continue;
+    for (int d = 0; d < 3; d++) {
+      u[fem->gdof[vx] - lo + d] = s[6 * i + d];
+      v[fem->gdof[vx] - lo + d] = s[6 * i + 3 + d];
+    }
+  }
+  PetscCall(VecRestoreArray(fem->u, &u));
+  PetscCall(VecRestoreArray(fem->v, &v));
+  if (!fem->mat->linear) {
+    fem->Acurrent   = PETSC_FALSE;
+    fem->factor_age = fem->refactor_every;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
+{
+  FEM      *fem = (FEM *)body->data;
+  PetscReal nu, nv;
+
+  PetscFunctionBegin;
+  PetscCall(VecNorm(fem->u, NORM_INFINITY, &nu));
+  PetscCall(VecNorm(fem->v, NORM_INFINITY, &nv));
+  PetscCheck(!PetscIsInfOrNanReal(nu) && !PetscIsInfOrNanReal(nv), body->comm, PETSC_ERR_FP,
+             "Body '%s' diverged at step %" PetscInt_FMT
+             ": its displacement or velocity is NaN or Inf (time step too large?)",
+             body->name, step);
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,213 @@
+/* FE body, operator and time step: the element loops (K, f_int, M), A = M + h B + h^2 K and its
+   factorization, the free motion (eq. 5) and the integration (eq. 2). */
+#include "femimpl.h"
+
+/* Element loop: f (global, may be NULL) = f_int(u), K (may be NULL) = tangent stiffness */
+PetscErrorCode FCFEMAssembleElastic(FCBody body, Vec u, Vec f, Mat K)
+{
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  const PetscScalar *ul;
+  PetscScalar       *fl = NULL;
+
+  PetscFunctionBegin;
+  PetscCall(FCPhaseBegin(FC_PHASE_ASSEMBLY));
+  PetscCall(DMGlobalToLocal(m->dm, u, INSERT_VALUES, fem->uloc));
+  PetscCall(VecGetArrayRead(fem->uloc, &ul));
+  if (f) {
+    PetscCall(VecZeroEntries(fem->floc));
+    PetscCall(VecGetArray(fem->floc, &fl));
+  }
+  if (K) PetscCall(MatZeroEntries(K));
+  for (PetscInt c = 0; c < m->cEnd - m->cStart; c++) {
+    PetscReal X[12], x[12], fe[12], Ke[144];
+    PetscInt  idx[12];
+    FCFEMGatherElement(fem, c, ul, X, x);
+    PetscCall((*fem->mat->element)(fem->mat, x, X, &fem->Dminv[9 * c], fem->vol[c], f ? fe : NULL, K ? Ke : NULL));
+    if (f)
+      for (int a = 0; a < 4; a++) {
+        PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
+        if (fem->fixed[v]) continue;
+        for (int d = 0; d < 3; d++) fl[fem->ldof[v] + d] += fe[3 * a + d];
+      }
+    if (K) {
+      FCFEMElementIndices(fem, c, idx);
+      PetscCall(MatSetValues(K, 12, idx, 12, idx, Ke, ADD_VALUES));
+    }
+  }
+  PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
+  if (f) {
+    PetscCall(VecRestoreArray(fem->floc, &fl));
+    PetscCall(VecZeroEntries(f));
+    PetscCall(DMLocalToGlobal(m->dm, fem->floc, ADD_VALUES, f));
+  }
+  if (K) {
+    PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+  }
+  fem->nassembly++;
+  PetscCall(FCPhaseEnd(FC_PHASE_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* A = (1 + h alpha) M + (h beta + h^2) K, then its factorization */
+PetscErrorCode FCFEMFormAndFactorA(FCBody body)
+{
+  FEM      *fem = (FEM *)body->data;
+  PetscReal h   = body->h;
+
+  PetscFunctionBegin;
+  PetscCall(FCPhaseBegin(FC_PHASE_ASSEMBLY));
+  PetscCall(MatCopy(fem->K, fem->A, SAME_NONZERO_PATTERN));
+  PetscCall(MatScale(fem->A, h * fem->beta + h * h));
+  PetscCall(MatAXPY(fem->A, 1.0 + h * fem->alpha, fem->M, SUBSET_NONZERO_PATTERN));
+  PetscCall(MatSetOption(fem->A, MAT_SPD, PETSC_TRUE));
+  PetscCall(FCPhaseEnd(FC_PHASE_ASSEMBLY));
+  PetscCall(FCPhaseBegin(FC_PHASE_FACTORIZATION));
+  PetscCall(KSPSetOperators(fem->ksp, fem->A, fem->A));
+  PetscCall(KSPSetUp(fem->ksp));
+  {
+    PC             pc;
+    PCFailedReason reason;
+    PetscCall(KSPGetPC(fem->ksp, &pc));
+    PetscCall(PCGetFailedReason(pc, &reason));
+    PetscCheck(reason == PC_NOERROR, body->comm, PETSC_ERR_CONV_FAILED,
+               "Factorization of A for body '%s' failed: %s (out of memory with MUMPS, which underestimates its "
+               "workspace now and then on several ranks: raise the margin, -%smat_mumps_icntl_14 50)",
+               body->name, PCFailedReasons[reason], body->prefix);
+  }
+  fem->nfactor++;
+  fem->factor_age = 0;
+  if (fem->comp) PetscCall(FCComplianceFactor(fem->comp)); /* builders that keep their own factor of A */
+  PetscCall(FCPhaseEnd(FC_PHASE_FACTORIZATION));
+  fem->Acurrent = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCFEMAssembleMass(FCBody body)
+{
+  FEM         *fem = (FEM *)body->data;
+  FCMesh      *m   = &fem->mesh;
+  Vec          mloc;
+  PetscScalar *ml;
+
+  PetscFunctionBegin;
+  PetscCall(FCPhaseBegin(FC_PHASE_ASSEMBLY));
+  PetscCall(MatZeroEntries(fem->M));
+  PetscCall(DMGetLocalVector(m->dm, &mloc));
+  PetscCall(VecZeroEntries(mloc));
+  PetscCall(VecGetArray(mloc, &ml));
+  fem->mass = 0.0;
+  for (PetscInt c = 0; c < m->cEnd - m->cStart; c++) {
+    PetscReal Me[144];
+    PetscInt  idx[12];
+    FCTetMass(body->density, fem->vol[c], fem->lumped, Me);
+    FCFEMElementIndices(fem, c, idx);
+    PetscCall(MatSetValues(fem->M, 12, idx, 12, idx, Me, ADD_VALUES));
+    fem->mass += body->density * fem->vol[c];
+    /* gravity: the load of a P1 element on each vertex is rho V / 4 g, whatever the mass matrix */
+    for (int a = 0; a < 4; a++) {
+      PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
+      if (fem->fixed[v]) continue;
+      for (int d = 0; d < 3; d++) ml[fem->ldof[v] + d] += body->density * fem->vol[c] / 4.0 * body->gravity[d];
+    }
+  }
+  PetscCall(VecRestoreArray(mloc, &ml));
+  PetscCall(VecZeroEntries(fem->fgrav));
+  PetscCall(DMLocalToGlobal(m->dm, mloc, ADD_VALUES, fem->fgrav));
+  PetscCall(DMRestoreLocalVector(m->dm, &mloc));
+  PetscCall(MatAssemblyBegin(fem->M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(fem->M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &fem->mass, 1, MPIU_REAL, MPIU_SUM, body->comm));
+  PetscCall(FCPhaseEnd(FC_PHASE_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* K, M and A share the pattern of the element couplings. The pattern is recorded by a
+   MATPREALLOCATOR pass over the cells (DMCreateMatrix's adjacency-based preallocation costs
+   more than a factorization on 10^5 DOFs); the matrix type follows -<body>_dm_mat_type. */
+PetscErrorCode FCFEMCreateOperators(FCBody body)
+{
+  FEM        *fem = (FEM *)body->data;
+  FCMesh     *m   = &fem->mesh;
+  Mat         P;
+  PetscInt    n, N;
+  MatType     mtype;
+  PetscScalar zeros[144] = {0};
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(fem->u, &n));
+  PetscCall(VecGetSize(fem->u, &N));
+  PetscCall(MatCreate(body->comm, &P));
+  PetscCall(MatSetType(P, MATPREALLOCATOR));
+  PetscCall(MatSetSizes(P, n, n, N, N));
+  PetscCall(MatSetUp(P));
+  for (PetscInt c = 0; c < m->cEnd - m->cStart; c++) {
+    PetscInt idx[12];
+    FCFEMElementIndices(fem, c, idx);
+    PetscCall(MatSetValues(P, 12, idx, 12, idx, zeros, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
+  PetscCall(DMGetMatType(m->dm, &mtype));
+  PetscCall(MatCreate(body->comm, &fem->K));
+  PetscCall(MatSetSizes(fem->K, n, n, N, N));
+  PetscCall(MatSetBlockSize(fem->K, 3));
+  PetscCall(MatSetType(fem->K, mtype));
+  PetscCall(MatPreallocatorPreallocate(P, PETSC_TRUE, fem->K));
+  PetscCall(MatDestroy(&P));
+  PetscCall(MatSetOption(fem->K, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(MatDuplicate(fem->K, MAT_DO_NOT_COPY_VALUES, &fem->M));
+  PetscCall(MatDuplicate(fem->K, MAT_DO_NOT_COPY_VALUES, &fem->A));
+  PetscFunctionReturn(0);
+}
+
+/* Free motion, eq. 5: A dv_free = b = h (f_g - f_int) - M (h alpha v) - K ((h beta + h^2) v) */
+PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
+{
+  FEM      *fem = (FEM *)body->data;
+  PetscReal h   = body->h;
+
+  PetscFunctionBegin;
+  if (!fem->Acurrent) { /* co-rotational: K and f_int at q_t; A too every refactor_every steps */
+    PetscCall(FCFEMAssembleElastic(body, fem->u, fem->fint, fem->K));
+    if (fem->factor_age >= fem->refactor_every) PetscCall(FCFEMFormAndFactorA(body));
+    fem->Acurrent = PETSC_TRUE;
+  }
+  PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));
+  if (fem->mat->linear) PetscCall(MatMult(fem->K, fem->u, fem->fint)); /* f_int = K u */
+  if (body->gravity[0] != 0.0 || body->gravity[1] != 0.0 || body->gravity[2] != 0.0)
+    PetscCall(VecAXPBYPCZ(fem->b, h, -h, 0.0, fem->fgrav, fem->fint));
+  else { /* no gravity work without gravity */
+    PetscCall(VecCopy(fem->fint, fem->b));
+    PetscCall(VecScale(fem->b, -h));
+  }
+  if (fem->alpha != 0.0) {
+    PetscCall(MatMult(fem->M, fem->v, fem->work));
+    PetscCall(VecAXPY(fem->b, -h * fem->alpha, fem->work));
+  }
+  PetscCall(MatMult(fem->K, fem->v, fem->work));
+  PetscCall(VecAXPY(fem->b, -(h * fem->beta + h * h), fem->work));
+  PetscCall(KSPSolve(fem->ksp, fem->b, fem->dv));
+  {
+    KSPConvergedReason reason;
+    PetscCall(KSPGetConvergedReason(fem->ksp, &reason));
+    PetscCheck(reason >= 0, body->comm, PETSC_ERR_CONV_FAILED, "Free-motion solve of body '%s' failed at t = %g: %s",
+               body->name, (double)t, KSPConvergedReasons[reason]);
+  }
+  PetscCall(FCPhaseEnd(FC_PHASE_FREE_MOTION));
+  PetscFunctionReturn(0);
+}
+
+/* eq. 2: v_{t+h} = v_t + dv, u_{t+h} = u_t + h v_{t+h} */
+PetscErrorCode Integrate_FEM(FCBody body, PetscReal t)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  PetscCall(VecAXPY(fem->v, 1.0, fem->dv));
+  PetscCall(VecAXPY(fem->u, body->h, fem->v));
+  if (!fem->mat->linear) fem->Acurrent = PETSC_FALSE;
+  fem->factor_age++;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,276 @@
+/* FCCompliance: how an FE body computes its part of the contact compliance (eq. 17)
+       W_b = J_b A_b^-1 J_b^T
+   and applies the contact forces to its motion (eq. 20)
+       dv_b = dv_free,b + h A_b^-1 J_b^T lambda.
+   One file per builder type, registered here (-compliance_type, default redundant):
+     dense, sparse      dense.c        MUMPS solves with dense or sparse right-hand sides J_b^T
+     schur              schur.c        Schur complement of the augmented matrix [[0, J], [J^T, A]]
+     inverse, redundant inverse.c      the block of A^-1 on the contact DOFs (selected inverse)
+     precomputed        precomputed.c  cached surface columns of A_0^-1, warped by the best-fit rotation
+   This file holds what every builder shares: J_b^T of the step by entries, the scatter of the
+   builder's W_b into W, and the correction by one solve with the body's factor. The body hands
+   a builder an FCComplianceContext (A, its factorization, layout, surface) and the builder never
+   calls the body back. docs/architecture.md says how to add a builder. */
+#include "complianceimpl.h"
+
+PetscFunctionList FCComplianceList = NULL;
+static char       known[256]       = ""; /* the registered names, for error messages */
+
+PetscErrorCode FCComplianceRegister(const char name[], PetscErrorCode (*create)(FCCompliance))
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFunctionListAdd(&FCComplianceList, name, create));
+  if (known[0]) PetscCall(PetscStrlcat(known, ", ", sizeof(known)));
+  PetscCall(PetscStrlcat(known, name, sizeof(known)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCComplianceRegisterAll(void)
+{
+  PetscFunctionBegin;
+  known[0] = 0;
+  PetscCall(FCComplianceRegister(FCCOMPLIANCEDENSE, FCComplianceCreate_Dense));
+  PetscCall(FCComplianceRegister(FCCOMPLIANCESPARSE, FCComplianceCreate_Sparse));
+  PetscCall(FCComplianceRegister(FCCOMPLIANCESCHUR, FCComplianceCreate_Schur));
+  PetscCall(FCComplianceRegister(FCCOMPLIANCEINVERSE, FCComplianceCreate_Inverse));
+  PetscCall(FCComplianceRegister(FCCOMPLIANCEREDUNDANT, FCComplianceCreate_Redundant));
+  PetscCall(FCComplianceRegister(FCCOMPLIANCEPRECOMPUTED, FCComplianceCreate_Precomputed));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCComplianceCreate(const FCComplianceContext *ctx, FCCompliance *comp)
+{
+  FCCompliance c;
+
+  PetscFunctionBegin;
+  PetscCall(FCInitializePackage());
+  PetscCall(PetscNew(&c));
+  c->ctx = *ctx;
+  FCMat3Identity(c->R);
+  *comp = c;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCComplianceSetType(FCCompliance comp, FCComplianceType type)
+{
+  PetscErrorCode (*create)(FCCompliance) = NULL;
+
+  PetscFunctionBegin;
+  PetscCheck(!comp->type[0], comp->ctx.comm, PETSC_ERR_ORDER, "The compliance builder of body '%s' already has a type",
+             comp->ctx.name);
+  PetscCall(PetscFunctionListFind(FCComplianceList, type, &create));
+  PetscCheck(create, comp->ctx.comm, PETSC_ERR_USER_INPUT,
+             "Unknown compliance type '%s' in -compliance_type (known: %s)", type, known);
+  PetscCall(PetscStrncpy(comp->type, type, sizeof(comp->type)));
+  PetscCall((*create)(comp));
+  PetscFunctionReturn(0);
+}
+
+/* -compliance_type, then the options of that type only: another type's options stay unread and
+   FCOptionsCheckUnused reports them */
+PetscErrorCode FCComplianceSetFromOptions(FCCompliance comp)
+{
+  char      type[FC_MAX_NAME] = FCCOMPLIANCEREDUNDANT;
+  PetscBool set;
+
+  PetscFunctionBegin;
+  PetscOptionsBegin(comp->ctx.comm, NULL, "Compliance builder of FE bodies", "FCCompliance");
+  PetscCall(PetscOptionsFList("-compliance_type", "How FE bodies compute J A^-1 J^T", "FCComplianceSetType",
+                              FCComplianceList, type, type, sizeof(type), &set));
+  if (!comp->type[0]) PetscCall(FCComplianceSetType(comp, type));
+  if (comp->ops.setfromoptions) PetscCall((*comp->ops.setfromoptions)(comp, PetscOptionsObject));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCComplianceSetUp(FCCompliance comp)
+{
+  PetscFunctionBegin;
+  if (comp->setupcalled) PetscFunctionReturn(0);
+  if (!comp->type[0]) PetscCall(FCComplianceSetFromOptions(comp));
+  if (comp->ops.setup) PetscCall((*comp->ops.setup)(comp));
+  comp->setupcalled = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCComplianceFactor(FCCompliance comp)
+{
+  PetscFunctionBegin;
+  if (comp->setupcalled && comp->ops.factor) PetscCall((*comp->ops.factor)(comp));
+  PetscFunctionReturn(0);
+}
+
+PetscBool FCComplianceUsesRotation(FCCompliance comp)
+{
+  return comp->rotation;
+}
+
+PetscErrorCode FCComplianceSetRotation(FCCompliance comp, const PetscReal R[9])
+{
+  PetscFunctionBegin;
+  for (int i = 0; i < 9; i++) comp->R[i] = R[i];
+  PetscFunctionReturn(0);
+}
+
+void FCComplianceDirection(const FCContact *c, PetscInt side, PetscInt a, PetscReal e[3])
+{
+  const PetscReal *f = a == 0 ? c->n : (a == 1 ? c->t1 : c->t2);
+  for (int i = 0; i < 3; i++) e[i] = (side == 0 ? 1.0 : -1.0) * f[i];
+}
+
+PetscErrorCode FCComplianceGetFactor(FCCompliance comp, Mat *F)
+{
+  PC pc;
+
+  PetscFunctionBegin;
+  PetscCall(KSPGetPC(comp->ctx.ksp, &pc));
+  PetscCall(PCFactorGetMatrix(pc, F));
+  PetscFunctionReturn(0);
+}
+
+/* Numeric Cholesky factorization by MUMPS of a matrix a builder owns (the Schur builder's
+   augmented matrix, the redundant copies of A), checked: PETSc 3.18 records a MUMPS failure in the
+   factor instead of raising it, and parallel MUMPS intermittently underestimates its workspace
+   (INFOG(1) = -9, seen on 2 ranks: an unchecked failure gave an all-zero Schur complement). Out of
+   memory is retried with ICNTL(14), the workspace margin in percent, doubled, up to 3 times. */
+PetscErrorCode FCComplianceMumpsCholesky(FCCompliance comp, Mat F, Mat K, const char what[])
+{
+  MatFactorInfo  info;
+  MatFactorError err;
+
+  PetscFunctionBegin;
+  PetscCall(MatFactorInfoInitialize(&info));
+  for (int attempt = 0;; attempt++) {
+    PetscInt icntl14;
+    PetscCall(MatCholeskyFactorNumeric(F, K, &info));
+    PetscCall(MatFactorGetError(F, &err));
+    if (err == MAT_FACTOR_NOERROR) break;
+    PetscCall(MatMumpsGetIcntl(F, 14, &icntl14));
+    PetscCheck(err == MAT_FACTOR_OUTMEMORY && attempt < 3, comp->ctx.comm, PETSC_ERR_CONV_FAILED,
+               "MUMPS factorization of %s of body '%s' failed (PETSc MatFactorError %d, ICNTL(14) = %" PetscInt_FMT ")",
+               what, comp->ctx.name, (int)err, icntl14);
+    PetscCall(PetscInfo(F,
+                        "MUMPS out of workspace in %s of body %s: ICNTL(14) %" PetscInt_FMT " -> %" PetscInt_FMT "\n",
+                        what, comp->ctx.name, icntl14, 2 * icntl14 + 20));
+    PetscCall(MatMumpsSetIcntl(F, 14, 2 * icntl14 + 20));
+    PetscCall(MatFactorClearError(F));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Forgets the step's contact columns */
+static PetscErrorCode Reset(FCCompliance comp)
+{
+  PetscFunctionBegin;
+  if (comp->ops.reset) PetscCall((*comp->ops.reset)(comp));
+  PetscCall(PetscFree(comp->cols));
+  PetscCall(PetscFree3(comp->jtr, comp->jtc, comp->jtv));
+  comp->ncols = comp->njt = comp->nje = 0;
+  PetscFunctionReturn(0);
+}
+
+/* J_b^T of the contacts touching body `self` by entries, at most 9 per column (3 vertices x 3
+   components): the owned DOFs' first (pass 0, njt of them), then the others' (pass 1, nje in all;
+   the selected-inverse builders need every entry, on every rank) */
+static PetscErrorCode BuildJacobian(FCCompliance comp, PetscInt self, const FCContactSet *set)
+{
+  PetscInt nloc, lo, ncols = 0, n = 0;
+
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < set->n; k++)
+    for (PetscInt s = 0; s < 2; s++)
+      if (set->c[k].body[s] == self) {
+        ncols += set->c[k].dim;
+        n += set->c[k].dim * 3 * set->c[k].prox[s].nv;
+      }
+  if (!ncols) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(ncols, &comp->cols));
+  PetscCall(PetscMalloc3(n, &comp->jtr, n, &comp->jtc, n, &comp->jtv));
+  PetscCall(VecGetLocalSize(comp->ctx.u, &nloc));
+  PetscCall(VecGetOwnershipRange(comp->ctx.u, &lo, NULL));
+  for (int pass = 0; pass < 2; pass++) {
+    if (pass) comp->njt = comp->nje;
+    ncols = 0;
+    for (PetscInt k = 0; k < set->n; k++)
+      for (PetscInt s = 0; s < 2; s++) {
+        const FCContact *c = &set->c[k];
+        if (c->body[s] != self) continue;
+        for (PetscInt a = 0; a < c->dim; a++, ncols++) {
+          PetscReal e[3];
+          comp->cols[ncols] = c->row + a;
+          FCComplianceDirection(c, s, a, e);
+          for (PetscInt vtx = 0; vtx < c->prox[s].nv; vtx++) {
+            PetscInt g = c->prox[s].gdof[vtx];
+            if (g < 0 || (g >= lo && g < lo + nloc) == (pass == 1)) continue; /* fixed, or the other pass's */
+            for (int d = 0; d < 3; d++, comp->nje++) {
+              comp->jtr[comp->nje] = g - lo + d;
+              comp->jtc[comp->nje] = ncols;
+              comp->jtv[comp->nje] = c->prox[s].w[vtx] * e[d];
+            }
+          }
+        }
+      }
+  }
+  comp->ncols = ncols;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCComplianceAdd(FCCompliance comp, PetscInt self, const FCContactSet *set, PetscReal W[])
+{
+  PetscInt   M = set->nrows, ncols;
+  PetscReal *Wb;
+
+  PetscFunctionBegin;
+  PetscCheck(comp->setupcalled, comp->ctx.comm, PETSC_ERR_ORDER, "Compliance builder of body '%s' not set up",
+             comp->ctx.name);
+  PetscCall(Reset(comp));
+  PetscCall(BuildJacobian(comp, self, set));
+  ncols = comp->ncols;
+  if (!ncols) PetscFunctionReturn(0);
+  PetscCall(PetscCalloc1(ncols * ncols, &Wb));
+  PetscCall((*comp->ops.build)(comp, self, set, Wb));
+  for (PetscInt i = 0; i < ncols; i++)
+    for (PetscInt j = 0; j < ncols; j++) W[comp->cols[i] * M + comp->cols[j]] += Wb[i * ncols + j];
+  PetscCall(PetscFree(Wb));
+  PetscFunctionReturn(0);
+}
+
+/* eq. 20: dv += h A^-1 J_b^T lambda_b; by the builder's own operator, or by one solve of the
+   right-hand side J_b^T (h lambda_b) assembled from the owned entries */
+PetscErrorCode FCComplianceCorrect(FCCompliance comp, PetscReal h, const PetscReal lambda[], Vec dv)
+{
+  PetscScalar *r;
+
+  PetscFunctionBegin;
+  if (!comp->ncols) PetscFunctionReturn(0);
+  if (comp->ops.correct) {
+    PetscCall((*comp->ops.correct)(comp, h, lambda, dv));
+    PetscFunctionReturn(0);
+  }
+  if (!comp->rhs) {
+    PetscCall(VecDuplicate(comp->ctx.u, &comp->rhs));
+    PetscCall(VecDuplicate(comp->ctx.u, &comp->work));
+  }
+  PetscCall(VecZeroEntries(comp->rhs));
+  PetscCall(VecGetArray(comp->rhs, &r));
+  for (PetscInt q = 0; q < comp->njt; q++) r[comp->jtr[q]] += comp->jtv[q] * h * lambda[comp->cols[comp->jtc[q]]];
+  PetscCall(VecRestoreArray(comp->rhs, &r));
+  if (comp->ops.solve)
+    PetscCall((*comp->ops.solve)(comp, comp->rhs, comp->work));
+  else
+    PetscCall(KSPSolve(comp->ctx.ksp, comp->rhs, comp->work));
+  PetscCall(VecAXPY(dv, 1.0, comp->work));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCComplianceDestroy(FCCompliance *comp)
+{
+  PetscFunctionBegin;
+  if (!*comp) PetscFunctionReturn(0);
+  PetscCall(Reset(*comp));
+  if ((*comp)->ops.destroy) PetscCall((*(*comp)->ops.destroy)(*comp));
+  PetscCall(VecDestroy(&(*comp)->rhs));
+  PetscCall(VecDestroy(&(*comp)->work));
+  PetscCall(PetscFree(*comp));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,83 @@
+/* Private definitions of the output files of src/io/ (schema in docs/output.md):
+     output.c   the file: creation, header (attributes, /frames, /bodies), frames, flush, destroy
+     records.c  the per-step records: /steps (and per-body centroid, rotation, energy), /contacts
+     restart.c  the restart format /restart/slot0|1: creating, writing and reading it
+     h5util.c   HDF5 helpers shared by these
+     xdmf.c     the XDMF index of the frames */
+#pragma once
+
+#include "../fcimpl.h"
+#include <hdf5.h>
+
+#define FCH5Check(call, msg)                                                                                           \
+  do {                                                                                                                 \
+    if ((call) < 0) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 failed: %s", msg);                                   \
+  } while (0)
+
+/* HDF5 helpers (h5util.c) */
+/* An extendible dataset of rows of shape rowdims[0..rank-2], chunked by `chunkrows` rows */
+PETSC_INTERN PetscErrorCode FCH5CreateRows(hid_t loc, const char name[], hid_t type, int rank, const hsize_t rowdims[],
+                                           hsize_t chunkrows, hid_t *dset);
+/* Appends n rows (collective extend): rank 0 writes data, the others take part with nothing */
+PETSC_INTERN PetscErrorCode FCH5AppendRows(PetscMPIInt rank, hid_t dset, hid_t memtype, hsize_t n, const void *data);
+/* A fixed-size dataset (rows x cols) written by ranges: each rank its [start, start + n) rows */
+PETSC_INTERN PetscErrorCode FCH5WriteDistributed(hid_t loc, const char name[], hid_t filetype, hid_t memtype,
+                                                 hsize_t rows, hsize_t cols, hsize_t start, hsize_t n,
+                                                 const void *data);
+PETSC_INTERN PetscErrorCode FCH5AttrString(hid_t loc, const char name[], const char value[]);
+PETSC_INTERN PetscErrorCode FCH5AttrReals(hid_t loc, const char name[], hsize_t n, const double v[]);
+PETSC_INTERN PetscErrorCode FCH5AttrInt(hid_t loc, const char name[], long long v);
+
+/* The restart state's writer (restart.c): creates /restart in an open output file, writes a state
+   into the older of its two slots */
+typedef struct _p_FCRestartWriter *FCRestartWriter;
+PETSC_INTERN PetscErrorCode FCRestartWriterCreate(MPI_Comm, hid_t file, PetscInt nbodies, FCBody[], FCRestartWriter *);
+PETSC_INTERN PetscErrorCode FCRestartWriterWrite(FCRestartWriter, PetscInt step, PetscReal t, PetscInt nbodies,
+                                                 FCBody[], const FCContactSet *previous);
+PETSC_INTERN PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *);
+
+typedef struct {
+  hid_t group, centroid, rotation, energy, positions;
+} BodyOut;
+
+struct _p_FCOutput {
+  MPI_Comm    comm;
+  PetscMPIInt rank;
+  char        filename[PETSC_MAX_PATH_LEN], xdmfname[PETSC_MAX_PATH_LEN];
+  hid_t       file, time, step, energy, denergy, timing[FC_PHASE_NUM], ftime, fstep;
+  PetscInt    nbodies;
+  FCBody     *bodies;
+  BodyOut    *bo;
+  /* rows buffered since the last flush (rank 0) */
+  PetscInt  nrows, maxrows;
+  double   *rtime, *renergy, *rtiming, *rbody; /* rbody: per row, per body: centroid 3, quaternion 4, energy 3 */
+  PetscInt *rstep;
+  double    elast; /* total energy of the last recorded step (initial energy before step 1) */
+  PetscInt  nframes, xdmfwritten;
+  /* contacts (scenes with contact pairs only) */
+  PetscBool contacts;
+  hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state;
+  hid_t     s_contacts, s_rows, s_sweeps, s_residual, s_maxpen, s_newton, s_violation, s_rmspen, s_compl, s_cone;
+  long long ctotal;             /* contacts recorded so far */
+  PetscInt  nc, maxc, ns, maxs; /* buffered contact records and per-step rows */
+  struct {
+    long long bodies[2], state;
+    double    point[3], normal[3], force[3], gap, gap_end;
+  } * cbuf;
+  struct {
+    long long         contacts, rows, sweeps, offset, newton;
+    double            residual;
+    FCContactMeasures m;
+  } * sbuf;
+  double         *frametimes;
+  PetscInt        maxframes;
+  FCRestartWriter restart;
+};
+
+/* The per-step records (records.c): the initial_energy attribute, /steps and /contacts are created
+   by FCOutputRecordsCreate (in FCOutputWriteHeader, before /frames and /bodies); the per-body
+   centroid, rotation and energy datasets belong to the header's /bodies. Flush writes the buffered
+   rows; Destroy closes what Create opened. */
+PETSC_INTERN PetscErrorCode FCOutputRecordsCreate(FCOutput, PetscInt nbodies, FCBody[], PetscBool contacts);
+PETSC_INTERN PetscErrorCode FCOutputRecordsFlush(FCOutput);
+PETSC_INTERN PetscErrorCode FCOutputRecordsDestroy(FCOutput);

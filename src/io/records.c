@@ -1,0 +1,275 @@
+/* The per-step records of the output (docs/output.md): a row per completed step in /steps (time,
+   energy, timings, and with contact pairs the contact solver's statistics and accuracy measures),
+   the centroid, rotation and energy of every body in /bodies/<name>, and every contact of every step
+   in /contacts. Rows are buffered on rank 0 and appended at each flush (each output step). */
+#include "ioimpl.h"
+
+/* The initial_energy attribute, /steps and, with contact pairs, /contacts */
+PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodies[], PetscBool contacts)
+{
+  hid_t  g, gt;
+  size_t nrow = 64;
+
+  PetscFunctionBegin;
+  out->elast = 0.0; /* the total energy at t = 0: the reference of /steps/energy_change */
+  for (PetscInt i = 0; i < nbodies; i++) {
+    FCEnergy E;
+    PetscCall(FCBodyGetEnergy(bodies[i], &E));
+    out->elast += E.kinetic + E.elastic + E.gravity;
+  }
+  {
+    PetscReal e0 = out->elast;
+    PetscCall(FCH5AttrReals(out->file, "initial_energy", 1, &e0));
+  }
+  g = H5Gcreate2(out->file, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  PetscCall(FCH5CreateRows(g, "time", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->time));
+  PetscCall(FCH5CreateRows(g, "step", H5T_NATIVE_LLONG, 1, NULL, 256, &out->step));
+  PetscCall(FCH5CreateRows(g, "energy", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->energy));
+  PetscCall(FCH5CreateRows(g, "energy_change", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->denergy));
+  gt = H5Gcreate2(g, "timing", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  for (int p = 0; p < FC_PHASE_NUM; p++)
+    PetscCall(FCH5CreateRows(gt, FCPhaseNames[p], H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->timing[p]));
+  H5Gclose(gt);
+  H5Gclose(g);
+  if (contacts) {
+    hid_t gc         = H5Gcreate2(out->file, "contacts", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+          gs         = H5Gopen2(out->file, "steps", H5P_DEFAULT);
+    hsize_t   two[1] = {2}, three[1] = {3};
+    long long zero = 0;
+    out->contacts  = PETSC_TRUE;
+    PetscCall(FCH5CreateRows(gc, "offset", H5T_NATIVE_LLONG, 1, NULL, 256, &out->c_offset));
+    PetscCall(FCH5CreateRows(gc, "bodies", H5T_NATIVE_LLONG, 2, two, 1024, &out->c_bodies));
+    PetscCall(FCH5CreateRows(gc, "point", H5T_NATIVE_DOUBLE, 2, three, 1024, &out->c_point));
+    PetscCall(FCH5CreateRows(gc, "normal", H5T_NATIVE_DOUBLE, 2, three, 1024, &out->c_normal));
+    PetscCall(FCH5CreateRows(gc, "force", H5T_NATIVE_DOUBLE, 2, three, 1024, &out->c_force));
+    PetscCall(FCH5CreateRows(gc, "gap", H5T_NATIVE_DOUBLE, 1, NULL, 1024, &out->c_gap));
+    PetscCall(FCH5CreateRows(gc, "gap_end", H5T_NATIVE_DOUBLE, 1, NULL, 1024, &out->c_gapend));
+    PetscCall(FCH5CreateRows(gc, "state", H5T_NATIVE_LLONG, 1, NULL, 1024, &out->c_state));
+    PetscCall(FCH5CreateRows(gs, "contacts", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_contacts));
+    PetscCall(FCH5CreateRows(gs, "constraint_rows", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_rows));
+    PetscCall(FCH5CreateRows(gs, "pgs_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_sweeps));
+    PetscCall(FCH5CreateRows(gs, "residual", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_residual));
+    PetscCall(FCH5CreateRows(gs, "max_penetration", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_maxpen));
+    PetscCall(FCH5CreateRows(gs, "newton_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_newton));
+    PetscCall(FCH5CreateRows(gs, "violation", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_violation));
+    PetscCall(FCH5CreateRows(gs, "rms_penetration", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_rmspen));
+    PetscCall(FCH5CreateRows(gs, "complementarity", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_compl));
+    PetscCall(FCH5CreateRows(gs, "cone_violation", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_cone));
+    PetscCall(FCH5AppendRows(out->rank, out->c_offset, H5T_NATIVE_LLONG, 1, &zero));
+    H5Gclose(gs);
+    H5Gclose(gc);
+  }
+  out->maxrows = (PetscInt)nrow;
+  PetscCall(PetscMalloc5(nrow, &out->rtime, nrow, &out->renergy, nrow * FC_PHASE_NUM, &out->rtiming,
+                         nrow * nbodies * 10 + 1, &out->rbody, nrow, &out->rstep));
+  PetscFunctionReturn(0);
+}
+
+/* One row per completed step (buffered until the next flush) */
+PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, const PetscReal timing[FC_PHASE_NUM],
+                                  PetscInt nbodies, FCBody bodies[])
+{
+  PetscInt r    = out->nrows;
+  double   etot = 0.0;
+
+  PetscFunctionBegin;
+  if (r == out->maxrows) {
+    double   *a, *b, *c, *d;
+    PetscInt *e, n = 2 * out->maxrows;
+    PetscCall(PetscMalloc5(n, &a, n, &b, n * FC_PHASE_NUM, &c, n * nbodies * 10 + 1, &d, n, &e));
+    PetscCall(PetscArraycpy(a, out->rtime, r));
+    PetscCall(PetscArraycpy(b, out->renergy, r));
+    PetscCall(PetscArraycpy(c, out->rtiming, r * FC_PHASE_NUM));
+    PetscCall(PetscArraycpy(d, out->rbody, r * nbodies * 10));
+    PetscCall(PetscArraycpy(e, out->rstep, r));
+    PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
+    out->rtime   = a;
+    out->renergy = b;
+    out->rtiming = c;
+    out->rbody   = d;
+    out->rstep   = e;
+    out->maxrows = n;
+  }
+  out->rtime[r] = t;
+  out->rstep[r] = step;
+  for (int p = 0; p < FC_PHASE_NUM; p++) out->rtiming[r * FC_PHASE_NUM + p] = timing[p];
+  for (PetscInt i = 0; i < nbodies; i++) {
+    double   *row = &out->rbody[(r * nbodies + i) * 10];
+    FCEnergy  E;
+    PetscBool has;
+    PetscCall(FCBodyGetCentroid(bodies[i], row));
+    PetscCall(FCBodyGetRotation(bodies[i], row + 3, &has));
+    PetscCall(FCBodyGetEnergy(bodies[i], &E));
+    row[7] = E.kinetic;
+    row[8] = E.elastic;
+    row[9] = E.gravity;
+    etot += E.kinetic + E.elastic + E.gravity;
+  }
+  out->renergy[r] = etot;
+  out->nrows++;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCOutputRecordContacts(FCOutput out, const struct _FCContactSetView *v)
+{
+  const FCContactSet *set = v->set;
+
+  PetscFunctionBegin;
+  if (out->ns == out->maxs) {
+    void *tmp;
+    out->maxs = PetscMax(64, 2 * out->maxs);
+    PetscCall(PetscMalloc(out->maxs * sizeof(*out->sbuf), &tmp));
+    if (out->ns) PetscCall(PetscMemcpy(tmp, out->sbuf, out->ns * sizeof(*out->sbuf)));
+    PetscCall(PetscFree(out->sbuf));
+    out->sbuf = tmp;
+  }
+  if (out->nc + set->n > out->maxc) {
+    void *tmp;
+    out->maxc = PetscMax(2 * out->maxc, out->nc + set->n + 256);
+    PetscCall(PetscMalloc(out->maxc * sizeof(*out->cbuf), &tmp));
+    if (out->nc) PetscCall(PetscMemcpy(tmp, out->cbuf, out->nc * sizeof(*out->cbuf)));
+    PetscCall(PetscFree(out->cbuf));
+    out->cbuf = tmp;
+  }
+  for (PetscInt k = 0; k < set->n; k++) {
+    const FCContact *c           = &set->c[k];
+    out->cbuf[out->nc].bodies[0] = c->body[0];
+    out->cbuf[out->nc].bodies[1] = c->body[1];
+    out->cbuf[out->nc].state     = c->state;
+    for (int i = 0; i < 3; i++) {
+      out->cbuf[out->nc].point[i]  = c->p0[0][i];
+      out->cbuf[out->nc].normal[i] = c->n[i];
+      out->cbuf[out->nc].force[i]  = c->force[i];
+    }
+    out->cbuf[out->nc].gap     = c->gap0;
+    out->cbuf[out->nc].gap_end = c->gap_end;
+    out->nc++;
+  }
+  out->ctotal += set->n;
+  out->sbuf[out->ns].contacts = set->n;
+  out->sbuf[out->ns].rows     = v->stats->rows;
+  out->sbuf[out->ns].sweeps   = v->stats->sweeps;
+  out->sbuf[out->ns].residual = v->stats->residual;
+  out->sbuf[out->ns].m        = *v->measures;
+  out->sbuf[out->ns].newton   = v->stats->newton;
+  out->sbuf[out->ns].offset   = out->ctotal;
+  out->ns++;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode FlushContacts(FCOutput out)
+{
+  PetscInt   n = out->nc, m = out->ns;
+  double    *d;
+  long long *l;
+
+  PetscFunctionBegin;
+  if (!out->contacts) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc2(3 * n + 3 * m + 1, &d, 2 * n + 2 * m + 1, &l));
+  for (PetscInt k = 0; k < n; k++)
+    for (int i = 0; i < 2; i++) l[2 * k + i] = out->cbuf[k].bodies[i];
+  PetscCall(FCH5AppendRows(out->rank, out->c_bodies, H5T_NATIVE_LLONG, n, l));
+  for (PetscInt k = 0; k < n; k++)
+    for (int i = 0; i < 3; i++) d[3 * k + i] = out->cbuf[k].point[i];
+  PetscCall(FCH5AppendRows(out->rank, out->c_point, H5T_NATIVE_DOUBLE, n, d));
+  for (PetscInt k = 0; k < n; k++)
+    for (int i = 0; i < 3; i++) d[3 * k + i] = out->cbuf[k].normal[i];
+  PetscCall(FCH5AppendRows(out->rank, out->c_normal, H5T_NATIVE_DOUBLE, n, d));
+  for (PetscInt k = 0; k < n; k++)
+    for (int i = 0; i < 3; i++) d[3 * k + i] = out->cbuf[k].force[i];
+  PetscCall(FCH5AppendRows(out->rank, out->c_force, H5T_NATIVE_DOUBLE, n, d));
+  for (PetscInt k = 0; k < n; k++) d[k] = out->cbuf[k].gap;
+  PetscCall(FCH5AppendRows(out->rank, out->c_gap, H5T_NATIVE_DOUBLE, n, d));
+  for (PetscInt k = 0; k < n; k++) d[k] = out->cbuf[k].gap_end;
+  PetscCall(FCH5AppendRows(out->rank, out->c_gapend, H5T_NATIVE_DOUBLE, n, d));
+  for (PetscInt k = 0; k < n; k++) l[k] = out->cbuf[k].state;
+  PetscCall(FCH5AppendRows(out->rank, out->c_state, H5T_NATIVE_LLONG, n, l));
+  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].offset;
+  PetscCall(FCH5AppendRows(out->rank, out->c_offset, H5T_NATIVE_LLONG, m, l));
+  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].contacts;
+  PetscCall(FCH5AppendRows(out->rank, out->s_contacts, H5T_NATIVE_LLONG, m, l));
+  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].rows;
+  PetscCall(FCH5AppendRows(out->rank, out->s_rows, H5T_NATIVE_LLONG, m, l));
+  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].sweeps;
+  PetscCall(FCH5AppendRows(out->rank, out->s_sweeps, H5T_NATIVE_LLONG, m, l));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].residual;
+  PetscCall(FCH5AppendRows(out->rank, out->s_residual, H5T_NATIVE_DOUBLE, m, d));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.max_penetration;
+  PetscCall(FCH5AppendRows(out->rank, out->s_maxpen, H5T_NATIVE_DOUBLE, m, d));
+  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].newton;
+  PetscCall(FCH5AppendRows(out->rank, out->s_newton, H5T_NATIVE_LLONG, m, l));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.violation;
+  PetscCall(FCH5AppendRows(out->rank, out->s_violation, H5T_NATIVE_DOUBLE, m, d));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.rms_penetration;
+  PetscCall(FCH5AppendRows(out->rank, out->s_rmspen, H5T_NATIVE_DOUBLE, m, d));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.complementarity;
+  PetscCall(FCH5AppendRows(out->rank, out->s_compl, H5T_NATIVE_DOUBLE, m, d));
+  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.cone_violation;
+  PetscCall(FCH5AppendRows(out->rank, out->s_cone, H5T_NATIVE_DOUBLE, m, d));
+  PetscCall(PetscFree2(d, l));
+  out->nc = out->ns = 0;
+  PetscFunctionReturn(0);
+}
+
+/* Appends the buffered step rows and contacts */
+PetscErrorCode FCOutputRecordsFlush(FCOutput out)
+{
+  PetscInt n = out->nrows, nb = out->nbodies;
+  double  *tmp;
+
+  PetscFunctionBegin;
+  if (n) {
+    long long *steps;
+    PetscCall(PetscMalloc2(n * 4 + 1, &tmp, n, &steps));
+    for (PetscInt r = 0; r < n; r++) steps[r] = out->rstep[r];
+    PetscCall(FCH5AppendRows(out->rank, out->time, H5T_NATIVE_DOUBLE, n, out->rtime));
+    PetscCall(FCH5AppendRows(out->rank, out->step, H5T_NATIVE_LLONG, n, steps));
+    PetscCall(FCH5AppendRows(out->rank, out->energy, H5T_NATIVE_DOUBLE, n, out->renergy));
+    for (PetscInt r = 0; r < n; r++) { /* energy change over each step: a scheme adding energy shows here */
+      tmp[r]     = out->renergy[r] - out->elast;
+      out->elast = out->renergy[r];
+    }
+    PetscCall(FCH5AppendRows(out->rank, out->denergy, H5T_NATIVE_DOUBLE, n, tmp));
+    for (int p = 0; p < FC_PHASE_NUM; p++) {
+      for (PetscInt r = 0; r < n; r++) tmp[r] = out->rtiming[r * FC_PHASE_NUM + p];
+      PetscCall(FCH5AppendRows(out->rank, out->timing[p], H5T_NATIVE_DOUBLE, n, tmp));
+    }
+    for (PetscInt i = 0; i < nb; i++) {
+      for (PetscInt r = 0; r < n; r++)
+        for (int k = 0; k < 3; k++) tmp[3 * r + k] = out->rbody[(r * nb + i) * 10 + k];
+      PetscCall(FCH5AppendRows(out->rank, out->bo[i].centroid, H5T_NATIVE_DOUBLE, n, tmp));
+      for (PetscInt r = 0; r < n; r++)
+        for (int k = 0; k < 3; k++) tmp[3 * r + k] = out->rbody[(r * nb + i) * 10 + 7 + k];
+      PetscCall(FCH5AppendRows(out->rank, out->bo[i].energy, H5T_NATIVE_DOUBLE, n, tmp));
+      if (out->bo[i].rotation >= 0) {
+        for (PetscInt r = 0; r < n; r++)
+          for (int k = 0; k < 4; k++) tmp[4 * r + k] = out->rbody[(r * nb + i) * 10 + 3 + k];
+        PetscCall(FCH5AppendRows(out->rank, out->bo[i].rotation, H5T_NATIVE_DOUBLE, n, tmp));
+      }
+    }
+    PetscCall(PetscFree2(tmp, steps));
+    out->nrows = 0;
+  }
+  PetscCall(FlushContacts(out));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
+{
+  PetscFunctionBegin;
+  H5Dclose(out->time);
+  H5Dclose(out->step);
+  H5Dclose(out->energy);
+  H5Dclose(out->denergy);
+  for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
+  if (out->contacts) {
+    hid_t ds[] = {out->c_offset, out->c_bodies, out->c_point,     out->c_normal, out->c_force,  out->c_gap,
+                  out->c_gapend, out->c_state,  out->s_contacts,  out->s_rows,   out->s_sweeps, out->s_residual,
+                  out->s_maxpen, out->s_newton, out->s_violation, out->s_rmspen, out->s_compl,  out->s_cone};
+    for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) H5Dclose(ds[i]);
+  }
+  PetscCall(PetscFree(out->cbuf));
+  PetscCall(PetscFree(out->sbuf));
+  PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
+  PetscFunctionReturn(0);
+}
