@@ -56,8 +56,9 @@ def options(scene, s):
     sc = SCENES[scene]
     steps = int(round(sc["T"] / s["h"]))
     o = ["-options_file", sc["opts"], "-time_step", repr(s["h"]), "-time_steps", str(steps), "-output_every", str(steps),
-         "-constraint_scheme", s["scheme"], "-newton_max_it", str(s["newton"]), "-newton_tol", "0",
-         "-pgs_max_it", str(s["pgs_max_it"]), "-pgs_tol", repr(s["pgs_tol"]), "-compliance_type", s["compliance"],
+         "-constraint_scheme", s["scheme"]] + \
+        (["-newton_max_it", str(s["newton"]), "-newton_tol", "0"] if s["scheme"] != "explicit" else []) + \
+        ["-pgs_max_it", str(s["pgs_max_it"]), "-pgs_tol", repr(s["pgs_tol"]), "-compliance_type", s["compliance"],
          sc["mesh_option"], s["mesh"], "-quiet"]
     if s["refactor"] != 1:
         o += [sc["refactor_option"], str(s["refactor"])]

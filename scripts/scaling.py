@@ -259,7 +259,7 @@ def write_doc(a, rows):
          "distribution, first assembly and factorization, output). RSS is the largest peak resident memory of the "
          "ranks (`/usr/bin/time`)." % (a.ranks, a.check_ranks, a.steps, time.strftime("%Y-%m-%d"), platform.machine(),
                                         os.cpu_count()), "",
-         "W_H builders (`-compliance_type`, src/body/fem_compliance.c): `dense` solves A X = J^T with dense "
+         "W_H builders (`-compliance_type`, src/compliance/): `dense` solves A X = J^T with dense "
          "right-hand sides on the distributed factor; `schur` has MUMPS factor [[0, J],[J^T, A]] and return the Schur "
          "complement on rank 0; `inverse` asks MUMPS for the block of A^-1 on the contact DOFs S (ICNTL(30), "
          "W_b = J_S (A^-1)_SS J_S^T) from the distributed factor, on rank 0; `redundant` (the default) does the same "
@@ -281,7 +281,7 @@ def write_doc(a, rows):
             L.append("- **Wrong run**: %s, %s DOFs, `%s`, %d ranks ended %.1e (relative) away from the 1-rank run "
                      "(%d contacts at the last step); it is left out of the figures below and the plots. fecontact did not "
                      "detect it; the compliance W is now checked at every build (symmetric, non-negative diagonal, "
-                     "src/scheme/linearize.c) and a run whose W fails stops with exit status 2." % (
+                     "src/scheme/scheme.c) and a run whose W fails stops with exit status 2." % (
                          r["kind"], r["scene"], r["builder"], r["ranks"], r["vs_np1"], r["contacts"]))
     for sc in ("36k", "150k"):
         g = {ct: strong(sc, ct) for ct in BUILDERS}

@@ -5,6 +5,11 @@
 
 #define FC_MAX_NAME 64
 #define FC_MAX_BODIES 256 /* bodies of a scene, and contact pairs */
+#define FC_MAX_KNOWN 256  /* the names of a type registry, for error messages */
+
+/* Adds a type to a registry and its name to `known` (src/util/registry.c) */
+PETSC_INTERN PetscErrorCode FCRegistryAdd(PetscFunctionList *, char known[], size_t len, const char name[],
+                                          void (*create)(void));
 
 /* ---------------------------------------------------------------------------------------
    Small dense kernels (src/util/linalg.c): 3-vectors, 3x3 matrices (row-major), quaternions
@@ -27,7 +32,7 @@ PETSC_INTERN void FCQuatToMat3(const PetscReal[4], PetscReal[9]);
 PETSC_INTERN void FCQuatIntegrate(const PetscReal q[4], const PetscReal omega[3], PetscReal h, PetscReal qn[4]);
 
 /* ---------------------------------------------------------------------------------------
-   P1 tetrahedron kernels (src/fem/tet.c)
+   P1 tetrahedron kernels (src/element/tet.c)
    --------------------------------------------------------------------------------------- */
 /* Reference data of one tet: inverse edge matrix Dm^-1 (Dm = [X1-X0, X2-X0, X3-X0]) and volume */
 PETSC_INTERN PetscErrorCode FCTetReference(const PetscReal X[12], PetscReal Dminv[9], PetscReal *vol);
@@ -94,7 +99,7 @@ PETSC_INTERN PetscErrorCode FCShapeCreate_Cylinder(FCShape);
 PETSC_INTERN PetscErrorCode FCShapeCreate_Mesh(FCShape);
 
 /* ---------------------------------------------------------------------------------------
-   Tetrahedral mesh of a body (src/fem/mesh.c): reading, validation, per-cell vertex lists
+   Tetrahedral mesh of a body (src/mesh/mesh.c): reading, validation, per-cell vertex lists
    --------------------------------------------------------------------------------------- */
 typedef struct {
   DM         dm; /* DMPlex, distributed, interpolated                            */
@@ -224,8 +229,8 @@ enum { FC_AT_START, FC_AT_FREE, FC_AT_NOW };
 
 struct _p_FCBody {
   MPI_Comm  comm;
-  PetscBool deformable; /* set by the type: DOFs at mesh vertices, a surface that deforms (fem) */
-  PetscBool prescribed; /* set by the type: motion given, takes no force (kinematic)           */
+  PetscBool deformable;       /* set by the type: DOFs at mesh vertices, a surface that deforms (fem) */
+  PetscBool prescribed;       /* set by the type: motion given, takes no force (kinematic)           */
   PetscInt  state_cols;       /* set by the type: restart values per row ...                     */
   PetscBool state_per_vertex; /* ... one row per visual vertex (else one row, on rank 0)          */
   char      name[FC_MAX_NAME];
@@ -245,11 +250,11 @@ struct _p_FCBody {
 
 /* What a body is, and what code outside src/body/ may ask of it (src/body/body_ops.c): no other
    file reads body->ops or compares body type names. */
-PETSC_INTERN PetscBool      FCBodyIsDeformable(FCBody);    /* FE: vertex DOFs, a deforming surface     */
-PETSC_INTERN PetscBool      FCBodyIsPrescribed(FCBody);    /* kinematic: given motion, takes no force  */
-PETSC_INTERN PetscBool      FCBodyHasShape(FCBody);        /* a signed distance (rigid, kinematic)     */
-PETSC_INTERN PetscBool      FCBodyHasBoundedShape(FCBody); /* ... of a closed shape (not a plane)      */
-PETSC_INTERN PetscBool      FCBodyHasSurfaceTriangles(FCBody); /* FE bodies and mesh shapes           */
+PETSC_INTERN PetscBool FCBodyIsDeformable(FCBody);        /* FE: vertex DOFs, a deforming surface     */
+PETSC_INTERN PetscBool FCBodyIsPrescribed(FCBody);        /* kinematic: given motion, takes no force  */
+PETSC_INTERN PetscBool FCBodyHasShape(FCBody);            /* a signed distance (rigid, kinematic)     */
+PETSC_INTERN PetscBool FCBodyHasBoundedShape(FCBody);     /* ... of a closed shape (not a plane)      */
+PETSC_INTERN PetscBool FCBodyHasSurfaceTriangles(FCBody); /* FE bodies and mesh shapes           */
 /* Restart state: `cols` values per visual vertex (pervertex, distributed like the visual) or one
    row of `cols` values on rank 0 */
 PETSC_INTERN PetscErrorCode FCBodyGetStateLayout(FCBody, PetscInt *cols, PetscBool *pervertex);
@@ -268,7 +273,8 @@ PETSC_INTERN PetscErrorCode FCBodyAddPartialPosition(FCBody, const FCProximity *
 /* Contact response */
 PETSC_INTERN PetscErrorCode FCBodySetUpContact(FCBody); /* a body named in a contact pair, after FCBodySetUp */
 PETSC_INTERN PetscErrorCode FCBodyAddCompliance(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
-PETSC_INTERN PetscErrorCode FCBodyApplyCorrection(FCBody, PetscInt self, const FCContactSet *, const PetscReal lambda[]);
+PETSC_INTERN PetscErrorCode FCBodyApplyCorrection(FCBody, PetscInt self, const FCContactSet *,
+                                                  const PetscReal lambda[]);
 PETSC_INTERN PetscErrorCode FCBodySaveFreeMotion(FCBody);
 PETSC_INTERN PetscErrorCode FCBodyRestoreFreeMotion(FCBody);
 PETSC_INTERN PetscErrorCode FCBodyAddTrialPosition(FCBody, const FCProximity *, PetscReal x[3]);
@@ -317,8 +323,8 @@ PETSC_INTERN PetscErrorCode    FCComplianceSetFromOptions(FCCompliance); /* -com
 PETSC_INTERN PetscErrorCode    FCComplianceSetUp(FCCompliance);          /* at set-up, A at the reference state */
 PETSC_INTERN PetscErrorCode    FCComplianceFactor(FCCompliance);         /* after every factorization of A     */
 /* a builder that warps a reference compliance needs the body's best-fit rotation before each Add */
-PETSC_INTERN PetscBool         FCComplianceUsesRotation(FCCompliance);
-PETSC_INTERN PetscErrorCode    FCComplianceSetRotation(FCCompliance, const PetscReal R[9]);
+PETSC_INTERN PetscBool      FCComplianceUsesRotation(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceSetRotation(FCCompliance, const PetscReal R[9]);
 /* W (M x M, row-major, replicated) += J_b A^-1 J_b^T for the contacts touching body `self` */
 PETSC_INTERN PetscErrorCode FCComplianceAdd(FCCompliance, PetscInt self, const FCContactSet *, PetscReal W[]);
 /* dv += h A^-1 J_b^T lambda for the J_b of the last Add */

@@ -17,8 +17,9 @@ c = Checker("schemes np%d" % NP)
 res = {}
 for sch in ["explicit", "fast"]:
     f = out("plane_%s_np%d.h5" % (sch, NP))
-    run(["-options_file", "input/cube_drop.opts", "-time_steps", "45", "-constraint_scheme", sch, "-newton_tol", "1e-10",
-         "-output_file", f, "-quiet"], np_=NP)
+    newton = ["-newton_tol", "1e-10"] if sch != "explicit" else []  # the explicit scheme has no Newton loop
+    run(["-options_file", "input/cube_drop.opts", "-time_steps", "45", "-constraint_scheme", sch] + newton +
+        ["-output_file", f, "-quiet"], np_=NP)
     res[sch] = h5py.File(f, "r")
 nit = res["fast"]["steps/newton_iterations"][:]
 nc = res["fast"]["steps/contacts"][:]

@@ -13,17 +13,23 @@
    calls the body back. docs/architecture.md says how to add a builder. */
 #include "complianceimpl.h"
 
-PetscFunctionList FCComplianceList = NULL;
-static char       known[256]       = ""; /* the registered names, for error messages */
+PetscFunctionList FCComplianceList    = NULL;
+static char       known[FC_MAX_KNOWN] = ""; /* the registered names, for error messages */
 
 PetscErrorCode FCComplianceRegister(const char name[], PetscErrorCode (*create)(FCCompliance))
 {
   PetscFunctionBegin;
-  PetscCall(PetscFunctionListAdd(&FCComplianceList, name, create));
-  if (known[0]) PetscCall(PetscStrlcat(known, ", ", sizeof(known)));
-  PetscCall(PetscStrlcat(known, name, sizeof(known)));
+  PetscCall(FCRegistryAdd(&FCComplianceList, known, sizeof(known), name, (void (*)(void))create));
   PetscFunctionReturn(0);
 }
+
+/* The built-in types: a new type is one file with its create function, declared and registered here */
+PETSC_INTERN PetscErrorCode FCComplianceCreate_Dense(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceCreate_Sparse(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceCreate_Schur(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceCreate_Inverse(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceCreate_Redundant(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceCreate_Precomputed(FCCompliance);
 
 PetscErrorCode FCComplianceRegisterAll(void)
 {

@@ -40,10 +40,3 @@ PETSC_INTERN void FCComplianceDirection(const FCContact *, PetscInt side, PetscI
 PETSC_INTERN PetscErrorCode FCComplianceGetFactor(FCCompliance, Mat *F);
 /* Numeric Cholesky by MUMPS of a matrix a builder owns, with its failure checked (see the file) */
 PETSC_INTERN PetscErrorCode FCComplianceMumpsCholesky(FCCompliance, Mat F, Mat K, const char what[]);
-
-PETSC_INTERN PetscErrorCode FCComplianceCreate_Dense(FCCompliance);
-PETSC_INTERN PetscErrorCode FCComplianceCreate_Sparse(FCCompliance);
-PETSC_INTERN PetscErrorCode FCComplianceCreate_Schur(FCCompliance);
-PETSC_INTERN PetscErrorCode FCComplianceCreate_Inverse(FCCompliance);
-PETSC_INTERN PetscErrorCode FCComplianceCreate_Redundant(FCCompliance);
-PETSC_INTERN PetscErrorCode FCComplianceCreate_Precomputed(FCCompliance);

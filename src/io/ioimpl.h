@@ -40,6 +40,18 @@ typedef struct {
   hid_t group, centroid, rotation, energy, positions;
 } BodyOut;
 
+/* Buffered rows of /contacts (one per contact) and of the contact columns of /steps (one per
+   step); 8-byte fields only: each is written as a column by records.c */
+typedef struct {
+  long long bodies[2], state;
+  double    point[3], normal[3], force[3], gap, gap_end;
+} FCContactRecord;
+typedef struct {
+  long long         contacts, rows, sweeps, offset, newton;
+  double            residual;
+  FCContactMeasures m;
+} FCStepRecord;
+
 struct _p_FCOutput {
   MPI_Comm    comm;
   PetscMPIInt rank;
@@ -55,23 +67,16 @@ struct _p_FCOutput {
   double    elast; /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt  nframes, xdmfwritten;
   /* contacts (scenes with contact pairs only) */
-  PetscBool contacts;
-  hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state;
-  hid_t     s_contacts, s_rows, s_sweeps, s_residual, s_maxpen, s_newton, s_violation, s_rmspen, s_compl, s_cone;
-  long long ctotal;             /* contacts recorded so far */
-  PetscInt  nc, maxc, ns, maxs; /* buffered contact records and per-step rows */
-  struct {
-    long long bodies[2], state;
-    double    point[3], normal[3], force[3], gap, gap_end;
-  } * cbuf;
-  struct {
-    long long         contacts, rows, sweeps, offset, newton;
-    double            residual;
-    FCContactMeasures m;
-  } * sbuf;
-  double         *frametimes;
-  PetscInt        maxframes;
-  FCRestartWriter restart;
+  PetscBool        contacts;
+  hid_t            c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state;
+  hid_t            s_contacts, s_rows, s_sweeps, s_residual, s_maxpen, s_newton, s_violation, s_rmspen, s_compl, s_cone;
+  long long        ctotal;             /* contacts recorded so far */
+  PetscInt         nc, maxc, ns, maxs; /* buffered contact records and per-step rows */
+  FCContactRecord *cbuf;
+  FCStepRecord    *sbuf;
+  double          *frametimes;
+  PetscInt         maxframes;
+  FCRestartWriter  restart;
 };
 
 /* The per-step records (records.c): the initial_energy attribute, /steps and /contacts are created

@@ -3,6 +3,9 @@
    the centroid, rotation and energy of every body in /bodies/<name>, and every contact of every step
    in /contacts. Rows are buffered on rank 0 and appended at each flush (each output step). */
 #include "ioimpl.h"
+#include <stddef.h>
+
+_Static_assert(sizeof(PetscReal) == 8, "the contact records are written as 8-byte columns");
 
 /* The initial_energy attribute, /steps and, with contact pairs, /contacts */
 PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodies[], PetscBool contacts)
@@ -157,56 +160,56 @@ PetscErrorCode FCOutputRecordContacts(FCOutput out, const struct _FCContactSetVi
   PetscFunctionReturn(0);
 }
 
+/* One column of n buffered records: ncomp 8-byte values (long long or double) at `offset` in
+   records of `stride` bytes, gathered into buf and appended to dset */
+static PetscErrorCode AppendColumn(FCOutput out, hid_t dset, hid_t memtype, PetscInt n, const void *rec, size_t stride,
+                                   size_t offset, int ncomp, char *buf)
+{
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < n; k++)
+    PetscCall(PetscMemcpy(buf + 8 * ncomp * k, (const char *)rec + k * stride + offset, 8 * ncomp));
+  PetscCall(FCH5AppendRows(out->rank, dset, memtype, n, buf));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode FlushContacts(FCOutput out)
 {
-  PetscInt   n = out->nc, m = out->ns;
-  double    *d;
-  long long *l;
+  const size_t cs = sizeof(FCContactRecord), ss = sizeof(FCStepRecord);
+  const struct {
+    hid_t  dset, type;
+    int    steps; /* a column of the step records, else of the contact records */
+    size_t offset;
+    int    ncomp;
+  } col[] = {
+      {out->c_bodies, H5T_NATIVE_LLONG, 0, offsetof(FCContactRecord, bodies), 2},
+      {out->c_point, H5T_NATIVE_DOUBLE, 0, offsetof(FCContactRecord, point), 3},
+      {out->c_normal, H5T_NATIVE_DOUBLE, 0, offsetof(FCContactRecord, normal), 3},
+      {out->c_force, H5T_NATIVE_DOUBLE, 0, offsetof(FCContactRecord, force), 3},
+      {out->c_gap, H5T_NATIVE_DOUBLE, 0, offsetof(FCContactRecord, gap), 1},
+      {out->c_gapend, H5T_NATIVE_DOUBLE, 0, offsetof(FCContactRecord, gap_end), 1},
+      {out->c_state, H5T_NATIVE_LLONG, 0, offsetof(FCContactRecord, state), 1},
+      {out->c_offset, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, offset), 1},
+      {out->s_contacts, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, contacts), 1},
+      {out->s_rows, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, rows), 1},
+      {out->s_sweeps, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, sweeps), 1},
+      {out->s_residual, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, residual), 1},
+      {out->s_maxpen, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.max_penetration), 1},
+      {out->s_newton, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, newton), 1},
+      {out->s_violation, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.violation), 1},
+      {out->s_rmspen, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.rms_penetration), 1},
+      {out->s_compl, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.complementarity), 1},
+      {out->s_cone, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.cone_violation), 1},
+  };
+  char *buf;
 
   PetscFunctionBegin;
   if (!out->contacts) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc2(3 * n + 3 * m + 1, &d, 2 * n + 2 * m + 1, &l));
-  for (PetscInt k = 0; k < n; k++)
-    for (int i = 0; i < 2; i++) l[2 * k + i] = out->cbuf[k].bodies[i];
-  PetscCall(FCH5AppendRows(out->rank, out->c_bodies, H5T_NATIVE_LLONG, n, l));
-  for (PetscInt k = 0; k < n; k++)
-    for (int i = 0; i < 3; i++) d[3 * k + i] = out->cbuf[k].point[i];
-  PetscCall(FCH5AppendRows(out->rank, out->c_point, H5T_NATIVE_DOUBLE, n, d));
-  for (PetscInt k = 0; k < n; k++)
-    for (int i = 0; i < 3; i++) d[3 * k + i] = out->cbuf[k].normal[i];
-  PetscCall(FCH5AppendRows(out->rank, out->c_normal, H5T_NATIVE_DOUBLE, n, d));
-  for (PetscInt k = 0; k < n; k++)
-    for (int i = 0; i < 3; i++) d[3 * k + i] = out->cbuf[k].force[i];
-  PetscCall(FCH5AppendRows(out->rank, out->c_force, H5T_NATIVE_DOUBLE, n, d));
-  for (PetscInt k = 0; k < n; k++) d[k] = out->cbuf[k].gap;
-  PetscCall(FCH5AppendRows(out->rank, out->c_gap, H5T_NATIVE_DOUBLE, n, d));
-  for (PetscInt k = 0; k < n; k++) d[k] = out->cbuf[k].gap_end;
-  PetscCall(FCH5AppendRows(out->rank, out->c_gapend, H5T_NATIVE_DOUBLE, n, d));
-  for (PetscInt k = 0; k < n; k++) l[k] = out->cbuf[k].state;
-  PetscCall(FCH5AppendRows(out->rank, out->c_state, H5T_NATIVE_LLONG, n, l));
-  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].offset;
-  PetscCall(FCH5AppendRows(out->rank, out->c_offset, H5T_NATIVE_LLONG, m, l));
-  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].contacts;
-  PetscCall(FCH5AppendRows(out->rank, out->s_contacts, H5T_NATIVE_LLONG, m, l));
-  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].rows;
-  PetscCall(FCH5AppendRows(out->rank, out->s_rows, H5T_NATIVE_LLONG, m, l));
-  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].sweeps;
-  PetscCall(FCH5AppendRows(out->rank, out->s_sweeps, H5T_NATIVE_LLONG, m, l));
-  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].residual;
-  PetscCall(FCH5AppendRows(out->rank, out->s_residual, H5T_NATIVE_DOUBLE, m, d));
-  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.max_penetration;
-  PetscCall(FCH5AppendRows(out->rank, out->s_maxpen, H5T_NATIVE_DOUBLE, m, d));
-  for (PetscInt k = 0; k < m; k++) l[k] = out->sbuf[k].newton;
-  PetscCall(FCH5AppendRows(out->rank, out->s_newton, H5T_NATIVE_LLONG, m, l));
-  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.violation;
-  PetscCall(FCH5AppendRows(out->rank, out->s_violation, H5T_NATIVE_DOUBLE, m, d));
-  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.rms_penetration;
-  PetscCall(FCH5AppendRows(out->rank, out->s_rmspen, H5T_NATIVE_DOUBLE, m, d));
-  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.complementarity;
-  PetscCall(FCH5AppendRows(out->rank, out->s_compl, H5T_NATIVE_DOUBLE, m, d));
-  for (PetscInt k = 0; k < m; k++) d[k] = out->sbuf[k].m.cone_violation;
-  PetscCall(FCH5AppendRows(out->rank, out->s_cone, H5T_NATIVE_DOUBLE, m, d));
-  PetscCall(PetscFree2(d, l));
+  PetscCall(PetscMalloc1(8 * 3 * (out->nc + out->ns) + 8, &buf));
+  for (size_t i = 0; i < sizeof(col) / sizeof(col[0]); i++)
+    PetscCall(AppendColumn(out, col[i].dset, col[i].type, col[i].steps ? out->ns : out->nc,
+                           col[i].steps ? (const void *)out->sbuf : (const void *)out->cbuf, col[i].steps ? ss : cs,
+                           col[i].offset, col[i].ncomp, buf));
+  PetscCall(PetscFree(buf));
   out->nc = out->ns = 0;
   PetscFunctionReturn(0);
 }

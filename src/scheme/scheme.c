@@ -20,17 +20,20 @@
 #include "schemeimpl.h"
 #include <unistd.h>
 
-PetscFunctionList FCSchemeList = NULL;
-static char       known[256]   = ""; /* the registered names, for error messages */
+PetscFunctionList FCSchemeList        = NULL;
+static char       known[FC_MAX_KNOWN] = ""; /* the registered names, for error messages */
 
 PetscErrorCode FCSchemeRegister(const char name[], PetscErrorCode (*create)(FCScheme))
 {
   PetscFunctionBegin;
-  PetscCall(PetscFunctionListAdd(&FCSchemeList, name, create));
-  if (known[0]) PetscCall(PetscStrlcat(known, ", ", sizeof(known)));
-  PetscCall(PetscStrlcat(known, name, sizeof(known)));
+  PetscCall(FCRegistryAdd(&FCSchemeList, known, sizeof(known), name, (void (*)(void))create));
   PetscFunctionReturn(0);
 }
+
+/* The built-in types: a new type is one file with its create function, declared and registered here */
+PETSC_INTERN PetscErrorCode FCSchemeCreate_Explicit(FCScheme);
+PETSC_INTERN PetscErrorCode FCSchemeCreate_Standard(FCScheme);
+PETSC_INTERN PetscErrorCode FCSchemeCreate_Fast(FCScheme);
 
 PetscErrorCode FCSchemeRegisterAll(void)
 {

@@ -43,7 +43,3 @@ PETSC_INTERN PetscErrorCode FCSchemeLinearize(FCScheme, FCContactSet *, const Pe
                                               const PetscReal d[], PetscReal q[], PetscReal *frame_change);
 PETSC_INTERN PetscBool      FCSchemeConverged(FCScheme, PetscInt M, const PetscReal q[], const PetscReal qold[],
                                               PetscReal frame_change);
-
-PETSC_INTERN PetscErrorCode FCSchemeCreate_Explicit(FCScheme);
-PETSC_INTERN PetscErrorCode FCSchemeCreate_Standard(FCScheme);
-PETSC_INTERN PetscErrorCode FCSchemeCreate_Fast(FCScheme);

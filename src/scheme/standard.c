@@ -5,7 +5,7 @@
        PGS on the total force lambda (warm-started from the previous iteration)
        dv_b = dv_free,b + h A_b^-1 J_b,k^T lambda                                       (eq. 22, 24)
        proximity positions p_{k+1} = G(q_{k+1}) measured on the corrected state         (eq. 6)
-       frames and gaps re-linearized at p_{k+1} as in the fast scheme (linearize.c)
+       frames and gaps re-linearized at p_{k+1} as in the fast scheme (recursive.c)
    With a fixed A in the step (both schemes assemble A at its start) and fixed proximity maps it
    gives the fast scheme's forces and positions to round-off; it costs a solve per contact row
    per iteration instead of two matrix products. Options: -newton_max_it, -newton_tol (recursive.c). */

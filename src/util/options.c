@@ -178,7 +178,8 @@ PetscErrorCode FCOptionsCheckUnused(MPI_Comm comm)
       PetscCall(PetscSNPrintf(msg, sizeof(msg), "%s", names[i]));
       PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
       SETERRQ(comm, PETSC_ERR_USER_INPUT,
-              "Unknown or unused option -%s (misspelt, or for a body not in -scene_bodies? see docs/options.md; "
+              "Unknown or unused option -%s (misspelt, for a body not in -scene_bodies, or an option of a "
+              "-constraint_scheme or -compliance_type not chosen? see docs/options.md; "
               "-fecontact_allow_unknown_options turns this into a warning)",
               msg);
     }
