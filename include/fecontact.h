@@ -141,14 +141,19 @@ PETSC_EXTERN PetscErrorCode FCSceneDestroy(FCScene *);
    2 (2D: normal + one tangent) or 3 (normal + two tangents) rows, ordered [n t1 t2].
    --------------------------------------------------------------------------------------- */
 typedef struct _p_FCContactProblem *FCContactProblem;
-PETSC_EXTERN PetscErrorCode         FCContactProblemCreateDense(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
-                                                                const PetscReal W[], const PetscReal q[], FCContactProblem *);
-PETSC_EXTERN PetscErrorCode         FCContactProblemCreateCSR(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
-                                                              const PetscInt rowptr[], const PetscInt col[],
-                                                              const PetscReal val[], const PetscReal q[], FCContactProblem *);
-PETSC_EXTERN PetscErrorCode         FCContactProblemLoadFCLIB(const char path[], FCContactProblem *);
-PETSC_EXTERN PetscErrorCode         FCContactProblemGetSizes(FCContactProblem, PetscInt *ncontacts, PetscInt *nrows);
-PETSC_EXTERN PetscErrorCode         FCContactProblemVelocity(FCContactProblem, const PetscReal r[], PetscReal u[]);
+/* Dense W: n x n, row-major, symmetric, used in place (no copy): it must outlive the problem */
+PETSC_EXTERN PetscErrorCode FCContactProblemCreateDense(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
+                                                        const PetscReal W[], const PetscReal q[], FCContactProblem *);
+PETSC_EXTERN PetscErrorCode FCContactProblemCreateCSR(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
+                                                      const PetscInt rowptr[], const PetscInt col[],
+                                                      const PetscReal val[], const PetscReal q[], FCContactProblem *);
+PETSC_EXTERN PetscErrorCode FCContactProblemLoadFCLIB(const char path[], FCContactProblem *);
+PETSC_EXTERN PetscErrorCode FCContactProblemWriteFCLIB(FCContactProblem, const char path[]);
+PETSC_EXTERN PetscErrorCode FCContactProblemGetSizes(FCContactProblem, PetscInt *ncontacts, PetscInt *nrows);
+PETSC_EXTERN PetscErrorCode FCContactProblemGetFriction(FCContactProblem, PetscReal mu[]); /* per contact */
+/* New right-hand side q (n values); a dense W borrowed by the problem may change in place too */
+PETSC_EXTERN PetscErrorCode FCContactProblemSetRHS(FCContactProblem, const PetscReal q[]);
+PETSC_EXTERN PetscErrorCode FCContactProblemVelocity(FCContactProblem, const PetscReal r[], PetscReal u[]);
 /* Natural-map residual e_i = r_i - Proj_K(r_i - (u_i + mu ||u_T|| e_N)); returns sqrt(sum ||e_i||^2)
    (absolute) and that divided by max(||q||, eps) (relative, the normalization of Siconos 4.4) */
 PETSC_EXTERN PetscErrorCode FCContactProblemResidual(FCContactProblem, const PetscReal r[], PetscReal *abs,
@@ -166,6 +171,11 @@ typedef const char                *FCContactSolverType;
 PETSC_EXTERN PetscErrorCode FCContactSolverCreate(MPI_Comm, FCContactSolver *);
 PETSC_EXTERN PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver);
 PETSC_EXTERN PetscErrorCode FCContactSolverSetTolerances(FCContactSolver, PetscReal tol, PetscInt max_it);
+/* Called after every sweep with the iterate r: it may change the problem (FCContactProblemSetRHS,
+   the entries of a borrowed dense W) and r (e.g. the same forces in new frames), and says so in
+   *changed; the solver then recomputes W r + q and restarts its acceleration. NULL: none. */
+typedef PetscErrorCode (*FCContactSolverUpdateFn)(void *ctx, FCContactProblem, PetscReal r[], PetscBool *changed);
+PETSC_EXTERN PetscErrorCode FCContactSolverSetUpdate(FCContactSolver, FCContactSolverUpdateFn, void *ctx);
 /* r: warm start on input, solution on output */
 PETSC_EXTERN PetscErrorCode FCContactSolverSolve(FCContactSolver, FCContactProblem, PetscReal r[]);
 PETSC_EXTERN PetscErrorCode FCContactSolverGetConvergence(FCContactSolver, PetscInt *sweeps, PetscReal *residual,

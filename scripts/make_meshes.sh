@@ -37,6 +37,7 @@ MESHES=(
   "table1_24k   table1.geo    nx 20 ny 19 nz 21 d 0.05"
   "table1_30k   table1.geo    nx 20 ny 20 nz 25 d 0.05"
   "table1_36k   table1.geo    nx 24 ny 20 nz 25 d 0.05"
+  "cube_18      table1.geo    nx 18 ny 18 nz 18 d 0.0588235294117647"
 )
 
 failed=()

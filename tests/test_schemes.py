@@ -55,4 +55,20 @@ if same:
     err = np.abs(pa - pb).max() / np.abs(pa).max()
     c.check(err < 1e-9, "linear grasp: standard vs fast positions rel. diff %.2e < 1e-9" % err)
     c.check(np.all(a["steps/newton_iterations"][:][a["steps/contacts"][:] > 0] == 5), "newton_tol 0: always 5 Newton iterations")
+
+# -fast_update sweep: the frames follow the forces after every sweep, so that one Newton iteration
+# reaches the fixed point that many Newton iterations of the paper's update approach
+upd = {}
+for name, extra in [("newton12", ["-newton_max_it", "12"]), ("sweep1", ["-newton_max_it", "1", "-fast_update", "sweep"])]:
+    f = out("grasp_update_%s_np%d.h5" % (name, NP))
+    run(["-options_file", "input/grasp_rotate.opts", "-time_steps", "20", "-newton_tol", "0", "-output_file", f, "-quiet"] +
+        extra, np_=NP)
+    upd[name] = h5py.File(f, "r")
+a, b = upd["newton12"], upd["sweep1"]
+err = np.abs(sorted_positions(a, "object")[1] - sorted_positions(b, "object")[1]).max()
+c.check(err < 1e-7, "grasp: 1 Newton iteration with -fast_update sweep = 12 with the paper's update: positions differ by %.1e m < 1e-7" % err)
+cb = b["steps/complementarity"][:].max()
+c.check(cb < 1e-10,
+        "grasp: -fast_update sweep leaves complementarity %.1e < 1e-10 (12 Newton iterations: %.1e)" % (cb, a["steps/complementarity"][:].max()))
+c.check(np.all(b["steps/newton_iterations"][:][b["steps/contacts"][:] > 0] == 1), "sweep update: one Newton iteration per step")
 c.done()

@@ -143,21 +143,50 @@ static PetscErrorCode Build_Precomputed(FCCompliance comp, PetscInt self, const 
     PetscCall(MatDestroy(&B));
     PetscCall(MatDestroy(&X));
   }
-  for (PetscInt i = 0; i < ncols; i++)
-    for (PetscInt j = 0; j < ncols; j++) {
-      PetscReal w = 0.0;
-      for (int va = 0; va < 3; va++) {
-        if (si[3 * i + va] < 0) continue;
-        for (int vb = 0; vb < 3; vb++) {
-          const PetscReal *C;
-          if (si[3 * j + vb] < 0) continue;
-          C = &pre->cache[9 * pre->nsurf * pre->slot[si[3 * j + vb]] + 3 * si[3 * i + va]];
-          for (int d = 0; d < 3; d++)
-            for (int e = 0; e < 3; e++) w += co[9 * i + 3 * va + d] * C[d + ns3 * e] * co[9 * j + 3 * vb + e];
+  { /* W_b = Co^T G Co: G = C_0 on the surface vertices the contacts touch, gathered from the cache
+       into a contiguous 3nu x 3nu block (column-major), then T = G Co and W_b = Co^T T with unit-stride
+       inner loops (the cache itself is scattered over the slots) */
+    PetscInt  *u, *at, nu = 0, n3;
+    PetscReal *G, *T;
+    PetscCall(PetscMalloc2(3 * ncols + 1, &u, pre->nsurf + 1, &at));
+    for (PetscInt k = 0; k < 3 * ncols; k++)
+      if (si[k] >= 0) u[nu++] = si[k];
+    PetscCall(PetscSortRemoveDupsInt(&nu, u));
+    for (PetscInt a = 0; a < nu; a++) at[u[a]] = a;
+    n3 = 3 * nu;
+    PetscCall(PetscMalloc2(n3 * n3 + 1, &G, n3 * ncols + 1, &T));
+    for (PetscInt b = 0; b < nu; b++)
+      for (int e = 0; e < 3; e++) {
+        const PetscReal *src = &pre->cache[9 * pre->nsurf * pre->slot[u[b]] + ns3 * e];
+        PetscReal       *dst = &G[n3 * (3 * b + e)];
+        for (PetscInt a = 0; a < nu; a++)
+          for (int d = 0; d < 3; d++) dst[3 * a + d] = src[3 * u[a] + d];
+      }
+    PetscCall(PetscArrayzero(T, n3 * ncols));
+    for (PetscInt j = 0; j < ncols; j++)
+      for (int vb = 0; vb < 3; vb++) {
+        if (si[3 * j + vb] < 0) continue;
+        for (int e = 0; e < 3; e++) {
+          const PetscReal c = co[9 * j + 3 * vb + e], *g = &G[n3 * (3 * at[si[3 * j + vb]] + e)];
+          PetscReal      *t = &T[n3 * j];
+          for (PetscInt r = 0; r < n3; r++) t[r] += c * g[r];
         }
       }
-      Wb[i * ncols + j] = w;
-    }
+    for (PetscInt i = 0; i < ncols; i++)
+      for (PetscInt j = 0; j < ncols; j++) {
+        const PetscReal *t = &T[n3 * j];
+        PetscReal        w = 0.0;
+        for (int va = 0; va < 3; va++) {
+          PetscInt a = si[3 * i + va];
+          if (a < 0) continue;
+          a = 3 * at[a];
+          w += co[9 * i + 3 * va] * t[a] + co[9 * i + 3 * va + 1] * t[a + 1] + co[9 * i + 3 * va + 2] * t[a + 2];
+        }
+        Wb[i * ncols + j] = w;
+      }
+    PetscCall(PetscFree2(G, T));
+    PetscCall(PetscFree2(u, at));
+  }
   PetscCall(PetscFree3(si, co, newv));
   PetscFunctionReturn(0);
 }

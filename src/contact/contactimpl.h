@@ -9,8 +9,27 @@ struct _p_FCContactProblem {
   PetscInt  *rowptr, *col; /* block CSR over contacts, columns sorted         */
   PetscInt  *boff, *diag;  /* value offset of each block, diagonal block of each row */
   PetscReal *val;          /* blocks d_i x d_j, row-major                      */
+  /* dense W (FCContactProblemCreateDense): n x n, row-major, borrowed from the caller, which keeps
+     it alive while the problem exists; then the block CSR arrays above are NULL */
+  const PetscReal *Wd;
+  PetscBool        symmetric; /* W = W^T to round-off: its rows serve as its columns (dense: assumed) */
+  PetscReal        qnorm;     /* ||q||, the residual's normalization */
 };
 
+/* u = W r + q (dense: one BLAS gemv) */
+PETSC_INTERN PetscErrorCode FCContactProblemVelocityInternal(FCContactProblem, const PetscReal r[], PetscReal u[]);
+/* The relative natural-map residual of r given u = W r + q (no product with W) */
+PETSC_INTERN PetscReal FCContactProblemResidualFromVelocity(FCContactProblem, const PetscReal r[], const PetscReal u[]);
+/* u += W[:, rows of contact i] delta (d_i values): the change of u when r_i changes by delta;
+   needs a symmetric W (its rows are its columns) */
+PETSC_INTERN void FCContactProblemAddColumns(FCContactProblem, PetscInt i, const PetscReal delta[], PetscReal u[]);
+/* The diagonal block W_ii (d_i x d_i, row-major) */
+PETSC_INTERN void FCContactProblemDiagonalBlock(FCContactProblem, PetscInt i, PetscReal Wii[9]);
+
+/* FCContactLocalSolve with the slip direction bracketed on a grid only (no Newton): the reference
+   the tests hold the fast local solve against */
+PETSC_INTERN PetscErrorCode FCContactLocalSolveReference(PetscInt d, const PetscReal W[], const PetscReal q[],
+                                                         PetscReal mu, PetscReal r[], PetscReal *residual);
 /* Projection on the Coulomb cone {||x_T|| <= mu x_n} (d = 2, 3) or on R+ (d = 1) */
 PETSC_INTERN void FCContactProjectCone(PetscInt d, PetscReal mu, const PetscReal x[], PetscReal p[]);
 /* ||e||^2 of the natural map of one contact (see FCContactProblemResidual) */

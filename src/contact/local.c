@@ -2,8 +2,10 @@
      open   r = 0                                   when q_n >= 0
      stick  W r = -q, u = 0                         when r lies in the cone
      slip   u_n = 0, r_T = -mu r_n t, u_T = s t (s > 0): a root of g(theta) = u_T x t over the
-            slip direction t = (cos theta, sin theta), bracketed on a grid and bisected to
-            machine precision (2D: t = +-1)
+            slip direction t = (cos theta, sin theta), found by Newton's method on theta from the
+            direction the stick solution leaves the cone by (a few iterations, to round-off);
+            when Newton does not land on an admissible root, the roots are bracketed on a grid of
+            256 directions and bisected to machine precision (2D: t = +-1)
    The candidate is accepted when its natural-map residual is at round-off level; otherwise a
    projected fixed-point iteration finishes the job (degenerate or non-symmetric W). */
 #include "contactimpl.h"
@@ -101,7 +103,65 @@ static PetscBool Slip3(const PetscReal W[9], const PetscReal q[3], PetscReal mu,
   return r[0] > 0.0 ? PETSC_TRUE : PETSC_FALSE;
 }
 
-static PetscBool SolveSlip3(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal r[3])
+/* Slip3 with the derivative of g: r_n = -q_n / D(theta), r_T = -mu r_n t, u_T = q_T + W_Tn r_n + W_TT r_T */
+static PetscBool Slip3Newton(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal theta, PetscReal r[3],
+                             PetscReal *g, PetscReal *dg, PetscReal *dot)
+{
+  PetscReal c = PetscCosReal(theta), s = PetscSinReal(theta), D, dD, drn, drT[2], uT[2], duT[2];
+  D  = W[0] - mu * (W[1] * c + W[2] * s);
+  dD = -mu * (-W[1] * s + W[2] * c);
+  if (!(D > 0.0)) return PETSC_FALSE;
+  r[0]   = -q[0] / D;
+  drn    = -r[0] * dD / D;
+  r[1]   = -mu * r[0] * c;
+  r[2]   = -mu * r[0] * s;
+  drT[0] = -mu * (drn * c - r[0] * s);
+  drT[1] = -mu * (drn * s + r[0] * c);
+  for (int a = 0; a < 2; a++) {
+    const PetscReal *w = &W[3 * (1 + a)];
+    uT[a]              = q[1 + a] + w[0] * r[0] + w[1] * r[1] + w[2] * r[2];
+    duT[a]             = w[0] * drn + w[1] * drT[0] + w[2] * drT[1];
+  }
+  *g   = uT[0] * s - uT[1] * c;
+  *dg  = duT[0] * s + uT[0] * c - duT[1] * c + uT[1] * s;
+  *dot = uT[0] * c + uT[1] * s;
+  return r[0] > 0.0 ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* Newton on theta from theta0; true when it ends on an admissible slip (r_n > 0, u_T along t)
+   whose residual is at round-off */
+static PetscBool SolveSlip3Newton(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal theta,
+                                  PetscReal r[3])
+{
+  PetscReal g, dg, dot, rr[3];
+  for (int it = 0; it < 30; it++) {
+    PetscReal step;
+    if (!Slip3Newton(W, q, mu, theta, rr, &g, &dg, &dot)) return PETSC_FALSE;
+    if (g == 0.0 || dg == 0.0) break;
+    step = -g / dg;
+    if (step > 0.5) step = 0.5; /* no jump to another branch */
+    if (step < -0.5) step = -0.5;
+    theta += step;
+    if (PetscAbsReal(step) <= 4 * PETSC_MACHINE_EPSILON * PetscMax(1.0, PetscAbsReal(theta))) break;
+  }
+  if (!Slip3Newton(W, q, mu, theta, rr, &g, &dg, &dot) || dot < 0.0) return PETSC_FALSE;
+  if (!Accept(3, LocalError2(3, W, q, mu, rr), q, rr)) return PETSC_FALSE;
+  for (int c = 0; c < 3; c++) r[c] = rr[c];
+  return PETSC_TRUE;
+}
+
+/* Where Newton starts: the slip direction t opposes the tangential force, so the direction the
+   stick solution (rs, when it could be computed) leaves the cone by; else the free tangential
+   velocity q_T */
+static PetscReal SlipGuess(const PetscReal W[9], const PetscReal q[3], const PetscReal rs[3])
+{
+  PetscReal Wi[9];
+  if (FCMat3Det(W) != 0.0 && !FCMat3Inverse(W, Wi) && (rs[1] != 0.0 || rs[2] != 0.0))
+    return PetscAtan2Real(-rs[2], -rs[1]);
+  return PetscAtan2Real(q[2], q[1]);
+}
+
+static PetscBool SolveSlip3Grid(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal r[3])
 {
   const int N    = 256;
   PetscReal best = PETSC_MAX_REAL, rb[3] = {0, 0, 0};
@@ -183,17 +243,18 @@ static void FixedPoint(PetscInt d, const PetscReal W[], const PetscReal q[], Pet
   }
 }
 
-PetscErrorCode FCContactLocalSolve(PetscInt d, const PetscReal W[], const PetscReal q[], PetscReal mu, PetscReal r[],
-                                   PetscReal *residual)
+static PetscErrorCode LocalSolve(PetscInt d, const PetscReal W[], const PetscReal q[], PetscReal mu, PetscReal r[],
+                                 PetscReal *residual, PetscBool newton)
 {
-  PetscReal rr[3];
+  PetscReal rr[3] = {0.0, 0.0, 0.0};
 
   PetscFunctionBegin;
   if (q[0] >= 0.0) { /* open: r = 0, u = q, and u_n >= 0 makes u + mu ||u_T|| e_N dual-admissible */
     for (PetscInt a = 0; a < d; a++) r[a] = 0.0;
   } else if (SolveStick(d, W, q, rr) && Accept(d, LocalError2(d, W, q, mu, rr), q, rr)) {
     for (PetscInt a = 0; a < d; a++) r[a] = rr[a];
-  } else if (d == 3 && SolveSlip3(W, q, mu, rr)) {
+  } else if (d == 3 &&
+             ((newton && SolveSlip3Newton(W, q, mu, SlipGuess(W, q, rr), rr)) || SolveSlip3Grid(W, q, mu, rr))) {
     for (PetscInt a = 0; a < d; a++) r[a] = rr[a];
   } else if (d == 2 && SolveSlip2(W, q, mu, rr)) {
     for (PetscInt a = 0; a < d; a++) r[a] = rr[a];
@@ -201,5 +262,23 @@ PetscErrorCode FCContactLocalSolve(PetscInt d, const PetscReal W[], const PetscR
     FixedPoint(d, W, q, mu, r); /* starts from the caller's r (warm start) */
   }
   if (residual) *residual = PetscSqrtReal(LocalError2(d, W, q, mu, r));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCContactLocalSolve(PetscInt d, const PetscReal W[], const PetscReal q[], PetscReal mu, PetscReal r[],
+                                   PetscReal *residual)
+{
+  PetscFunctionBegin;
+  PetscCall(LocalSolve(d, W, q, mu, r, residual, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+/* The solver before Newton's slip direction (the grid bracket only): the reference of
+   tests/test_local_solve.c */
+PetscErrorCode FCContactLocalSolveReference(PetscInt d, const PetscReal W[], const PetscReal q[], PetscReal mu,
+                                            PetscReal r[], PetscReal *residual)
+{
+  PetscFunctionBegin;
+  PetscCall(LocalSolve(d, W, q, mu, r, residual, PETSC_FALSE));
   PetscFunctionReturn(0);
 }

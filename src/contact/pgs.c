@@ -19,25 +19,34 @@
                            r += beta p, p = beta p + g, beta = |g|^2 / |g_prev|^2, restart when
                            beta > 1; the iterate is projected on the cones, and a step that does not lower the residual
                            is undone (back to the sweep's iterate, restart) (default nncg: 2-5x fewer
-                           sweeps on the FCLIB problems, docs/contact-solver.md) */
+                           sweeps on the FCLIB problems, docs/contact-solver.md)
+     -pgs_dump_problem f.hdf5   write the first contact problem with at least -pgs_dump_rows rows
+                           (default 1) in the FCLIB layout, for tools/bench_pgs, tools/fclib_solve or
+                           Siconos (rank 0; contacts with friction and without cannot be mixed) */
 #include "contactimpl.h"
 
 struct _p_FCContactSolver {
-  MPI_Comm  comm;
-  PetscReal tol, residual, omega, proximal;
-  PetscInt  max_it, sweeps;
-  PetscBool converged, nncg, root; /* root: rank 0 solves and broadcasts (-pgs_ranks root) */
+  MPI_Comm                comm;
+  PetscReal               tol, residual, omega, proximal;
+  PetscInt                max_it, sweeps;
+  PetscBool               converged, nncg, root;    /* root: rank 0 solves and broadcasts (-pgs_ranks root) */
+  char                    dump[PETSC_MAX_PATH_LEN]; /* -pgs_dump_problem */
+  PetscInt                dump_rows;
+  PetscBool               dumped;
+  FCContactSolverUpdateFn update; /* after every sweep (FCContactSolverSetUpdate) */
+  void                   *updatectx;
 };
 
 PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
 {
   PetscFunctionBegin;
   PetscCall(PetscNew(solver));
-  (*solver)->comm   = comm;
-  (*solver)->tol    = 1e-8;
-  (*solver)->max_it = 1000;
-  (*solver)->omega  = 1.0;
-  (*solver)->nncg   = PETSC_TRUE;
+  (*solver)->comm      = comm;
+  (*solver)->tol       = 1e-8;
+  (*solver)->max_it    = 1000;
+  (*solver)->omega     = 1.0;
+  (*solver)->nncg      = PETSC_TRUE;
+  (*solver)->dump_rows = 1;
   PetscFunctionReturn(0);
 }
 
@@ -64,6 +73,14 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
                                 where[a], &a, NULL));
     s->root = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
+  PetscCall(PetscOptionsString("-pgs_dump_problem", "Write a contact problem to this FCLIB file", NULL, s->dump,
+                               s->dump, sizeof(s->dump), NULL));
+  if (s->dump[0]) {
+    PetscCall(FCOptionsInt(PetscOptionsObject, "-pgs_dump_rows", "Dump the first problem with at least this many rows",
+                           &s->dump_rows, NULL));
+    PetscCheck(s->dump_rows >= 1, s->comm, PETSC_ERR_USER_INPUT,
+               "Option -pgs_dump_rows must be >= 1, got %" PetscInt_FMT, s->dump_rows);
+  }
   PetscOptionsEnd();
   PetscCheck(s->omega > 0.0 && s->omega < 2.0, s->comm, PETSC_ERR_USER_INPUT,
              "Option -pgs_omega must lie in (0, 2), got %g", (double)s->omega);
@@ -75,6 +92,14 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCContactSolverSetUpdate(FCContactSolver s, FCContactSolverUpdateFn f, void *ctx)
+{
+  PetscFunctionBegin;
+  s->update    = f;
+  s->updatectx = ctx;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCContactSolverSetTolerances(FCContactSolver s, PetscReal tol, PetscInt max_it)
 {
   PetscFunctionBegin;
@@ -83,27 +108,38 @@ PetscErrorCode FCContactSolverSetTolerances(FCContactSolver s, PetscReal tol, Pe
   PetscFunctionReturn(0);
 }
 
-/* One sweep over the contacts, in place */
-static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[])
+/* One sweep over the contacts, in place (eq. 19). Column form (W symmetric: every dense W, and a
+   symmetric CSR W): u = q + W r is kept current; contact i's local problem is
+   (W_ii, u_i - W_ii r_i) and after it u += W[:, i] (r_i^new - r_i), so that a sweep reads W once,
+   row after row, with unit stride. Row form (a non-symmetric CSR W): q_i' from row i of W; the
+   caller recomputes u. */
+static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[], PetscReal u[])
 {
   PetscFunctionBegin;
   for (PetscInt i = 0; i < p->nc; i++) {
-    PetscInt         d = p->dim[i];
-    PetscReal        qi[3], Wi[9], ri[3], *r0 = &r[p->off[i]];
-    const PetscReal *Wii = &p->val[p->boff[p->diag[i]]];
-    for (PetscInt a = 0; a < d; a++) qi[a] = p->q[p->off[i] + a];
-    for (PetscInt b = p->rowptr[i]; b < p->rowptr[i + 1]; b++) {
-      PetscInt         j = p->col[b], dj = p->dim[j];
-      const PetscReal *B = &p->val[p->boff[b]];
-      if (j == i) continue;
-      for (PetscInt a = 0; a < d; a++)
-        for (PetscInt c = 0; c < dj; c++) qi[a] += B[a * dj + c] * r[p->off[j] + c];
+    PetscInt  d = p->dim[i], o = p->off[i];
+    PetscReal qi[3], Wi[9], ri[3], delta[3], *r0 = &r[o];
+    PetscBool changed = PETSC_FALSE;
+    FCContactProblemDiagonalBlock(p, i, Wi);
+    if (p->symmetric)
+      for (PetscInt a = 0; a < d; a++) {
+        qi[a] = u[o + a];
+        for (PetscInt b = 0; b < d; b++) qi[a] -= Wi[a * d + b] * r0[b];
+      }
+    else {
+      for (PetscInt a = 0; a < d; a++) qi[a] = p->q[o + a];
+      for (PetscInt b = p->rowptr[i]; b < p->rowptr[i + 1]; b++) {
+        PetscInt         j = p->col[b], dj = p->dim[j];
+        const PetscReal *B = &p->val[p->boff[b]];
+        if (j == i) continue;
+        for (PetscInt a = 0; a < d; a++)
+          for (PetscInt c = 0; c < dj; c++) qi[a] += B[a * dj + c] * r[p->off[j] + c];
+      }
     }
-    for (PetscInt a = 0; a < d * d; a++) Wi[a] = Wii[a];
     for (PetscInt a = 0; a < d; a++) ri[a] = r0[a];
     if (s->proximal > 0.0) { /* (W_ii + sigma I) r = -(q_i - sigma r_i): the same fixed points */
       PetscReal tr = 0.0, sigma;
-      for (PetscInt a = 0; a < d; a++) tr += Wii[a * d + a];
+      for (PetscInt a = 0; a < d; a++) tr += Wi[a * d + a];
       sigma = s->proximal * tr / d;
       for (PetscInt a = 0; a < d; a++) {
         Wi[a * d + a] += sigma;
@@ -116,7 +152,12 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
       for (PetscInt a = 0; a < d; a++) x[a] = (1.0 - s->omega) * r0[a] + s->omega * ri[a];
       FCContactProjectCone(d, p->mu[i], x, ri);
     }
-    for (PetscInt a = 0; a < d; a++) r0[a] = ri[a];
+    for (PetscInt a = 0; a < d; a++) {
+      delta[a] = ri[a] - r0[a];
+      changed  = changed || delta[a] != 0.0;
+      r0[a]    = ri[a];
+    }
+    if (changed && p->symmetric) FCContactProblemAddColumns(p, i, delta, u);
   }
   PetscFunctionReturn(0);
 }
@@ -131,11 +172,15 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  if (s->dump[0] && !s->dumped && p->n >= s->dump_rows) {
+    if (!rank) PetscCall(FCContactProblemWriteFCLIB(p, s->dump));
+    s->dumped = PETSC_TRUE;
+  }
   if (!s->root || size == 1) {
     PetscCall(SolveHere(s, p, r));
     PetscFunctionReturn(0);
   }
-  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   if (!rank) PetscCall(SolveHere(s, p, r));
   {
     PetscReal info[3] = {(PetscReal)s->sweeps, s->residual, (PetscReal)s->converged};
@@ -148,56 +193,108 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   PetscFunctionReturn(0);
 }
 
+/* The sweeps, with u = q + W r carried along: the residual of the stopping test and NNCG's
+   accept/undo decision come from (r, u) without a product with W. NNCG keeps W dir too (the change
+   of u over a sweep is W times the sweep's step), so its step costs no product either. In the
+   column form u is recomputed exactly (one product) every FC_PGS_EXACT sweeps, against the drift of
+   the incremental updates, and before the solver stops. */
+#define FC_PGS_EXACT 16
 static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
-  PetscReal *rold = NULL, *dir = NULL, *rsweep = NULL, gg_old = 0.0;
+  PetscInt   n   = p->n;
+  PetscBool  inc = p->symmetric; /* u kept by the sweeps */
+  PetscReal *u, *rold = NULL, *uold = NULL, *dir = NULL, *wdir = NULL, *rsweep = NULL, *usweep = NULL, gg_old = 0.0;
 
   PetscFunctionBegin;
   s->converged = PETSC_FALSE;
   s->sweeps    = 0;
-  for (PetscInt k = 0; k < p->n; k++)
+  for (PetscInt k = 0; k < n; k++)
     PetscCheck(!PetscIsInfOrNanReal(r[k]), PETSC_COMM_SELF, PETSC_ERR_FP,
                "Warm start of the contact solver has NaN/Inf");
-  PetscCall(FCContactProblemResidual(p, r, NULL, &s->residual));
-  if (s->nncg) PetscCall(PetscCalloc3(p->n, &rold, p->n, &dir, p->n, &rsweep));
+  PetscCall(PetscMalloc1(n + 1, &u));
+  PetscCall(FCContactProblemVelocityInternal(p, r, u));
+  s->residual = FCContactProblemResidualFromVelocity(p, r, u);
+  if (s->nncg)
+    PetscCall(PetscCalloc6(n + 1, &rold, n + 1, &uold, n + 1, &dir, n + 1, &wdir, n + 1, &rsweep, n + 1, &usweep));
   while (s->residual > s->tol && s->sweeps < s->max_it) {
     PetscBool moved    = PETSC_FALSE;
     PetscReal previous = s->residual;
-    if (s->nncg) PetscCall(PetscArraycpy(rold, r, p->n));
-    PetscCall(Sweep(s, p, r));
+    if (s->nncg) {
+      PetscCall(PetscArraycpy(rold, r, n));
+      PetscCall(PetscArraycpy(uold, u, n));
+    }
+    PetscCall(Sweep(s, p, r, u));
+    if (!inc) PetscCall(FCContactProblemVelocityInternal(p, r, u));
     if (s->nncg) { /* NNCG: conjugate the sweep's step with the previous direction */
       PetscReal gg = 0.0, beta;
-      for (PetscInt k = 0; k < p->n; k++) gg += PetscSqr(r[k] - rold[k]);
+      for (PetscInt k = 0; k < n; k++) gg += PetscSqr(r[k] - rold[k]);
       beta = gg_old > 0.0 ? gg / gg_old : 2.0;
       if (beta > 1.0) /* restart */
-        for (PetscInt k = 0; k < p->n; k++) dir[k] = r[k] - rold[k];
+        for (PetscInt k = 0; k < n; k++) {
+          dir[k]  = r[k] - rold[k];
+          wdir[k] = u[k] - uold[k];
+        }
       else {
-        PetscCall(PetscArraycpy(rsweep, r, p->n));
-        for (PetscInt k = 0; k < p->n; k++) {
-          PetscReal g = r[k] - rold[k];
+        PetscCall(PetscArraycpy(rsweep, r, n));
+        PetscCall(PetscArraycpy(usweep, u, n));
+        for (PetscInt k = 0; k < n; k++) {
+          PetscReal g = r[k] - rold[k], wg = u[k] - uold[k];
           r[k] += beta * dir[k];
-          dir[k] = beta * dir[k] + g;
+          u[k] += beta * wdir[k];
+          dir[k]  = beta * dir[k] + g;
+          wdir[k] = beta * wdir[k] + wg;
         }
-        for (PetscInt i = 0; i < p->nc; i++) {
-          PetscReal x[3];
-          for (PetscInt a = 0; a < p->dim[i]; a++) x[a] = r[p->off[i] + a];
-          FCContactProjectCone(p->dim[i], p->mu[i], x, &r[p->off[i]]);
+        for (PetscInt i = 0; i < p->nc; i++) { /* back into the cones, u following */
+          PetscInt  d = p->dim[i], o = p->off[i];
+          PetscReal x[3], delta[3];
+          PetscBool changed = PETSC_FALSE;
+          for (PetscInt a = 0; a < d; a++) x[a] = r[o + a];
+          FCContactProjectCone(d, p->mu[i], x, &r[o]);
+          for (PetscInt a = 0; a < d; a++) {
+            delta[a] = r[o + a] - x[a];
+            changed  = changed || delta[a] != 0.0;
+          }
+          if (changed && inc) FCContactProblemAddColumns(p, i, delta, u);
         }
+        if (!inc) PetscCall(FCContactProblemVelocityInternal(p, r, u));
         moved = PETSC_TRUE;
       }
       gg_old = gg;
     }
     s->sweeps++;
-    PetscCall(FCContactProblemResidual(p, r, NULL, &s->residual));
+    if (inc && s->sweeps % FC_PGS_EXACT == 0) PetscCall(FCContactProblemVelocityInternal(p, r, u));
+    s->residual = FCContactProblemResidualFromVelocity(p, r, u);
     if (moved && !(s->residual < previous)) { /* the step did not pay: back to the sweep's iterate, restart */
-      PetscCall(PetscArraycpy(r, rsweep, p->n));
-      for (PetscInt k = 0; k < p->n; k++) dir[k] = r[k] - rold[k];
-      PetscCall(FCContactProblemResidual(p, r, NULL, &s->residual));
+      PetscCall(PetscArraycpy(r, rsweep, n));
+      PetscCall(PetscArraycpy(u, usweep, n));
+      for (PetscInt k = 0; k < n; k++) {
+        dir[k]  = r[k] - rold[k];
+        wdir[k] = u[k] - uold[k];
+      }
+      s->residual = FCContactProblemResidualFromVelocity(p, r, u);
+    }
+    if (s->update) { /* the caller re-linearizes at this iterate: a new problem, the same unknowns */
+      PetscBool changed = PETSC_FALSE;
+      PetscCall((*s->update)(s->updatectx, p, r, &changed));
+      if (changed) {
+        PetscCall(FCContactProblemVelocityInternal(p, r, u));
+        s->residual = FCContactProblemResidualFromVelocity(p, r, u);
+        gg_old      = 0.0; /* NNCG restarts */
+      }
+    }
+    if (inc && s->residual <= s->tol) { /* converged on the carried u: confirm on the exact one */
+      PetscCall(FCContactProblemVelocityInternal(p, r, u));
+      s->residual = FCContactProblemResidualFromVelocity(p, r, u);
     }
     PetscCheck(!PetscIsInfOrNanReal(s->residual), PETSC_COMM_SELF, PETSC_ERR_FP,
                "Contact solver diverged (NaN residual) after %" PetscInt_FMT " sweeps", s->sweeps);
   }
-  if (s->nncg) PetscCall(PetscFree3(rold, dir, rsweep));
+  if (inc && s->sweeps && s->sweeps % FC_PGS_EXACT && s->residual > s->tol) { /* stopped by max_it: exact residual */
+    PetscCall(FCContactProblemVelocityInternal(p, r, u));
+    s->residual = FCContactProblemResidualFromVelocity(p, r, u);
+  }
+  if (s->nncg) PetscCall(PetscFree6(rold, uold, dir, wdir, rsweep, usweep));
+  PetscCall(PetscFree(u));
   s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }

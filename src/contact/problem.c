@@ -1,9 +1,11 @@
-/* FCContactProblem: the local frictional contact problem FC(W, q, mu) of eq. 18, with W stored
-   as a block-sparse matrix over contacts (blocks d_i x d_j, row-major). Dense W (from the
-   compliance of a scene) and scalar CSR W (FCLIB files) are both turned into this form. */
+/* FCContactProblem: the local frictional contact problem FC(W, q, mu) of eq. 18. W is kept dense
+   as given (the compliance of a scene: row-major, symmetric, borrowed, no copy) or as a
+   block-sparse matrix over contacts (blocks d_i x d_j, row-major) built from a scalar CSR matrix
+   (FCLIB files). The solver (pgs.c) reads W through the few functions below. */
 #include "../fcimpl.h"
 #include "contactimpl.h"
 #include <hdf5.h>
+#include <petscblaslapack.h>
 
 static PetscErrorCode ProblemAllocate(PetscInt nc, const PetscInt dim[], const PetscReal mu[], const PetscReal q[],
                                       FCContactProblem *prob)
@@ -27,7 +29,9 @@ static PetscErrorCode ProblemAllocate(PetscInt nc, const PetscInt dim[], const P
   p->n = p->off[nc];
   PetscCall(PetscMalloc1(p->n, &p->q));
   PetscCall(PetscArraycpy(p->q, q, p->n));
-  *prob = p;
+  for (PetscInt k = 0; k < p->n; k++) p->qnorm += q[k] * q[k];
+  p->qnorm = PetscSqrtReal(p->qnorm);
+  *prob    = p;
   PetscFunctionReturn(0);
 }
 
@@ -100,23 +104,68 @@ PetscErrorCode FCContactProblemCreateCSR(PetscInt nc, const PetscInt dim[], cons
         p->val[p->boff[b] + (k - p->off[i]) * p->dim[j] + (col[e] - p->off[j])] += val[e];
       }
   PetscCall(PetscFree2(contactOf, mark));
+  { /* symmetric to round-off: every block W_ij against W_ji^T */
+    PetscReal wmax = 0.0, asym = 0.0;
+    for (PetscInt e = 0; e < p->boff[nb]; e++) wmax = PetscMax(wmax, PetscAbsReal(p->val[e]));
+    for (PetscInt i = 0; i < nc; i++)
+      for (PetscInt b = p->rowptr[i]; b < p->rowptr[i + 1]; b++) {
+        PetscInt j = p->col[b], di = p->dim[i], dj = p->dim[j], bt;
+        PetscCall(PetscFindInt(i, p->rowptr[j + 1] - p->rowptr[j], &p->col[p->rowptr[j]], &bt));
+        if (bt >= 0) bt += p->rowptr[j];
+        if (bt < 0) {
+          asym = PETSC_MAX_REAL;
+          continue;
+        }
+        for (PetscInt a = 0; a < di; a++)
+          for (PetscInt c = 0; c < dj; c++)
+            asym = PetscMax(asym, PetscAbsReal(p->val[p->boff[b] + a * dj + c] - p->val[p->boff[bt] + c * di + a]));
+      }
+    p->symmetric = asym <= 1e-12 * wmax ? PETSC_TRUE : PETSC_FALSE;
+  }
   *prob = p;
   PetscFunctionReturn(0);
 }
 
+/* W (n x n, row-major, symmetric) is used in place: it must outlive the problem */
 PetscErrorCode FCContactProblemCreateDense(PetscInt nc, const PetscInt dim[], const PetscReal mu[], const PetscReal W[],
                                            const PetscReal q[], FCContactProblem *prob)
 {
-  PetscInt *rowptr, *col, n = 0;
-
   PetscFunctionBegin;
-  for (PetscInt i = 0; i < nc; i++) n += dim[i];
-  PetscCall(PetscMalloc2(n + 1, &rowptr, n * n + 1, &col));
-  for (PetscInt k = 0; k <= n; k++) rowptr[k] = k * n;
-  for (PetscInt k = 0; k < n * n; k++) col[k] = k % n;
-  PetscCall(FCContactProblemCreateCSR(nc, dim, mu, rowptr, col, W, q, prob));
-  PetscCall(PetscFree2(rowptr, col));
+  PetscCall(ProblemAllocate(nc, dim, mu, q, prob));
+  (*prob)->Wd        = W;
+  (*prob)->symmetric = PETSC_TRUE;
   PetscFunctionReturn(0);
+}
+
+void FCContactProblemDiagonalBlock(FCContactProblem p, PetscInt i, PetscReal Wii[9])
+{
+  PetscInt d = p->dim[i], o = p->off[i];
+  if (p->Wd) {
+    for (PetscInt a = 0; a < d; a++)
+      for (PetscInt b = 0; b < d; b++) Wii[a * d + b] = p->Wd[(o + a) * p->n + o + b];
+  } else
+    for (PetscInt a = 0; a < d * d; a++) Wii[a] = p->val[p->boff[p->diag[i]] + a];
+}
+
+/* The inner loop of a sweep: d_i rows of W (= columns, W symmetric) scaled into u, in one pass */
+void FCContactProblemAddColumns(FCContactProblem p, PetscInt i, const PetscReal delta[], PetscReal u[])
+{
+  PetscInt d = p->dim[i], o = p->off[i], n = p->n;
+  if (p->Wd) { /* the d rows of contact i are a column-major n x d block: u += block delta (BLAS: vectorized) */
+    PetscBLASInt bn = (PetscBLASInt)n, bd = (PetscBLASInt)d, one = 1;
+    PetscScalar  alpha = 1.0, beta = 1.0;
+    BLASgemv_("N", &bn, &bd, &alpha, p->Wd + o * n, &bn, delta, &one, &beta, u, &one);
+    return;
+  }
+  for (PetscInt b = p->rowptr[i]; b < p->rowptr[i + 1]; b++) { /* u_j += W_ji delta = W_ij^T delta */
+    PetscInt         j = p->col[b], dj = p->dim[j];
+    const PetscReal *B = &p->val[p->boff[b]];
+    for (PetscInt c = 0; c < dj; c++) {
+      PetscReal acc = 0.0;
+      for (PetscInt a = 0; a < d; a++) acc += B[a * dj + c] * delta[a];
+      u[p->off[j] + c] += acc;
+    }
+  }
 }
 
 PetscErrorCode FCContactProblemGetSizes(FCContactProblem p, PetscInt *nc, PetscInt *n)
@@ -127,13 +176,19 @@ PetscErrorCode FCContactProblemGetSizes(FCContactProblem p, PetscInt *nc, PetscI
   PetscFunctionReturn(0);
 }
 
-/* u = W r + q */
-PetscErrorCode FCContactProblemVelocity(FCContactProblem p, const PetscReal r[], PetscReal u[])
+PetscErrorCode FCContactProblemVelocityInternal(FCContactProblem p, const PetscReal r[], PetscReal u[])
 {
   PetscFunctionBegin;
+  PetscCall(PetscArraycpy(u, p->q, p->n));
+  if (p->Wd) { /* row-major W is W^T column-major: u += (W^T)^T r */
+    PetscBLASInt n, one = 1;
+    PetscScalar  alpha = 1.0, beta = 1.0;
+    PetscCall(PetscBLASIntCast(p->n, &n));
+    if (n) PetscCallBLAS("BLASgemv", BLASgemv_("T", &n, &n, &alpha, p->Wd, &n, r, &one, &beta, u, &one));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt i = 0; i < p->nc; i++) {
     PetscInt di = p->dim[i];
-    for (PetscInt a = 0; a < di; a++) u[p->off[i] + a] = p->q[p->off[i] + a];
     for (PetscInt b = p->rowptr[i]; b < p->rowptr[i + 1]; b++) {
       PetscInt         j = p->col[b], dj = p->dim[j];
       const PetscReal *B = &p->val[p->boff[b]];
@@ -144,19 +199,50 @@ PetscErrorCode FCContactProblemVelocity(FCContactProblem p, const PetscReal r[],
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCContactProblemSetRHS(FCContactProblem p, const PetscReal q[])
+{
+  PetscFunctionBegin;
+  PetscCall(PetscArraycpy(p->q, q, p->n));
+  p->qnorm = 0.0;
+  for (PetscInt k = 0; k < p->n; k++) p->qnorm += q[k] * q[k];
+  p->qnorm = PetscSqrtReal(p->qnorm);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCContactProblemGetFriction(FCContactProblem p, PetscReal mu[])
+{
+  PetscFunctionBegin;
+  PetscCall(PetscArraycpy(mu, p->mu, p->nc));
+  PetscFunctionReturn(0);
+}
+
+/* u = W r + q */
+PetscErrorCode FCContactProblemVelocity(FCContactProblem p, const PetscReal r[], PetscReal u[])
+{
+  PetscFunctionBegin;
+  PetscCall(FCContactProblemVelocityInternal(p, r, u));
+  PetscFunctionReturn(0);
+}
+
+PetscReal FCContactProblemResidualFromVelocity(FCContactProblem p, const PetscReal r[], const PetscReal u[])
+{
+  PetscReal sum = 0.0;
+  for (PetscInt i = 0; i < p->nc; i++)
+    sum += FCContactNaturalMapError2(p->dim[i], p->mu[i], &r[p->off[i]], &u[p->off[i]]);
+  return PetscSqrtReal(sum) / PetscMax(p->qnorm, PETSC_MACHINE_EPSILON);
+}
+
 PetscErrorCode FCContactProblemResidual(FCContactProblem p, const PetscReal r[], PetscReal *abs, PetscReal *rel)
 {
-  PetscReal *u, sum = 0.0, nq = 0.0;
+  PetscReal *u, rr;
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(p->n, &u));
-  PetscCall(FCContactProblemVelocity(p, r, u));
-  for (PetscInt i = 0; i < p->nc; i++)
-    sum += FCContactNaturalMapError2(p->dim[i], p->mu[i], &r[p->off[i]], &u[p->off[i]]);
-  for (PetscInt k = 0; k < p->n; k++) nq += p->q[k] * p->q[k];
+  PetscCall(FCContactProblemVelocityInternal(p, r, u));
+  rr = FCContactProblemResidualFromVelocity(p, r, u);
   PetscCall(PetscFree(u));
-  if (abs) *abs = PetscSqrtReal(sum);
-  if (rel) *rel = PetscSqrtReal(sum) / PetscMax(PetscSqrtReal(nq), PETSC_MACHINE_EPSILON);
+  if (abs) *abs = rr * PetscMax(p->qnorm, PETSC_MACHINE_EPSILON);
+  if (rel) *rel = rr;
   PetscFunctionReturn(0);
 }
 
@@ -288,5 +374,82 @@ PetscErrorCode FCContactProblemLoadFCLIB(const char path[], FCContactProblem *pr
   PetscCall(PetscFree(q));
   PetscCall(PetscFree(mu));
   PetscCall(PetscFree(sd));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteArray(hid_t g, const char name[], hid_t type, hsize_t n, const void *v)
+{
+  hid_t s = H5Screate_simple(1, &n, NULL), d = H5Dcreate2(g, name, type, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+
+  PetscFunctionBegin;
+  PetscCheck(d >= 0 && H5Dwrite(d, type == H5T_STD_I64LE ? H5T_NATIVE_LLONG : H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
+                                H5P_DEFAULT, v) >= 0,
+             PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write FCLIB dataset %s", name);
+  H5Dclose(d);
+  H5Sclose(s);
+  PetscFunctionReturn(0);
+}
+
+/* The problem in the FCLIB local layout that FCContactProblemLoadFCLIB reads (W in CSR, nz = -2),
+   for tools/bench_pgs and Siconos; every contact must have the same number of rows */
+PetscErrorCode FCContactProblemWriteFCLIB(FCContactProblem p, const char path[])
+{
+  hid_t      f, g, w, v;
+  long long *rowptr, *col, one[1];
+  PetscReal *val;
+  PetscInt   nnz = 0, e = 0, n = p->n;
+
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < p->nc; i++)
+    PetscCheck(p->dim[i] == p->dim[0], PETSC_COMM_SELF, PETSC_ERR_SUP,
+               "FCLIB needs the same rows for every contact: contact %" PetscInt_FMT " has %" PetscInt_FMT
+               ", contact 0 %" PetscInt_FMT,
+               i, p->dim[i], p->dim[0]);
+  if (p->Wd)
+    nnz = n * n;
+  else
+    for (PetscInt i = 0; i < p->nc; i++)
+      for (PetscInt b = p->rowptr[i]; b < p->rowptr[i + 1]; b++) nnz += p->dim[i] * p->dim[p->col[b]];
+  PetscCall(PetscMalloc3(n + 1, &rowptr, nnz + 1, &col, nnz + 1, &val));
+  rowptr[0] = 0;
+  for (PetscInt i = 0; i < p->nc; i++)
+    for (PetscInt a = 0; a < p->dim[i]; a++) {
+      if (p->Wd)
+        for (PetscInt k = 0; k < n; k++, e++) {
+          col[e] = k;
+          val[e] = p->Wd[(p->off[i] + a) * n + k];
+        }
+      else
+        for (PetscInt b = p->rowptr[i]; b < p->rowptr[i + 1]; b++) {
+          PetscInt j = p->col[b], dj = p->dim[j];
+          for (PetscInt c = 0; c < dj; c++, e++) {
+            col[e] = p->off[j] + c;
+            val[e] = p->val[p->boff[b] + a * dj + c];
+          }
+        }
+      rowptr[p->off[i] + a + 1] = e;
+    }
+  f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  PetscCheck(f >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot create FCLIB file '%s'", path);
+  g      = H5Gcreate2(f, "/fclib_local", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  w      = H5Gcreate2(g, "W", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  v      = H5Gcreate2(g, "vectors", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  one[0] = n;
+  PetscCall(WriteArray(w, "m", H5T_STD_I64LE, 1, one));
+  PetscCall(WriteArray(w, "n", H5T_STD_I64LE, 1, one));
+  one[0] = -2;
+  PetscCall(WriteArray(w, "nz", H5T_STD_I64LE, 1, one));
+  PetscCall(WriteArray(w, "p", H5T_STD_I64LE, n + 1, rowptr));
+  PetscCall(WriteArray(w, "i", H5T_STD_I64LE, nnz, col));
+  PetscCall(WriteArray(w, "x", H5T_IEEE_F64LE, nnz, val));
+  PetscCall(WriteArray(v, "q", H5T_IEEE_F64LE, n, p->q));
+  PetscCall(WriteArray(v, "mu", H5T_IEEE_F64LE, p->nc, p->mu));
+  one[0] = p->nc ? p->dim[0] : 3;
+  PetscCall(WriteArray(g, "spacedim", H5T_STD_I64LE, 1, one));
+  H5Gclose(v);
+  H5Gclose(w);
+  H5Gclose(g);
+  H5Fclose(f);
+  PetscCall(PetscFree3(rowptr, col, val));
   PetscFunctionReturn(0);
 }

@@ -14,13 +14,18 @@
    the proximity points do not carry). The loop stops when frames and right-hand sides change by
    less than -newton_tol (0: always -newton_max_it). One correction per body at the end:
    dv = dv_free + h A^-1 H^T F.
-   Options (besides -newton_max_it and -newton_tol, recursive.c): the types of W_H (dense), the
-   frames C (sparse) and the force vectors, host by default; on a GPU build
-     -wh_mat_type seqdensecuda -frames_mat_type seqaijcusparse -contact_vec_type seqcuda (docs/gpu.md) */
+   Options (besides -newton_max_it and -newton_tol, recursive.c):
+     -fast_update newton|sweep   when the frames follow the forces: between contact solves, as the
+                                 paper (default), or also after every sweep of the contact solver
+                                 (beyond the paper: its closing remark; docs/accuracy.md measures it)
+     the types of W_H (dense), the frames C (sparse) and the force vectors, host by default; on a
+     GPU build -wh_mat_type seqdensecuda -frames_mat_type seqaijcusparse -contact_vec_type seqcuda
+     (docs/gpu.md) */
 #include "schemeimpl.h"
 
 typedef struct {
-  char wh_mat_type[FC_MAX_NAME], frames_mat_type[FC_MAX_NAME], vec_type[FC_MAX_NAME];
+  char      wh_mat_type[FC_MAX_NAME], frames_mat_type[FC_MAX_NAME], vec_type[FC_MAX_NAME];
+  PetscBool sweep_update; /* -fast_update sweep */
 } Fast;
 
 /* A matrix (ismat) or vector type given by an option is known to this PETSc build: a CUDA type in
@@ -61,6 +66,14 @@ static PetscErrorCode SetFromOptions_Fast(FCScheme scheme, PetscOptionItems *Pet
                                fast->frames_mat_type, fast->frames_mat_type, sizeof(fast->frames_mat_type), NULL));
   PetscCall(PetscOptionsString("-contact_vec_type", "Vector type of the contact forces (fast scheme)", NULL,
                                fast->vec_type, fast->vec_type, sizeof(fast->vec_type), NULL));
+  {
+    const char *when[] = {"newton", "sweep"};
+    PetscInt    a      = fast->sweep_update ? 1 : 0;
+    PetscCall(PetscOptionsEList("-fast_update",
+                                "When the frames follow the forces: between contact solves, or after every sweep", NULL,
+                                when, 2, when[a], &a, NULL));
+    fast->sweep_update = a == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->wh_mat_type, "-wh_mat_type"));
   PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->frames_mat_type, "-frames_mat_type"));
   PetscCall(CheckType(scheme->comm, PETSC_FALSE, fast->vec_type, "-contact_vec_type"));
@@ -97,130 +110,188 @@ static PetscErrorCode AssembleFrames(const FCContactSet *set, Mat C)
   PetscFunctionReturn(0);
 }
 
+/* What one step of the scheme works on */
+typedef struct {
+  FCScheme      scheme;
+  FCContactSet *set, H; /* the contacts, and the same in identity frames (W_H's rows) */
+  PetscInt      nc, n3, M;
+  Mat           WHm, C, U, Ut, Wk;
+  Vec           F, dvec, lam; /* world forces, W_H F, forces in the frames */
+  PetscReal    *dfree, *d0, *q, *qold, *d;
+  PetscInt      rebuilds; /* W_k rebuilt inside the contact solver (-fast_update sweep) */
+} FastStep;
+
+/* W_k = C_k W_H C_k^T for the frames of the contact set: U = C W_H (AIJ x dense), W_k = C U^T */
+static PetscErrorCode RebuildW(FastStep *fs)
+{
+  PetscFunctionBegin;
+  PetscCall(AssembleFrames(fs->set, fs->C));
+  PetscCall(MatMatMult(fs->C, fs->WHm, fs->U ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &fs->U));
+  PetscCall(MatDestroy(&fs->Ut));
+  PetscCall(MatTranspose(fs->U, MAT_INITIAL_MATRIX, &fs->Ut));
+  PetscCall(MatMatMult(fs->C, fs->Ut, fs->Wk ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &fs->Wk));
+  PetscFunctionReturn(0);
+}
+
+/* F = C_k^T lambda and the proximity update d = d_free + h^2 W_H F (eq. 31) */
+static PetscErrorCode ProximityUpdate(FastStep *fs, const PetscReal lambda[])
+{
+  PetscScalar       *l;
+  const PetscScalar *dv;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArray(fs->lam, &l));
+  for (PetscInt r = 0; r < fs->M; r++) l[r] = lambda[r];
+  PetscCall(VecRestoreArray(fs->lam, &l));
+  PetscCall(MatMultTranspose(fs->C, fs->lam, fs->F));
+  PetscCall(MatMult(fs->WHm, fs->F, fs->dvec));
+  PetscCall(VecGetArrayRead(fs->dvec, &dv));
+  for (PetscInt i = 0; i < fs->n3; i++) fs->d[i] = fs->dfree[i] + PetscRealPart(dv[i]);
+  PetscCall(VecRestoreArrayRead(fs->dvec, &dv));
+  PetscFunctionReturn(0);
+}
+
+/* lambda = C_k F: the world forces in the current frames */
+static PetscErrorCode ForcesInFrames(FastStep *fs, PetscReal lambda[])
+{
+  const PetscScalar *l;
+
+  PetscFunctionBegin;
+  PetscCall(MatMult(fs->C, fs->F, fs->lam));
+  PetscCall(VecGetArrayRead(fs->lam, &l));
+  for (PetscInt r = 0; r < fs->M; r++) lambda[r] = PetscRealPart(l[r]);
+  PetscCall(VecRestoreArrayRead(fs->lam, &l));
+  PetscFunctionReturn(0);
+}
+
+/* -fast_update sweep: after every sweep of the contact solver, the proximity update and the
+   re-linearization at the sweep's forces; when the frames moved, W_k is rebuilt in place (the
+   problem reads W_k's array) and the forces are carried to the new frames (the paper's closing
+   remark: the fast update is cheap enough to refresh the directions inside the solve) */
+static PetscErrorCode UpdateAfterSweep(void *ctx, FCContactProblem prob, PetscReal r[], PetscBool *changed)
+{
+  FastStep *fs = (FastStep *)ctx;
+  PetscReal change, dq = 0.0, qs = 0.0;
+
+  PetscFunctionBegin;
+  *changed = PETSC_FALSE;
+  PetscCall(ProximityUpdate(fs, r));
+  PetscCall(PetscArraycpy(fs->qold, fs->q, fs->M));
+  PetscCall(FCSchemeLinearize(fs->scheme, fs->set, fs->dfree, fs->d0, fs->d, fs->q, &change));
+  for (PetscInt k = 0; k < fs->M; k++) {
+    dq = PetscMax(dq, PetscAbsReal(fs->q[k] - fs->qold[k]));
+    qs = PetscMax(qs, PetscAbsReal(fs->q[k]));
+  }
+  if (change == 0.0 && dq <= PETSC_MACHINE_EPSILON * qs) PetscFunctionReturn(0);
+  if (change > 0.0) {
+    const PetscScalar *w;
+    PetscCall(RebuildW(fs));
+    PetscCall(MatDenseGetArrayRead(fs->Wk, &w)); /* the same array: MAT_REUSE_MATRIX */
+    FCContactSetNormalCompliance(fs->set, w);
+    PetscCall(MatDenseRestoreArrayRead(fs->Wk, &w));
+    PetscCall(ForcesInFrames(fs, r));
+    fs->rebuilds++;
+  }
+  PetscCall(FCContactProblemSetRHS(prob, fs->q));
+  *changed = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCContactSet *previous, FCSchemeStats *st)
 {
   Fast            *fast = (Fast *)scheme->data;
-  FCContactSet     H    = {0};
+  FastStep         fs   = {0};
   PetscInt         nc = set->n, n3 = 3 * set->n, M = set->nrows, *dims;
-  PetscReal       *WH, *dfree, *d0, *q, *qold, *mu, *lambda, change = 0.0;
-  Mat              WHm, C = NULL, U = NULL, Ut = NULL, Wk = NULL;
-  Vec              F, dvec, lam;
+  PetscReal       *WH, *mu, *lambda, change = 0.0;
   FCContactProblem prob;
   PetscBool        conv;
 
   PetscFunctionBegin;
+  fs.scheme = scheme;
+  fs.set    = set;
+  fs.nc     = nc;
+  fs.n3     = n3;
+  fs.M      = M;
   /* W_H once per step: the bodies' builders on the contacts in identity frames */
-  PetscCall(FCContactSetCopy(set, &H));
+  PetscCall(FCContactSetCopy(set, &fs.H));
   for (PetscInt k = 0; k < nc; k++) {
-    FCContact *c = &H.c[k];
+    FCContact *c = &fs.H.c[k];
     for (int i = 0; i < 3; i++) c->n[i] = c->t1[i] = c->t2[i] = 0.0;
     c->n[0] = c->t1[1] = c->t2[2] = 1.0;
     c->dim                        = 3;
     c->row                        = 3 * k;
   }
-  H.nrows = n3;
-  PetscCall(MatCreate(PETSC_COMM_SELF, &WHm));
-  PetscCall(MatSetSizes(WHm, n3, n3, n3, n3));
-  PetscCall(MatSetType(WHm, fast->wh_mat_type));
-  PetscCall(MatSetUp(WHm));
-  PetscCall(MatDenseGetArrayWrite(WHm, &WH)); /* symmetric: row/column-major alike */
+  fs.H.nrows = n3;
+  PetscCall(MatCreate(PETSC_COMM_SELF, &fs.WHm));
+  PetscCall(MatSetSizes(fs.WHm, n3, n3, n3, n3));
+  PetscCall(MatSetType(fs.WHm, fast->wh_mat_type));
+  PetscCall(MatSetUp(fs.WHm));
+  PetscCall(MatDenseGetArrayWrite(fs.WHm, &WH)); /* symmetric: row/column-major alike */
   PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
-  PetscCall(FCSchemeCompliance(scheme, &H, WH));
+  PetscCall(FCSchemeCompliance(scheme, &fs.H, WH));
   PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
-  PetscCall(MatDenseRestoreArrayWrite(WHm, &WH));
+  PetscCall(MatDenseRestoreArrayWrite(fs.WHm, &WH));
 
-  PetscCall(PetscMalloc6(n3, &dfree, n3, &d0, M, &q, M, &qold, nc, &mu, nc, &dims));
-  PetscCall(PetscMalloc1(M, &lambda));
+  PetscCall(PetscMalloc6(n3, &fs.dfree, n3, &fs.d0, M, &fs.q, M, &fs.qold, nc, &mu, nc, &dims));
+  PetscCall(PetscMalloc2(M, &lambda, n3, &fs.d));
   /* first linearization: the frames of the collision detection, gaps at the start of the step */
-  FCSchemeStartLinearization(set, dfree, d0, q, mu, dims);
-  PetscCall(VecCreate(PETSC_COMM_SELF, &F));
-  PetscCall(VecSetSizes(F, n3, n3));
-  PetscCall(VecSetType(F, fast->vec_type));
-  PetscCall(VecDuplicate(F, &dvec));
-  PetscCall(VecCreate(PETSC_COMM_SELF, &lam));
-  PetscCall(VecSetSizes(lam, M, M));
-  PetscCall(VecSetType(lam, fast->vec_type));
+  FCSchemeStartLinearization(set, fs.dfree, fs.d0, fs.q, mu, dims);
+  PetscCall(VecCreate(PETSC_COMM_SELF, &fs.F));
+  PetscCall(VecSetSizes(fs.F, n3, n3));
+  PetscCall(VecSetType(fs.F, fast->vec_type));
+  PetscCall(VecDuplicate(fs.F, &fs.dvec));
+  PetscCall(VecCreate(PETSC_COMM_SELF, &fs.lam));
+  PetscCall(VecSetSizes(fs.lam, M, M));
+  PetscCall(VecSetType(fs.lam, fast->vec_type));
   { /* warm start: the previous step's force of the same contact, in the world frame */
     PetscScalar *f;
-    PetscCall(VecGetArray(F, &f));
+    PetscCall(VecGetArray(fs.F, &f));
     for (PetscInt k = 0; k < nc; k++) {
       PetscReal Fw[3];
       FCContactPreviousForce(previous, &set->c[k], Fw);
       for (int i = 0; i < 3; i++) f[3 * k + i] = Fw[i];
     }
-    PetscCall(VecRestoreArray(F, &f));
+    PetscCall(VecRestoreArray(fs.F, &f));
   }
-  PetscCall(MatCreate(PETSC_COMM_SELF, &C));
-  PetscCall(MatSetSizes(C, M, n3, M, n3));
-  PetscCall(MatSetType(C, fast->frames_mat_type));
-  PetscCall(MatSeqAIJSetPreallocation(C, 3, NULL));
-  PetscCall(MatSetOption(C, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  PetscCall(MatCreate(PETSC_COMM_SELF, &fs.C));
+  PetscCall(MatSetSizes(fs.C, M, n3, M, n3));
+  PetscCall(MatSetType(fs.C, fast->frames_mat_type));
+  PetscCall(MatSeqAIJSetPreallocation(fs.C, 3, NULL));
+  PetscCall(MatSetOption(fs.C, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  if (fast->sweep_update) PetscCall(FCContactSolverSetUpdate(scheme->solver, UpdateAfterSweep, &fs));
 
   for (PetscInt it = 1; it <= scheme->newton_max_it; it++) {
     const PetscScalar *w;
     PetscInt           sweeps;
     PetscCall(PetscLogEventBegin(FC_EVENT_NEWTON, 0, 0, 0, 0));
-    /* W_k = C_k W_H C_k^T: U = C W_H (AIJ x dense), W_k = C U^T */
     PetscCall(FCPhaseBegin(FC_PHASE_REBUILD_W));
-    PetscCall(AssembleFrames(set, C));
-    if (!U)
-      PetscCall(MatMatMult(C, WHm, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &U));
-    else
-      PetscCall(MatMatMult(C, WHm, MAT_REUSE_MATRIX, PETSC_DEFAULT, &U));
-    PetscCall(MatDestroy(&Ut));
-    PetscCall(MatTranspose(U, MAT_INITIAL_MATRIX, &Ut));
-    if (!Wk)
-      PetscCall(MatMatMult(C, Ut, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &Wk));
-    else
-      PetscCall(MatMatMult(C, Ut, MAT_REUSE_MATRIX, PETSC_DEFAULT, &Wk));
+    PetscCall(RebuildW(&fs));
     PetscCall(FCPhaseEnd(FC_PHASE_REBUILD_W));
     /* PGS on the total force, warm-started from C_k F_{k-1} */
     PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
-    PetscCall(MatMult(C, F, lam));
-    {
-      const PetscScalar *l;
-      PetscCall(VecGetArrayRead(lam, &l));
-      for (PetscInt r = 0; r < M; r++) lambda[r] = PetscRealPart(l[r]);
-      PetscCall(VecRestoreArrayRead(lam, &l));
-    }
-    PetscCall(MatDenseGetArrayRead(Wk, &w)); /* symmetric */
-    PetscCall(FCContactProblemCreateDense(nc, dims, mu, w, q, &prob));
+    PetscCall(ForcesInFrames(&fs, lambda));
+    PetscCall(MatDenseGetArrayRead(fs.Wk, &w)); /* symmetric: column-major = row-major */
+    PetscCall(FCContactProblemCreateDense(nc, dims, mu, w, fs.q, &prob));
     FCContactSetNormalCompliance(set, w);
-    PetscCall(MatDenseRestoreArrayRead(Wk, &w));
     PetscCall(FCContactSolverSolve(scheme->solver, prob, lambda));
     PetscCall(FCContactSolverGetConvergence(scheme->solver, &sweeps, &st->residual, &conv));
     PetscCall(FCContactProblemDestroy(&prob));
+    PetscCall(MatDenseRestoreArrayRead(fs.Wk, &w));
     st->sweeps += sweeps;
     PetscCall(FCPhaseEnd(FC_PHASE_CONTACT_SOLVE));
     FCContactSetStoreForces(set, lambda); /* in the frames they were solved in */
-    /* F_k = C_k^T lambda; proximity update d = d_free + h^2 W_H F_k (eq. 31) */
     PetscCall(FCPhaseBegin(FC_PHASE_PROXIMITY));
-    {
-      PetscScalar *l;
-      PetscCall(VecGetArray(lam, &l));
-      for (PetscInt r = 0; r < M; r++) l[r] = lambda[r];
-      PetscCall(VecRestoreArray(lam, &l));
-    }
-    PetscCall(MatMultTranspose(C, lam, F));
-    PetscCall(MatMult(WHm, F, dvec));
+    PetscCall(ProximityUpdate(&fs, lambda));
     PetscCall(FCPhaseEnd(FC_PHASE_PROXIMITY));
     st->newton = it;
     PetscCall(PetscLogEventEnd(FC_EVENT_NEWTON, 0, 0, 0, 0));
     if (it == scheme->newton_max_it) break;
     /* frames and right-hand side at the new proximity positions */
-    PetscCall(PetscArraycpy(qold, q, M));
-    {
-      const PetscScalar *dv;
-      PetscReal         *d;
-      PetscCall(PetscMalloc1(n3, &d));
-      PetscCall(VecGetArrayRead(dvec, &dv));
-      for (PetscInt i = 0; i < n3; i++) d[i] = dfree[i] + PetscRealPart(dv[i]);
-      PetscCall(VecRestoreArrayRead(dvec, &dv));
-      PetscCall(FCSchemeLinearize(scheme, set, dfree, d0, d, q, &change));
-      PetscCall(PetscFree(d));
-    }
-    if (FCSchemeConverged(scheme, M, q, qold, change)) break;
+    PetscCall(PetscArraycpy(fs.qold, fs.q, M));
+    PetscCall(FCSchemeLinearize(scheme, set, fs.dfree, fs.d0, fs.d, fs.q, &change));
+    if (FCSchemeConverged(scheme, M, fs.q, fs.qold, change)) break;
   }
+  if (fast->sweep_update) PetscCall(FCContactSolverSetUpdate(scheme->solver, NULL, NULL));
   FCContactSetUpdateStates(set);
   /* one correction per body: dv = dv_free + h A^-1 H^T F (identity frames: lambda = F) */
   PetscCall(FCPhaseBegin(FC_PHASE_CORRECTION));
@@ -228,24 +299,24 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
     const PetscScalar *f;
     PetscReal         *Fw;
     PetscCall(PetscMalloc1(n3, &Fw));
-    PetscCall(VecGetArrayRead(F, &f));
+    PetscCall(VecGetArrayRead(fs.F, &f));
     for (PetscInt i = 0; i < n3; i++) Fw[i] = PetscRealPart(f[i]);
-    PetscCall(VecRestoreArrayRead(F, &f));
-    PetscCall(FCSchemeCorrect(scheme, &H, Fw));
+    PetscCall(VecRestoreArrayRead(fs.F, &f));
+    PetscCall(FCSchemeCorrect(scheme, &fs.H, Fw));
     PetscCall(PetscFree(Fw));
   }
   PetscCall(FCPhaseEnd(FC_PHASE_CORRECTION));
-  PetscCall(MatDestroy(&C));
-  PetscCall(MatDestroy(&U));
-  PetscCall(MatDestroy(&Ut));
-  PetscCall(MatDestroy(&Wk));
-  PetscCall(MatDestroy(&WHm));
-  PetscCall(VecDestroy(&F));
-  PetscCall(VecDestroy(&dvec));
-  PetscCall(VecDestroy(&lam));
-  PetscCall(PetscFree6(dfree, d0, q, qold, mu, dims));
-  PetscCall(PetscFree(lambda));
-  PetscCall(FCContactSetDestroy(&H));
+  PetscCall(MatDestroy(&fs.C));
+  PetscCall(MatDestroy(&fs.U));
+  PetscCall(MatDestroy(&fs.Ut));
+  PetscCall(MatDestroy(&fs.Wk));
+  PetscCall(MatDestroy(&fs.WHm));
+  PetscCall(VecDestroy(&fs.F));
+  PetscCall(VecDestroy(&fs.dvec));
+  PetscCall(VecDestroy(&fs.lam));
+  PetscCall(PetscFree6(fs.dfree, fs.d0, fs.q, fs.qold, mu, dims));
+  PetscCall(PetscFree2(lambda, fs.d));
+  PetscCall(FCContactSetDestroy(&fs.H));
   PetscFunctionReturn(0);
 }
 
