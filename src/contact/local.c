@@ -103,11 +103,12 @@ static PetscBool Slip3(const PetscReal W[9], const PetscReal q[3], PetscReal mu,
   return r[0] > 0.0 ? PETSC_TRUE : PETSC_FALSE;
 }
 
-/* Slip3 with the derivative of g: r_n = -q_n / D(theta), r_T = -mu r_n t, u_T = q_T + W_Tn r_n + W_TT r_T */
-static PetscBool Slip3Newton(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal theta, PetscReal r[3],
-                             PetscReal *g, PetscReal *dg, PetscReal *dot)
+/* Slip at direction t = (c, s) (unit), with the derivative of g along the rotation of t:
+   r_n = -q_n / D(t), r_T = -mu r_n t, u_T = q_T + W_Tn r_n + W_TT r_T, g = u_T x t, dot = u_T . t */
+static PetscBool Slip3Newton(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal c, PetscReal s,
+                             PetscReal r[3], PetscReal *g, PetscReal *dg, PetscReal *dot)
 {
-  PetscReal c = PetscCosReal(theta), s = PetscSinReal(theta), D, dD, drn, drT[2], uT[2], duT[2];
+  PetscReal D, dD, drn, drT[2], uT[2], duT[2];
   D  = W[0] - mu * (W[1] * c + W[2] * s);
   dD = -mu * (-W[1] * s + W[2] * c);
   if (!(D > 0.0)) return PETSC_FALSE;
@@ -128,37 +129,42 @@ static PetscBool Slip3Newton(const PetscReal W[9], const PetscReal q[3], PetscRe
   return r[0] > 0.0 ? PETSC_TRUE : PETSC_FALSE;
 }
 
-/* Newton on theta from theta0; true when it ends on an admissible slip (r_n > 0, u_T along t)
-   whose residual is at round-off */
-static PetscBool SolveSlip3Newton(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal theta,
+/* Newton on the angle of t, from the direction (c, s) (not necessarily unit): each step rotates t
+   by atan(step) (t += step t_perp, normalized: no trigonometry); true when it ends on an admissible
+   slip (r_n > 0, u_T along t) whose residual is at round-off */
+static PetscBool SolveSlip3Newton(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal c, PetscReal s,
                                   PetscReal r[3])
 {
-  PetscReal g, dg, dot, rr[3];
-  for (int it = 0; it < 30; it++) {
-    PetscReal step;
-    if (!Slip3Newton(W, q, mu, theta, rr, &g, &dg, &dot)) return PETSC_FALSE;
+  PetscReal g, dg, dot, rr[3], nt = PetscSqrtReal(c * c + s * s);
+  if (!(nt > 0.0)) return PETSC_FALSE;
+  c /= nt;
+  s /= nt;
+  for (int it = 0; it < 40; it++) {
+    PetscReal step, c1;
+    if (!Slip3Newton(W, q, mu, c, s, rr, &g, &dg, &dot)) return PETSC_FALSE;
     if (g == 0.0 || dg == 0.0) break;
     step = -g / dg;
     if (step > 0.5) step = 0.5; /* no jump to another branch */
     if (step < -0.5) step = -0.5;
-    theta += step;
-    if (PetscAbsReal(step) <= 4 * PETSC_MACHINE_EPSILON * PetscMax(1.0, PetscAbsReal(theta))) break;
+    c1 = c - step * s;
+    s  = s + step * c;
+    nt = PetscSqrtReal(c1 * c1 + s * s);
+    c  = c1 / nt;
+    s /= nt;
+    if (PetscAbsReal(step) <= 4 * PETSC_MACHINE_EPSILON) break;
   }
-  if (!Slip3Newton(W, q, mu, theta, rr, &g, &dg, &dot) || dot < 0.0) return PETSC_FALSE;
+  if (!Slip3Newton(W, q, mu, c, s, rr, &g, &dg, &dot) || dot < 0.0) return PETSC_FALSE;
   if (!Accept(3, LocalError2(3, W, q, mu, rr), q, rr)) return PETSC_FALSE;
-  for (int c = 0; c < 3; c++) r[c] = rr[c];
+  for (int a = 0; a < 3; a++) r[a] = rr[a];
   return PETSC_TRUE;
 }
 
-/* Where Newton starts: the slip direction t opposes the tangential force, so the direction the
-   stick solution (rs, when it could be computed) leaves the cone by; else the free tangential
-   velocity q_T */
-static PetscReal SlipGuess(const PetscReal W[9], const PetscReal q[3], const PetscReal rs[3])
+/* Newton's start: the slip direction t opposes the tangential force, so the direction in which the
+   stick solution rs leaves the cone; without one (W singular), the free tangential velocity q_T */
+static PetscBool SolveSlip3Fast(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal rs[3])
 {
-  PetscReal Wi[9];
-  if (FCMat3Det(W) != 0.0 && !FCMat3Inverse(W, Wi) && (rs[1] != 0.0 || rs[2] != 0.0))
-    return PetscAtan2Real(-rs[2], -rs[1]);
-  return PetscAtan2Real(q[2], q[1]);
+  if (rs[1] != 0.0 || rs[2] != 0.0) return SolveSlip3Newton(W, q, mu, -rs[1], -rs[2], rs);
+  return SolveSlip3Newton(W, q, mu, q[1], q[2], rs);
 }
 
 static PetscBool SolveSlip3Grid(const PetscReal W[9], const PetscReal q[3], PetscReal mu, PetscReal r[3])
@@ -253,8 +259,7 @@ static PetscErrorCode LocalSolve(PetscInt d, const PetscReal W[], const PetscRea
     for (PetscInt a = 0; a < d; a++) r[a] = 0.0;
   } else if (SolveStick(d, W, q, rr) && Accept(d, LocalError2(d, W, q, mu, rr), q, rr)) {
     for (PetscInt a = 0; a < d; a++) r[a] = rr[a];
-  } else if (d == 3 &&
-             ((newton && SolveSlip3Newton(W, q, mu, SlipGuess(W, q, rr), rr)) || SolveSlip3Grid(W, q, mu, rr))) {
+  } else if (d == 3 && ((newton && SolveSlip3Fast(W, q, mu, rr)) || SolveSlip3Grid(W, q, mu, rr))) {
     for (PetscInt a = 0; a < d; a++) r[a] = rr[a];
   } else if (d == 2 && SolveSlip2(W, q, mu, rr)) {
     for (PetscInt a = 0; a < d; a++) r[a] = rr[a];

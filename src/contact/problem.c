@@ -147,14 +147,34 @@ void FCContactProblemDiagonalBlock(FCContactProblem p, PetscInt i, PetscReal Wii
     for (PetscInt a = 0; a < d * d; a++) Wii[a] = p->val[p->boff[p->diag[i]] + a];
 }
 
-/* The inner loop of a sweep: d_i rows of W (= columns, W symmetric) scaled into u, in one pass */
+/* u += x a + y b + z c: the inner loop of a sweep, the only place where W is read, once per sweep.
+   Unrolled by 4 for the vectorizer; on x86-64 with GCC, also compiled for Haswell (AVX2, FMA) and
+   chosen at run time (function multiversioning), since the portable build targets SSE2 only */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("arch=haswell", "default")))
+#endif
+static void AddRows3(PetscInt n, const PetscReal *restrict a, const PetscReal *restrict b, const PetscReal *restrict c,
+                     PetscReal x, PetscReal y, PetscReal z, PetscReal *restrict u)
+{
+  PetscInt k = 0;
+  for (; k + 4 <= n; k += 4) {
+    u[k] += x * a[k] + y * b[k] + z * c[k];
+    u[k + 1] += x * a[k + 1] + y * b[k + 1] + z * c[k + 1];
+    u[k + 2] += x * a[k + 2] + y * b[k + 2] + z * c[k + 2];
+    u[k + 3] += x * a[k + 3] + y * b[k + 3] + z * c[k + 3];
+  }
+  for (; k < n; k++) u[k] += x * a[k] + y * b[k] + z * c[k];
+}
+
+/* The d_i rows of W (= columns, W symmetric) of contact i scaled into u, in one pass */
 void FCContactProblemAddColumns(FCContactProblem p, PetscInt i, const PetscReal delta[], PetscReal u[])
 {
   PetscInt d = p->dim[i], o = p->off[i], n = p->n;
-  if (p->Wd) { /* the d rows of contact i are a column-major n x d block: u += block delta (BLAS: vectorized) */
-    PetscBLASInt bn = (PetscBLASInt)n, bd = (PetscBLASInt)d, one = 1;
-    PetscScalar  alpha = 1.0, beta = 1.0;
-    BLASgemv_("N", &bn, &bd, &alpha, p->Wd + o * n, &bn, delta, &one, &beta, u, &one);
+  if (p->Wd) {
+    const PetscReal *a = p->Wd + o * n;
+    if (d == 3) AddRows3(n, a, a + n, a + 2 * n, delta[0], delta[1], delta[2], u);
+    else
+      for (PetscInt e = 0; e < d; e++) AddRows3(n, a + e * n, a + e * n, a + e * n, delta[e], 0.0, 0.0, u);
     return;
   }
   for (PetscInt b = p->rowptr[i]; b < p->rowptr[i + 1]; b++) { /* u_j += W_ji delta = W_ij^T delta */
