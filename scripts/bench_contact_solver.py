@@ -100,9 +100,10 @@ def main():
     conv = os.path.join(ROOT, "build", "fclib")
     subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "fclib_convert.py"), SRC, conv], check=True)
     rows, results = [], []
-    hdr = "| problem | contacts | dim | Siconos sweeps | Siconos residual | Siconos time (s) | our sweeps | our residual | Siconos error of our r | our time (s) |"
+    hdr = ("| problem | contacts | dim | Siconos sweeps | Siconos residual | Siconos time (s) | our sweeps | our residual | "
+           "Siconos error of our r | our time (s) | ms per sweep, Siconos / ours | time, ours / Siconos |")
     print(hdr)
-    print("|" + "---|" * 10)
+    print("|" + "---|" * 12)
     for dat in sorted(glob.glob(os.path.join(SRC, "*.dat"))):
         name = os.path.basename(dat)[:-4]
         s = siconos_solve(dat, a.tol, a.max_it)
@@ -112,7 +113,11 @@ def main():
         e_np = natural_map_error(W, q, mu, o["r"], d)
         s_np = natural_map_error(W, q, mu, s["r"], d)
         nc = s["problem"].numberOfContacts
-        line = "| %s | %d | %d | %d | %.2e | %.3f | %d | %.2e | %.2e | %.3f |" % (name, nc, s["problem"].dimension, s["sweeps"], s["residual"], s["time"], o["sweeps"], o["residual"], e, o["time"])
+        per = "%.4f / %.4f" % (1e3 * s["time"] / max(s["sweeps"], 1), 1e3 * o["time"] / max(o["sweeps"], 1))
+        ratio = "%.2f" % (o["time"] / s["time"]) if s["time"] >= 1e-3 else "(below 1 ms)"
+        line = "| %s | %d | %d | %d | %.2e | %.3f | %d | %.2e | %.2e | %.3f | %s | %s |" % (
+            name, nc, s["problem"].dimension, s["sweeps"], s["residual"], s["time"], o["sweeps"], o["residual"], e, o["time"],
+            per, ratio)
         print(line, flush=True)
         rows.append(line)
         results.append(dict(name=name, contacts=nc, dim=s["problem"].dimension, siconos_sweeps=s["sweeps"], siconos_residual=s["residual"],
@@ -132,7 +137,7 @@ def main():
                     "Both residuals: natural-map error sqrt(sum ||e_i||^2) / ||q||; the column 'Siconos error of our r' is "
                     "Siconos' own fc3d_compute_error evaluated on our solution (3D only). One run, same machine.\n\n"
                     % (platform.node(), os.cpu_count(), "4.4"))
-            f.write(hdr + "\n|" + "---|" * 10 + "\n" + "\n".join(rows) + "\n")
+            f.write(hdr + "\n|" + "---|" * 12 + "\n" + "\n".join(rows) + "\n")
         print("wrote", a.markdown)
 
 
