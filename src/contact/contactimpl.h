@@ -13,6 +13,7 @@ struct _p_FCContactProblem {
      it alive while the problem exists; then the block CSR arrays above are NULL */
   const PetscReal *Wd;
   PetscBool        symmetric; /* W = W^T to round-off: its rows serve as its columns (dense: assumed) */
+  FCContactProblem transpose; /* a non-symmetric block-sparse W: W^T by blocks (its rows are W's columns) */
   PetscReal        qnorm;     /* ||q||, the residual's normalization */
 };
 
@@ -20,8 +21,8 @@ struct _p_FCContactProblem {
 PETSC_INTERN PetscErrorCode FCContactProblemVelocityInternal(FCContactProblem, const PetscReal r[], PetscReal u[]);
 /* The relative natural-map residual of r given u = W r + q (no product with W) */
 PETSC_INTERN PetscReal FCContactProblemResidualFromVelocity(FCContactProblem, const PetscReal r[], const PetscReal u[]);
-/* u += W[:, rows of contact i] delta (d_i values): the change of u when r_i changes by delta;
-   needs a symmetric W (its rows are its columns) */
+/* u += W[:, rows of contact i] delta (d_i values): the change of u when r_i changes by delta (the
+   rows of contact i in W when W is symmetric, in W^T otherwise) */
 PETSC_INTERN void FCContactProblemAddColumns(FCContactProblem, PetscInt i, const PetscReal delta[], PetscReal u[]);
 /* The diagonal block W_ii (d_i x d_i, row-major) */
 PETSC_INTERN void FCContactProblemDiagonalBlock(FCContactProblem, PetscInt i, PetscReal Wii[9]);

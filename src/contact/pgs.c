@@ -108,11 +108,9 @@ PetscErrorCode FCContactSolverSetTolerances(FCContactSolver s, PetscReal tol, Pe
   PetscFunctionReturn(0);
 }
 
-/* One sweep over the contacts, in place (eq. 19). Column form (W symmetric: every dense W, and a
-   symmetric CSR W): u = q + W r is kept current; contact i's local problem is
-   (W_ii, u_i - W_ii r_i) and after it u += W[:, i] (r_i^new - r_i), so that a sweep reads W once,
-   row after row, with unit stride. Row form (a non-symmetric CSR W): q_i' from row i of W; the
-   caller recomputes u. */
+/* One sweep over the contacts, in place (eq. 19). u = q + W r is kept current: contact i's local
+   problem is (W_ii, u_i - W_ii r_i), and after it u += W[:, i] (r_i^new - r_i), the rows of
+   contact i in W (W symmetric: every dense W) or in W^T, read once per sweep with unit stride. */
 static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[], PetscReal u[])
 {
   PetscFunctionBegin;
@@ -121,20 +119,9 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
     PetscReal qi[3], Wi[9], ri[3], delta[3], *r0 = &r[o];
     PetscBool changed = PETSC_FALSE;
     FCContactProblemDiagonalBlock(p, i, Wi);
-    if (p->symmetric)
-      for (PetscInt a = 0; a < d; a++) {
-        qi[a] = u[o + a];
-        for (PetscInt b = 0; b < d; b++) qi[a] -= Wi[a * d + b] * r0[b];
-      }
-    else {
-      for (PetscInt a = 0; a < d; a++) qi[a] = p->q[o + a];
-      for (PetscInt b = p->rowptr[i]; b < p->rowptr[i + 1]; b++) {
-        PetscInt         j = p->col[b], dj = p->dim[j];
-        const PetscReal *B = &p->val[p->boff[b]];
-        if (j == i) continue;
-        for (PetscInt a = 0; a < d; a++)
-          for (PetscInt c = 0; c < dj; c++) qi[a] += B[a * dj + c] * r[p->off[j] + c];
-      }
+    for (PetscInt a = 0; a < d; a++) {
+      qi[a] = u[o + a];
+      for (PetscInt b = 0; b < d; b++) qi[a] -= Wi[a * d + b] * r0[b];
     }
     for (PetscInt a = 0; a < d; a++) ri[a] = r0[a];
     if (s->proximal > 0.0) { /* (W_ii + sigma I) r = -(q_i - sigma r_i): the same fixed points */
@@ -157,7 +144,7 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
       changed  = changed || delta[a] != 0.0;
       r0[a]    = ri[a];
     }
-    if (changed && p->symmetric) FCContactProblemAddColumns(p, i, delta, u);
+    if (changed) FCContactProblemAddColumns(p, i, delta, u);
   }
   PetscFunctionReturn(0);
 }
@@ -195,14 +182,13 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
 
 /* The sweeps, with u = q + W r carried along: the residual of the stopping test and NNCG's
    accept/undo decision come from (r, u) without a product with W. NNCG keeps W dir too (the change
-   of u over a sweep is W times the sweep's step), so its step costs no product either. In the
-   column form u is recomputed exactly (one product) every FC_PGS_EXACT sweeps, against the drift of
-   the incremental updates, and before the solver stops. */
+   of u over a sweep is W times the sweep's step), so its step costs no product either. u is
+   recomputed exactly (one product) every FC_PGS_EXACT sweeps, against the drift of the incremental
+   updates, and before the solver stops. */
 #define FC_PGS_EXACT 16
 static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
-  PetscInt   n   = p->n;
-  PetscBool  inc = p->symmetric; /* u kept by the sweeps */
+  PetscInt   n = p->n;
   PetscReal *u, *rold = NULL, *uold = NULL, *dir = NULL, *wdir = NULL, *rsweep = NULL, *usweep = NULL, gg_old = 0.0;
 
   PetscFunctionBegin;
@@ -224,7 +210,6 @@ static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal
       PetscCall(PetscArraycpy(uold, u, n));
     }
     PetscCall(Sweep(s, p, r, u));
-    if (!inc) PetscCall(FCContactProblemVelocityInternal(p, r, u));
     if (s->nncg) { /* NNCG: conjugate the sweep's step with the previous direction */
       PetscReal gg = 0.0, beta;
       for (PetscInt k = 0; k < n; k++) gg += PetscSqr(r[k] - rold[k]);
@@ -254,15 +239,14 @@ static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal
             delta[a] = r[o + a] - x[a];
             changed  = changed || delta[a] != 0.0;
           }
-          if (changed && inc) FCContactProblemAddColumns(p, i, delta, u);
+          if (changed) FCContactProblemAddColumns(p, i, delta, u);
         }
-        if (!inc) PetscCall(FCContactProblemVelocityInternal(p, r, u));
         moved = PETSC_TRUE;
       }
       gg_old = gg;
     }
     s->sweeps++;
-    if (inc && s->sweeps % FC_PGS_EXACT == 0) PetscCall(FCContactProblemVelocityInternal(p, r, u));
+    if (s->sweeps % FC_PGS_EXACT == 0) PetscCall(FCContactProblemVelocityInternal(p, r, u));
     s->residual = FCContactProblemResidualFromVelocity(p, r, u);
     if (moved && !(s->residual < previous)) { /* the step did not pay: back to the sweep's iterate, restart */
       PetscCall(PetscArraycpy(r, rsweep, n));
@@ -282,14 +266,14 @@ static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal
         gg_old      = 0.0; /* NNCG restarts */
       }
     }
-    if (inc && s->residual <= s->tol) { /* converged on the carried u: confirm on the exact one */
+    if (s->residual <= s->tol) { /* converged on the carried u: confirm on the exact one */
       PetscCall(FCContactProblemVelocityInternal(p, r, u));
       s->residual = FCContactProblemResidualFromVelocity(p, r, u);
     }
     PetscCheck(!PetscIsInfOrNanReal(s->residual), PETSC_COMM_SELF, PETSC_ERR_FP,
                "Contact solver diverged (NaN residual) after %" PetscInt_FMT " sweeps", s->sweeps);
   }
-  if (inc && s->sweeps && s->sweeps % FC_PGS_EXACT && s->residual > s->tol) { /* stopped by max_it: exact residual */
+  if (s->sweeps && s->sweeps % FC_PGS_EXACT && s->residual > s->tol) { /* stopped by max_it: exact residual */
     PetscCall(FCContactProblemVelocityInternal(p, r, u));
     s->residual = FCContactProblemResidualFromVelocity(p, r, u);
   }

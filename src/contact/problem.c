@@ -35,9 +35,9 @@ static PetscErrorCode ProblemAllocate(PetscInt nc, const PetscInt dim[], const P
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCContactProblemCreateCSR(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
-                                         const PetscInt rowptr[], const PetscInt col[], const PetscReal val[],
-                                         const PetscReal q[], FCContactProblem *prob)
+static PetscErrorCode CreateBlocks(PetscInt nc, const PetscInt dim[], const PetscReal mu[], const PetscInt rowptr[],
+                                   const PetscInt col[], const PetscReal val[], const PetscReal q[],
+                                   PetscBool transpose, FCContactProblem *prob)
 {
   FCContactProblem p = NULL;
   PetscInt        *contactOf, *mark, nb = 0;
@@ -122,7 +122,33 @@ PetscErrorCode FCContactProblemCreateCSR(PetscInt nc, const PetscInt dim[], cons
       }
     p->symmetric = asym <= 1e-12 * wmax ? PETSC_TRUE : PETSC_FALSE;
   }
+  if (!p->symmetric && transpose) { /* W^T by blocks too: its rows are W's columns, which the sweeps add into u */
+    PetscInt   n = p->n, nnz = rowptr[n], *trow, *tcol, *cnt;
+    PetscReal *tval;
+    PetscCall(PetscCalloc3(n + 1, &trow, nnz + 1, &tcol, n + 1, &cnt));
+    PetscCall(PetscMalloc1(nnz + 1, &tval));
+    for (PetscInt e = 0; e < nnz; e++) trow[col[e] + 1]++;
+    for (PetscInt k = 0; k < n; k++) trow[k + 1] += trow[k];
+    for (PetscInt k = 0; k < n; k++)
+      for (PetscInt e = rowptr[k]; e < rowptr[k + 1]; e++) {
+        PetscInt at = trow[col[e]] + cnt[col[e]]++;
+        tcol[at]    = k;
+        tval[at]    = val[e];
+      }
+    PetscCall(CreateBlocks(nc, dim, mu, trow, tcol, tval, q, PETSC_FALSE, &p->transpose));
+    PetscCall(PetscFree3(trow, tcol, cnt));
+    PetscCall(PetscFree(tval));
+  }
   *prob = p;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCContactProblemCreateCSR(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
+                                         const PetscInt rowptr[], const PetscInt col[], const PetscReal val[],
+                                         const PetscReal q[], FCContactProblem *prob)
+{
+  PetscFunctionBegin;
+  PetscCall(CreateBlocks(nc, dim, mu, rowptr, col, val, q, PETSC_TRUE, prob));
   PetscFunctionReturn(0);
 }
 
@@ -153,8 +179,9 @@ void FCContactProblemDiagonalBlock(FCContactProblem p, PetscInt i, PetscReal Wii
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=haswell", "default")))
 #endif
-static void AddRows3(PetscInt n, const PetscReal *restrict a, const PetscReal *restrict b, const PetscReal *restrict c,
-                     PetscReal x, PetscReal y, PetscReal z, PetscReal *restrict u)
+static void
+AddRows3(PetscInt n, const PetscReal *restrict a, const PetscReal *restrict b, const PetscReal *restrict c, PetscReal x,
+         PetscReal y, PetscReal z, PetscReal *restrict u)
 {
   PetscInt k = 0;
   for (; k + 4 <= n; k += 4) {
@@ -166,17 +193,19 @@ static void AddRows3(PetscInt n, const PetscReal *restrict a, const PetscReal *r
   for (; k < n; k++) u[k] += x * a[k] + y * b[k] + z * c[k];
 }
 
-/* The d_i rows of W (= columns, W symmetric) of contact i scaled into u, in one pass */
+/* Column i of W (the d_i rows of contact i when W is symmetric, else of W^T) scaled into u, in one pass */
 void FCContactProblemAddColumns(FCContactProblem p, PetscInt i, const PetscReal delta[], PetscReal u[])
 {
   PetscInt d = p->dim[i], o = p->off[i], n = p->n;
   if (p->Wd) {
     const PetscReal *a = p->Wd + o * n;
-    if (d == 3) AddRows3(n, a, a + n, a + 2 * n, delta[0], delta[1], delta[2], u);
+    if (d == 3)
+      AddRows3(n, a, a + n, a + 2 * n, delta[0], delta[1], delta[2], u);
     else
       for (PetscInt e = 0; e < d; e++) AddRows3(n, a + e * n, a + e * n, a + e * n, delta[e], 0.0, 0.0, u);
     return;
   }
+  if (p->transpose) p = p->transpose;                          /* W^T's row i is W's column i */
   for (PetscInt b = p->rowptr[i]; b < p->rowptr[i + 1]; b++) { /* u_j += W_ji delta = W_ij^T delta */
     PetscInt         j = p->col[b], dj = p->dim[j];
     const PetscReal *B = &p->val[p->boff[b]];
@@ -277,6 +306,7 @@ PetscErrorCode FCContactProblemDestroy(FCContactProblem *prob)
   PetscCall(PetscFree(p->rowptr));
   PetscCall(PetscFree3(p->col, p->boff, p->diag));
   PetscCall(PetscFree(p->val));
+  PetscCall(FCContactProblemDestroy(&p->transpose));
   PetscCall(PetscFree(*prob));
   PetscFunctionReturn(0);
 }
