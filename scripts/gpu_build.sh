@@ -3,7 +3,7 @@
 # GPU (Debian 12 with the packages of scripts/setup.sh), packed into a bundle that runs on a CUDA 13
 # machine whose own Open MPI 4.1 and CUDA libraries it uses (the device machines of this workplace).
 #
-#   scripts/gpu_build.sh build        on the build machine (~40 min on 2 cores): downloads the PETSc
+#   scripts/gpu_build.sh build        on the build machine (~15 min on 2 cores): downloads the PETSc
 #                                     3.18.5 sources and the CUDA 13.0 compiler/headers/libraries as
 #                                     PyPI wheels, patches PETSc for CUDA 13 (patch below), configures
 #                                     and builds it, builds a `git archive HEAD` snapshot of fecontact
