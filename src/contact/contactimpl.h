@@ -17,8 +17,6 @@ struct _p_FCContactProblem {
   PetscReal        qnorm;     /* ||q||, the residual's normalization */
 };
 
-/* u = W r + q (dense: one BLAS gemv) */
-PETSC_INTERN PetscErrorCode FCContactProblemVelocityInternal(FCContactProblem, const PetscReal r[], PetscReal u[]);
 /* The relative natural-map residual of r given u = W r + q (no product with W) */
 PETSC_INTERN PetscReal FCContactProblemResidualFromVelocity(FCContactProblem, const PetscReal r[], const PetscReal u[]);
 /* u += W[:, rows of contact i] delta (d_i values): the change of u when r_i changes by delta (the

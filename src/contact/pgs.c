@@ -198,7 +198,7 @@ static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal
     PetscCheck(!PetscIsInfOrNanReal(r[k]), PETSC_COMM_SELF, PETSC_ERR_FP,
                "Warm start of the contact solver has NaN/Inf");
   PetscCall(PetscMalloc1(n + 1, &u));
-  PetscCall(FCContactProblemVelocityInternal(p, r, u));
+  PetscCall(FCContactProblemVelocity(p, r, u));
   s->residual = FCContactProblemResidualFromVelocity(p, r, u);
   if (s->nncg)
     PetscCall(PetscCalloc6(n + 1, &rold, n + 1, &uold, n + 1, &dir, n + 1, &wdir, n + 1, &rsweep, n + 1, &usweep));
@@ -246,7 +246,7 @@ static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal
       gg_old = gg;
     }
     s->sweeps++;
-    if (s->sweeps % FC_PGS_EXACT == 0) PetscCall(FCContactProblemVelocityInternal(p, r, u));
+    if (s->sweeps % FC_PGS_EXACT == 0) PetscCall(FCContactProblemVelocity(p, r, u));
     s->residual = FCContactProblemResidualFromVelocity(p, r, u);
     if (moved && !(s->residual < previous)) { /* the step did not pay: back to the sweep's iterate, restart */
       PetscCall(PetscArraycpy(r, rsweep, n));
@@ -261,20 +261,20 @@ static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal
       PetscBool changed = PETSC_FALSE;
       PetscCall((*s->update)(s->updatectx, p, r, &changed));
       if (changed) {
-        PetscCall(FCContactProblemVelocityInternal(p, r, u));
+        PetscCall(FCContactProblemVelocity(p, r, u));
         s->residual = FCContactProblemResidualFromVelocity(p, r, u);
         gg_old      = 0.0; /* NNCG restarts */
       }
     }
     if (s->residual <= s->tol) { /* converged on the carried u: confirm on the exact one */
-      PetscCall(FCContactProblemVelocityInternal(p, r, u));
+      PetscCall(FCContactProblemVelocity(p, r, u));
       s->residual = FCContactProblemResidualFromVelocity(p, r, u);
     }
     PetscCheck(!PetscIsInfOrNanReal(s->residual), PETSC_COMM_SELF, PETSC_ERR_FP,
                "Contact solver diverged (NaN residual) after %" PetscInt_FMT " sweeps", s->sweeps);
   }
   if (s->sweeps && s->sweeps % FC_PGS_EXACT && s->residual > s->tol) { /* stopped by max_it: exact residual */
-    PetscCall(FCContactProblemVelocityInternal(p, r, u));
+    PetscCall(FCContactProblemVelocity(p, r, u));
     s->residual = FCContactProblemResidualFromVelocity(p, r, u);
   }
   if (s->nncg) PetscCall(PetscFree6(rold, uold, dir, wdir, rsweep, usweep));

@@ -225,7 +225,8 @@ PetscErrorCode FCContactProblemGetSizes(FCContactProblem p, PetscInt *nc, PetscI
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCContactProblemVelocityInternal(FCContactProblem p, const PetscReal r[], PetscReal u[])
+/* u = W r + q (dense: one BLAS gemv) */
+PetscErrorCode FCContactProblemVelocity(FCContactProblem p, const PetscReal r[], PetscReal u[])
 {
   PetscFunctionBegin;
   PetscCall(PetscArraycpy(u, p->q, p->n));
@@ -265,14 +266,6 @@ PetscErrorCode FCContactProblemGetFriction(FCContactProblem p, PetscReal mu[])
   PetscFunctionReturn(0);
 }
 
-/* u = W r + q */
-PetscErrorCode FCContactProblemVelocity(FCContactProblem p, const PetscReal r[], PetscReal u[])
-{
-  PetscFunctionBegin;
-  PetscCall(FCContactProblemVelocityInternal(p, r, u));
-  PetscFunctionReturn(0);
-}
-
 PetscReal FCContactProblemResidualFromVelocity(FCContactProblem p, const PetscReal r[], const PetscReal u[])
 {
   PetscReal sum = 0.0;
@@ -287,7 +280,7 @@ PetscErrorCode FCContactProblemResidual(FCContactProblem p, const PetscReal r[],
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(p->n, &u));
-  PetscCall(FCContactProblemVelocityInternal(p, r, u));
+  PetscCall(FCContactProblemVelocity(p, r, u));
   rr = FCContactProblemResidualFromVelocity(p, r, u);
   PetscCall(PetscFree(u));
   if (abs) *abs = rr * PetscMax(p->qnorm, PETSC_MACHINE_EPSILON);
