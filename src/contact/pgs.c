@@ -189,6 +189,7 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
 static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscInt   n = p->n;
+  PetscBool  exact;
   PetscReal *u, *rold = NULL, *uold = NULL, *dir = NULL, *wdir = NULL, *rsweep = NULL, *usweep = NULL, gg_old = 0.0;
 
   PetscFunctionBegin;
@@ -199,6 +200,7 @@ static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal
                "Warm start of the contact solver has NaN/Inf");
   PetscCall(PetscMalloc1(n + 1, &u));
   PetscCall(FCContactProblemVelocity(p, r, u));
+  exact       = PETSC_TRUE; /* u is W r + q, not carried */
   s->residual = FCContactProblemResidualFromVelocity(p, r, u);
   if (s->nncg)
     PetscCall(PetscCalloc6(n + 1, &rold, n + 1, &uold, n + 1, &dir, n + 1, &wdir, n + 1, &rsweep, n + 1, &usweep));
@@ -246,11 +248,13 @@ static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal
       gg_old = gg;
     }
     s->sweeps++;
-    if (s->sweeps % FC_PGS_EXACT == 0) PetscCall(FCContactProblemVelocity(p, r, u));
+    exact = s->sweeps % FC_PGS_EXACT == 0 ? PETSC_TRUE : PETSC_FALSE;
+    if (exact) PetscCall(FCContactProblemVelocity(p, r, u));
     s->residual = FCContactProblemResidualFromVelocity(p, r, u);
     if (moved && !(s->residual < previous)) { /* the step did not pay: back to the sweep's iterate, restart */
       PetscCall(PetscArraycpy(r, rsweep, n));
       PetscCall(PetscArraycpy(u, usweep, n));
+      exact = PETSC_FALSE;
       for (PetscInt k = 0; k < n; k++) {
         dir[k]  = r[k] - rold[k];
         wdir[k] = u[k] - uold[k];
@@ -262,18 +266,20 @@ static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal
       PetscCall((*s->update)(s->updatectx, p, r, &changed));
       if (changed) {
         PetscCall(FCContactProblemVelocity(p, r, u));
+        exact       = PETSC_TRUE;
         s->residual = FCContactProblemResidualFromVelocity(p, r, u);
         gg_old      = 0.0; /* NNCG restarts */
       }
     }
-    if (s->residual <= s->tol) { /* converged on the carried u: confirm on the exact one */
+    if (s->residual <= s->tol && !exact) { /* converged on the carried u: confirm on the exact one */
       PetscCall(FCContactProblemVelocity(p, r, u));
+      exact       = PETSC_TRUE;
       s->residual = FCContactProblemResidualFromVelocity(p, r, u);
     }
     PetscCheck(!PetscIsInfOrNanReal(s->residual), PETSC_COMM_SELF, PETSC_ERR_FP,
                "Contact solver diverged (NaN residual) after %" PetscInt_FMT " sweeps", s->sweeps);
   }
-  if (s->sweeps && s->sweeps % FC_PGS_EXACT && s->residual > s->tol) { /* stopped by max_it: exact residual */
+  if (!exact && s->residual > s->tol) { /* stopped by max_it: the exact residual */
     PetscCall(FCContactProblemVelocity(p, r, u));
     s->residual = FCContactProblemResidualFromVelocity(p, r, u);
   }
