@@ -127,8 +127,7 @@ static PetscErrorCode RebuildW(FastStep *fs)
   PetscFunctionBegin;
   PetscCall(AssembleFrames(fs->set, fs->C));
   PetscCall(MatMatMult(fs->C, fs->WHm, fs->U ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &fs->U));
-  PetscCall(MatDestroy(&fs->Ut));
-  PetscCall(MatTranspose(fs->U, MAT_INITIAL_MATRIX, &fs->Ut));
+  PetscCall(MatTranspose(fs->U, fs->Ut ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &fs->Ut));
   PetscCall(MatMatMult(fs->C, fs->Ut, fs->Wk ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &fs->Wk));
   PetscFunctionReturn(0);
 }
