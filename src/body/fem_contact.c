@@ -247,10 +247,11 @@ PetscErrorCode AddCompliance_FEM(FCBody body, PetscInt self, const FCContactSet 
 
   PetscFunctionBegin;
   PetscCheck(fem->comp, body->comm, PETSC_ERR_PLIB, "Body '%s' has contacts but is in no contact pair", body->name);
-  if (FCComplianceUsesRotation(fem->comp)) {
+  if (FCComplianceUsesRotation(fem->comp) && !fem->Rcurrent) { /* u is that of the start of the step */
     PetscReal R[9];
     PetscCall(BestFitRotation(body, R));
     PetscCall(FCComplianceSetRotation(fem->comp, R));
+    fem->Rcurrent = PETSC_TRUE;
   }
   PetscCall(FCComplianceAdd(fem->comp, self, set, W));
   PetscFunctionReturn(0);

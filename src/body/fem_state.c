@@ -119,6 +119,7 @@ PetscErrorCode SetState_FEM(FCBody body, const PetscReal s[])
   }
   PetscCall(VecRestoreArray(fem->u, &u));
   PetscCall(VecRestoreArray(fem->v, &v));
+  fem->Rcurrent = PETSC_FALSE;
   if (!fem->mat->linear) {
     fem->Acurrent   = PETSC_FALSE;
     fem->factor_age = fem->refactor_every;

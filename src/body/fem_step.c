@@ -208,6 +208,7 @@ PetscErrorCode Integrate_FEM(FCBody body, PetscReal t)
   PetscCall(VecAXPY(fem->v, 1.0, fem->dv));
   PetscCall(VecAXPY(fem->u, body->h, fem->v));
   if (!fem->mat->linear) fem->Acurrent = PETSC_FALSE;
+  fem->Rcurrent = PETSC_FALSE;
   fem->factor_age++;
   PetscFunctionReturn(0);
 }

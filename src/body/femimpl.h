@@ -37,8 +37,9 @@ typedef struct {
   PetscInt          *triv;
   FCSurfaceTriangle *tri;
   Vec                vloc, dvloc;
-  Vec                dvfree; /* recursive schemes: dv_free kept while corrections are tried */
-  FCCompliance       comp;   /* W_b and the correction (-compliance_type); bodies in a contact pair */
+  Vec                dvfree;   /* recursive schemes: dv_free kept while corrections are tried */
+  FCCompliance       comp;     /* W_b and the correction (-compliance_type); bodies in a contact pair */
+  PetscBool          Rcurrent; /* comp has the best-fit rotation of the current u (set once per step) */
 } FEM;
 
 /* Element positions: reference X and current x = X + u (fixed vertices do not move); uloc NULL: X */
