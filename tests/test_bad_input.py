@@ -95,6 +95,8 @@ cases = [
                                   "-compliance_inverse_block", "64", "-quiet"], "-compliance_inverse_block"),
     ("unknown compliance type", ["-options_file", "input/cube_drop.opts", "-compliance_type", "magic", "-quiet"],
      "Unknown compliance type 'magic' in -compliance_type (known: dense, sparse, schur, inverse, redundant, precomputed)"),
+    ("dump path unwritable", ["-options_file", "input/cube_drop.opts", "-pgs_dump_problem", "no/such/dir/p.hdf5", "-quiet"],
+     "-pgs_dump_problem: cannot create the file 'no/such/dir/p.hdf5'"),
     ("unknown constraint scheme", ["-options_file", "input/cube_drop.opts", "-constraint_scheme", "magic", "-quiet"],
      "Unknown constraint scheme 'magic' in -constraint_scheme (known: explicit, standard, fast)"),
     ("redundant groups 0", ["-options_file", "input/cube_drop.opts", "-compliance_redundant_groups", "0", "-quiet"],
@@ -110,7 +112,7 @@ cases = [
 PARALLEL = {"missing mesh file", "not a gmsh file", "truncated mesh", "2D mesh", "inverted element", "zero-volume element",
             "unknown body type", "NaN Young", "misspelt option", "unwritable output path", "fixed box fixes everything",
             "surface not closed", "contact pair, unknown body", "mesh that crashes PETSc's reader",
-            "contact matrices over the memory limit", "redundant groups 0"}
+            "contact matrices over the memory limit", "redundant groups 0", "dump path unwritable"}
 if NP > 1:
     cases = [cs for cs in cases if cs[0] in PARALLEL]
     # only on several ranks does the default builder keep copies of A

@@ -8,6 +8,8 @@
   scheme (W_k rebuilt by solves, proximity measured on the corrected state) and the fast scheme
   (W_k = C_k W_H C_k^T, proximity by W_H) give the same forces and positions to 1e-9 relative.
 Usage: test_schemes.py [--np N]"""
+import os
+import subprocess
 import numpy as np
 import h5py
 from fctest import run, out, Checker, np_from_argv, sorted_positions
@@ -71,4 +73,17 @@ cb = b["steps/complementarity"][:].max()
 c.check(cb < 1e-10,
         "grasp: -fast_update sweep leaves complementarity %.1e < 1e-10 (12 Newton iterations: %.1e)" % (cb, a["steps/complementarity"][:].max()))
 c.check(np.all(b["steps/newton_iterations"][:][b["steps/contacts"][:] > 0] == 1), "sweep update: one Newton iteration per step")
+
+# -pgs_dump_problem: the first contact problem of the run, in the FCLIB layout, is the one the step
+# solved (its rows), and the solver alone solves it (tools/fclib_solve)
+dump, f = out("dump_np%d.hdf5" % NP), out("dump_np%d.h5" % NP)
+run(["-options_file", "input/cube_drop.opts", "-time_steps", "45", "-pgs_dump_problem", dump, "-output_file", f, "-quiet"],
+    np_=NP)
+H = h5py.File(f, "r")
+rows = H["steps/constraint_rows"][:]
+with h5py.File(dump, "r") as D:
+    m = int(D["fclib_local/W/m"][0])
+c.check(m == rows[rows > 0][0], "dump: %d rows, the first contact step's %d" % (m, rows[rows > 0][0]))
+p = subprocess.run([os.environ["FCLIB_SOLVE"], "-problem", dump], capture_output=True, text=True, check=True)
+c.check(" converged 1 " in p.stdout, "dump: solved alone by fclib_solve: " + p.stdout.strip()[-80:])
 c.done()

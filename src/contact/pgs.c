@@ -82,6 +82,18 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
                "Option -pgs_dump_rows must be >= 1, got %" PetscInt_FMT, s->dump_rows);
   }
   PetscOptionsEnd();
+  if (s->dump[0]) { /* the file can be created: an error now, on every rank, not at the first contact on rank 0 */
+    PetscMPIInt rank;
+    int         ok = 1;
+    PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+    if (!rank) {
+      FILE *f = fopen(s->dump, "w");
+      ok      = f ? 1 : 0;
+      if (f) fclose(f);
+    }
+    PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, s->comm));
+    PetscCheck(ok, s->comm, PETSC_ERR_USER_INPUT, "Option -pgs_dump_problem: cannot create the file '%s'", s->dump);
+  }
   PetscCheck(s->omega > 0.0 && s->omega < 2.0, s->comm, PETSC_ERR_USER_INPUT,
              "Option -pgs_omega must lie in (0, 2), got %g", (double)s->omega);
   PetscCheck(s->proximal >= 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -pgs_proximal must be >= 0, got %g",
@@ -161,7 +173,17 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   if (s->dump[0] && !s->dumped && p->n >= s->dump_rows) {
-    if (!rank) PetscCall(FCContactProblemWriteFCLIB(p, s->dump));
+    PetscErrorCode werr = 0;
+    if (!rank) { /* rank 0 writes; its failure (e.g. contacts with and without friction) stops every rank */
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      werr = FCContactProblemWriteFCLIB(p, s->dump);
+      PetscCall(PetscPopErrorHandler());
+    }
+    PetscCallMPI(MPI_Bcast(&werr, 1, MPI_INT, 0, s->comm));
+    PetscCheck(!werr, s->comm, PETSC_ERR_FILE_WRITE,
+               "Option -pgs_dump_problem: could not write the contact problem to '%s' (FCLIB needs the same rows for "
+               "every contact: all with friction or all without)",
+               s->dump);
     s->dumped = PETSC_TRUE;
   }
   if (!s->root || size == 1) {
