@@ -303,6 +303,7 @@ typedef const char             *FCComplianceType;
 #define FCCOMPLIANCEINVERSE "inverse"
 #define FCCOMPLIANCEREDUNDANT "redundant"
 #define FCCOMPLIANCEPRECOMPUTED "precomputed"
+#define FCCOMPLIANCECONDENSED "condensed"
 /* What a builder gets from its FE body; it never calls the body back */
 typedef struct {
   MPI_Comm        comm;
@@ -321,7 +322,11 @@ PETSC_INTERN PetscErrorCode    FCComplianceCreate(const FCComplianceContext *, F
 PETSC_INTERN PetscErrorCode    FCComplianceSetType(FCCompliance, FCComplianceType);
 PETSC_INTERN PetscErrorCode    FCComplianceSetFromOptions(FCCompliance); /* -compliance_type and the type's own */
 PETSC_INTERN PetscErrorCode    FCComplianceSetUp(FCCompliance);          /* at set-up, A at the reference state */
-PETSC_INTERN PetscErrorCode    FCComplianceFactor(FCCompliance);         /* after every factorization of A     */
+PETSC_INTERN PetscErrorCode    FCComplianceFactor(FCCompliance);         /* after every change of A            */
+/* A builder that factors A itself (condensed) is the body's only factor: the body calls
+   FCComplianceFactor instead of factoring and FCComplianceSolve for its solves */
+PETSC_INTERN PetscBool      FCComplianceFactorsA(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceSolve(FCCompliance, Vec b, Vec x);
 /* a builder that warps a reference compliance needs the body's best-fit rotation before each Add */
 PETSC_INTERN PetscBool      FCComplianceUsesRotation(FCCompliance);
 PETSC_INTERN PetscErrorCode FCComplianceSetRotation(FCCompliance, const PetscReal R[9]);

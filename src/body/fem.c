@@ -204,7 +204,8 @@ static PetscErrorCode SetUp_FEM(FCBody body)
 
   PetscCall(FCFEMAssembleMass(body));
   PetscCall(FCFEMAssembleElastic(body, fem->u, fem->fint, fem->K));
-  PetscCall(FCFEMFormAndFactorA(body));
+  PetscCall(FCFEMFormA(body)); /* factored at first use: by the KSP or by the compliance builder */
+  fem->Acurrent = PETSC_TRUE;
   PetscCall(FCMeshCreateVisual(m, &body->visual));
   PetscCall(FCBodyFEMGetReferenceCoordinates(body, &fem->Xg));
   /* boundary: owned vertices (candidate contact points) and outward triangles (mesh.c) */

@@ -50,8 +50,10 @@ PetscErrorCode FCFEMAssembleElastic(FCBody body, Vec u, Vec f, Mat K)
   PetscFunctionReturn(0);
 }
 
-/* A = (1 + h alpha) M + (h beta + h^2) K, then its factorization */
-PetscErrorCode FCFEMFormAndFactorA(FCBody body)
+static PetscErrorCode CheckFactor(FCBody);
+
+/* A = (1 + h alpha) M + (h beta + h^2) K; its factor is stale until FCFEMFactorA */
+PetscErrorCode FCFEMFormA(FCBody body)
 {
   FEM      *fem = (FEM *)body->data;
   PetscReal h   = body->h;
@@ -63,9 +65,59 @@ PetscErrorCode FCFEMFormAndFactorA(FCBody body)
   PetscCall(MatAXPY(fem->A, 1.0 + h * fem->alpha, fem->M, SUBSET_NONZERO_PATTERN));
   PetscCall(MatSetOption(fem->A, MAT_SPD, PETSC_TRUE));
   PetscCall(FCPhaseEnd(FC_PHASE_ASSEMBLY));
+  fem->factored = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The factorization of A: by the compliance builder when it owns the body's factor (condensed:
+   one factorization serves the solves and W_b), else by the body's KSP (then the builders that
+   keep something of A are told) */
+PetscErrorCode FCFEMFactorA(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
   PetscCall(FCPhaseBegin(FC_PHASE_FACTORIZATION));
-  PetscCall(KSPSetOperators(fem->ksp, fem->A, fem->A));
-  PetscCall(KSPSetUp(fem->ksp));
+  if (fem->comp && FCComplianceFactorsA(fem->comp))
+    PetscCall(FCComplianceFactor(fem->comp));
+  else {
+    PetscCall(KSPSetOperators(fem->ksp, fem->A, fem->A));
+    PetscCall(KSPSetUp(fem->ksp));
+    PetscCall(CheckFactor(body));
+    if (fem->comp) PetscCall(FCComplianceFactor(fem->comp)); /* builders that keep their own copy of A */
+  }
+  fem->nfactor++;
+  fem->factor_age = 0;
+  fem->factored   = PETSC_TRUE;
+  PetscCall(FCPhaseEnd(FC_PHASE_FACTORIZATION));
+  PetscFunctionReturn(0);
+}
+
+/* x = A^-1 b with the body's factor (factored first when stale) */
+PetscErrorCode FCFEMSolveA(FCBody body, Vec b, Vec x, const char what[], PetscReal t)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  if (!fem->factored) PetscCall(FCFEMFactorA(body));
+  if (fem->comp && FCComplianceFactorsA(fem->comp))
+    PetscCall(FCComplianceSolve(fem->comp, b, x));
+  else {
+    KSPConvergedReason reason;
+    PetscCall(KSPSolve(fem->ksp, b, x));
+    PetscCall(KSPGetConvergedReason(fem->ksp, &reason));
+    PetscCheck(reason >= 0, body->comm, PETSC_ERR_CONV_FAILED, "%s solve of body '%s' failed at t = %g: %s", what,
+               body->name, (double)t, KSPConvergedReasons[reason]);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A failed factorization by the KSP is recorded, not raised (PETSc 3.18): raise it */
+static PetscErrorCode CheckFactor(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
   {
     PC             pc;
     PCFailedReason reason;
@@ -76,11 +128,6 @@ PetscErrorCode FCFEMFormAndFactorA(FCBody body)
                "workspace now and then on several ranks: raise the margin, -%smat_mumps_icntl_14 50)",
                body->name, PCFailedReasons[reason], body->prefix);
   }
-  fem->nfactor++;
-  fem->factor_age = 0;
-  if (fem->comp) PetscCall(FCComplianceFactor(fem->comp)); /* builders that keep their own factor of A */
-  PetscCall(FCPhaseEnd(FC_PHASE_FACTORIZATION));
-  fem->Acurrent = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -171,7 +218,10 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
   PetscFunctionBegin;
   if (!fem->Acurrent) { /* co-rotational: K and f_int at q_t; A too every refactor_every steps */
     PetscCall(FCFEMAssembleElastic(body, fem->u, fem->fint, fem->K));
-    if (fem->factor_age >= fem->refactor_every) PetscCall(FCFEMFormAndFactorA(body));
+    if (fem->factor_age >= fem->refactor_every) {
+      PetscCall(FCFEMFormA(body));
+      PetscCall(FCFEMFactorA(body));
+    }
     fem->Acurrent = PETSC_TRUE;
   }
   PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));
@@ -188,13 +238,7 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
   }
   PetscCall(MatMult(fem->K, fem->v, fem->work));
   PetscCall(VecAXPY(fem->b, -(h * fem->beta + h * h), fem->work));
-  PetscCall(KSPSolve(fem->ksp, fem->b, fem->dv));
-  {
-    KSPConvergedReason reason;
-    PetscCall(KSPGetConvergedReason(fem->ksp, &reason));
-    PetscCheck(reason >= 0, body->comm, PETSC_ERR_CONV_FAILED, "Free-motion solve of body '%s' failed at t = %g: %s",
-               body->name, (double)t, KSPConvergedReasons[reason]);
-  }
+  PetscCall(FCFEMSolveA(body, fem->b, fem->dv, "Free-motion", t));
   PetscCall(FCPhaseEnd(FC_PHASE_FREE_MOTION));
   PetscFunctionReturn(0);
 }

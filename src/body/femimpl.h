@@ -23,6 +23,7 @@ typedef struct {
   KSP        ksp;
   PetscInt   nassembly, nfactor;
   PetscBool  Acurrent;       /* K and f_int belong to the current state */
+  PetscBool  factored;       /* the factor of A is that of the current A */
   PetscInt   refactor_every; /* co-rotational: factor A every k steps, reuse the older factor between */
   PetscInt   factor_age;     /* steps since A was last factored */
   PetscReal  mass;
@@ -71,7 +72,9 @@ PETSC_INTERN PetscErrorCode FCFEMGet(FCBody, FEM **); /* checks that the body is
 PETSC_INTERN PetscErrorCode FCFEMCreateOperators(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMAssembleMass(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMAssembleElastic(FCBody, Vec u, Vec f, Mat K); /* f, K may be NULL */
-PETSC_INTERN PetscErrorCode FCFEMFormAndFactorA(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMFormA(FCBody);   /* A from M and K; its factor becomes stale */
+PETSC_INTERN PetscErrorCode FCFEMFactorA(FCBody); /* by the builder that owns it, or the KSP */
+PETSC_INTERN PetscErrorCode FCFEMSolveA(FCBody, Vec b, Vec x, const char what[], PetscReal t);
 PETSC_INTERN PetscErrorCode FreeMotion_FEM(FCBody, PetscReal);
 PETSC_INTERN PetscErrorCode Integrate_FEM(FCBody, PetscReal);
 /* fem_state.c */

@@ -7,6 +7,8 @@
      schur              schur.c        Schur complement of the augmented matrix [[0, J], [J^T, A]]
      inverse, redundant inverse.c      the block of A^-1 on the contact DOFs (selected inverse)
      precomputed        precomputed.c  cached surface columns of A_0^-1, warped by the best-fit rotation
+     condensed          condensed.c    (A^-1)_SS from the body's own factorization of A with the contact
+                                       DOFs S last (schurfactor.c): the factor the step needs anyway
    This file holds what every builder shares: J_b^T of the step by entries, the scatter of the
    builder's W_b into W, and the correction by one solve with the body's factor. The body hands
    a builder an FCComplianceContext (A, its factorization, layout, surface) and the builder never
@@ -30,6 +32,7 @@ PETSC_INTERN PetscErrorCode FCComplianceCreate_Schur(FCCompliance);
 PETSC_INTERN PetscErrorCode FCComplianceCreate_Inverse(FCCompliance);
 PETSC_INTERN PetscErrorCode FCComplianceCreate_Redundant(FCCompliance);
 PETSC_INTERN PetscErrorCode FCComplianceCreate_Precomputed(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceCreate_Condensed(FCCompliance);
 
 PetscErrorCode FCComplianceRegisterAll(void)
 {
@@ -41,6 +44,7 @@ PetscErrorCode FCComplianceRegisterAll(void)
   PetscCall(FCComplianceRegister(FCCOMPLIANCEINVERSE, FCComplianceCreate_Inverse));
   PetscCall(FCComplianceRegister(FCCOMPLIANCEREDUNDANT, FCComplianceCreate_Redundant));
   PetscCall(FCComplianceRegister(FCCOMPLIANCEPRECOMPUTED, FCComplianceCreate_Precomputed));
+  PetscCall(FCComplianceRegister(FCCOMPLIANCECONDENSED, FCComplianceCreate_Condensed));
   PetscFunctionReturn(0);
 }
 
@@ -103,6 +107,20 @@ PetscErrorCode FCComplianceFactor(FCCompliance comp)
 {
   PetscFunctionBegin;
   if (comp->setupcalled && comp->ops.factor) PetscCall((*comp->ops.factor)(comp));
+  PetscFunctionReturn(0);
+}
+
+PetscBool FCComplianceFactorsA(FCCompliance comp)
+{
+  return comp->factors;
+}
+
+PetscErrorCode FCComplianceSolve(FCCompliance comp, Vec b, Vec x)
+{
+  PetscFunctionBegin;
+  PetscCheck(comp->factors && comp->setupcalled, comp->ctx.comm, PETSC_ERR_PLIB,
+             "FCComplianceSolve on body '%s': builder '%s' holds no factor of A", comp->ctx.name, comp->type);
+  PetscCall((*comp->ops.solve)(comp, b, x));
   PetscFunctionReturn(0);
 }
 

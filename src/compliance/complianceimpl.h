@@ -25,7 +25,8 @@ struct _p_FCCompliance {
   FCComplianceOps     ops;
   void               *data;
   PetscBool           setupcalled, rotation;
-  PetscReal           R[9]; /* the body's best-fit rotation (builders that set `rotation`) */
+  PetscBool           factors; /* the builder factors A itself: the body's only factor (FCComplianceFactorsA) */
+  PetscReal           R[9];    /* the body's best-fit rotation (builders that set `rotation`) */
   /* J_b^T of the last Add, by entries: the first njt on owned DOFs, nje in all */
   PetscInt   ncols, *cols; /* columns, and the row of W of each                   */
   PetscInt   njt, nje;
@@ -40,3 +41,19 @@ PETSC_INTERN void FCComplianceDirection(const FCContact *, PetscInt side, PetscI
 PETSC_INTERN PetscErrorCode FCComplianceGetFactor(FCCompliance, Mat *F);
 /* Numeric Cholesky by MUMPS of a matrix a builder owns, with its failure checked (see the file) */
 PETSC_INTERN PetscErrorCode FCComplianceMumpsCholesky(FCCompliance, Mat F, Mat K, const char what[]);
+
+/* One MUMPS Cholesky factorization of A with a set S of DOFs ordered last (METIS nested
+   dissection before them), giving C = (A^-1)_SS on rank 0 besides the solves (schurfactor.c) */
+typedef struct _FCSchurFactor *FCSchurFactor;
+PETSC_INTERN PetscErrorCode    FCSchurFactorCreate(Mat A, const char name[], FCSchurFactor *);
+/* rank 0: sorted DOFs, whole vertex blocks (the other ranks' arguments are ignored); collective */
+PETSC_INTERN PetscErrorCode FCSchurFactorSetSchur(FCSchurFactor, PetscInt ns, const PetscInt S[]);
+PETSC_INTERN PetscErrorCode FCSchurFactorFactor(FCSchurFactor, Mat A);
+PETSC_INTERN PetscErrorCode FCSchurFactorSolve(FCSchurFactor, Vec b, Vec x);
+/* rank 0: S and C (ns x ns, column-major) of the current factorization */
+PETSC_INTERN PetscErrorCode FCSchurFactorGetInverse(FCSchurFactor, PetscInt *ns, const PetscInt **S,
+                                                    const PetscReal **C);
+PETSC_INTERN PetscErrorCode FCSchurFactorGetGraph(FCSchurFactor, PetscInt *nb, const PetscInt **xadj,
+                                                  const PetscInt **adj);
+PETSC_INTERN PetscErrorCode FCSchurFactorGetCounts(FCSchurFactor, PetscInt *nanalysis, PetscInt *nfactor);
+PETSC_INTERN PetscErrorCode FCSchurFactorDestroy(FCSchurFactor *);

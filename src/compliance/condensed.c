@@ -1,0 +1,274 @@
+/* Compliance builder "condensed": W_b from the factorization of A that the step needs anyway.
+   The builder owns the body's factor of A (FCComplianceFactorsA): it factors A with the body's
+   contact DOFs S ordered last (schurfactor.c), which yields C = (A^-1)_SS = Sigma^-1 besides the
+   factor that solves the free motion and the correction. Then
+
+       W_b = J_S C J_S^T     (eq. 17, J_b restricted to its columns S)
+
+   costs a few dense products on the host, and the factorization costs what a plain one costs
+   (docs/benchmarks.md, "Compliance builders"). S is chosen before the contacts of the step are
+   known:
+     - at a factorization, S = the DOFs of the last step's contacts and their surface neighbours
+       (-compliance_condensed_ring rings of them), kept while it is at most twice that size, so that
+       small motions of the contact set reuse the analysis (ordering and symbolic factorization);
+     - a contact on a DOF outside S (the first contact of a body, a contact set that moved) is a
+       miss: S grows by the new DOFs and their rings and A, unchanged, is factored again in the
+       same step (counted; -info prints it);
+     - after 3 factorizations without contacts, S is dropped.
+   A linear body keeps its factor as long as its contacts stay inside S: W_b then costs the dense
+   products only.
+   Options:
+     -compliance_condensed_ring k   rings of surface neighbours added around contact DOFs when S is
+                                    chosen (k >= 0, default 1)                                      */
+#include "complianceimpl.h"
+
+typedef struct {
+  FCSchurFactor sf;
+  PetscInt      ring;
+  PetscBool    *surf;   /* host: per vertex block, a non-fixed boundary vertex */
+  PetscInt      nT, *T; /* host: the DOFs of the last build's contacts */
+  PetscBool     built;  /* a build since the last factorization */
+  PetscInt      idle;   /* factorizations in a row without a build */
+  PetscInt      nmiss;
+} Condensed;
+
+static PetscErrorCode SetFromOptions_Condensed(FCCompliance comp, PetscOptionItems *PetscOptionsObject)
+{
+  Condensed *cd = (Condensed *)comp->data;
+
+  PetscFunctionBegin;
+  PetscCall(FCOptionsInt(PetscOptionsObject, "-compliance_condensed_ring",
+                         "Rings of surface neighbours around contact DOFs in the Schur block", &cd->ring, NULL));
+  PetscCheck(cd->ring >= 0, comp->ctx.comm, PETSC_ERR_USER_INPUT,
+             "Option -compliance_condensed_ring must be >= 0, got %" PetscInt_FMT, cd->ring);
+  PetscFunctionReturn(0);
+}
+
+/* Host: the surface flags of the vertex blocks, from every rank's owned boundary DOFs */
+static PetscErrorCode SetUp_Condensed(FCCompliance comp)
+{
+  Condensed      *cd = (Condensed *)comp->data;
+  PetscMPIInt     size, rank, n = (PetscMPIInt)comp->ctx.nsurface, *counts = NULL, *displs = NULL;
+  PetscInt       *all = NULL, nb, N;
+  const PetscInt *xadj, *adj;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comp->ctx.comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
+  PetscCall(FCSchurFactorCreate(comp->ctx.A, comp->ctx.name, &cd->sf));
+  if (!rank) PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
+  PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, 0, comp->ctx.comm));
+  if (!rank) {
+    displs[0] = 0;
+    for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
+    PetscCall(PetscMalloc1(displs[size] + 1, &all));
+  }
+  PetscCallMPI(MPI_Gatherv(comp->ctx.surface, n, MPIU_INT, all, counts, displs, MPIU_INT, 0, comp->ctx.comm));
+  if (!rank) {
+    PetscCall(FCSchurFactorGetGraph(cd->sf, &nb, &xadj, &adj));
+    PetscCall(MatGetSize(comp->ctx.A, &N, NULL));
+    PetscCall(PetscCalloc1(nb + 1, &cd->surf));
+    for (PetscMPIInt i = 0; i < displs[size]; i++) cd->surf[all[i] / 3] = PETSC_TRUE;
+    PetscCall(PetscFree(all));
+    PetscCall(PetscFree2(counts, displs));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Host: *S = sorted union of S0 and T, T grown by `ring` rings of surface neighbours */
+static PetscErrorCode Grow(Condensed *cd, PetscInt nS0, const PetscInt S0[], PetscInt nT, const PetscInt T[],
+                           PetscInt *nS, PetscInt **S)
+{
+  PetscInt        nb, *front, nfront = 0, n = 0;
+  PetscBool      *mark;
+  const PetscInt *xadj, *adj;
+
+  PetscFunctionBegin;
+  PetscCall(FCSchurFactorGetGraph(cd->sf, &nb, &xadj, &adj));
+  PetscCall(PetscCalloc1(nb + 1, &mark));
+  PetscCall(PetscMalloc1(nb + 1, &front));
+  for (PetscInt i = 0; i < nS0; i++) mark[S0[i] / 3] = PETSC_TRUE;
+  for (PetscInt i = 0; i < nT; i++)
+    if (i == 0 || T[i] / 3 != T[i - 1] / 3) front[nfront++] = T[i] / 3; /* T sorted */
+  for (PetscInt i = 0; i < nfront; i++) mark[front[i]] = PETSC_TRUE;
+  for (PetscInt r = 0; r < cd->ring; r++) { /* breadth-first, over surface blocks only */
+    PetscInt nnext = 0, *next;
+    PetscCall(PetscMalloc1(nb + 1, &next));
+    for (PetscInt i = 0; i < nfront; i++)
+      for (PetscInt k = xadj[front[i]]; k < xadj[front[i] + 1]; k++)
+        if (!mark[adj[k]] && cd->surf[adj[k]]) {
+          mark[adj[k]]  = PETSC_TRUE;
+          next[nnext++] = adj[k];
+        }
+    PetscCall(PetscFree(front));
+    front  = next;
+    nfront = nnext;
+  }
+  for (PetscInt b = 0; b < nb; b++) n += mark[b] ? 3 : 0;
+  PetscCall(PetscMalloc1(n + 1, S));
+  n = 0;
+  for (PetscInt b = 0; b < nb; b++)
+    if (mark[b])
+      for (int d = 0; d < 3; d++) (*S)[n++] = 3 * b + d;
+  *nS = n;
+  PetscCall(PetscFree(front));
+  PetscCall(PetscFree(mark));
+  PetscFunctionReturn(0);
+}
+
+/* A changed (the body refactors): choose S from the last step's contacts, then factor */
+static PetscErrorCode Factor_Condensed(FCCompliance comp)
+{
+  Condensed  *cd = (Condensed *)comp->data;
+  PetscMPIInt rank;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
+  if (!rank) {
+    PetscInt        ns, nw, *want = NULL;
+    const PetscInt *S;
+    PetscCall(FCSchurFactorGetInverse(cd->sf, &ns, &S, NULL));
+    if (cd->built) {
+      cd->idle = 0;
+      PetscCall(Grow(cd, 0, NULL, cd->nT, cd->T, &nw, &want));
+      if (ns > 2 * nw)
+        PetscCall(FCSchurFactorSetSchur(cd->sf, nw, want)); /* shrink to what is used */
+      else
+        PetscCall(FCSchurFactorSetSchur(cd->sf, ns, S));
+    } else if (++cd->idle >= 3)
+      PetscCall(FCSchurFactorSetSchur(cd->sf, 0, NULL));
+    else
+      PetscCall(FCSchurFactorSetSchur(cd->sf, ns, S));
+    PetscCall(PetscFree(want));
+  } else
+    PetscCall(FCSchurFactorSetSchur(cd->sf, 0, NULL)); /* collective; the host's set counts */
+  cd->built = PETSC_FALSE;
+  PetscCall(FCSchurFactorFactor(cd->sf, comp->ctx.A));
+  PetscFunctionReturn(0);
+}
+
+/* W_b = J_S C J_S^T on the host, broadcast; a contact DOF outside S first grows S and refactors */
+static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FCContactSet *set, PetscReal Wb[])
+{
+  Condensed  *cd    = (Condensed *)comp->data;
+  PetscInt    ncols = comp->ncols, lo;
+  PetscMPIInt rank;
+  PetscBool   miss = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
+  PetscCall(VecGetOwnershipRange(comp->ctx.u, &lo, NULL));
+  if (!rank) { /* T: the DOFs the contacts touch (every rank holds every entry of J_b) */
+    PetscInt        ns;
+    const PetscInt *S;
+    PetscCall(PetscFree(cd->T));
+    PetscCall(PetscMalloc1(comp->nje + 1, &cd->T));
+    for (PetscInt q = 0; q < comp->nje; q++) cd->T[q] = comp->jtr[q] + lo;
+    cd->nT = comp->nje;
+    PetscCall(PetscSortRemoveDupsInt(&cd->nT, cd->T));
+    PetscCall(FCSchurFactorGetInverse(cd->sf, &ns, &S, NULL));
+    for (PetscInt i = 0, at; i < cd->nT && !miss; i++) {
+      PetscCall(PetscFindInt(cd->T[i], ns, S, &at));
+      miss = (PetscBool)(at < 0);
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&miss, 1, MPIU_BOOL, 0, comp->ctx.comm));
+  if (miss) { /* A is the matrix of the current factor: factor it again with the larger S */
+    if (!rank) {
+      PetscInt        ns, nw, *want;
+      const PetscInt *S;
+      PetscCall(FCSchurFactorGetInverse(cd->sf, &ns, &S, NULL));
+      PetscCall(Grow(cd, ns, S, cd->nT, cd->T, &nw, &want));
+      PetscCall(FCSchurFactorSetSchur(cd->sf, nw, want));
+      PetscCall(PetscFree(want));
+    } else
+      PetscCall(FCSchurFactorSetSchur(cd->sf, 0, NULL));
+    PetscCall(PetscInfo(NULL, "condensed builder of body %s: contact DOFs outside the Schur block, refactoring\n",
+                        comp->ctx.name));
+    PetscCall(FCSchurFactorFactor(cd->sf, comp->ctx.A));
+    cd->nmiss++;
+  }
+  cd->built = PETSC_TRUE;
+  if (!rank) {
+    PetscInt         ns, *pos, *cptr, *cq;
+    const PetscInt  *S;
+    const PetscReal *C;
+    PetscReal       *t;
+    PetscCall(FCSchurFactorGetInverse(cd->sf, &ns, &S, &C));
+    PetscCall(PetscMalloc4(comp->nje + 1, &pos, ncols + 1, &cptr, comp->nje + 1, &cq, ns + 1, &t));
+    PetscCall(PetscArrayzero(cptr, ncols + 1));
+    for (PetscInt q = 0; q < comp->nje; q++) { /* entries by column of J_b^T, with their place in S */
+      PetscCall(PetscFindInt(comp->jtr[q] + lo, ns, S, &pos[q]));
+      cptr[comp->jtc[q] + 1]++;
+    }
+    for (PetscInt a = 0; a < ncols; a++) cptr[a + 1] += cptr[a];
+    {
+      PetscInt *fill;
+      PetscCall(PetscCalloc1(ncols + 1, &fill));
+      for (PetscInt q = 0; q < comp->nje; q++) cq[cptr[comp->jtc[q]] + fill[comp->jtc[q]]++] = q;
+      PetscCall(PetscFree(fill));
+    }
+    for (PetscInt a = 0; a < ncols; a++) { /* t = C J_S^T e_a, then row a of W_b */
+      PetscCall(PetscArrayzero(t, ns));
+      for (PetscInt k = cptr[a]; k < cptr[a + 1]; k++) {
+        const PetscReal *col = C + pos[cq[k]] * ns, v = comp->jtv[cq[k]];
+        for (PetscInt i = 0; i < ns; i++) t[i] += col[i] * v;
+      }
+      for (PetscInt b = 0; b < ncols; b++) {
+        PetscReal w = 0.0;
+        for (PetscInt k = cptr[b]; k < cptr[b + 1]; k++) w += comp->jtv[cq[k]] * t[pos[cq[k]]];
+        Wb[a * ncols + b] = w;
+      }
+    }
+    PetscCall(PetscFree4(pos, cptr, cq, t));
+  }
+  PetscCallMPI(MPI_Bcast(Wb, (PetscMPIInt)(ncols * ncols), MPIU_REAL, 0, comp->ctx.comm));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Solve_Condensed(FCCompliance comp, Vec b, Vec x)
+{
+  Condensed *cd = (Condensed *)comp->data;
+
+  PetscFunctionBegin;
+  PetscCall(FCSchurFactorSolve(cd->sf, b, x));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Destroy_Condensed(FCCompliance comp)
+{
+  Condensed *cd = (Condensed *)comp->data;
+
+  PetscFunctionBegin;
+  if (cd->sf) {
+    PetscInt na, nf;
+    PetscCall(FCSchurFactorGetCounts(cd->sf, &na, &nf));
+    PetscCall(PetscInfo(NULL,
+                        "condensed builder of body %s: %" PetscInt_FMT " analyses, %" PetscInt_FMT
+                        " factorizations, %" PetscInt_FMT " misses\n",
+                        comp->ctx.name, na, nf, cd->nmiss));
+  }
+  PetscCall(FCSchurFactorDestroy(&cd->sf));
+  PetscCall(PetscFree(cd->surf));
+  PetscCall(PetscFree(cd->T));
+  PetscCall(PetscFree(comp->data));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCComplianceCreate_Condensed(FCCompliance comp)
+{
+  Condensed *cd;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&cd));
+  cd->ring                 = 1;
+  comp->data               = cd;
+  comp->factors            = PETSC_TRUE;
+  comp->ops.setfromoptions = SetFromOptions_Condensed;
+  comp->ops.setup          = SetUp_Condensed;
+  comp->ops.factor         = Factor_Condensed;
+  comp->ops.build          = Build_Condensed;
+  comp->ops.solve          = Solve_Condensed;
+  comp->ops.destroy        = Destroy_Condensed;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,427 @@
+/* FCSchurFactor: one sparse Cholesky factorization of A (MUMPS, called directly) with a set S of
+   DOFs ordered last and kept as the Schur block, so that the factor that solves A x = b also gives
+
+       Sigma = A_SS - A_SI A_II^-1 A_IS   and   (A^-1)_SS = Sigma^-1
+
+   (block elimination; docs/method.md, "W_b from the factorization"). The condensed compliance
+   builder (condensed.c) uses it as the body's only factor of A.
+
+   Why MUMPS directly and not through PETSc: PETSc 3.18 ignores the ordering argument of a MUMPS
+   Cholesky factorization, and MUMPS asked for a Schur complement without a given ordering falls
+   back to AMD, which on a 17.5k-DOF cube doubles the flops of the factorization (2.17e10 against
+   1.02e10; scripts/bench_compliance.py prints both). Here the ordering is METIS nested dissection
+   of the vertex graph of the interior (V \ S), S appended last (ICNTL(7) = 1): the Schur
+   factorization then costs what a plain one costs.
+
+   Layout: A is handed to MUMPS as the upper triangles of each rank's rows (distributed input,
+   ICNTL(18) = 3 on several ranks); the ordering, the Schur complement and the right-hand sides are
+   centralized on rank 0 (the host), where Sigma^-1 is formed with LAPACK. A solve is condensation
+   (ICNTL(26) = 1), x_S = Sigma^-1 r_S on the host, then expansion (ICNTL(26) = 2).
+   The DOFs come in vertex blocks of 3 (A's block size), and S is a union of blocks. */
+#include "complianceimpl.h"
+#include <dmumps_c.h>
+#include <metis.h>
+#include <petscblaslapack.h>
+
+#define ICNTL(i) icntl[(i)-1]
+#define INFOG(i) infog[(i)-1]
+#define INFO(i) info[(i)-1]
+
+struct _FCSchurFactor {
+  MPI_Comm       comm; /* a duplicate of A's: MUMPS messages stay apart from PETSc's */
+  PetscMPIInt    rank, size;
+  char           name[FC_MAX_NAME];
+  DMUMPS_STRUC_C id;
+  PetscInt       N, lo, hi;
+  PetscInt       nnz; /* upper-triangle entries of the owned rows */
+  MUMPS_INT     *irn, *jcn;
+  PetscReal     *val;
+  /* host only */
+  PetscInt   nb, *xadj, *adj; /* vertex-block graph of A (without self loops) */
+  PetscInt   ns, *S;          /* Schur DOFs (sorted) of the current analysis */
+  PetscInt   nsnext, *Snext;  /* requested by FCSchurFactorSetSchur */
+  MUMPS_INT *perm, *list;
+  PetscReal *sigma, *C, *red;
+  Vec        bseq;
+  VecScatter tohost;
+  PetscBool  analysed, factored;
+  PetscInt   nanalysis, nfactor;
+};
+
+/* MUMPS call with its error (INFOG(1) < 0) turned into a PETSc error naming the body and the phase */
+static PetscErrorCode CallMumps(FCSchurFactor f, int job, const char phase[])
+{
+  PetscFunctionBegin;
+  f->id.job = job;
+  dmumps_c(&f->id);
+  PetscCheck(f->id.INFOG(1) >= 0, f->comm, PETSC_ERR_LIB,
+             "MUMPS %s of A of body '%s' failed: INFOG(1) = %d, INFOG(2) = %d (MUMPS users' guide, section "
+             "'Error diagnostics')",
+             phase, f->name, (int)f->id.INFOG(1), (int)f->id.INFOG(2));
+  PetscFunctionReturn(0);
+}
+
+/* The owned rows' upper triangle (c >= r), in MatGetRow order: the pattern at create, the values
+   at each factorization (A's pattern never changes) */
+static PetscErrorCode Triples(FCSchurFactor f, Mat A, PetscBool values)
+{
+  PetscInt k = 0;
+
+  PetscFunctionBegin;
+  for (PetscInt r = f->lo; r < f->hi; r++) {
+    PetscInt           nc;
+    const PetscInt    *cols;
+    const PetscScalar *vals;
+    PetscCall(MatGetRow(A, r, &nc, &cols, &vals));
+    for (PetscInt j = 0; j < nc; j++) {
+      if (cols[j] < r) continue;
+      if (values)
+        f->val[k] = PetscRealPart(vals[j]);
+      else if (f->irn) {
+        f->irn[k] = (MUMPS_INT)(r + 1);
+        f->jcn[k] = (MUMPS_INT)(cols[j] + 1);
+      }
+      k++;
+    }
+    PetscCall(MatRestoreRow(A, r, &nc, &cols, &vals));
+  }
+  if (!values && !f->irn) {
+    f->nnz = k;
+    PetscCall(PetscMalloc3(k + 1, &f->irn, k + 1, &f->jcn, k + 1, &f->val));
+    PetscCall(Triples(f, A, PETSC_FALSE));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The vertex-block graph of A, gathered on the host (the ordering is computed there) */
+static PetscErrorCode GatherGraph(FCSchurFactor f, Mat A)
+{
+  PetscInt     nbl = (f->hi - f->lo) / 3, *cnt, *nbr, nnbr = 0, cap = 1, *allcnt = NULL;
+  PetscMPIInt *rc = NULL, *rd = NULL, *ec = NULL, *ed = NULL, mc, me;
+
+  PetscFunctionBegin;
+  for (PetscInt b = 0; b < nbl; b++) { /* room: the entries of the first row of each block */
+    PetscInt nc;
+    PetscCall(MatGetRow(A, f->lo + 3 * b, &nc, NULL, NULL));
+    cap += nc;
+    PetscCall(MatRestoreRow(A, f->lo + 3 * b, &nc, NULL, NULL));
+  }
+  PetscCall(PetscMalloc2(nbl + 1, &cnt, cap, &nbr));
+  for (PetscInt b = 0; b < nbl; b++) {
+    PetscInt        nc, r = f->lo + 3 * b, start = nnbr;
+    const PetscInt *cols;
+    PetscCall(MatGetRow(A, r, &nc, &cols, NULL));
+    for (PetscInt j = 0; j < nc; j++) { /* cols sorted: a block's columns are consecutive */
+      PetscInt cb = cols[j] / 3;
+      if (cb == r / 3 || (nnbr > start && nbr[nnbr - 1] == cb)) continue;
+      nbr[nnbr++] = cb;
+    }
+    PetscCall(MatRestoreRow(A, r, &nc, &cols, NULL));
+    cnt[b] = nnbr - start;
+  }
+  mc = (PetscMPIInt)nbl;
+  me = (PetscMPIInt)nnbr;
+  if (!f->rank) PetscCall(PetscMalloc4(f->size, &rc, f->size + 1, &rd, f->size, &ec, f->size + 1, &ed));
+  PetscCallMPI(MPI_Gather(&mc, 1, MPI_INT, rc, 1, MPI_INT, 0, f->comm));
+  PetscCallMPI(MPI_Gather(&me, 1, MPI_INT, ec, 1, MPI_INT, 0, f->comm));
+  if (!f->rank) {
+    rd[0] = ed[0] = 0;
+    for (PetscMPIInt r = 0; r < f->size; r++) {
+      rd[r + 1] = rd[r] + rc[r];
+      ed[r + 1] = ed[r] + ec[r];
+    }
+    f->nb = rd[f->size];
+    PetscCall(PetscMalloc1(f->nb + 1, &allcnt));
+    PetscCall(PetscMalloc2(f->nb + 1, &f->xadj, ed[f->size] + 1, &f->adj));
+  }
+  PetscCallMPI(MPI_Gatherv(cnt, mc, MPIU_INT, allcnt, rc, rd, MPIU_INT, 0, f->comm));
+  PetscCallMPI(MPI_Gatherv(nbr, me, MPIU_INT, f->adj, ec, ed, MPIU_INT, 0, f->comm));
+  if (!f->rank) {
+    f->xadj[0] = 0;
+    for (PetscInt b = 0; b < f->nb; b++) f->xadj[b + 1] = f->xadj[b] + allcnt[b];
+    PetscCall(PetscFree(allcnt));
+    PetscCall(PetscFree4(rc, rd, ec, ed));
+  }
+  PetscCall(PetscFree2(cnt, nbr));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSchurFactor *sf)
+{
+  FCSchurFactor f;
+  PetscBool     sbaij;
+  Vec           b;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&f));
+  PetscCallMPI(MPI_Comm_dup(PetscObjectComm((PetscObject)A), &f->comm));
+  PetscCallMPI(MPI_Comm_rank(f->comm, &f->rank));
+  PetscCallMPI(MPI_Comm_size(f->comm, &f->size));
+  PetscCall(PetscStrncpy(f->name, name, sizeof(f->name)));
+  PetscCall(MatGetSize(A, &f->N, NULL));
+  PetscCall(MatGetOwnershipRange(A, &f->lo, &f->hi));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)A, &sbaij, MATSBAIJ, MATSEQSBAIJ, MATMPISBAIJ, ""));
+  /* the FE body numbers the DOFs of a vertex consecutively, from a multiple of 3 */
+  PetscCheck(f->N % 3 == 0 && f->lo % 3 == 0 && f->hi % 3 == 0 && !sbaij, f->comm, PETSC_ERR_SUP,
+             "-compliance_type condensed needs A of body '%s' by rows of vertex blocks of 3 DOFs (AIJ or BAIJ, "
+             "not SBAIJ)",
+             name);
+  PetscCall(Triples(f, A, PETSC_FALSE));
+  PetscCall(GatherGraph(f, A));
+  PetscCall(MatCreateVecs(A, &b, NULL));
+  PetscCall(VecScatterCreateToZero(b, &f->tohost, &f->bseq));
+  PetscCall(VecDestroy(&b));
+
+  f->id.job          = -1;
+  f->id.par          = 1;
+  f->id.sym          = 1; /* A is SPD (M + h^2 K, the body sets MAT_SPD): no pivoting */
+  f->id.comm_fortran = (MUMPS_INT)MPI_Comm_c2f(f->comm);
+  dmumps_c(&f->id);
+  PetscCheck(f->id.INFOG(1) >= 0, f->comm, PETSC_ERR_LIB, "MUMPS initialization for body '%s' failed: INFOG(1) = %d",
+             name, (int)f->id.INFOG(1));
+  f->id.ICNTL(1)  = -1; /* errors come back through INFOG(1) (CallMumps) */
+  f->id.ICNTL(2)  = -1;
+  f->id.ICNTL(3)  = -1;
+  f->id.ICNTL(4)  = 0;
+  f->id.ICNTL(7)  = 1; /* the ordering is ours (perm_in) */
+  f->id.ICNTL(18) = f->size > 1 ? 3 : 0;
+  f->id.ICNTL(20) = 0; /* right-hand side and solution centralized on the host */
+  f->id.ICNTL(21) = 0;
+  f->id.ICNTL(28) = 1; /* sequential analysis: perm_in is used as given */
+  f->id.n         = (MUMPS_INT)f->N;
+  if (f->size > 1) {
+    f->id.nnz_loc = f->nnz;
+    f->id.irn_loc = f->irn;
+    f->id.jcn_loc = f->jcn;
+    f->id.a_loc   = f->val;
+  } else {
+    f->id.nnz = f->nnz;
+    f->id.irn = f->irn;
+    f->id.jcn = f->jcn;
+    f->id.a   = f->val;
+  }
+  *sf = f;
+  PetscFunctionReturn(0);
+}
+
+/* The Schur DOFs of the next factorization (host; sorted global DOFs, whole vertex blocks). A
+   set equal to the current one keeps the analysis. */
+PetscErrorCode FCSchurFactorSetSchur(FCSchurFactor f, PetscInt ns, const PetscInt S[])
+{
+  PetscBool same = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  if (!f->rank) {
+    same = (PetscBool)(f->analysed && ns == f->ns);
+    for (PetscInt i = 0; same && i < ns; i++) same = (PetscBool)(S[i] == f->S[i]);
+    if (!same) {
+      PetscCall(PetscFree(f->Snext));
+      PetscCall(PetscMalloc1(ns + 1, &f->Snext));
+      PetscCall(PetscArraycpy(f->Snext, S, ns));
+      f->nsnext = ns;
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&same, 1, MPIU_BOOL, 0, f->comm));
+  if (!same) f->analysed = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* Host: perm_in = METIS nested dissection of the vertex graph without S, then S in its order */
+static PetscErrorCode Ordering(FCSchurFactor f)
+{
+  PetscInt *inS, ni = 0, m = 0;
+  idx_t    *xadj, *adj, *perm, *iperm, nvtx;
+
+  PetscFunctionBegin;
+  PetscCall(PetscCalloc1(f->nb + 1, &inS));
+  for (PetscInt i = 0; i < f->ns; i += 3) inS[f->S[i] / 3] = 1;
+  for (PetscInt b = 0; b < f->nb; b++) inS[b] = inS[b] ? -1 : ni++; /* interior index, or -1 */
+  PetscCall(PetscMalloc4(ni + 1, &xadj, f->xadj[f->nb] + 1, &adj, ni + 1, &perm, ni + 1, &iperm));
+  xadj[0] = 0;
+  for (PetscInt b = 0; b < f->nb; b++) {
+    if (inS[b] < 0) continue;
+    for (PetscInt k = f->xadj[b]; k < f->xadj[b + 1]; k++)
+      if (inS[f->adj[k]] >= 0) adj[m++] = (idx_t)inS[f->adj[k]];
+    xadj[inS[b] + 1] = (idx_t)m;
+  }
+  nvtx = (idx_t)ni;
+  if (ni > 2) {
+    idx_t opts[METIS_NOPTIONS];
+    int   err;
+    METIS_SetDefaultOptions(opts);
+    opts[METIS_OPTION_NUMBERING] = 0;
+    err                          = METIS_NodeND(&nvtx, xadj, adj, NULL, opts, perm, iperm);
+    PetscCheck(err == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_NodeND on A of body '%s' failed (%d)", f->name,
+               err);
+  } else
+    for (PetscInt i = 0; i < ni; i++) iperm[i] = (idx_t)i;
+  PetscCall(PetscFree(f->perm));
+  PetscCall(PetscMalloc1(f->N + 1, &f->perm));
+  for (PetscInt b = 0; b < f->nb; b++)
+    if (inS[b] >= 0)
+      for (int d = 0; d < 3; d++) f->perm[3 * b + d] = (MUMPS_INT)(3 * iperm[inS[b]] + d + 1);
+  for (PetscInt i = 0; i < f->ns; i++) f->perm[f->S[i]] = (MUMPS_INT)(3 * ni + i + 1);
+  PetscCall(PetscFree4(xadj, adj, perm, iperm));
+  PetscCall(PetscFree(inS));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Analyse(FCSchurFactor f)
+{
+  PetscFunctionBegin;
+  if (!f->rank) {
+    PetscCall(PetscFree(f->S));
+    f->S      = f->Snext;
+    f->ns     = f->nsnext;
+    f->Snext  = NULL;
+    f->nsnext = 0;
+    PetscCall(Ordering(f));
+    PetscCall(PetscFree(f->list));
+    PetscCall(PetscFree3(f->sigma, f->C, f->red));
+    PetscCall(PetscMalloc1(f->ns + 1, &f->list));
+    PetscCall(PetscMalloc3(f->ns * f->ns + 1, &f->sigma, f->ns * f->ns + 1, &f->C, f->ns + 1, &f->red));
+    for (PetscInt i = 0; i < f->ns; i++) f->list[i] = (MUMPS_INT)(f->S[i] + 1);
+    f->id.perm_in       = f->perm;
+    f->id.size_schur    = (MUMPS_INT)f->ns;
+    f->id.listvar_schur = f->list;
+    f->id.schur         = f->sigma;
+    f->id.schur_lld     = (MUMPS_INT)f->ns;
+  }
+  PetscCallMPI(MPI_Bcast(&f->ns, 1, MPIU_INT, 0, f->comm));
+  f->id.ICNTL(19) = f->ns ? 1 : 0; /* Schur complement centralized on the host (lower triangle by rows) */
+  PetscCall(CallMumps(f, 1, "analysis"));
+  f->analysed = PETSC_TRUE;
+  f->nanalysis++;
+  PetscFunctionReturn(0);
+}
+
+/* Numeric factorization of A (analysis first when S changed), then on the host
+   C = Sigma^-1 = (A^-1)_SS by LAPACK Cholesky */
+PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
+{
+  PetscFunctionBegin;
+  PetscCall(Triples(f, A, PETSC_TRUE));
+  if (!f->analysed) PetscCall(Analyse(f));
+  for (int attempt = 0;; attempt++) { /* MUMPS underestimating its workspace: -8, -9 (then ICNTL(14) doubled) */
+    f->id.job = 2;
+    dmumps_c(&f->id);
+    if (f->id.INFOG(1) >= 0 || (f->id.INFOG(1) != -8 && f->id.INFOG(1) != -9) || attempt == 3) break;
+    f->id.ICNTL(14) = 2 * f->id.ICNTL(14) + 20;
+  }
+  PetscCheck(f->id.INFOG(1) >= 0, f->comm, PETSC_ERR_LIB,
+             "MUMPS factorization of A of body '%s' failed: INFOG(1) = %d, INFOG(2) = %d%s", f->name,
+             (int)f->id.INFOG(1), (int)f->id.INFOG(2),
+             f->id.INFOG(1) == -10 ? " (A is not positive definite: check the material values)" : "");
+  f->nfactor++;
+  if (!f->rank && f->ns) {
+    PetscBLASInt n, info;
+    PetscInt     ns = f->ns;
+    PetscCall(PetscBLASIntCast(ns, &n));
+    for (PetscInt i = 0; i < ns; i++) /* lower triangle by rows = column-major upper: mirror it */
+      for (PetscInt j = 0; j <= i; j++) f->C[i + j * ns] = f->C[j + i * ns] = f->sigma[i * ns + j];
+    PetscCallBLAS("LAPACKpotrf", LAPACKpotrf_("L", &n, f->C, &n, &info));
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
+               "The Schur complement of A of body '%s' on its %" PetscInt_FMT " contact DOFs is not positive definite "
+               "(LAPACK potrf info %d)",
+               f->name, ns, (int)info);
+    PetscCallBLAS("LAPACKpotri", LAPACKpotri_("L", &n, f->C, &n, &info));
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK potri on the Schur complement of body '%s': %d",
+               f->name, (int)info);
+    for (PetscInt j = 0; j < ns; j++)
+      for (PetscInt i = j + 1; i < ns; i++) f->C[j + i * ns] = f->C[i + j * ns];
+  }
+  f->factored = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* x = A^-1 b: condensation on S, x_S = C r_S on the host, expansion */
+PetscErrorCode FCSchurFactorSolve(FCSchurFactor f, Vec b, Vec x)
+{
+  PetscScalar *rhs = NULL;
+
+  PetscFunctionBegin;
+  PetscCheck(f->factored, f->comm, PETSC_ERR_ORDER, "Solve with A of body '%s' before its factorization", f->name);
+  PetscCall(VecScatterBegin(f->tohost, b, f->bseq, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(f->tohost, b, f->bseq, INSERT_VALUES, SCATTER_FORWARD));
+  if (!f->rank) {
+    PetscCall(VecGetArray(f->bseq, &rhs));
+    f->id.rhs     = rhs;
+    f->id.nrhs    = 1;
+    f->id.lrhs    = (MUMPS_INT)f->N;
+    f->id.redrhs  = f->red;
+    f->id.lredrhs = (MUMPS_INT)f->ns;
+  }
+  if (f->ns) {
+    f->id.ICNTL(26) = 1;
+    PetscCall(CallMumps(f, 3, "condensation"));
+    if (!f->rank) {
+      PetscReal *y;
+      PetscCall(PetscMalloc1(f->ns, &y));
+      for (PetscInt i = 0; i < f->ns; i++) y[i] = 0.0;
+      for (PetscInt j = 0; j < f->ns; j++) /* C symmetric, column-major */
+        for (PetscInt i = 0; i < f->ns; i++) y[i] += f->C[i + j * f->ns] * f->red[j];
+      PetscCall(PetscArraycpy(f->red, y, f->ns));
+      PetscCall(PetscFree(y));
+    }
+    f->id.ICNTL(26) = 2;
+    PetscCall(CallMumps(f, 3, "expansion"));
+  } else {
+    f->id.ICNTL(26) = 0;
+    PetscCall(CallMumps(f, 3, "solve"));
+  }
+  if (!f->rank) PetscCall(VecRestoreArray(f->bseq, &rhs));
+  PetscCall(VecScatterBegin(f->tohost, f->bseq, x, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(f->tohost, f->bseq, x, INSERT_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(0);
+}
+
+/* Host: S of the current factorization and C = (A^-1)_SS (ns x ns, column-major, symmetric) */
+PetscErrorCode FCSchurFactorGetInverse(FCSchurFactor f, PetscInt *ns, const PetscInt **S, const PetscReal **C)
+{
+  PetscFunctionBegin;
+  *ns = f->ns;
+  if (S) *S = f->S;
+  if (C) *C = f->C;
+  PetscFunctionReturn(0);
+}
+
+/* Host: the vertex-block graph of A (CSR, no self loops) */
+PetscErrorCode FCSchurFactorGetGraph(FCSchurFactor f, PetscInt *nb, const PetscInt **xadj, const PetscInt **adj)
+{
+  PetscFunctionBegin;
+  *nb   = f->nb;
+  *xadj = f->xadj;
+  *adj  = f->adj;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchurFactorGetCounts(FCSchurFactor f, PetscInt *nanalysis, PetscInt *nfactor)
+{
+  PetscFunctionBegin;
+  if (nanalysis) *nanalysis = f->nanalysis;
+  if (nfactor) *nfactor = f->nfactor;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchurFactorDestroy(FCSchurFactor *sf)
+{
+  FCSchurFactor f = *sf;
+
+  PetscFunctionBegin;
+  if (!f) PetscFunctionReturn(0);
+  f->id.job = -2;
+  dmumps_c(&f->id);
+  PetscCall(PetscFree3(f->irn, f->jcn, f->val));
+  PetscCall(PetscFree2(f->xadj, f->adj));
+  PetscCall(PetscFree(f->S));
+  PetscCall(PetscFree(f->Snext));
+  PetscCall(PetscFree(f->perm));
+  PetscCall(PetscFree(f->list));
+  PetscCall(PetscFree3(f->sigma, f->C, f->red));
+  PetscCall(VecDestroy(&f->bseq));
+  PetscCall(VecScatterDestroy(&f->tohost));
+  PetscCallMPI(MPI_Comm_free(&f->comm));
+  PetscCall(PetscFree(f));
+  *sf = NULL;
+  PetscFunctionReturn(0);
+}
