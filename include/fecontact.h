@@ -15,6 +15,7 @@
    Package: type registries, log events, phase timers
    --------------------------------------------------------------------------------------- */
 PETSC_EXTERN PetscErrorCode FCInitializePackage(void);
+PETSC_EXTERN PetscClassId   FC_CLASSID; /* the package class: its log events */
 PETSC_EXTERN PetscErrorCode FCFinalizePackage(void);
 
 /* The phases of a time step. Each has one PetscLogEvent (named "FC<Name>") and a wall-clock

@@ -1,8 +1,8 @@
 /* Package registration: type registries (bodies, materials, shapes, compliance builders, schemes) and log events. */
 #include "fcimpl.h"
 
-static PetscBool    initialized = PETSC_FALSE;
-static PetscClassId FC_CLASSID;
+static PetscBool initialized = PETSC_FALSE;
+PetscClassId     FC_CLASSID; /* the package: its log events */
 
 PETSC_INTERN PetscErrorCode FCPhaseRegisterEvents(PetscClassId);
 

@@ -224,6 +224,7 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
     }
     fem->Acurrent = PETSC_TRUE;
   }
+  if (!fem->factored) PetscCall(FCFEMFactorA(body)); /* the first step: factored at first use */
   PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));
   if (fem->mat->linear) PetscCall(MatMult(fem->K, fem->u, fem->fint)); /* f_int = K u */
   if (body->gravity[0] != 0.0 || body->gravity[1] != 0.0 || body->gravity[2] != 0.0)

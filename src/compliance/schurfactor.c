@@ -23,6 +23,9 @@
 #include <metis.h>
 #include <petscblaslapack.h>
 
+/* -log_view: where a factorization's time goes */
+static PetscLogEvent EV_ANALYSIS, EV_NUMERIC, EV_INVERSE, EV_SOLVE;
+
 #define ICNTL(i) icntl[(i)-1]
 #define INFOG(i) infog[(i)-1]
 #define INFO(i) info[(i)-1]
@@ -153,6 +156,12 @@ PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSchurFactor *sf)
   Vec           b;
 
   PetscFunctionBegin;
+  if (!EV_ANALYSIS) {
+    PetscCall(PetscLogEventRegister("SchurAnalysis", FC_CLASSID, &EV_ANALYSIS));
+    PetscCall(PetscLogEventRegister("SchurNumeric", FC_CLASSID, &EV_NUMERIC));
+    PetscCall(PetscLogEventRegister("SchurInverse", FC_CLASSID, &EV_INVERSE));
+    PetscCall(PetscLogEventRegister("SchurSolve", FC_CLASSID, &EV_SOLVE));
+  }
   PetscCall(PetscNew(&f));
   PetscCallMPI(MPI_Comm_dup(PetscObjectComm((PetscObject)A), &f->comm));
   PetscCallMPI(MPI_Comm_rank(f->comm, &f->rank));
@@ -269,6 +278,7 @@ static PetscErrorCode Ordering(FCSchurFactor f)
 static PetscErrorCode Analyse(FCSchurFactor f)
 {
   PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(EV_ANALYSIS, 0, 0, 0, 0));
   if (!f->rank) {
     PetscCall(PetscFree(f->S));
     f->S      = f->Snext;
@@ -290,6 +300,7 @@ static PetscErrorCode Analyse(FCSchurFactor f)
   PetscCallMPI(MPI_Bcast(&f->ns, 1, MPIU_INT, 0, f->comm));
   f->id.ICNTL(19) = f->ns ? 1 : 0; /* Schur complement centralized on the host (lower triangle by rows) */
   PetscCall(CallMumps(f, 1, "analysis"));
+  PetscCall(PetscLogEventEnd(EV_ANALYSIS, 0, 0, 0, 0));
   f->analysed = PETSC_TRUE;
   f->nanalysis++;
   PetscFunctionReturn(0);
@@ -302,6 +313,7 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
   PetscFunctionBegin;
   PetscCall(Triples(f, A, PETSC_TRUE));
   if (!f->analysed) PetscCall(Analyse(f));
+  PetscCall(PetscLogEventBegin(EV_NUMERIC, 0, 0, 0, 0));
   for (int attempt = 0;; attempt++) { /* MUMPS underestimating its workspace: -8, -9 (then ICNTL(14) doubled) */
     f->id.job = 2;
     dmumps_c(&f->id);
@@ -312,7 +324,11 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
              "MUMPS factorization of A of body '%s' failed: INFOG(1) = %d, INFOG(2) = %d%s", f->name,
              (int)f->id.INFOG(1), (int)f->id.INFOG(2),
              f->id.INFOG(1) == -10 ? " (A is not positive definite: check the material values)" : "");
+  PetscCall(PetscLogEventEnd(EV_NUMERIC, 0, 0, 0, 0));
+  PetscCall(PetscInfo(NULL, "body %s: factorization with %" PetscInt_FMT " Schur DOFs: %.3g flops, %d entries in the factor\n",
+                      f->name, f->ns, (double)f->id.rinfog[2], (int)f->id.INFOG(29)));
   f->nfactor++;
+  PetscCall(PetscLogEventBegin(EV_INVERSE, 0, 0, 0, 0));
   if (!f->rank && f->ns) {
     PetscBLASInt n, info;
     PetscInt     ns = f->ns;
@@ -330,6 +346,7 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
     for (PetscInt j = 0; j < ns; j++)
       for (PetscInt i = j + 1; i < ns; i++) f->C[j + i * ns] = f->C[i + j * ns];
   }
+  PetscCall(PetscLogEventEnd(EV_INVERSE, 0, 0, 0, 0));
   f->factored = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -341,6 +358,7 @@ PetscErrorCode FCSchurFactorSolve(FCSchurFactor f, Vec b, Vec x)
 
   PetscFunctionBegin;
   PetscCheck(f->factored, f->comm, PETSC_ERR_ORDER, "Solve with A of body '%s' before its factorization", f->name);
+  PetscCall(PetscLogEventBegin(EV_SOLVE, 0, 0, 0, 0));
   PetscCall(VecScatterBegin(f->tohost, b, f->bseq, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(f->tohost, b, f->bseq, INSERT_VALUES, SCATTER_FORWARD));
   if (!f->rank) {
@@ -372,6 +390,7 @@ PetscErrorCode FCSchurFactorSolve(FCSchurFactor f, Vec b, Vec x)
   if (!f->rank) PetscCall(VecRestoreArray(f->bseq, &rhs));
   PetscCall(VecScatterBegin(f->tohost, f->bseq, x, INSERT_VALUES, SCATTER_REVERSE));
   PetscCall(VecScatterEnd(f->tohost, f->bseq, x, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(PetscLogEventEnd(EV_SOLVE, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
