@@ -202,9 +202,8 @@ PetscErrorCode SetUpContact_FEM(FCBody body)
   ctx.surface  = fem->surface;
   PetscCall(FCComplianceCreate(&ctx, &fem->comp));
   PetscCall(FCComplianceSetFromOptions(fem->comp));
-  /* a builder that reads the body's factor at set-up needs it now; one that owns the factor
-     (condensed) factors A at its first use, and the KSP never factors */
-  if (!FCComplianceFactorsA(fem->comp) && !fem->factored) PetscCall(FCFEMFactorA(body));
+  /* A is factored at its first use (the free motion of the first step), by the KSP or, for a
+     builder that owns the factor (condensed), by the builder: the KSP then never factors */
   PetscCall(FCComplianceSetUp(fem->comp));
   PetscFunctionReturn(0);
 }

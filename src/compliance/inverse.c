@@ -227,13 +227,13 @@ static PetscErrorCode RedundantFactor(FCCompliance comp)
 static PetscErrorCode SetUp_Inverse(FCCompliance comp)
 {
   Inverse      *inv = (Inverse *)comp->data;
-  Mat           F;
+  PC            pc;
   MatSolverType stype;
   PetscBool     mumps;
 
   PetscFunctionBegin;
-  PetscCall(FCComplianceGetFactor(comp, &F));
-  PetscCall(MatFactorGetSolverType(F, &stype));
+  PetscCall(KSPGetPC(comp->ctx.ksp, &pc));
+  PetscCall(PCFactorGetMatSolverType(pc, &stype)); /* A is not factored yet */
   PetscCall(PetscStrcmp(stype, MATSOLVERMUMPS, &mumps));
   PetscCheck(mumps, comp->ctx.comm, PETSC_ERR_USER_INPUT,
              "-compliance_type %s needs MUMPS as the factorization of body '%s' (it has '%s' from "
