@@ -8,6 +8,7 @@ factorization and W_b = J A^-1 J^T, eq. 17). Per step, from /steps/timing of the
   F      median of the factorization phase over the free steps after the first (the floor),
   F+W 1  factorization + compliance of the first step in contact (the builder learns its contacts),
   F+W    median of factorization + compliance over the later steps in contact,
+  step   median of the whole step (every phase) over the later steps in contact,
 and the ratios to F measured in the same run; "best F" is the smallest F of all the builders of a
 scene and rank count (the plain factorization with the best ordering), the floor the ratios in the
 last column are taken against.
@@ -60,6 +61,7 @@ def run(scene, builder, np_, steps, tmp):
         t = f["steps/timing"]
         fact, comp = t["factorization"][:], t["compliance"][:] + t["rebuild_w"][:]
         contacts = f["steps/contacts"][:]
+        total = sum(t[k][:] for k in t.keys())
     os.remove(out)
     free = [i for i in range(1, len(contacts)) if contacts[i] == 0 and i < np.argmax(contacts > 0)]
     touch = [i for i in range(len(contacts)) if contacts[i] > 0]
@@ -69,7 +71,8 @@ def run(scene, builder, np_, steps, tmp):
     F = statistics.median(fact[free]) if free and np.all(fact[free] > 0) else fact[0]
     first = fact[touch[0]] + comp[touch[0]]
     steady = statistics.median(fact[touch[1:]] + comp[touch[1:]]) if len(touch) > 1 else float("nan")
-    return F, first, steady, int(contacts[touch[-1]])
+    step = statistics.median(total[touch[1:]]) if len(touch) > 1 else float("nan")
+    return F, first, steady, step, int(contacts[touch[-1]])
 
 
 def main():
@@ -85,7 +88,7 @@ def main():
              "Machine: %s, %d cores, %s. OPENBLAS_NUM_THREADS=1; times in ms, rank 0's wall clock per step." %
              (platform.node(), os.cpu_count(), platform.platform()), "",
              "| scene | ranks | builder | contacts | F (ms) | F+W first contact (ms) | F+W in contact (ms) | "
-             "(F+W) / F | (F+W) / best F |", "|---|---:|---|---:|---:|---:|---:|---:|---:|"]
+             "(F+W) / F | (F+W) / best F | step in contact (ms) |", "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|"]
     for line in lines:
         print(line, flush=True)
     with tempfile.TemporaryDirectory(prefix="bench-comp-") as tmp:
@@ -95,9 +98,9 @@ def main():
                 for b in a.builders.split(","):
                     rows.append((b,) + run(scene, b, np_, a.steps, tmp))
                 best = min(r[1] for r in rows)
-                for b, F, first, steady, nc in rows:
-                    line = "| %s | %d | %s | %d | %.0f | %.0f | %.0f | %.2f | %.2f |" % (
-                        scene, np_, b, nc, 1e3 * F, 1e3 * first, 1e3 * steady, steady / F, steady / best)
+                for b, F, first, steady, step, nc in rows:
+                    line = "| %s | %d | %s | %d | %.0f | %.0f | %.0f | %.2f | %.2f | %.0f |" % (
+                        scene, np_, b, nc, 1e3 * F, 1e3 * first, 1e3 * steady, steady / F, steady / best, 1e3 * step)
                     lines.append(line)
                     print(line, flush=True)
     if a.markdown:

@@ -1,7 +1,9 @@
-"""Compliance builders: -compliance_type dense, sparse, schur, inverse and redundant give the same
-contact forces and positions (1e-10 relative) on an FE cube dropped on a plane (the same W to
-round-off drives the same solver path); on more than one rank sparse is refused with a clear
-error. The co-rotational grasp (A refactored every step) checks that W_H follows A with every
+"""Compliance builders: -compliance_type dense, sparse, schur, inverse, redundant and condensed
+give the same contact forces and positions (1e-10 relative) on an FE cube dropped on a plane (the
+same W to round-off drives the same solver path; condensed also does the free motion and the
+correction with its own Schur-ordered factor, and misses its first contact); on more than one rank
+sparse is refused with a clear error. Every builder handles contacts whose DOFs are all fixed (a
+box on a slab whose top face is held: W_b = 0, the box rests on the fixed face). The co-rotational grasp (A refactored every step) checks that W_H follows A with every
 builder, the redundant copies of A included. precomputed is exact for a linear material (1e-10) and, rotation-warped, close to
 dense for a co-rotational one. Usage: test_compliance.py [--np N]"""
 import numpy as np
@@ -25,7 +27,8 @@ def result(ctype, extra=()):
 
 
 a = result("dense")
-others = (["sparse"] if NP == 1 else []) + ["schur", "inverse", "inverse8", "redundant"] + (["redundant1"] if NP > 1 else [])
+others = (["sparse"] if NP == 1 else []) + ["schur", "inverse", "inverse8", "redundant", "condensed", "condensed2"] + (
+    ["redundant1"] if NP > 1 else [])
 for ctype in others:
     # redundant1: one copy of A, distributed over all ranks (-compliance_redundant_groups 1);
     # inverse8: MUMPS computing the entries of A^-1 8 columns at a time instead of 256
@@ -33,6 +36,8 @@ for ctype in others:
         b = result("redundant", ("-compliance_redundant_groups", "1"))
     elif ctype == "inverse8":
         b = result("inverse", ("-compliance_inverse_block", "8"))
+    elif ctype == "condensed2":  # two rings of surface neighbours in the Schur block
+        b = result("condensed", ("-compliance_condensed_ring", "2"))
     else:
         b = result(ctype)
     same = np.array_equal(a["contacts/offset"][:], b["contacts/offset"][:])
@@ -44,14 +49,16 @@ for ctype in others:
     c.check(np.abs(pa - pb).max() / np.abs(pa).max() < 1e-10, "%s vs dense: positions agree" % ctype)
 # precomputed surface compliance: C_0 = A^-1 on the surface is exact for a linear material
 lin = ["-cube_material", "linear"]
-a_lin, b_lin = result("dense", lin), result("precomputed", lin)
-fa, fb = a_lin["contacts/force"][:], b_lin["contacts/force"][:]
-same = fa.shape == fb.shape and fa.size > 0
-err = np.abs(fa - fb).max() / np.abs(fa).max() if same else np.inf
-c.check(err < 1e-10, "precomputed vs dense, linear material: forces rel. diff %.2e < 1e-10" % err)
-pa, pb = sorted_positions(a_lin, "cube")[1], sorted_positions(b_lin, "cube")[1]
-err = np.abs(pa - pb).max() / np.abs(pa).max()
-c.check(err < 1e-10, "precomputed vs dense, linear material: positions rel. diff %.2e < 1e-10" % err)
+a_lin = result("dense", lin)
+for ctype in ["precomputed", "condensed"]:  # condensed on a linear body: one factor, refactored only on a miss
+    b_lin = result(ctype, lin)
+    fa, fb = a_lin["contacts/force"][:], b_lin["contacts/force"][:]
+    same = fa.shape == fb.shape and fa.size > 0
+    err = np.abs(fa - fb).max() / np.abs(fa).max() if same else np.inf
+    c.check(err < 1e-10, "%s vs dense, linear material: forces rel. diff %.2e < 1e-10" % (ctype, err))
+    pa, pb = sorted_positions(a_lin, "cube")[1], sorted_positions(b_lin, "cube")[1]
+    err = np.abs(pa - pb).max() / np.abs(pa).max()
+    c.check(err < 1e-10, "%s vs dense, linear material: positions rel. diff %.2e < 1e-10" % (ctype, err))
 # co-rotational: C_0 warped by the best-fit rotation is an approximation of the current
 # compliance; on this drop (little rotation, small strain) the positions stay within 1e-4 m of
 # dense (measured 1.2e-5 m at 28 steps), the contacts carry the weight and do not penetrate
@@ -63,31 +70,60 @@ pen = b["steps/max_penetration"][:].max()
 c.check(pen < 1e-6, "precomputed (warped): max penetration %.2e m < 1e-6" % pen)
 # W_H of the fast scheme comes from the same builders (identity frames): all agree with dense
 wh = {}
-for ctype in ["dense", "schur", "inverse", "redundant"]:
+for ctype in ["dense", "schur", "inverse", "redundant", "condensed"]:
     f = out("wh_%s_np%d.h5" % (ctype, NP))
     run(["-options_file", "input/grasp_rotate.opts", "-time_steps", "10", "-constraint_scheme", "fast", "-pgs_tol", "1e-11",
          "-pgs_max_it", "50000", "-compliance_type", ctype, "-output_file", f, "-quiet", "-pgs_acceleration", "none"], np_=NP)
     wh[ctype] = h5py.File(f, "r")
-for ctype in ["schur", "inverse", "redundant"]:
+for ctype in ["schur", "inverse", "redundant", "condensed"]:
     fa, fb = wh["dense"]["contacts/force"][:], wh[ctype]["contacts/force"][:]
     same = fa.shape == fb.shape and fa.size > 0
     err = np.abs(fa - fb).max() / np.abs(fa).max() if same else np.inf
     c.check(err < 1e-9, "fast scheme, co-rotational grasp, W_H by dense vs %s: forces rel. diff %.2e" % (ctype, err))
 # FE-FE contacts (barycentric proximities on both bodies, two bodies' blocks of S and J_S)
 fe = {}
-for ctype in ["dense", "inverse", "redundant"]:
+for ctype in ["dense", "inverse", "redundant", "condensed"]:
     f = out("fefe_%s_np%d.h5" % (ctype, NP))
     run(["-options_file", "input/two_cubes.opts", "-time_steps", "60", "-compliance_type", ctype, "-output_file", f, "-quiet",
          "-pgs_acceleration", "none", "-pgs_tol", "1e-11", "-pgs_max_it", "20000"], np_=NP)
     fe[ctype] = h5py.File(f, "r")
-for ctype in ["inverse", "redundant"]:
+for ctype in ["inverse", "redundant", "condensed"]:
     fa, fb = fe["dense"]["contacts/force"][:], fe[ctype]["contacts/force"][:]
     same = fa.shape == fb.shape and fa.size > 0
     err = np.abs(fa - fb).max() / np.abs(fa).max() if same else np.inf
     c.check(err < 1e-10, "FE-FE two cubes, %s vs dense: forces rel. diff %.2e < 1e-10 (%d records)" % (ctype, err, len(fa)))
+# contacts on fixed DOFs: the slab's whole top face held (W_b of the slab is 0 and the box's own
+# compliance carries the contacts; MUMPS refused the empty selection of the inverse builders), then
+# only its x < 0 half (contacts on fixed and on free DOFs side by side: W_b differs by builder)
+for label, box in [("all fixed", "-3,-3,-0.01,3,3,3"), ("half fixed", "-3,-3,-0.01,0,3,3")]:
+    fixed = {}
+    for ctype in ["dense", "schur", "inverse", "redundant", "precomputed", "condensed"] + (["sparse"] if NP == 1 else []):
+        f = out("fixed_%s_%s_np%d.h5" % (label[:4], ctype, NP))
+        p = run(["-options_file", "input/box_on_slab.opts", "-slab_fixed_box", box, "-time_steps", "24",
+                 "-compliance_type", ctype, "-output_file", f, "-quiet"], np_=NP, check=False)
+        c.check(p.returncode == 0, "%s, contact DOFs %s: runs to the end (exit %d)" % (ctype, label, p.returncode))
+        if p.returncode == 0:
+            fixed[ctype] = h5py.File(f, "r")
+    if "dense" not in fixed:
+        continue
+    d = fixed.pop("dense")
+    c.check(d["steps/contacts"][-1] > 0 and d["steps/max_penetration"][-1] < 1e-3,
+            "box on the slab, contact DOFs %s: %d contacts, max penetration %.2e m < 1e-3" %
+            (label, d["steps/contacts"][-1], d["steps/max_penetration"][-1]))
+    for ctype, b in fixed.items():
+        if ctype == "precomputed":  # warps A_0^-1 (co-rotational slab): an approximation, checked for penetration
+            pen = b["steps/max_penetration"][-1]
+            c.check(pen < 1e-3, "contact DOFs %s, precomputed: max penetration %.2e m < 1e-3" % (label, pen))
+            continue
+        fa, fb = d["contacts/force"][:], b["contacts/force"][:]
+        same = fa.shape == fb.shape and fa.size > 0
+        err = np.abs(fa - fb).max() / np.abs(fa).max() if same else np.inf
+        c.check(err < 1e-10, "contact DOFs %s, %s vs dense: forces rel. diff %.2e < 1e-10" % (label, ctype, err))
 if NP > 1:
     p = run(base + ["-compliance_type", "sparse", "-output_file", out("comp_sparse_np%d.h5" % NP)], np_=NP, check=False)
     c.check(p.returncode != 0 and "one MPI rank only" in p.stderr + p.stdout, "sparse on %d ranks: clear error, exit %d" % (NP, p.returncode))
 p = run(base + ["-compliance_type", "magic", "-output_file", out("comp_bad.h5")], check=False)
 c.check(p.returncode != 0 and "Unknown compliance type 'magic'" in p.stderr + p.stdout, "unknown compliance type: clear error")
+p = run(base + ["-compliance_type", "condensed", "-compliance_condensed_ring", "-1", "-output_file", out("comp_bad.h5")], check=False)
+c.check(p.returncode != 0 and "-compliance_condensed_ring must be >= 0" in p.stderr + p.stdout, "negative ring: clear error")
 c.done()

@@ -258,6 +258,13 @@ static PetscErrorCode Build_Inverse(FCCompliance comp, PetscInt self, const FCCo
   PetscCall(FCComplianceGetFactor(comp, &F)); /* MUMPS: checked at set-up */
   PetscCall(VecGetOwnershipRange(comp->ctx.u, &lo, NULL));
   PetscCall(ContactDofs(comp, lo, &ns, &S, &cptr, &crow, &cval));
+  if (!ns) { /* every contact DOF is fixed: W_b = 0 (MUMPS refuses an empty selection, INFOG(1) = -45) */
+    PetscCall(PetscFree(S));
+    PetscCall(PetscFree(cptr));
+    PetscCall(PetscFree(crow));
+    PetscCall(PetscFree(cval));
+    PetscFunctionReturn(0);
+  }
   if (inv->redundant && size > 1) { /* the group's share of S, on rank 0 of its copy */
     PetscMPIInt grank = 0;
     F                 = inv->Fr;
