@@ -76,14 +76,40 @@ PetscErrorCode FCComplianceSetType(FCCompliance comp, FCComplianceType type)
   PetscFunctionReturn(0);
 }
 
-/* -compliance_type, then the options of that type only: another type's options stay unread and
-   FCOptionsCheckUnused reports them */
-PetscErrorCode FCComplianceSetFromOptions(FCCompliance comp)
+/* Whether the body's solver is the default one, preonly + Cholesky by MUMPS */
+PetscErrorCode FCComplianceBodySolverIsMumps(FCCompliance comp, PetscBool *mumps)
 {
-  char      type[FC_MAX_NAME] = FCCOMPLIANCEREDUNDANT;
-  PetscBool set;
+  PC            pc;
+  KSPType       ktype;
+  MatSolverType stype;
+  PetscBool     preonly, cholesky;
 
   PetscFunctionBegin;
+  PetscCall(KSPGetType(comp->ctx.ksp, &ktype));
+  PetscCall(KSPGetPC(comp->ctx.ksp, &pc));
+  PetscCall(PetscStrcmp(ktype, KSPPREONLY, &preonly));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
+  *mumps = PETSC_FALSE;
+  if (preonly && cholesky) {
+    PetscCall(PCFactorGetMatSolverType(pc, &stype));
+    PetscCall(PetscStrcmp(stype, MATSOLVERMUMPS, mumps));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* -compliance_type, then the options of that type only: another type's options stay unread and
+   FCOptionsCheckUnused reports them. The default, from docs/benchmarks.md ("Compliance builders":
+   the fastest step in contact for linear and co-rotational bodies, on 1 and 2 ranks): condensed,
+   which factors A with MUMPS itself; a body whose solver options ask for another solver gets dense,
+   which works with any. */
+PetscErrorCode FCComplianceSetFromOptions(FCCompliance comp)
+{
+  char      type[FC_MAX_NAME] = FCCOMPLIANCECONDENSED;
+  PetscBool set, mumps;
+
+  PetscFunctionBegin;
+  PetscCall(FCComplianceBodySolverIsMumps(comp, &mumps));
+  if (!mumps) PetscCall(PetscStrncpy(type, FCCOMPLIANCEDENSE, sizeof(type)));
   PetscOptionsBegin(comp->ctx.comm, NULL, "Compliance builder of FE bodies", "FCCompliance");
   PetscCall(PetscOptionsFList("-compliance_type", "How FE bodies compute J A^-1 J^T", "FCComplianceSetType",
                               FCComplianceList, type, type, sizeof(type), &set));

@@ -37,6 +37,8 @@ struct _p_FCCompliance {
 
 /* Frame direction a (0: n, 1: t1, 2: t2) of a contact, signed for side `side` (0 or 1) */
 PETSC_INTERN void FCComplianceDirection(const FCContact *, PetscInt side, PetscInt a, PetscReal e[3]);
+/* Whether the body's KSP is preonly + Cholesky by MUMPS (the default) */
+PETSC_INTERN PetscErrorCode FCComplianceBodySolverIsMumps(FCCompliance, PetscBool *);
 /* The factor of A (the body's KSP) */
 PETSC_INTERN PetscErrorCode FCComplianceGetFactor(FCCompliance, Mat *F);
 /* Numeric Cholesky by MUMPS of a matrix a builder owns, with its failure checked (see the file) */

@@ -55,7 +55,15 @@ static PetscErrorCode SetUp_Condensed(FCCompliance comp)
   PetscInt       *all = NULL, nb, N;
   const PetscInt *xadj, *adj;
 
+  PetscBool mumps;
+
   PetscFunctionBegin;
+  PetscCall(FCComplianceBodySolverIsMumps(comp, &mumps));
+  PetscCheck(mumps, comp->ctx.comm, PETSC_ERR_USER_INPUT,
+             "-compliance_type condensed factors A of body '%s' itself (MUMPS Cholesky), but the options of its solver "
+             "(-%sksp_type, -%spc_type, -%spc_factor_mat_solver_type) ask for another one: drop them, or use "
+             "-compliance_type dense",
+             comp->ctx.name, comp->ctx.prefix, comp->ctx.prefix, comp->ctx.prefix);
   PetscCallMPI(MPI_Comm_size(comp->ctx.comm, &size));
   PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
   PetscCall(FCSchurFactorCreate(comp->ctx.A, comp->ctx.name, &cd->sf));

@@ -325,8 +325,9 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
              (int)f->id.INFOG(1), (int)f->id.INFOG(2),
              f->id.INFOG(1) == -10 ? " (A is not positive definite: check the material values)" : "");
   PetscCall(PetscLogEventEnd(EV_NUMERIC, 0, 0, 0, 0));
-  PetscCall(PetscInfo(NULL, "body %s: factorization with %" PetscInt_FMT " Schur DOFs: %.3g flops, %d entries in the factor\n",
-                      f->name, f->ns, (double)f->id.rinfog[2], (int)f->id.INFOG(29)));
+  PetscCall(PetscInfo(
+      NULL, "body %s: factorization with %" PetscInt_FMT " Schur DOFs: %.3g flops, %d entries in the factor\n", f->name,
+      f->ns, (double)f->id.rinfog[2], (int)f->id.INFOG(29)));
   f->nfactor++;
   PetscCall(PetscLogEventBegin(EV_INVERSE, 0, 0, 0, 0));
   if (!f->rank && f->ns) {
