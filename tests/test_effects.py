@@ -77,13 +77,22 @@ steps_with = int((hw["steps/contacts"][:] > 0).sum())
 c.check(steps_with > 0 and ew.get("MatMatSolve", -1) == steps_with,
         "W only for bodies in contact: %d MatMatSolve for %d steps with contacts (the far cube has none)" % (
             ew.get("MatMatSolve", -1), steps_with))
-# the default builder (redundant) keeps a sequential copy of a linear A on every rank: factored
-# with A at set-up, never again
-l5, _ = go(drop + ["-time_steps", "5", "-cube_material", "linear"])
-l20, _ = go(drop + ["-time_steps", "20", "-cube_material", "linear"])
-c.check(l5.get("MatCholFctrNum", -1) == l20.get("MatCholFctrNum", -2) == (1 if NP == 1 else 2),
-        "contact scene, linear, default builder: %d numeric factorizations in 5 steps, %d in 20 (A%s)" % (
-            l5.get("MatCholFctrNum", -1), l20.get("MatCholFctrNum", -1), "" if NP == 1 else " and its copy"))
+# the default builder (condensed) owns the factor of a linear A: factored at its first use, once
+# more when the first contacts show their DOFs (the Schur block), never again while they stay
+l5, h5_ = go(drop + ["-time_steps", "5", "-cube_material", "linear"])
+l40, h40 = go(drop + ["-time_steps", "40", "-cube_material", "linear"])
+touch = int((h40["steps/contacts"][:] > 0).sum())
+c.check(h5_["steps/contacts"][:].sum() == 0 and l5.get("SchurNumeric", -1) == 1 and touch >= 10 and
+        l40.get("SchurNumeric", -1) == 2 and l5.get("MatCholFctrNum", 0) == l40.get("MatCholFctrNum", 0) == 0,
+        "contact scene, linear, default builder: %d factorization in 5 steps without contact, %d in 40 steps (%d in "
+        "contact), %d by the KSP" % (l5.get("SchurNumeric", -1), l40.get("SchurNumeric", -1), touch,
+                                      l40.get("MatCholFctrNum", 0)))
+# the redundant builder keeps a sequential copy of a linear A on every rank: factored with A, never again
+r5, _ = go(drop + ["-time_steps", "5", "-cube_material", "linear", "-compliance_type", "redundant"])
+r20, _ = go(drop + ["-time_steps", "20", "-cube_material", "linear", "-compliance_type", "redundant"])
+c.check(r5.get("MatCholFctrNum", -1) == r20.get("MatCholFctrNum", -2) == (1 if NP == 1 else 2),
+        "contact scene, linear, redundant builder: %d numeric factorizations in 5 steps, %d in 20 (A%s)" % (
+            r5.get("MatCholFctrNum", -1), r20.get("MatCholFctrNum", -1), "" if NP == 1 else " and its copy"))
 ef, hf = go(drop + ["-constraint_scheme", "fast", "-newton_max_it", "5"])
 it = hf["steps/newton_iterations"][:][hf["steps/contacts"][:] > 0]
 c.check(it.size > 0 and (it == 1).all() and ef.get("NewtonIteration") == it.sum(),
