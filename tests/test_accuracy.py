@@ -39,14 +39,15 @@ E, dE, E0 = e["steps/energy"][:], e["steps/energy_change"][:], e.attrs["initial_
 err = np.abs(E0 + np.cumsum(dE) - E).max() / max(np.abs(E).max(), 1e-30)
 c.check(err < 1e-12 and np.abs(dE).max() > 0, "initial_energy + cumsum(energy_change) = energy (rel. %.1e)" % err)
 
-# refactor every k steps: the factorization timing row is non-zero exactly at steps 1 + k j
+# refactor every k steps: the factorization timing row is non-zero exactly at steps 1 + k j (step 1:
+# A is factored at its first use, the free motion of the first step)
 drop = ["-options_file", "input/cube_drop.opts", "-time_steps", "20", "-quiet"]
 h = go("refactor4", drop + ["-cube_refactor_every", "4"])
 steps = list(h["steps/step"][:][h["steps/timing/factorization"][:] > 0])
-c.check(steps == [5, 9, 13, 17], "refactor_every 4: factored at steps %s (expected [5, 9, 13, 17])" % steps)
+c.check(steps == [1, 5, 9, 13, 17], "refactor_every 4: factored at steps %s (expected [1, 5, 9, 13, 17])" % steps)
 h1 = go("refactor1", drop)
 n1 = int((h1["steps/timing/factorization"][:] > 0).sum())
-c.check(n1 == 19, "refactor_every 1 (default): factored at %d of 20 steps (step 1 uses set-up's factor)" % n1)
+c.check(n1 == 20, "refactor_every 1 (default): factored at %d of 20 steps" % n1)
 pa, pb = sorted_positions(h1, "cube")[1], sorted_positions(h, "cube")[1]
 d = np.abs(pa - pb).max()
 c.check(0 < d < 1e-3, "older factor: positions differ from refactoring every step by %.2e m (0 < d < 1e-3)" % d)

@@ -94,7 +94,7 @@ cases = [
     ("inverse block with schur", ["-options_file", "input/cube_drop.opts", "-compliance_type", "schur",
                                   "-compliance_inverse_block", "64", "-quiet"], "-compliance_inverse_block"),
     ("unknown compliance type", ["-options_file", "input/cube_drop.opts", "-compliance_type", "magic", "-quiet"],
-     "Unknown compliance type 'magic' in -compliance_type (known: dense, sparse, schur, inverse, redundant, precomputed)"),
+     "Unknown compliance type 'magic' in -compliance_type (known: dense, sparse, schur, inverse, redundant, precomputed, condensed)"),
     ("dump path unwritable", ["-options_file", "input/cube_drop.opts", "-pgs_dump_problem", "no/such/dir/p.hdf5", "-quiet"],
      "-pgs_dump_problem: cannot create the file 'no/such/dir/p.hdf5'"),
     ("unknown constraint scheme", ["-options_file", "input/cube_drop.opts", "-constraint_scheme", "magic", "-quiet"],
@@ -105,8 +105,11 @@ cases = [
                                                "-compliance_redundant_groups", "1", "-quiet"], "compliance_redundant_groups"),
     ("inverse block 0", ["-options_file", "input/cube_drop.opts", "-compliance_inverse_block", "0", "-quiet"],
      "-compliance_inverse_block"),
-    ("default compliance without MUMPS", ["-options_file", "input/cube_drop.opts", "-cube_pc_factor_mat_solver_type", "petsc",
-                                          "-quiet"], "needs MUMPS"),
+    ("redundant compliance without MUMPS", ["-options_file", "input/cube_drop.opts", "-cube_pc_factor_mat_solver_type",
+                                            "petsc", "-compliance_type", "redundant", "-quiet"], "needs MUMPS"),
+    ("condensed compliance with another solver", ["-options_file", "input/cube_drop.opts", "-cube_pc_factor_mat_solver_type",
+                                                  "petsc", "-compliance_type", "condensed", "-quiet"],
+     "-compliance_type condensed factors A of body 'cube' itself"),
 ]
 # on several ranks, the cases whose detection involves communication or several ranks' data
 PARALLEL = {"missing mesh file", "not a gmsh file", "truncated mesh", "2D mesh", "inverted element", "zero-volume element",

@@ -193,10 +193,10 @@ static PetscErrorCode CheckRedundantMemory(FCCompliance comp)
   PetscFunctionReturn(0);
 }
 
-/* redundant: this rank's copy of A (on the rcomm of its group) and its factor, made current with
-   A's factor; groups = size (the default): a sequential copy per rank. On one rank A's own factor
-   is already sequential and serves. */
-static PetscErrorCode RedundantFactor(FCCompliance comp)
+/* redundant: this rank's copy of A (on the rcomm of its group), refreshed, and at the first call
+   its analysis and the memory check; groups = size (the default): a sequential copy per rank. On
+   one rank A's own factor is already sequential and serves. */
+static PetscErrorCode RedundantCopy(FCCompliance comp)
 {
   Inverse      *inv = (Inverse *)comp->data;
   PetscMPIInt   size, rank;
@@ -219,7 +219,17 @@ static PetscErrorCode RedundantFactor(FCCompliance comp)
     PetscCall(MatCholeskyFactorSymbolic(inv->Fr, inv->Ar, NULL, &info));
     PetscCall(CheckRedundantMemory(comp));
   }
-  PetscCall(FCComplianceMumpsCholesky(comp, inv->Fr, inv->Ar, "the redundant copy of A"));
+  PetscFunctionReturn(0);
+}
+
+/* redundant: the copy factored with A, each time the body factors A */
+static PetscErrorCode RedundantFactor(FCCompliance comp)
+{
+  Inverse *inv = (Inverse *)comp->data;
+
+  PetscFunctionBegin;
+  PetscCall(RedundantCopy(comp));
+  if (inv->Fr) PetscCall(FCComplianceMumpsCholesky(comp, inv->Fr, inv->Ar, "the redundant copy of A"));
   PetscFunctionReturn(0);
 }
 
@@ -239,7 +249,7 @@ static PetscErrorCode SetUp_Inverse(FCCompliance comp)
              "-compliance_type %s needs MUMPS as the factorization of body '%s' (it has '%s' from "
              "-%spc_factor_mat_solver_type): use MUMPS or -compliance_type dense",
              comp->type, comp->ctx.name, stype, comp->ctx.prefix);
-  if (inv->redundant) PetscCall(RedundantFactor(comp)); /* the copies of A, at set-up */
+  if (inv->redundant) PetscCall(RedundantCopy(comp)); /* the copies' analysis and memory check, at set-up */
   PetscFunctionReturn(0);
 }
 
