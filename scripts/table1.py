@@ -40,11 +40,10 @@ def run(size, scheme, compliance, np_, steps):
     t = {k: 1e3 * H["steps/timing/" + k][1:].mean() for k in H["steps/timing"]}
     t["newton"] = H["steps/newton_iterations"][1:].mean()
     t["contacts"] = H["steps/contacts"][1:].mean()
-    fact = None
-    with open(log) as f:
-        for row in csv.reader(f):
-            if len(row) > 4 and row[0] == "Main Stage" and row[1] == "MatCholFctrNum" and int(row[3]) > 0:
-                fact = max(fact or 0.0, 1e3 * float(row[4]) / int(row[3]))
+    # one factorization of A: step 1's (A is factored at its first use, with no contact DOFs in
+    # it yet); the first step's W_H (a builder's first contacts: condensed refactors with them)
+    fact = 1e3 * H["steps/timing/factorization"][0]
+    t["build1"] = 1e3 * H["steps/timing/compliance"][0]
     return t, fact
 
 
@@ -76,7 +75,9 @@ def main():
             rows.append("| %d | %.0f | %s | %s | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f %% |" % (
                 dofs, t["contacts"], name, "%.1f" % c["build"] if name == "fast" else "", c["rebuild"], c["pgs"], c["corr"], c["ite"], c["total"], c["update"]))
             print(rows[-1], flush=True)
-        summary.append("| %d | %.2f x | %.2f x | %.1f | %.1f | %.2f |" % (dofs, s["ite"] / f["ite"], s["total"] / f["total"], f["build"], fact_std, f["build"] / fact_std))
+        summary.append("| %d | %.2f x | %.2f x | %.1f | %.1f | %.2f | %.1f | %.2f |" % (
+            dofs, s["ite"] / f["ite"], s["total"] / f["total"], f["build"], fact_std, f["build"] / fact_std, tf["build1"],
+            tf["build1"] / fact_std))
         print(summary[-1], flush=True)
         plot[size] = (s, f)
     with open(a.markdown, "w") as out:
@@ -84,11 +85,11 @@ def main():
         out.write("Command: `scripts/table1.py --np %d --steps %d --standard-compliance %s --fast-compliance %s`\n\n" % (a.np, a.steps, a.standard_compliance, a.fast_compliance))
         out.write("Machine: %s, %d cores, CPU only (the paper used an RTX 3080 GPU). PETSc 3.18, MUMPS 5.5, OpenBLAS, "
                   "OPENBLAS_NUM_THREADS=1, %d MPI rank(s). 5 Newton iterations, 30 PGS sweeps each, per-step times "
-                  "averaged over steps 2..%d (ms). Standard: W_k rebuilt by `-compliance_type %s`; fast: W_H built by "
+                  "averaged over steps 2..%d (ms); one factorization of A is step 1's (A factored at its first use). Standard: W_k rebuilt by `-compliance_type %s`; fast: W_H built by "
                   "`-compliance_type %s`.\n\n" % (platform.node(), os.cpu_count(), a.np, a.steps, a.standard_compliance, a.fast_compliance))
         out.write("| DOFs | Cst. | Method | Build W_H | Rebuild W | PGS | Corr. | Newton ite. | Total | Update |\n|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n")
         out.write("\n".join(rows) + "\n\n")
-        out.write("| DOFs | speedup per Newton iteration | total speedup | Build W_H (ms) | one factorization of A (ms) | Build W_H / factorization |\n|---:|---:|---:|---:|---:|---:|\n")
+        out.write("| DOFs | speedup per Newton iteration | total speedup | Build W_H (ms) | one factorization of A (ms) | Build W_H / factorization | Build W_H, step 1 (ms) | step 1 / factorization |\n|---:|---:|---:|---:|---:|---:|---:|---:|\n")
         out.write("\n".join(summary) + "\n\n")
         it = [plot[sz][0]["ite"] / plot[sz][1]["ite"] for sz, _ in SIZES]
         tot = [plot[sz][0]["total"] / plot[sz][1]["total"] for sz, _ in SIZES]
@@ -99,7 +100,9 @@ def main():
         out.write("- per-iteration speedup >= 7x: %.1f-%.1fx, %s\n" % (min(it), max(it), verdict(min(it) >= 7)))
         out.write("- total speedup >= 3.2x: %.2f-%.2fx, %s\n" % (min(tot), max(tot), verdict(min(tot) >= 3.2)))
         out.write("- update share of a fast iteration <= 15 %%: %.1f-%.1f %%, %s\n" % (min(upd), max(upd), verdict(max(upd) <= 15)))
-        out.write("- Build W_H <= 1.5 factorizations of A: %.2f-%.2f, %s\n\n" % (min(bw), max(bw), verdict(max(bw) <= 1.5)))
+        out.write("- Build W_H <= 1.5 factorizations of A: %.2f-%.2f, %s (step 1, where the builder first sees the "
+                  "contacts: %s)\n\n" % (min(bw), max(bw), verdict(max(bw) <= 1.5),
+                                        ", ".join(line.split("|")[8].strip() for line in summary)))
         out.write("![table1](table1.png)\n")
     try:
         import matplotlib
