@@ -20,8 +20,8 @@ that needs a looser bound is a solver problem to report, not a tolerance to rais
 
 Usage: test_hard_cases.py [--np N]
   --np 1    : every case on 1 rank (prints a summary table, see docs/hard-cases.md);
-  --np N > 1: three quick cases (grasp 6 rad/s, large step h = 0.05, impact) on N ranks with the
-              same checks, and their final centroids compared with a 1-rank run (1e-8 m on 1 m
+  --np N > 1: five quick cases (grasp 6 rad/s, large step h = 0.05, impact, ball on the thin FE
+              slab, FE cube on the thin plate) on N ranks with the same checks, and their final centroids compared with a 1-rank run (1e-8 m on 1 m
               bodies)."""
 import re
 import time
@@ -390,6 +390,70 @@ def stack5():
     c.check(lat <= 2e-9, "%s: boxes stay aligned, lateral motion %.1e m <= 2e-9" % (label, lat))
 
 
+def intersections(H):
+    """/steps/intersections: points inside another body at the end of each step."""
+    return H["steps/intersections"][:]
+
+
+def pass_through_reference(label, opts, check):
+    """The same scene with -contact_detection discrete must show the failure continuous detection
+    fixes (so that the continuous case's checks are not passed by a scene that never crosses)."""
+    H, o, wall = scene(label + " (discrete)", ["-options_file", opts, "-contact_detection", "discrete"])
+    ok, what = check(H)
+    c.check(ok, "%s: with -contact_detection discrete %s (the failure continuous detection removes)" % (label, what))
+
+
+def ball_thin_slab(np_=1, checks=True):
+    """Case 10: input/hard/ball_thin_slab.opts (rigid ball at 20 m/s onto a 2 cm FE slab)."""
+    label = "ball 20 m/s on 2 cm FE slab"
+    H, o, wall = scene(label, ["-options_file", "input/hard/ball_thin_slab.opts"], np_)
+    if not checks:
+        return H
+    label = label if np_ == 1 else label + " [np%d]" % np_
+    # penetration: measured 3.9e-6 m (step 2, the slab rebounding under the ball's fixed-normal
+    # contacts); bound 2e-5 m (5x). Residual: converged every step (<= 1.0e-8, 157 sweeps at most).
+    # energy: the impact is inelastic (E falls from 824 J to 2.9 J); bound: no growth beyond 1e-6 J.
+    stability(label, H, o, wall, pen_tol=2e-5, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6)
+    n = intersections(H)
+    c.check(n.max() == 0, "%s: no slab vertex inside the ball at the end of any step (max /steps/intersections %d)" % (label, n.max()))
+    # the ball stays on the slab: its centre never lower than r above the slab's bottom (z = 0);
+    # measured lowest 0.0647 m (the slab's top at 0.02 m compressed by 5 mm at the impact)
+    z = H["bodies/ball/centroid"][:, 2]
+    c.check(z.min() >= 0.05, "%s: ball stopped on the slab, lowest centre %.4f m >= r = 0.05 m (slab bottom at 0)" % (label, z.min()))
+    c.check(H["steps/contacts"][0] > 0, "%s: caught in step 1, where it starts 0.1 m above the slab (%d contacts)" % (label, H["steps/contacts"][0]))
+    if np_ == 1:
+        # discrete: the ball goes through (measured centre at -6.3 m after 0.3 s)
+        pass_through_reference(label, "input/hard/ball_thin_slab.opts",
+                               lambda Hd: (Hd["bodies/ball/centroid"][-1, 2] < 0 and intersections(Hd).max() > 0,
+                                           "the ball falls through (final centre %.2f m, intersections %d)" % (Hd["bodies/ball/centroid"][-1, 2], intersections(Hd).max())))
+    return H
+
+
+def cube_thin_plate(np_=1, checks=True):
+    """Case 11: input/hard/cube_thin_plate.opts (FE cube at 20 m/s onto a 1 cm kinematic plate)."""
+    label = "FE cube 20 m/s on 1 cm plate"
+    H, o, wall = scene(label, ["-options_file", "input/hard/cube_thin_plate.opts"], np_)
+    if not checks:
+        return H
+    label = label if np_ == 1 else label + " [np%d]" % np_
+    # penetration: measured 1.6e-9 m; bound 1e-8 m (6x). Residual: converged every step (<= 1e-8,
+    # 758 sweeps at most). Energy: inelastic impact, 679 J -> 2.6 J; bound 1e-6 J of growth.
+    stability(label, H, o, wall, pen_tol=1e-8, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6)
+    n = intersections(H)
+    c.check(n.max() == 0, "%s: no cube vertex inside the plate at the end of any step (max /steps/intersections %d)" % (label, n.max()))
+    # every vertex stays above the plate's top face (z = 0.005) in every frame: measured lowest
+    # 0.005 - 1.6e-9 m; bound 1e-8 m below it
+    zmin = H["bodies/cube/positions"][:, :, 2].min()
+    c.check(zmin >= 0.005 - 1e-8, "%s: every vertex above the plate's top in every frame (lowest z %.10f m >= 0.005 - 1e-8)" % (label, zmin))
+    c.check(min_tet_volume_ratio(H, o) > 0, "%s: no inverted tetrahedron (smallest volume ratio %.3f)" % (label, min_tet_volume_ratio(H, o)))
+    if np_ == 1:
+        # discrete: the cube ends below the plate (measured centroid -0.070 m), 16 vertices inside in step 1
+        pass_through_reference(label, "input/hard/cube_thin_plate.opts",
+                               lambda Hd: (Hd["bodies/cube/centroid"][-1, 2] < 0 and intersections(Hd).max() > 0,
+                                           "the cube ends below the plate (final centroid %.3f m, intersections %d)" % (Hd["bodies/cube/centroid"][-1, 2], intersections(Hd).max())))
+    return H
+
+
 def compare(label, H1, Hn):
     """Final centroids of N ranks against 1 rank, 1e-8 m on 1 m bodies (round-off: contacts are
     ordered the same way on any number of ranks)."""
@@ -414,11 +478,15 @@ if NP == 1:
     redundant()
     impact()
     stack5()
+    ball_thin_slab()
+    cube_thin_plate()
 else:
     # the checks on N ranks; the 1-rank runs are only the reference (test_hard_cases --np 1 checks them)
     compare("grasp w=6", grasp(6, 1, checks=False), grasp(6, NP))
     compare("large step h=0.05", large_step(0.05, 1, checks=False), large_step(0.05, NP))
     compare("impact 20/10 m/s", impact(1, checks=False), impact(NP))
+    compare("ball 20 m/s on 2 cm FE slab", ball_thin_slab(1, checks=False), ball_thin_slab(NP))
+    compare("FE cube 20 m/s on 1 cm plate", cube_thin_plate(1, checks=False), cube_thin_plate(NP))
 
 print("\nsummary (np %d): case | wall s | max penetration m | max residual | max E(t) - E(0) J | E(0) J | final speed m/s" % NP)
 for row in SUMMARY:

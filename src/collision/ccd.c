@@ -34,7 +34,8 @@ PetscErrorCode FCCCDPointShape(FCBody S, const PetscReal x0[3], const PetscReal 
   PetscCall(FCBodyToBodyFrame(S, FC_AT_FREE, xf, PETSC_FALSE, rf));
   for (int i = 0; i < 3; i++) dr[i] = rf[i] - r0[i];
   L = PetscSqrtReal(FCDot(dr, dr));
-  if (d0 - 0.5 * tau >= L) PetscFunctionReturn(0); /* the broad phase: out of reach in this step */
+  /* a non-finite free motion is no motion to follow: the end-of-step state check reports it */
+  if (!PetscIsNormalReal(L) || d0 - 0.5 * tau >= L) PetscFunctionReturn(0); /* out of reach in this step */
   for (int it = 0; it < FC_CCD_MAX_IT; it++) {
     PetscReal r[3], n[3], cp[3];
     t += (d - 0.5 * tau) / L;
@@ -49,46 +50,46 @@ PetscErrorCode FCCCDPointShape(FCBody S, const PetscReal x0[3], const PetscReal 
 
 /* The largest relative displacement over the step between a point of one feature and a point of
    the other: both are convex combinations of their vertices, so the largest over vertex pairs
-   bounds it, and with it |d'(t)| */
-static PetscReal RelativeSpeed(PetscInt na, const PetscReal a0[][3], const PetscReal af[][3], PetscInt nb,
-                               const PetscReal b0[][3], const PetscReal bf[][3])
+   bounds it, and with it |d'(t)|. Features are flat arrays of n vertices (3 n values). */
+static PetscReal RelativeSpeed(PetscInt na, const PetscReal *a0, const PetscReal *af, PetscInt nb, const PetscReal *b0,
+                               const PetscReal *bf)
 {
   PetscReal v = 0.0;
   for (PetscInt i = 0; i < na; i++)
     for (PetscInt j = 0; j < nb; j++) {
       PetscReal w2 = 0.0;
-      for (int d = 0; d < 3; d++) w2 += PetscSqr((af[i][d] - a0[i][d]) - (bf[j][d] - b0[j][d]));
+      for (int d = 0; d < 3; d++) w2 += PetscSqr((af[3 * i + d] - a0[3 * i + d]) - (bf[3 * j + d] - b0[3 * j + d]));
       v = PetscMax(v, w2);
     }
   return PetscSqrtReal(v);
 }
 
-static void Lerp(PetscInt n, const PetscReal x0[][3], const PetscReal xf[][3], PetscReal t, PetscReal x[][3])
+static void Lerp(PetscInt n, const PetscReal *x0, const PetscReal *xf, PetscReal t, PetscReal *x)
 {
-  for (PetscInt i = 0; i < n; i++)
-    for (int d = 0; d < 3; d++) x[i][d] = x0[i][d] + t * (xf[i][d] - x0[i][d]);
+  for (PetscInt i = 0; i < 3 * n; i++) x[i] = x0[i] + t * (xf[i] - x0[i]);
 }
 
 /* The advancement loop shared by the two feature tests: dist(t) is evaluated by `kind` (0: point
    p against triangle a, 1: edge p against edge a) */
-static PetscBool Advance(int kind, const PetscReal p0[][3], const PetscReal pf[][3], const PetscReal a0[][3],
-                         const PetscReal af[][3], PetscReal tau, PetscReal *thit)
+static PetscBool Advance(int kind, const PetscReal *p0, const PetscReal *pf, const PetscReal *a0, const PetscReal *af,
+                         PetscReal tau, PetscReal *thit)
 {
   PetscInt  np = kind == 0 ? 1 : 2, na = kind == 0 ? 3 : 2;
   PetscReal V = RelativeSpeed(np, p0, pf, na, a0, af), t = 0.0;
 
+  if (V != 0.0 && !PetscIsNormalReal(V)) return PETSC_FALSE; /* non-finite free motion: see FCCCDPointShape */
   for (int it = 0; it < FC_CCD_MAX_IT; it++) {
-    PetscReal p[2][3], a[3][3], d;
+    PetscReal p[6], a[9], d;
     Lerp(np, p0, pf, t, p);
     Lerp(na, a0, af, t, a);
     if (kind == 0) {
       PetscReal cp[3], w[3], d2 = 0.0;
-      FCClosestPointTriangle(p[0], a[0], a[1], a[2], cp, w);
-      for (int i = 0; i < 3; i++) d2 += PetscSqr(p[0][i] - cp[i]);
+      FCClosestPointTriangle(p, &a[0], &a[3], &a[6], cp, w);
+      for (int i = 0; i < 3; i++) d2 += PetscSqr(p[i] - cp[i]);
       d = PetscSqrtReal(d2);
     } else {
       PetscReal s, u;
-      d = PetscSqrtReal(FCClosestSegmentSegment(p[0], p[1], a[0], a[1], &s, &u));
+      d = PetscSqrtReal(FCClosestSegmentSegment(&p[0], &p[3], &a[0], &a[3], &s, &u));
     }
     if (d <= tau) {
       *thit = t;
@@ -105,11 +106,11 @@ static PetscBool Advance(int kind, const PetscReal p0[][3], const PetscReal pf[]
 PetscBool FCCCDPointTriangle(const PetscReal p0[3], const PetscReal pf[3], const PetscReal a0[3][3],
                              const PetscReal af[3][3], PetscReal tau, PetscReal *thit)
 {
-  return Advance(0, (const PetscReal(*)[3])p0, (const PetscReal(*)[3])pf, a0, af, tau, thit);
+  return Advance(0, p0, pf, &a0[0][0], &af[0][0], tau, thit);
 }
 
 PetscBool FCCCDEdgeEdge(const PetscReal a0[2][3], const PetscReal af[2][3], const PetscReal b0[2][3],
                         const PetscReal bf[2][3], PetscReal tau, PetscReal *thit)
 {
-  return Advance(1, a0, af, b0, bf, tau, thit);
+  return Advance(1, &a0[0][0], &af[0][0], &b0[0][0], &bf[0][0], tau, thit);
 }
