@@ -375,6 +375,7 @@ typedef struct {
   PetscReal  distance;             /* alarm distance */
   PetscInt   passes;               /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
   PetscBool  continuous;           /* -contact_detection continuous (default) or discrete */
+  PetscBool  edges;                /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
   PetscReal  intersection_depth;   /* a point deeper than this inside another body is an intersection */
   PetscBool  fail_on_intersection; /* -contact_fail_on_intersection: stop the run at the first one */
 } FCContactPairs;

@@ -109,8 +109,8 @@ PetscBool FCCCDPointTriangle(const PetscReal p0[3], const PetscReal pf[3], const
   return Advance(0, p0, pf, &a0[0][0], &af[0][0], tau, thit);
 }
 
-PetscBool FCCCDEdgeEdge(const PetscReal a0[2][3], const PetscReal af[2][3], const PetscReal b0[2][3],
-                        const PetscReal bf[2][3], PetscReal tau, PetscReal *thit)
+PetscBool FCCCDEdgeEdge(const PetscReal *a0, const PetscReal *af, const PetscReal *b0, const PetscReal *bf,
+                        PetscReal tau, PetscReal *thit)
 {
-  return Advance(1, &a0[0][0], &af[0][0], &b0[0][0], &bf[0][0], tau, thit);
+  return Advance(1, a0, af, b0, bf, tau, thit);
 }

@@ -383,6 +383,15 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
         PetscCall(VerticesAgainstSurface(bodies[a], bodies[b2], a, b2, S, p, pairs, rank, set));
         PetscCall(FCSurfaceDestroy(&S));
       }
+      { /* the sharp edges: the FE body's against the other's (the first body's if both are FE) */
+        PetscInt a = pairs->body[p][0], b2 = pairs->body[p][1];
+        if (!FCBodyIsDeformable(bodies[a])) {
+          a  = pairs->body[p][1];
+          b2 = pairs->body[p][0];
+        }
+        if (pairs->edges && FCBodyIsDeformable(bodies[a]))
+          PetscCall(FCCollisionEdgeEdge(comm, bodies[a], bodies[b2], a, b2, p, pairs, set));
+      }
       continue;
     }
     PetscCall(Sides(bodies[pairs->body[p][0]], bodies[pairs->body[p][1]], pairs->body[p][0], pairs->body[p][1], &ipts,
@@ -456,6 +465,19 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
       FCContact *c = &set->c[k];
       if (c->side2 == FC_SIDE_SHAPE) continue;
       idx[nfe] = k;
+      if (c->side2 == FC_SIDE_FE_EDGE) { /* the two ends of each edge */
+        for (int s = 0; s < 2; s++)
+          for (int a = 0; a < 2; a++) {
+            FCProximity v = {0};
+            v.nv          = 1;
+            v.gdof[0]     = c->prox[s].gdof[a];
+            v.w[0]        = 1.0;
+            for (int d = 0; d < 3; d++) v.X[0][d] = c->prox[s].X[a][d];
+            PetscCall(FCBodyAddPartialPosition(bodies[c->body[s]], &v, &xs[12 * nfe + 6 * s + 3 * a]));
+          }
+        nfe++;
+        continue;
+      }
       PetscCall(FCBodyAddPartialPosition(bodies[c->body[0]], &c->prox[0], &xs[12 * nfe]));
       for (int a = 0; a < 3 && c->side2 == FC_SIDE_FE_TRIANGLE; a++) {
         FCProximity v = {0};
@@ -471,7 +493,21 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
     for (PetscInt j = 0; j < nfe; j++) {
       FCContact *c = &set->c[idx[j]];
       PetscReal  tri[3][3], p2[3] = {0, 0, 0}, nrm[3], *x1 = &xs[12 * j], *gk = &g[7 * idx[j]];
-      if (c->side2 == FC_SIDE_RIGID_TRIANGLE) { /* the triangle moved rigidly: rotate its normal */
+      if (c->side2 == FC_SIDE_FE_EDGE) { /* the edges' cross product, on the start normal's side */
+        PetscReal ea[3], eb[3], l;
+        for (int d = 0; d < 3; d++) {
+          ea[d] = xs[12 * j + 3 + d] - xs[12 * j + d];
+          eb[d] = xs[12 * j + 9 + d] - xs[12 * j + 6 + d];
+        }
+        FCCross(ea, eb, nrm);
+        l = PetscSqrtReal(FCDot(nrm, nrm));
+        if (FCDot(nrm, c->n) < 0) l = -l;
+        for (int d = 0; d < 3; d++) {
+          nrm[d] = l != 0 ? nrm[d] / l : c->n[d];
+          x1[d]  = c->prox[0].w[0] * xs[12 * j + d] + c->prox[0].w[1] * xs[12 * j + 3 + d];
+          p2[d]  = c->prox[1].w[0] * xs[12 * j + 6 + d] + c->prox[1].w[1] * xs[12 * j + 9 + d];
+        }
+      } else if (c->side2 == FC_SIDE_RIGID_TRIANGLE) { /* the triangle moved rigidly: rotate its normal */
         FCProximity o = {0}, e = {0};
         PetscReal   p0[3], pe[3];
         FCBody      B = bodies[c->body[1]];

@@ -32,6 +32,10 @@ PETSC_INTERN PetscErrorCode FCSurfaceCreateSwept(PetscInt n, FCSurfaceTriangle *
 PETSC_INTERN void FCSurfaceQueryBox(FCSurface *, const PetscReal lo[3], const PetscReal hi[3], PetscInt cand[],
                                     PetscInt *ncand);
 
+/* edges.c: the edge-edge contacts of the sharp edges of A (FE) against those of B (FE or mesh) */
+PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt pair,
+                                                const FCContactPairs *, FCContactSet *);
+
 /* geometry.c: closest point to p on triangle (a, b, c) with its barycentric weights (Ericson,
    5.1.5); the unit normal of a triangle (x[0], x[1], x[2]), counter-clockwise = outward; the
    closest points of segments (p0, p1) and (q0, q1): p0 + s (p1 - p0), q0 + t (q1 - q0), with
@@ -53,8 +57,9 @@ PETSC_INTERN PetscErrorCode FCCCDPointShape(FCBody shape, const PetscReal x0[3],
                                             PetscReal tau, PetscBool *hit);
 PETSC_INTERN PetscBool      FCCCDPointTriangle(const PetscReal p0[3], const PetscReal pf[3], const PetscReal a0[3][3],
                                                const PetscReal af[3][3], PetscReal tau, PetscReal *thit);
-PETSC_INTERN PetscBool      FCCCDEdgeEdge(const PetscReal a0[2][3], const PetscReal af[2][3], const PetscReal b0[2][3],
-                                          const PetscReal bf[2][3], PetscReal tau, PetscReal *thit);
+/* edges a and b as their two ends, flat: a0 = (start of end 0, start of end 1), af the same after the free motion */
+PETSC_INTERN PetscBool FCCCDEdgeEdge(const PetscReal *a0, const PetscReal *af, const PetscReal *b0, const PetscReal *bf,
+                                     PetscReal tau, PetscReal *thit);
 /* The distance below which a continuous test reports a hit: a tenth of the alarm distance (a
    point whose free motion ends that close was going to touch), never 0 */
 PETSC_INTERN PetscReal FCCCDThreshold(PetscReal distance);

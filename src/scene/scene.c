@@ -22,6 +22,9 @@
                               (start to free-motion end) reaches the other side is a contact too, with
                               its start-of-step gap and normal, so nothing passes through a thin body
                               in one step; discrete: only points within -contact_distance at the start
+     -contact_edge_edge 1|0   pairs of two meshed bodies: contacts between their sharp edges where the
+                              edges cross (src/collision/edges.c; default 1); 0: vertices against
+                              triangles only
      -contact_intersection_depth d  a point of a pair deeper than d inside the other body at the end of a
                               step counts in /steps/intersections (>= 0, default 1e-4 m)
      -contact_fail_on_intersection  stop the run at the first step that ends with an intersection
@@ -96,6 +99,7 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   s->pairs.distance           = 0.01;
   s->pairs.passes             = 2;
   s->pairs.intersection_depth = 1e-4;
+  s->pairs.edges              = PETSC_TRUE;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
   PetscCall(
       PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
@@ -107,6 +111,8 @@ static PetscErrorCode ReadContactPairs(FCScene s)
                                 FC_MAX_BODIES, mu, &nmu, &setmu));
     PetscCall(PetscOptionsString("-contact_detection", "Contact detection: continuous or discrete", NULL, detection,
                                  detection, sizeof(detection), NULL));
+    PetscCall(PetscOptionsBool("-contact_edge_edge", "Edge-edge contacts between two meshed bodies", NULL,
+                               s->pairs.edges, &s->pairs.edges, NULL));
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_intersection_depth",
                             "Depth inside another body that counts as an intersection (m)",
                             &s->pairs.intersection_depth, NULL));
