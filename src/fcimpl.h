@@ -140,13 +140,15 @@ typedef struct {
   PetscReal   n[3], t1[3], t2[3];    /* frame at the start of the step */
   PetscReal   p0[2][3], pfree[2][3]; /* proximity positions at the start and after free motion */
   PetscReal   gap0, mu, gap_end;
-  PetscInt    dim, row, owner; /* rows (1 frictionless, 3), first row, detecting rank */
-  PetscReal   force[3];        /* lambda in the [n t1 t2] frame (force units)      */
-  PetscInt    state;           /* 0 open, 1 stick, 2 slip */
-  PetscInt    side2; /* what side 2 is: FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE, FC_SIDE_FE_EDGE */
-  PetscReal   nb[3]; /* FC_SIDE_RIGID_TRIANGLE: the normal in side 2's body frame             */
-  PetscReal   wnn;   /* normal diagonal entry of the step's W (m/N): scales the end measures  */
-  PetscReal   n_end[3], d_end[3]; /* end of the step: normal on the real geometry, d = p1 - p2 (world)  */
+  PetscReal   slack;         /* penetration the step may leave: what a start inside the other body exceeds
+                                -contact_separation_speed x h by (0 for a contact that starts outside) */
+  PetscInt  dim, row, owner; /* rows (1 frictionless, 3), first row, detecting rank */
+  PetscReal force[3];        /* lambda in the [n t1 t2] frame (force units)      */
+  PetscInt  state;           /* 0 open, 1 stick, 2 slip */
+  PetscInt  side2; /* what side 2 is: FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE, FC_SIDE_FE_EDGE */
+  PetscReal nb[3]; /* FC_SIDE_RIGID_TRIANGLE: the normal in side 2's body frame             */
+  PetscReal wnn;   /* normal diagonal entry of the step's W (m/N): scales the end measures  */
+  PetscReal n_end[3], d_end[3]; /* end of the step: normal on the real geometry, d = p1 - p2 (world)  */
 } FCContact;
 /* FC_SIDE_FE_EDGE: an edge-edge contact between two FE bodies (prox[0] and prox[1] each an edge,
    nv = 2; the normal is the cross product of the two edges). An FE edge against an edge of a
@@ -372,12 +374,14 @@ typedef struct {
   PetscInt n;
   PetscInt (*body)[2]; /* scene body indices */
   PetscReal *mu;
-  PetscReal  distance;             /* alarm distance */
-  PetscInt   passes;               /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
-  PetscBool  continuous;           /* -contact_detection continuous (default) or discrete */
-  PetscBool  edges;                /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
-  PetscReal  intersection_depth;   /* a point deeper than this inside another body is an intersection */
-  PetscBool  fail_on_intersection; /* -contact_fail_on_intersection: stop the run at the first one */
+  PetscReal  distance;   /* alarm distance */
+  PetscInt   passes;     /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
+  PetscBool  continuous; /* -contact_detection continuous (default) or discrete */
+  PetscBool  edges;      /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
+  PetscReal
+      separation_speed; /* -contact_separation_speed: bodies that start inside each other part at most this fast */
+  PetscReal intersection_depth;   /* a point deeper than this inside another body is an intersection */
+  PetscBool fail_on_intersection; /* -contact_fail_on_intersection: stop the run at the first one */
 } FCContactPairs;
 /* Discrete collision detection at the start of the step (after the free motion has been
    computed, so that every contact also carries its free-motion positions) */

@@ -289,10 +289,28 @@ static void SweptVertexHit(Surface *S, const PetscReal x0[3], const PetscReal xf
   }
 }
 
+/* The nearest triangle of S to x, over all of them: for the rare vertex that starts inside */
+static void NearestTriangle(const Surface *S, const PetscReal x[3], PetscInt *best)
+{
+  PetscReal bestd = PETSC_MAX_REAL;
+  *best           = -1;
+  for (PetscInt t = 0; t < S->n; t++) {
+    PetscReal cp[3], w[3], d2 = 0.0;
+    FCClosestPointTriangle(x, S->tri[t].x0[0], S->tri[t].x0[1], S->tri[t].x0[2], cp, w);
+    for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
+    if (d2 < bestd) {
+      bestd = d2;
+      *best = t;
+    }
+  }
+}
+
 /* Owned boundary vertices of body P (index ipts) against the surface S of body ishp: the nearest
    triangle within the alarm distance at the start of the step gives the contact; with continuous
    detection, a vertex that has none gets the first triangle its motion over the step reaches, as
-   a speculative contact. Either way the contact carries the triangle's outward normal at the
+   a speculative contact; a vertex that starts inside the other body, deeper than the alarm
+   distance, gets its nearest triangle (the start-inside rule of FCCollisionDetect then bounds how
+   fast it is pushed out). Either way the contact carries the triangle's outward normal at the
    start, the start-of-step gap along it and the barycentric weights of the closest point at the
    start as the proximity map (eq. 6). */
 static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp, Surface *S,
@@ -300,6 +318,7 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
                                              FCContactSet *set)
 {
   PetscInt     n, *cand = NULL;
+  FCRayGrid    grid = {{0}};
   FCProximity *prox;
   PetscReal   *x0, *xf, *key, distance = pairs->distance, tau = FCCCDThreshold(distance), mu = pairs->mu[pair];
 
@@ -311,9 +330,12 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
     PetscReal bestd, bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
     FCSurfaceClosest(S, &x0[3 * i], &best, bw, bcp, &bestd);
     if (best < 0 || bestd > distance * distance) {
-      if (!pairs->continuous) continue;
-      SweptVertexHit(S, &x0[3 * i], &xf[3 * i], tau, cand, &best);
-      if (best < 0) continue;
+      if (pairs->continuous) SweptVertexHit(S, &x0[3 * i], &xf[3 * i], tau, cand, &best);
+      if (best < 0) { /* deeper inside the other body than the alarm distance: its nearest triangle */
+        if (!grid.cells) PetscCall(FCRayGridCreate(S, &grid));
+        if (!FCRayGridInside(S, &grid, &x0[3 * i])) continue;
+        NearestTriangle(S, &x0[3 * i], &best);
+      }
       FCClosestPointTriangle(&x0[3 * i], S->tri[best].x0[0], S->tri[best].x0[1], S->tri[best].x0[2], bcp, bw);
     }
     {
@@ -356,6 +378,7 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
     }
   }
   PetscCall(PetscFree(cand));
+  PetscCall(PetscFree(grid.cells));
   PetscFunctionReturn(0);
 }
 
@@ -431,6 +454,14 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     }
   }
   PetscCall(FCContactSetGather(set, comm));
+  /* The start-inside rule: a contact that starts d deep is not asked to close in one step (an
+     impulse of d / h, the energy burst of bodies placed inside each other) but by at most
+     -contact_separation_speed v per step: the step may leave max(0, d - v h) of it (q_n += slack,
+     src/scheme/recursive.c). An ordinary contact (d < v h) is unchanged. */
+  for (PetscInt k = 0; k < set->n; k++) {
+    FCContact *c = &set->c[k];
+    c->slack     = PetscMax(0.0, -c->gap0 - pairs->separation_speed * bodies[c->body[0]]->h);
+  }
   PetscCall(FCContactSetFinalize(set));
   PetscFunctionReturn(0);
 }

@@ -32,6 +32,18 @@ PETSC_INTERN PetscErrorCode FCSurfaceCreateSwept(PetscInt n, FCSurfaceTriangle *
 PETSC_INTERN void FCSurfaceQueryBox(FCSurface *, const PetscReal lo[3], const PetscReal hi[3], PetscInt cand[],
                                     PetscInt *ncand);
 
+/* intersection.c: the triangles of a closed surface bucketed across a fixed ray direction; a
+   point is inside when the ray from it crosses the surface an odd number of times (start-of-step
+   positions x0 of the surface) */
+typedef struct {
+  PetscReal    u[3], v[3], h; /* the grid's axes across the ray and its cell size */
+  PetscInt     n;
+  FCCellEntry *cells;
+  PetscReal    lo[3], hi[3]; /* bounding box of the surface */
+} FCRayGrid;
+PETSC_INTERN PetscErrorCode FCRayGridCreate(const FCSurface *, FCRayGrid *);
+PETSC_INTERN PetscBool      FCRayGridInside(const FCSurface *, const FCRayGrid *, const PetscReal x[3]);
+
 /* edges.c: the edge-edge contacts of the sharp edges of A (FE) against those of B (FE or mesh) */
 PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt pair,
                                                 const FCContactPairs *, FCContactSet *);

@@ -18,12 +18,7 @@
 /* A generic direction: no mesh of the repository has an edge or a face along it */
 static const PetscReal RayDir[3] = {0.2672612419124244, 0.5345224838248488, 0.8017837257372732};
 
-typedef struct {
-  PetscReal    u[3], v[3], h; /* the grid's axes across the ray and its cell size */
-  PetscInt     n;
-  FCCellEntry *cells;
-  PetscReal    lo[3], hi[3]; /* bounding box of the surface */
-} RayGrid;
+typedef FCRayGrid RayGrid;
 
 static int CompareEntry(const void *a, const void *b)
 {
@@ -37,7 +32,7 @@ static int64_t Key2(int64_t i, int64_t j)
   return ((i + ((int64_t)1 << 30)) << 32) | ((j + ((int64_t)1 << 30)) & 0xffffffff);
 }
 
-static PetscErrorCode RayGridCreate(const FCSurface *S, RayGrid *G)
+PetscErrorCode FCRayGridCreate(const FCSurface *S, FCRayGrid *G)
 {
   PetscFunctionBegin;
   G->u[0] = RayDir[1];
@@ -90,7 +85,7 @@ static PetscErrorCode RayGridCreate(const FCSurface *S, RayGrid *G)
 }
 
 /* Odd number of crossings of the ray from x: inside the closed surface */
-static PetscBool RayInside(const FCSurface *S, const RayGrid *G, const PetscReal x[3])
+PetscBool FCRayGridInside(const FCSurface *S, const FCRayGrid *G, const PetscReal x[3])
 {
   int64_t  key = Key2((int64_t)PetscFloorReal(FCDot(x, G->u) / G->h), (int64_t)PetscFloorReal(FCDot(x, G->v) / G->h));
   PetscInt lo = 0, hi = G->n, crossings = 0;
@@ -124,12 +119,12 @@ static PetscErrorCode PointsInSurface(MPI_Comm comm, FCBody P, FCBody B, PetscRe
   PetscFunctionBegin;
   PetscCall(FCSurfaceGather(comm, B, &ntri, &tri));
   PetscCall(FCSurfaceCreate(ntri, tri, depth, &S));
-  PetscCall(RayGridCreate(S, &G));
+  PetscCall(FCRayGridCreate(S, &G));
   PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x, &xf, &key));
   for (PetscInt i = 0; i < n; i++) {
     PetscInt  best;
     PetscReal w[3], cp[3], d2;
-    if (!RayInside(S, &G, &x[3 * i])) continue;
+    if (!FCRayGridInside(S, &G, &x[3 * i])) continue;
     FCSurfaceClosest(S, &x[3 * i], &best, w, cp, &d2);
     if (best < 0 || d2 > depth * depth) (*count)++;
   }

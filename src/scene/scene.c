@@ -25,6 +25,9 @@
      -contact_edge_edge 1|0   pairs of two meshed bodies: contacts between their sharp edges where the
                               edges cross (src/collision/edges.c; default 1); 0: vertices against
                               triangles only
+     -contact_separation_speed v  bodies that start a step inside each other are pushed apart at most
+                              this fast: a contact deeper than v h at the start may stay (depth - v h)
+                              deep at the end of the step (> 0, default 0.1 m/s; docs/hard-cases.md)
      -contact_intersection_depth d  a point of a pair deeper than d inside the other body at the end of a
                               step counts in /steps/intersections (>= 0, default 1e-4 m)
      -contact_fail_on_intersection  stop the run at the first step that ends with an intersection
@@ -100,6 +103,7 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   s->pairs.passes             = 2;
   s->pairs.intersection_depth = 1e-4;
   s->pairs.edges              = PETSC_TRUE;
+  s->pairs.separation_speed   = 0.1;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
   PetscCall(
       PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
@@ -113,6 +117,9 @@ static PetscErrorCode ReadContactPairs(FCScene s)
                                  detection, sizeof(detection), NULL));
     PetscCall(PetscOptionsBool("-contact_edge_edge", "Edge-edge contacts between two meshed bodies", NULL,
                                s->pairs.edges, &s->pairs.edges, NULL));
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_separation_speed",
+                            "Largest speed at which bodies that start inside each other are pushed apart (m/s)",
+                            &s->pairs.separation_speed, NULL));
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_intersection_depth",
                             "Depth inside another body that counts as an intersection (m)",
                             &s->pairs.intersection_depth, NULL));
@@ -124,6 +131,8 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   PetscCheck(!strcmp(detection, "continuous") || !strcmp(detection, "discrete"), s->comm, PETSC_ERR_USER_INPUT,
              "Option -contact_detection must be continuous or discrete, got '%s'", detection);
   s->pairs.continuous = strcmp(detection, "continuous") ? PETSC_FALSE : PETSC_TRUE;
+  PetscCheck(s->pairs.separation_speed > 0.0, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_separation_speed must be > 0, got %g", (double)s->pairs.separation_speed);
   PetscCheck(s->pairs.intersection_depth >= 0.0, s->comm, PETSC_ERR_USER_INPUT,
              "Option -contact_intersection_depth must be >= 0, got %g", (double)s->pairs.intersection_depth);
   if (!set || np == 0) PetscFunctionReturn(0);
