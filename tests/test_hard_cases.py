@@ -504,7 +504,7 @@ def start_inside(np_=1, checks=True):
     if not checks:
         return H
     label = label if np_ == 1 else label + " [np%d]" % np_
-    v = 0.1  # -contact_separation_speed, the default
+    v = 0.1  # -contact_separation_speed, set by the scene
     # residual: while the overlap is pushed out (steps 1-73) the two-way FE-FE contacts (88) stall
     # PGS at up to 4.2e-6 (the redundancy of docs/hard-cases.md, "stiffness contrast"); bound 1e-5.
     # Once parted no contact remains. Energy: see below (stability's growth check is replaced).
@@ -531,7 +531,7 @@ def stack_overlap(np_=1, checks=True):
     if not checks:
         return H
     label = label if np_ == 1 else label + " [np%d]" % np_
-    v, h = 0.1, 0.01
+    v, h = 0.1, 0.01  # -contact_separation_speed (set by the scene), time step
     # penetration at the end (the overlap is removed over steps 1-14): measured 8.4e-12 m over
     # the last 10 steps; the run's maximum is the initial overlap being removed, not bounded here.
     # Residual: converged every step (<= 9.8e-9).

@@ -27,7 +27,7 @@
                               triangles only
      -contact_separation_speed v  bodies that start a step inside each other are pushed apart at most
                               this fast: a contact deeper than v h at the start may stay (depth - v h)
-                              deep at the end of the step (> 0, default 0.1 m/s; docs/hard-cases.md)
+                              deep at the end of the step (> 0, default 1 m/s; docs/hard-cases.md)
      -contact_intersection_depth d  a point of a pair deeper than d inside the other body at the end of a
                               step counts in /steps/intersections (>= 0, default 1e-4 m)
      -contact_fail_on_intersection  stop the run at the first step that ends with an intersection
@@ -103,7 +103,7 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   s->pairs.passes             = 2;
   s->pairs.intersection_depth = 1e-4;
   s->pairs.edges              = PETSC_TRUE;
-  s->pairs.separation_speed   = 0.1;
+  s->pairs.separation_speed   = 1.0;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
   PetscCall(
       PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
