@@ -556,14 +556,14 @@ def stack_overlap(np_=1, checks=True):
     return H
 
 
-def compare(label, H1, Hn):
+def compare(label, H1, Hn, tol=1e-8):
     """Final centroids of N ranks against 1 rank, 1e-8 m on 1 m bodies (round-off: contacts are
     ordered the same way on any number of ranks)."""
     o = options(H1)
     d = max(np.abs(H1["bodies/%s/centroid" % b][-1] - Hn["bodies/%s/centroid" % b][-1]).max() for b in bodies(H1, o))
     # measured 4e-16 (grasp), 1e-15 (large step), 9e-11 m (impact: the contact onset at 20 m/s
     # amplifies round-off); bound 1e-8 m
-    c.check(d <= 1e-8, "%s: final centroids 1 vs %d ranks differ by %.1e m <= 1e-8 (1e-8 of the 1 m bodies)" % (label, NP, d))
+    c.check(d <= tol, "%s: final centroids 1 vs %d ranks differ by %.1e m <= %.0e" % (label, NP, d, tol))
 
 
 t0 = time.time()
@@ -593,7 +593,11 @@ else:
     compare("ball 20 m/s on 2 cm FE slab", ball_thin_slab(1, checks=False), ball_thin_slab(NP))
     compare("FE cube 20 m/s on 1 cm plate", cube_thin_plate(1, checks=False), cube_thin_plate(NP))
     compare("crossed bars edge-edge", crossed_bars(1, checks=False), crossed_bars(NP))
-    compare("FE cubes start 0.1 m inside", start_inside(1, checks=False), start_inside(NP))
+    # the push-out solves 88 contacts whose right-hand sides carry the 0.1 m overlap for 73 steps:
+    # each solve is exact to pgs_tol x |q| ~ 1e-9 m, and 1 and 2 ranks stop at different sweeps
+    # of it; measured 2.0e-8 m (1.9e-8 with one-way detection, where every solve converges):
+    # bound 1e-7 m, 1e-7 of the bodies
+    compare("FE cubes start 0.1 m inside", start_inside(1, checks=False), start_inside(NP), tol=1e-7)
     compare("stack started 1.5 cm inside", stack_overlap(1, checks=False), stack_overlap(NP))
 
 print("\nsummary (np %d): case | wall s | max penetration m | max residual | max E(t) - E(0) J | E(0) J | final speed m/s" % NP)
