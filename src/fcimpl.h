@@ -126,7 +126,7 @@ PETSC_INTERN PetscErrorCode FCMeshDestroy(FCMesh *);
    kinematic body. Contacts are replicated on every rank, in a partition-independent order.
    --------------------------------------------------------------------------------------- */
 typedef struct {
-  PetscInt  nv;      /* FE: vertices (1..3); 0 for rigid and kinematic bodies */
+  PetscInt  nv;      /* FE: vertices (1..3: a vertex, an edge, a triangle); 0 for rigid and kinematic bodies */
   PetscInt  gdof[3]; /* FE: first global DOF of each vertex, -1 when fixed     */
   PetscReal w[3];    /* FE: barycentric weights                                */
   PetscReal r[3];    /* rigid/kinematic: body-frame point                      */
@@ -140,15 +140,20 @@ typedef struct {
   PetscReal   n[3], t1[3], t2[3];    /* frame at the start of the step */
   PetscReal   p0[2][3], pfree[2][3]; /* proximity positions at the start and after free motion */
   PetscReal   gap0, mu, gap_end;
-  PetscInt    dim, row, owner;    /* rows (1 frictionless, 3), first row, detecting rank */
-  PetscReal   force[3];           /* lambda in the [n t1 t2] frame (force units)      */
-  PetscInt    state;              /* 0 open, 1 stick, 2 slip */
-  PetscInt    side2;              /* what side 2 is: FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE */
-  PetscReal   nb[3];              /* FC_SIDE_RIGID_TRIANGLE: the normal in side 2's body frame             */
-  PetscReal   wnn;                /* normal diagonal entry of the step's W (m/N): scales the end measures  */
-  PetscReal   n_end[3], d_end[3]; /* end of the step: normal on the real geometry, d = p1 - p2 (world)  */
+  PetscReal   slack;         /* penetration the step may leave: what a start inside the other body exceeds
+                                -contact_separation_speed x h by (0 for a contact that starts outside) */
+  PetscInt  dim, row, owner; /* rows (1 frictionless, 3), first row, detecting rank */
+  PetscReal force[3];        /* lambda in the [n t1 t2] frame (force units)      */
+  PetscInt  state;           /* 0 open, 1 stick, 2 slip */
+  PetscInt  side2; /* what side 2 is: FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE, FC_SIDE_FE_EDGE */
+  PetscReal nb[3]; /* FC_SIDE_RIGID_TRIANGLE: the normal in side 2's body frame             */
+  PetscReal wnn;   /* normal diagonal entry of the step's W (m/N): scales the end measures  */
+  PetscReal n_end[3], d_end[3]; /* end of the step: normal on the real geometry, d = p1 - p2 (world)  */
 } FCContact;
-enum { FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE };
+/* FC_SIDE_FE_EDGE: an edge-edge contact between two FE bodies (prox[0] and prox[1] each an edge,
+   nv = 2; the normal is the cross product of the two edges). An FE edge against an edge of a
+   rigid mesh is an FC_SIDE_RIGID_TRIANGLE contact: a point and a normal fixed in the mesh's frame. */
+enum { FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE, FC_SIDE_FE_EDGE };
 
 typedef struct {
   PetscInt   n, max, nrows;
@@ -210,8 +215,9 @@ typedef struct {
   PetscErrorCode (*shapedistancefree)(FCBody, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cpb[3]);
   /* FE: the boundary triangles this rank holds (start and free positions of this step) */
   PetscErrorCode (*surfacetriangles)(FCBody, PetscInt *n, FCSurfaceTriangle **);
-  /* rigid and kinematic: a world point (start of the step) or direction in the body frame */
-  PetscErrorCode (*tobody)(FCBody, const PetscReal x[3], PetscBool direction, PetscReal r[3]);
+  /* rigid and kinematic: a world point or direction in the body frame, at the pose now (start of
+     the step during detection) or after the free motion (when = FC_AT_NOW, FC_AT_FREE) */
+  PetscErrorCode (*tobody)(FCBody, PetscInt when, const PetscReal x[3], PetscBool direction, PetscReal r[3]);
   /* add w x (current position) of the vertices of a proximity point this rank owns (FE), or
      the point on rank 0 (rigid, kinematic) */
   PetscErrorCode (*partialposition)(FCBody, const FCProximity *, PetscReal x[3]);
@@ -268,7 +274,12 @@ PETSC_INTERN PetscErrorCode FCBodyProximityPosition(FCBody, const FCProximity *,
 /* when: FC_AT_NOW (the shape's pose now) or FC_AT_FREE (after the free motion) */
 PETSC_INTERN PetscErrorCode FCBodyShapeDistance(FCBody, PetscInt when, const PetscReal x[3], PetscReal *d,
                                                 PetscReal n[3], PetscReal cpb[3]);
-PETSC_INTERN PetscErrorCode FCBodyToBodyFrame(FCBody, const PetscReal x[3], PetscBool direction, PetscReal r[3]);
+/* when: FC_AT_NOW (the pose now) or FC_AT_FREE (after the free motion) */
+PETSC_INTERN PetscErrorCode FCBodyToBodyFrame(FCBody, PetscInt when, const PetscReal x[3], PetscBool direction,
+                                              PetscReal r[3]);
+/* signed distance of a body-frame point to the body's shape: outward normal and closest point, body frame */
+PETSC_INTERN PetscErrorCode FCBodyShapeDistanceLocal(FCBody, const PetscReal r[3], PetscReal *d, PetscReal n[3],
+                                                     PetscReal cp[3]);
 PETSC_INTERN PetscErrorCode FCBodyAddPartialPosition(FCBody, const FCProximity *, PetscReal x[3]);
 /* Contact response */
 PETSC_INTERN PetscErrorCode FCBodySetUpContact(FCBody); /* a body named in a contact pair, after FCBodySetUp */
@@ -368,8 +379,14 @@ typedef struct {
   PetscInt n;
   PetscInt (*body)[2]; /* scene body indices */
   PetscReal *mu;
-  PetscReal  distance; /* alarm distance */
-  PetscInt   passes;   /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
+  PetscReal  distance;   /* alarm distance */
+  PetscInt   passes;     /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
+  PetscBool  continuous; /* -contact_detection continuous (default) or discrete */
+  PetscBool  edges;      /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
+  PetscReal
+      separation_speed; /* -contact_separation_speed: bodies that start inside each other part at most this fast */
+  PetscReal intersection_depth;   /* a point deeper than this inside another body is an intersection */
+  PetscBool fail_on_intersection; /* -contact_fail_on_intersection: stop the run at the first one */
 } FCContactPairs;
 /* Discrete collision detection at the start of the step (after the free motion has been
    computed, so that every contact also carries its free-motion positions) */
@@ -377,6 +394,10 @@ PETSC_INTERN PetscErrorCode FCCollisionDetect(MPI_Comm, PetscInt nbodies, FCBody
                                               FCContactSet *);
 /* Gap, normal and d = p1 - p2 of every contact at the end of the step, on the real geometry */
 PETSC_INTERN PetscErrorCode FCCollisionEndGaps(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCContactSet *);
+/* The points inside another body at the end of the step (src/collision/intersection.c), the same
+   on every rank */
+PETSC_INTERN PetscErrorCode FCCollisionCountIntersections(MPI_Comm, PetscInt nbodies, FCBody bodies[],
+                                                          const FCContactPairs *, PetscInt *count);
 
 typedef struct {
   PetscInt  contacts, rows, sweeps;
@@ -418,6 +439,7 @@ PETSC_INTERN void FCContactFrame(const PetscReal n[3], PetscReal t1[3], PetscRea
 /* End-of-step accuracy measures of a contact set (src/contact/measures.c, docs/output.md) */
 typedef struct {
   PetscReal max_penetration, rms_penetration, violation, complementarity, cone_violation;
+  PetscInt  intersections; /* points inside another body (FCCollisionCountIntersections) */
 } FCContactMeasures;
 PETSC_INTERN void FCContactSetMeasure(const FCContactSet *, FCContactMeasures *);
 /* wnn of every contact: the normal diagonal entry of W (row-major M x M, in the contacts' frames) */
@@ -438,6 +460,10 @@ PETSC_INTERN int            FCSignalsCaught(void);
 typedef struct {
   PetscLogDouble start, last;
   PetscBool      quiet;
+  PetscInt       warned; /* steps with intersections so far */
 } FCProgress;
 PETSC_INTERN PetscErrorCode FCProgressStart(FCProgress *, PetscBool quiet);
-PETSC_INTERN PetscErrorCode FCProgressUpdate(FCProgress *, MPI_Comm, PetscInt step, PetscInt nsteps, PetscReal t);
+/* intersections: points inside another body at the end of the step; when not 0 the line is printed
+   whatever the time since the last one, with a warning */
+PETSC_INTERN PetscErrorCode FCProgressUpdate(FCProgress *, MPI_Comm, PetscInt step, PetscInt nsteps, PetscReal t,
+                                             PetscInt intersections);

@@ -96,11 +96,22 @@ PetscErrorCode FCBodyShapeDistance(FCBody body, PetscInt when, const PetscReal x
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCBodyToBodyFrame(FCBody body, const PetscReal x[3], PetscBool direction, PetscReal r[3])
+PetscErrorCode FCBodyToBodyFrame(FCBody body, PetscInt when, const PetscReal x[3], PetscBool direction, PetscReal r[3])
 {
   PetscFunctionBegin;
   if (!body->ops.tobody) PetscCall(Missing(body, "express a point in a body frame"));
-  PetscCall((*body->ops.tobody)(body, x, direction, r));
+  PetscCall((*body->ops.tobody)(body, when, x, direction, r));
+  PetscFunctionReturn(0);
+}
+
+/* The shape's own signed distance, in its body frame: what continuous detection follows along
+   a point's motion relative to the shape */
+PetscErrorCode FCBodyShapeDistanceLocal(FCBody body, const PetscReal r[3], PetscReal *d, PetscReal n[3],
+                                        PetscReal cp[3])
+{
+  PetscFunctionBegin;
+  if (!body->shape || !body->shape->distance) PetscCall(Missing(body, "measure a distance to its shape"));
+  PetscCall((*body->shape->distance)(body->shape, r, d, n, cp));
   PetscFunctionReturn(0);
 }
 

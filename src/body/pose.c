@@ -253,14 +253,15 @@ PetscErrorCode FCPoseSurfaceTriangles(FCBody body, PetscInt *n, FCSurfaceTriangl
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCPoseToBody(FCBody body, const PetscReal x[3], PetscBool direction, PetscReal r[3])
+PetscErrorCode FCPoseToBody(FCBody body, PetscInt when, const PetscReal x[3], PetscBool direction, PetscReal r[3])
 {
-  FCPose   *P = (FCPose *)body->data;
-  PetscReal R[9], d[3];
+  FCPose          *P = (FCPose *)body->data;
+  PetscReal        R[9], d[3];
+  const PetscReal *c = when == FC_AT_FREE ? P->xf : P->x;
 
   PetscFunctionBegin;
-  FCQuatToMat3(P->q, R);
-  for (int k = 0; k < 3; k++) d[k] = direction ? x[k] : x[k] - P->x[k];
+  FCQuatToMat3(when == FC_AT_FREE ? P->qf : P->q, R);
+  for (int k = 0; k < 3; k++) d[k] = direction ? x[k] : x[k] - c[k];
   FCMat3TVec(R, d, r);
   PetscFunctionReturn(0);
 }

@@ -29,7 +29,7 @@ PETSC_INTERN PetscErrorCode FCPoseContactPoints(FCBody, PetscInt *, FCProximity 
                                                 PetscReal **);
 PETSC_INTERN PetscErrorCode FCPoseProximityPosition(FCBody, const FCProximity *, PetscInt, PetscReal[3]);
 PETSC_INTERN PetscErrorCode FCPoseSurfaceTriangles(FCBody, PetscInt *, FCSurfaceTriangle **);
-PETSC_INTERN PetscErrorCode FCPoseToBody(FCBody, const PetscReal[3], PetscBool, PetscReal[3]);
+PETSC_INTERN PetscErrorCode FCPoseToBody(FCBody, PetscInt, const PetscReal[3], PetscBool, PetscReal[3]);
 PETSC_INTERN PetscErrorCode FCPosePartialPosition(FCBody, const FCProximity *, PetscReal[3]);
 PETSC_INTERN PetscErrorCode FCPoseShapeDistanceFree(FCBody, const PetscReal[3], PetscReal *, PetscReal[3],
                                                     PetscReal[3]);

@@ -1,11 +1,16 @@
-/* Discrete collision detection at the start of the step (docs/method.md, section 2, step 2).
+/* Collision detection of a step (docs/method.md, section 2.2), run once the free motion is known.
    For each contact pair, the candidate points of one side (owned boundary vertices of an FE
    body, or the points of a rigid shape) are tested against the signed distance of the other
-   side's analytic shape; a point closer than -contact_distance makes a contact whose normal is
-   the shape's outward normal at the closest point. The proximity point on the shape side is that
-   closest point, fixed in the shape's body frame (so it moves rigidly with it within the step). */
-#include "../fcimpl.h"
-#include <stdint.h>
+   side's analytic shape, or against its surface triangles; a point closer than -contact_distance
+   at the start of the step makes a contact whose normal is the shape's outward normal at the
+   closest point. The proximity point on the shape side is that closest point, fixed in the
+   shape's body frame (so it moves rigidly with it within the step).
+   With -contact_detection continuous (the default) a point farther than that whose motion over
+   the step (start to free-motion end, against the other side's motion) reaches the other side
+   also becomes a contact, a speculative one, with the same start-of-step normal and gap: the
+   conservative tests are in ccd.c. A contact that stays open costs an inactive constraint; a
+   point that would have crossed a thin body within one step is stopped at its surface. */
+#include "collisionimpl.h"
 
 /* Which side gives points (side 1) and which gives the shape (side 2): an FE body gives points;
    between two shape bodies, a rigid one with a bounded shape does */
@@ -29,14 +34,9 @@ static PetscErrorCode Sides(FCBody a, FCBody b, PetscInt ia, PetscInt ib, PetscI
 /* ---- FE against FE: each owned boundary vertex of one body against the boundary triangles of
    the other (both ways). Triangles are gathered on every rank (a surface, not the volume) and
    bucketed in a sort-based spatial hash, so detection costs O(n log n) in the surface size. ---- */
-typedef struct {
-  int64_t  key;
-  PetscInt tri;
-} CellEntry;
-
 static int CompareCell(const void *a, const void *b)
 {
-  const CellEntry *x = (const CellEntry *)a, *y = (const CellEntry *)b;
+  const FCCellEntry *x = (const FCCellEntry *)a, *y = (const FCCellEntry *)b;
   if (x->key != y->key) return x->key < y->key ? -1 : 1;
   return (x->tri > y->tri) - (x->tri < y->tri);
 }
@@ -47,16 +47,10 @@ static int64_t CellKey(int64_t i, int64_t j, int64_t k)
   return (((i + off) & mask) << 42) | (((j + off) & mask) << 21) | ((k + off) & mask);
 }
 
-struct _FCSurface {
-  PetscInt           n, nentries;
-  FCSurfaceTriangle *tri;
-  CellEntry         *cells;
-  PetscReal          h;
-};
 typedef struct _FCSurface Surface;
 
-/* The surface of an FE body, gathered on every rank */
-static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, PetscReal distance, Surface **S)
+/* The surface triangles of a body (FE or mesh shape), gathered on every rank (*tri: to free) */
+PetscErrorCode FCSurfaceGather(MPI_Comm comm, FCBody b, PetscInt *ntri, FCSurfaceTriangle **tri)
 {
   PetscMPIInt        size, nloc, *counts, *displs, total = 0;
   PetscInt           n;
@@ -77,21 +71,42 @@ static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, PetscReal distance, 
   PetscCallMPI(MPI_Allgatherv(loc, nloc * (PetscMPIInt)sizeof(FCSurfaceTriangle), MPI_BYTE, all, counts, displs,
                               MPI_BYTE, comm));
   PetscCall(PetscFree2(counts, displs));
-  PetscCall(FCSurfaceCreate(total, all, distance, S));
+  *ntri = total;
+  *tri  = all;
+  PetscFunctionReturn(0);
+}
+
+/* The surface of a body, gathered on every rank; hashed by the triangles' boxes over the step
+   with continuous detection */
+static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, const FCContactPairs *pairs, Surface **S)
+{
+  PetscInt           n;
+  FCSurfaceTriangle *all;
+
+  PetscFunctionBegin;
+  PetscCall(FCSurfaceGather(comm, b, &n, &all));
+  if (pairs->continuous)
+    PetscCall(FCSurfaceCreateSwept(n, all, pairs->distance, S));
+  else
+    PetscCall(FCSurfaceCreate(n, all, pairs->distance, S));
   PetscFunctionReturn(0);
 }
 
 /* The spatial hash of n triangles (taken over): cells of the mean edge length, at least twice
-   the alarm distance; each triangle is listed in every cell its inflated box overlaps */
-PetscErrorCode FCSurfaceCreate(PetscInt n, FCSurfaceTriangle *tri, PetscReal distance, FCSurface **surface)
+   the alarm distance; each triangle is listed in every cell its inflated box overlaps (its box
+   at the start of the step, or over the whole step when swept) */
+static PetscErrorCode SurfaceCreate(PetscInt n, FCSurfaceTriangle *tri, PetscReal distance, PetscBool swept,
+                                    FCSurface **surface)
 {
   Surface  *S;
   PetscReal len = 0.0;
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&S));
-  S->n   = n;
-  S->tri = tri;
+  S->n       = n;
+  S->tri     = tri;
+  S->swept   = swept;
+  S->inflate = distance;
   /* cell size: the mean edge length (at least twice the alarm distance) */
   for (PetscInt t = 0; t < S->n; t++)
     for (int a = 0; a < 3; a++) {
@@ -109,10 +124,17 @@ PetscErrorCode FCSurfaceCreate(PetscInt n, FCSurfaceTriangle *tri, PetscReal dis
     for (PetscInt t = 0; t < S->n; t++) {
       int64_t lo[3], hi[3];
       for (int d = 0; d < 3; d++) {
-        PetscReal mn = PetscMin(PetscMin(S->tri[t].x0[0][d], S->tri[t].x0[1][d]), S->tri[t].x0[2][d]) - distance;
-        PetscReal mx = PetscMax(PetscMax(S->tri[t].x0[0][d], S->tri[t].x0[1][d]), S->tri[t].x0[2][d]) + distance;
-        lo[d]        = (int64_t)PetscFloorReal(mn / S->h);
-        hi[d]        = (int64_t)PetscFloorReal(mx / S->h);
+        PetscReal mn = PETSC_MAX_REAL, mx = -PETSC_MAX_REAL;
+        for (int a = 0; a < 3; a++) {
+          mn = PetscMin(mn, S->tri[t].x0[a][d]);
+          mx = PetscMax(mx, S->tri[t].x0[a][d]);
+          if (swept) {
+            mn = PetscMin(mn, S->tri[t].xf[a][d]);
+            mx = PetscMax(mx, S->tri[t].xf[a][d]);
+          }
+        }
+        lo[d] = (int64_t)PetscFloorReal((mn - distance) / S->h);
+        hi[d] = (int64_t)PetscFloorReal((mx + distance) / S->h);
       }
       for (int64_t i = lo[0]; i <= hi[0]; i++)
         for (int64_t j = lo[1]; j <= hi[1]; j++)
@@ -129,15 +151,28 @@ PetscErrorCode FCSurfaceCreate(PetscInt n, FCSurfaceTriangle *tri, PetscReal dis
       PetscCall(PetscMalloc1(e + 1, &S->cells));
     }
   }
-  qsort(S->cells, S->nentries, sizeof(CellEntry), CompareCell);
+  qsort(S->cells, S->nentries, sizeof(FCCellEntry), CompareCell);
+  if (swept) PetscCall(PetscCalloc1(S->n + 1, &S->stamp));
   *surface = S;
   PetscFunctionReturn(0);
 }
 
-static void SurfaceQuery(const Surface *S, const PetscReal x[3], PetscInt *begin, PetscInt *end)
+PetscErrorCode FCSurfaceCreate(PetscInt n, FCSurfaceTriangle *tri, PetscReal distance, FCSurface **surface)
 {
-  int64_t  key = CellKey((int64_t)PetscFloorReal(x[0] / S->h), (int64_t)PetscFloorReal(x[1] / S->h),
-                         (int64_t)PetscFloorReal(x[2] / S->h));
+  PetscFunctionBegin;
+  PetscCall(SurfaceCreate(n, tri, distance, PETSC_FALSE, surface));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSurfaceCreateSwept(PetscInt n, FCSurfaceTriangle *tri, PetscReal inflate, FCSurface **surface)
+{
+  PetscFunctionBegin;
+  PetscCall(SurfaceCreate(n, tri, inflate, PETSC_TRUE, surface));
+  PetscFunctionReturn(0);
+}
+
+static void CellRange(const Surface *S, int64_t key, PetscInt *begin, PetscInt *end)
+{
   PetscInt lo = 0, hi = S->nentries;
   while (lo < hi) {
     PetscInt mid = (lo + hi) / 2;
@@ -151,83 +186,55 @@ static void SurfaceQuery(const Surface *S, const PetscReal x[3], PetscInt *begin
   *end = lo;
 }
 
+static void SurfaceQuery(const Surface *S, const PetscReal x[3], PetscInt *begin, PetscInt *end)
+{
+  CellRange(S,
+            CellKey((int64_t)PetscFloorReal(x[0] / S->h), (int64_t)PetscFloorReal(x[1] / S->h),
+                    (int64_t)PetscFloorReal(x[2] / S->h)),
+            begin, end);
+}
+
+/* Cells of the box, each triangle once (stamped with the query's number); a box over more than
+   FC_QUERY_MAX_CELLS cells (a very fast point in small cells) takes every triangle instead */
+#define FC_QUERY_MAX_CELLS 4096
+void FCSurfaceQueryBox(FCSurface *S, const PetscReal lo[3], const PetscReal hi[3], PetscInt cand[], PetscInt *ncand)
+{
+  int64_t  l[3], h[3], ncells = 1;
+  PetscInt q = ++S->nquery;
+
+  *ncand = 0;
+  for (int d = 0; d < 3; d++) {
+    l[d] = (int64_t)PetscFloorReal(lo[d] / S->h);
+    h[d] = (int64_t)PetscFloorReal(hi[d] / S->h);
+    ncells *= h[d] - l[d] + 1;
+  }
+  if (ncells > FC_QUERY_MAX_CELLS) {
+    for (PetscInt t = 0; t < S->n; t++) cand[(*ncand)++] = t;
+    return;
+  }
+  for (int64_t i = l[0]; i <= h[0]; i++)
+    for (int64_t j = l[1]; j <= h[1]; j++)
+      for (int64_t k = l[2]; k <= h[2]; k++) {
+        PetscInt b, e;
+        CellRange(S, CellKey(i, j, k), &b, &e);
+        for (PetscInt m = b; m < e; m++) {
+          PetscInt t = S->cells[m].tri;
+          if (S->stamp[t] == q) continue;
+          S->stamp[t]      = q;
+          cand[(*ncand)++] = t;
+        }
+      }
+}
+
 PetscErrorCode FCSurfaceDestroy(FCSurface **S)
 {
   PetscFunctionBegin;
   if (!*S) PetscFunctionReturn(0);
   PetscCall(PetscFree((*S)->tri));
   PetscCall(PetscFree((*S)->cells));
+  PetscCall(PetscFree((*S)->stamp));
   PetscCall(PetscFree(*S));
   PetscFunctionReturn(0);
-}
-
-/* Closest point to p on triangle (a, b, c), with its barycentric weights (Ericson, 5.1.5) */
-static void ClosestPointTriangle(const PetscReal p[3], const PetscReal a[3], const PetscReal b[3], const PetscReal c[3],
-                                 PetscReal cp[3], PetscReal w[3])
-{
-  PetscReal ab[3], ac[3], ap[3], bp[3], cpv[3], d1, d2, d3, d4, d5, d6, va, vb, vc, v, t, den;
-  for (int i = 0; i < 3; i++) {
-    ab[i]  = b[i] - a[i];
-    ac[i]  = c[i] - a[i];
-    ap[i]  = p[i] - a[i];
-    bp[i]  = p[i] - b[i];
-    cpv[i] = p[i] - c[i];
-  }
-  d1 = FCDot(ab, ap);
-  d2 = FCDot(ac, ap);
-  d3 = FCDot(ab, bp);
-  d4 = FCDot(ac, bp);
-  d5 = FCDot(ab, cpv);
-  d6 = FCDot(ac, cpv);
-  vc = d1 * d4 - d3 * d2;
-  vb = d5 * d2 - d1 * d6;
-  va = d3 * d6 - d5 * d4;
-  if (d1 <= 0 && d2 <= 0) {
-    w[0] = 1;
-    w[1] = 0;
-    w[2] = 0;
-  } else if (d3 >= 0 && d4 <= d3) {
-    w[0] = 0;
-    w[1] = 1;
-    w[2] = 0;
-  } else if (d6 >= 0 && d5 <= d6) {
-    w[0] = 0;
-    w[1] = 0;
-    w[2] = 1;
-  } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    v    = d1 / (d1 - d3);
-    w[0] = 1 - v;
-    w[1] = v;
-    w[2] = 0;
-  } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    t    = d2 / (d2 - d6);
-    w[0] = 1 - t;
-    w[1] = 0;
-    w[2] = t;
-  } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    t    = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    w[0] = 0;
-    w[1] = 1 - t;
-    w[2] = t;
-  } else {
-    den  = 1.0 / (va + vb + vc);
-    w[1] = vb * den;
-    w[2] = vc * den;
-    w[0] = 1 - w[1] - w[2];
-  }
-  for (int i = 0; i < 3; i++) cp[i] = w[0] * a[i] + w[1] * b[i] + w[2] * c[i];
-}
-
-static void TriangleNormal(const PetscReal x[3][3], PetscReal n[3])
-{
-  PetscReal e1[3], e2[3], l;
-  for (int i = 0; i < 3; i++) {
-    e1[i] = x[1][i] - x[0][i];
-    e2[i] = x[2][i] - x[0][i];
-  }
-  FCCross(e1, e2, n);
-  l = PetscSqrtReal(FCDot(n, n));
-  for (int i = 0; i < 3; i++) n[i] /= l > 0 ? l : 1.0;
 }
 
 /* Owned boundary vertices of body P (index ipts) against the surface S of body ishp: the
@@ -245,7 +252,7 @@ void FCSurfaceClosest(const FCSurface *S, const PetscReal x[3], PetscInt *best, 
   for (PetscInt k = b; k < e; k++) {
     const FCSurfaceTriangle *T = &S->tri[S->cells[k].tri];
     PetscReal                cp[3], w[3], d2 = 0.0;
-    ClosestPointTriangle(x, T->x0[0], T->x0[1], T->x0[2], cp, w);
+    FCClosestPointTriangle(x, T->x0[0], T->x0[1], T->x0[2], cp, w);
     for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
     if (d2 < *bestd) {
       *bestd = d2;
@@ -258,26 +265,84 @@ void FCSurfaceClosest(const FCSurface *S, const PetscReal x[3], PetscInt *best, 
   }
 }
 
-static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp, const Surface *S,
-                                             PetscInt pair, PetscReal mu, PetscReal distance, PetscMPIInt rank,
+/* Continuous: the triangle of S that vertex x0 -> xf comes closest to first (within tau) over the
+   step, among those whose swept boxes its swept box overlaps; -1 if none */
+static void SweptVertexHit(Surface *S, const PetscReal x0[3], const PetscReal xf[3], PetscReal tau, PetscInt cand[],
+                           PetscInt *best)
+{
+  PetscReal lo[3], hi[3], tbest = PETSC_MAX_REAL;
+  PetscInt  nc;
+
+  *best = -1;
+  for (int d = 0; d < 3; d++) {
+    lo[d] = PetscMin(x0[d], xf[d]) - tau;
+    hi[d] = PetscMax(x0[d], xf[d]) + tau;
+  }
+  FCSurfaceQueryBox(S, lo, hi, cand, &nc);
+  for (PetscInt k = 0; k < nc; k++) {
+    const FCSurfaceTriangle *T = &S->tri[cand[k]];
+    PetscReal                t;
+    if (FCCCDPointTriangle(x0, xf, T->x0, T->xf, tau, &t) && (t < tbest || (t == tbest && cand[k] < *best))) {
+      tbest = t;
+      *best = cand[k];
+    }
+  }
+}
+
+/* The nearest triangle of S to x, over all of them: for the rare vertex that starts inside */
+static void NearestTriangle(const Surface *S, const PetscReal x[3], PetscInt *best)
+{
+  PetscReal bestd = PETSC_MAX_REAL;
+  *best           = -1;
+  for (PetscInt t = 0; t < S->n; t++) {
+    PetscReal cp[3], w[3], d2 = 0.0;
+    FCClosestPointTriangle(x, S->tri[t].x0[0], S->tri[t].x0[1], S->tri[t].x0[2], cp, w);
+    for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
+    if (d2 < bestd) {
+      bestd = d2;
+      *best = t;
+    }
+  }
+}
+
+/* Owned boundary vertices of body P (index ipts) against the surface S of body ishp: the nearest
+   triangle within the alarm distance at the start of the step gives the contact; with continuous
+   detection, a vertex that has none gets the first triangle its motion over the step reaches, as
+   a speculative contact; a vertex that starts inside the other body, deeper than the alarm
+   distance, gets its nearest triangle (the start-inside rule of FCCollisionDetect then bounds how
+   fast it is pushed out). Either way the contact carries the triangle's outward normal at the
+   start, the start-of-step gap along it and the barycentric weights of the closest point at the
+   start as the proximity map (eq. 6). */
+static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp, Surface *S,
+                                             PetscInt pair, const FCContactPairs *pairs, PetscMPIInt rank,
                                              FCContactSet *set)
 {
-  PetscInt     n;
+  PetscInt     n, *cand = NULL;
+  FCRayGrid    grid = {{0}};
   FCProximity *prox;
-  PetscReal   *x0, *xf, *key;
+  PetscReal   *x0, *xf, *key, distance = pairs->distance, tau = FCCCDThreshold(distance), mu = pairs->mu[pair];
 
   PetscFunctionBegin;
   PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x0, &xf, &key));
+  if (pairs->continuous) PetscCall(PetscMalloc1(S->n + 1, &cand));
   for (PetscInt i = 0; i < n; i++) {
     PetscInt  best;
     PetscReal bestd, bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
     FCSurfaceClosest(S, &x0[3 * i], &best, bw, bcp, &bestd);
-    if (best < 0 || bestd > distance * distance) continue;
+    if (best < 0 || bestd > distance * distance) {
+      if (pairs->continuous) SweptVertexHit(S, &x0[3 * i], &xf[3 * i], tau, cand, &best);
+      if (best < 0) { /* deeper inside the other body than the alarm distance: its nearest triangle */
+        if (!grid.cells) PetscCall(FCRayGridCreate(S, &grid));
+        if (!FCRayGridInside(S, &grid, &x0[3 * i])) continue;
+        NearestTriangle(S, &x0[3 * i], &best);
+      }
+      FCClosestPointTriangle(&x0[3 * i], S->tri[best].x0[0], S->tri[best].x0[1], S->tri[best].x0[2], bcp, bw);
+    }
     {
       const FCSurfaceTriangle *T = &S->tri[best];
       FCContact                c;
       PetscReal                nrm[3], diff[3];
-      TriangleNormal(T->x0, nrm);
+      FCTriangleNormal(T->x0, nrm);
       for (int d = 0; d < 3; d++) diff[d] = x0[3 * i + d] - bcp[d];
       PetscCall(PetscMemzero(&c, sizeof(c)));
       c.pair       = pair;
@@ -301,8 +366,8 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
       if (!FCBodyIsDeformable(Sb)) { /* a rigid or kinematic mesh: the point is fixed in its body frame */
         c.side2      = FC_SIDE_RIGID_TRIANGLE;
         c.prox[1].nv = 0;
-        PetscCall(FCBodyToBodyFrame(Sb, bcp, PETSC_FALSE, c.prox[1].r));
-        PetscCall(FCBodyToBodyFrame(Sb, nrm, PETSC_TRUE, c.nb));
+        PetscCall(FCBodyToBodyFrame(Sb, FC_AT_NOW, bcp, PETSC_FALSE, c.prox[1].r));
+        PetscCall(FCBodyToBodyFrame(Sb, FC_AT_NOW, nrm, PETSC_TRUE, c.nb));
         PetscCall(FCBodyProximityPosition(Sb, &c.prox[1], FC_AT_FREE, c.pfree[1]));
       } else
         c.side2 = FC_SIDE_FE_TRIANGLE;
@@ -312,6 +377,8 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
       PetscCall(FCContactSetAdd(set, &c));
     }
   }
+  PetscCall(PetscFree(cand));
+  PetscCall(PetscFree(grid.cells));
   PetscFunctionReturn(0);
 }
 
@@ -327,7 +394,7 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     PetscInt     ipts = 0, ishp = 0, n;
     FCBody       P, S;
     FCProximity *prox;
-    PetscReal   *x0, *xf, *key;
+    PetscReal   *x0, *xf, *key, tau = FCCCDThreshold(pairs->distance);
 
     if (FCBodyHasSurfaceTriangles(bodies[pairs->body[p][0]]) && FCBodyHasSurfaceTriangles(bodies[pairs->body[p][1]])) {
       /* the vertices of each body against the other's surface, or with -contact_fe_passes 1 only
@@ -335,9 +402,18 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
       for (int side = 0; side < pairs->passes; side++) {
         Surface *S;
         PetscInt a = pairs->body[p][side], b2 = pairs->body[p][1 - side];
-        PetscCall(SurfaceBuild(comm, bodies[b2], pairs->distance, &S));
-        PetscCall(VerticesAgainstSurface(bodies[a], bodies[b2], a, b2, S, p, pairs->mu[p], pairs->distance, rank, set));
+        PetscCall(SurfaceBuild(comm, bodies[b2], pairs, &S));
+        PetscCall(VerticesAgainstSurface(bodies[a], bodies[b2], a, b2, S, p, pairs, rank, set));
         PetscCall(FCSurfaceDestroy(&S));
+      }
+      { /* the sharp edges: the FE body's against the other's (the first body's if both are FE) */
+        PetscInt a = pairs->body[p][0], b2 = pairs->body[p][1];
+        if (!FCBodyIsDeformable(bodies[a])) {
+          a  = pairs->body[p][1];
+          b2 = pairs->body[p][0];
+        }
+        if (pairs->edges && FCBodyIsDeformable(bodies[a]))
+          PetscCall(FCCollisionEdgeEdge(comm, bodies[a], bodies[b2], a, b2, p, pairs, set));
       }
       continue;
     }
@@ -352,7 +428,11 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
       PetscReal d, nrm[3], cpb[3];
       FCContact c;
       PetscCall(FCBodyShapeDistance(S, FC_AT_NOW, &x0[3 * i], &d, nrm, cpb));
-      if (d >= pairs->distance) continue;
+      if (d >= pairs->distance) { /* continuous: a speculative contact if the motion reaches the shape */
+        PetscBool hit = PETSC_FALSE;
+        if (pairs->continuous) PetscCall(FCCCDPointShape(S, &x0[3 * i], &xf[3 * i], d, tau, &hit));
+        if (!hit) continue;
+      }
       PetscCall(PetscMemzero(&c, sizeof(c)));
       c.pair    = p;
       c.body[0] = ipts;
@@ -374,6 +454,14 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     }
   }
   PetscCall(FCContactSetGather(set, comm));
+  /* The start-inside rule: a contact that starts d deep is not asked to close in one step (an
+     impulse of d / h, the energy burst of bodies placed inside each other) but by at most
+     -contact_separation_speed v per step: the step may leave max(0, d - v h) of it (q_n += slack,
+     src/scheme/recursive.c). An ordinary contact (d < v h) is unchanged. */
+  for (PetscInt k = 0; k < set->n; k++) {
+    FCContact *c = &set->c[k];
+    c->slack     = PetscMax(0.0, -c->gap0 - pairs->separation_speed * bodies[c->body[0]]->h);
+  }
   PetscCall(FCContactSetFinalize(set));
   PetscFunctionReturn(0);
 }
@@ -408,6 +496,19 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
       FCContact *c = &set->c[k];
       if (c->side2 == FC_SIDE_SHAPE) continue;
       idx[nfe] = k;
+      if (c->side2 == FC_SIDE_FE_EDGE) { /* the two ends of each edge */
+        for (int s = 0; s < 2; s++)
+          for (int a = 0; a < 2; a++) {
+            FCProximity v = {0};
+            v.nv          = 1;
+            v.gdof[0]     = c->prox[s].gdof[a];
+            v.w[0]        = 1.0;
+            for (int d = 0; d < 3; d++) v.X[0][d] = c->prox[s].X[a][d];
+            PetscCall(FCBodyAddPartialPosition(bodies[c->body[s]], &v, &xs[12 * nfe + 6 * s + 3 * a]));
+          }
+        nfe++;
+        continue;
+      }
       PetscCall(FCBodyAddPartialPosition(bodies[c->body[0]], &c->prox[0], &xs[12 * nfe]));
       for (int a = 0; a < 3 && c->side2 == FC_SIDE_FE_TRIANGLE; a++) {
         FCProximity v = {0};
@@ -423,7 +524,21 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
     for (PetscInt j = 0; j < nfe; j++) {
       FCContact *c = &set->c[idx[j]];
       PetscReal  tri[3][3], p2[3] = {0, 0, 0}, nrm[3], *x1 = &xs[12 * j], *gk = &g[7 * idx[j]];
-      if (c->side2 == FC_SIDE_RIGID_TRIANGLE) { /* the triangle moved rigidly: rotate its normal */
+      if (c->side2 == FC_SIDE_FE_EDGE) { /* the edges' cross product, on the start normal's side */
+        PetscReal ea[3], eb[3], l;
+        for (int d = 0; d < 3; d++) {
+          ea[d] = xs[12 * j + 3 + d] - xs[12 * j + d];
+          eb[d] = xs[12 * j + 9 + d] - xs[12 * j + 6 + d];
+        }
+        FCCross(ea, eb, nrm);
+        l = PetscSqrtReal(FCDot(nrm, nrm));
+        if (FCDot(nrm, c->n) < 0) l = -l;
+        for (int d = 0; d < 3; d++) {
+          nrm[d] = l != 0 ? nrm[d] / l : c->n[d];
+          x1[d]  = c->prox[0].w[0] * xs[12 * j + d] + c->prox[0].w[1] * xs[12 * j + 3 + d];
+          p2[d]  = c->prox[1].w[0] * xs[12 * j + 6 + d] + c->prox[1].w[1] * xs[12 * j + 9 + d];
+        }
+      } else if (c->side2 == FC_SIDE_RIGID_TRIANGLE) { /* the triangle moved rigidly: rotate its normal */
         FCProximity o = {0}, e = {0};
         PetscReal   p0[3], pe[3];
         FCBody      B = bodies[c->body[1]];
@@ -437,7 +552,7 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
           for (int d = 0; d < 3; d++) tri[a][d] = xs[12 * j + 3 + 3 * a + d];
         for (int a = 0; a < 3; a++)
           for (int d = 0; d < 3; d++) p2[d] += c->prox[1].w[a] * tri[a][d];
-        TriangleNormal(tri, nrm);
+        FCTriangleNormal(tri, nrm);
       }
       for (int d = 0; d < 3; d++) {
         gk[1 + d] = nrm[d];

@@ -47,7 +47,7 @@ typedef struct {
   double    point[3], normal[3], force[3], gap, gap_end;
 } FCContactRecord;
 typedef struct {
-  long long         contacts, rows, sweeps, offset, newton;
+  long long         contacts, rows, sweeps, offset, newton, intersections;
   double            residual;
   FCContactMeasures m;
 } FCStepRecord;
@@ -67,9 +67,10 @@ struct _p_FCOutput {
   double    elast; /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt  nframes, xdmfwritten;
   /* contacts (scenes with contact pairs only) */
-  PetscBool        contacts;
-  hid_t            c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state;
-  hid_t            s_contacts, s_rows, s_sweeps, s_residual, s_maxpen, s_newton, s_violation, s_rmspen, s_compl, s_cone;
+  PetscBool contacts;
+  hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state;
+  hid_t     s_contacts, s_rows, s_sweeps, s_residual, s_maxpen, s_newton, s_violation, s_rmspen, s_compl, s_cone,
+      s_intersections;
   long long        ctotal;             /* contacts recorded so far */
   PetscInt         nc, maxc, ns, maxs; /* buffered contact records and per-step rows */
   FCContactRecord *cbuf;

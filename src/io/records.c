@@ -58,6 +58,7 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
     PetscCall(FCH5CreateRows(gs, "rms_penetration", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_rmspen));
     PetscCall(FCH5CreateRows(gs, "complementarity", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_compl));
     PetscCall(FCH5CreateRows(gs, "cone_violation", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_cone));
+    PetscCall(FCH5CreateRows(gs, "intersections", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_intersections));
     PetscCall(FCH5AppendRows(out->rank, out->c_offset, H5T_NATIVE_LLONG, 1, &zero));
     H5Gclose(gs);
     H5Gclose(gc);
@@ -149,13 +150,14 @@ PetscErrorCode FCOutputRecordContacts(FCOutput out, const struct _FCContactSetVi
     out->nc++;
   }
   out->ctotal += set->n;
-  out->sbuf[out->ns].contacts = set->n;
-  out->sbuf[out->ns].rows     = v->stats->rows;
-  out->sbuf[out->ns].sweeps   = v->stats->sweeps;
-  out->sbuf[out->ns].residual = v->stats->residual;
-  out->sbuf[out->ns].m        = *v->measures;
-  out->sbuf[out->ns].newton   = v->stats->newton;
-  out->sbuf[out->ns].offset   = out->ctotal;
+  out->sbuf[out->ns].contacts      = set->n;
+  out->sbuf[out->ns].rows          = v->stats->rows;
+  out->sbuf[out->ns].sweeps        = v->stats->sweeps;
+  out->sbuf[out->ns].residual      = v->stats->residual;
+  out->sbuf[out->ns].m             = *v->measures;
+  out->sbuf[out->ns].newton        = v->stats->newton;
+  out->sbuf[out->ns].intersections = v->measures->intersections;
+  out->sbuf[out->ns].offset        = out->ctotal;
   out->ns++;
   PetscFunctionReturn(0);
 }
@@ -199,6 +201,7 @@ static PetscErrorCode FlushContacts(FCOutput out)
       {out->s_rmspen, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.rms_penetration), 1},
       {out->s_compl, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.complementarity), 1},
       {out->s_cone, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.cone_violation), 1},
+      {out->s_intersections, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, intersections), 1},
   };
   char *buf;
 
@@ -266,9 +269,10 @@ PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
   H5Dclose(out->denergy);
   for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
   if (out->contacts) {
-    hid_t ds[] = {out->c_offset, out->c_bodies, out->c_point,     out->c_normal, out->c_force,  out->c_gap,
-                  out->c_gapend, out->c_state,  out->s_contacts,  out->s_rows,   out->s_sweeps, out->s_residual,
-                  out->s_maxpen, out->s_newton, out->s_violation, out->s_rmspen, out->s_compl,  out->s_cone};
+    hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,       out->c_force,
+                  out->c_gap,    out->c_gapend,   out->c_state,  out->s_contacts,     out->s_rows,
+                  out->s_sweeps, out->s_residual, out->s_maxpen, out->s_newton,       out->s_violation,
+                  out->s_rmspen, out->s_compl,    out->s_cone,   out->s_intersections};
     for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) H5Dclose(ds[i]);
   }
   PetscCall(PetscFree(out->cbuf));

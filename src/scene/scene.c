@@ -18,6 +18,20 @@
                               surface (nothing crosses either surface, but the two constraint sets are
                               nearly redundant and PGS may stall, docs/hard-cases.md); 1 = the first
                               body's vertices against the second's surface only (default 2)
+     -contact_detection continuous|discrete   continuous (default): a point whose motion over the step
+                              (start to free-motion end) reaches the other side is a contact too, with
+                              its start-of-step gap and normal, so nothing passes through a thin body
+                              in one step; discrete: only points within -contact_distance at the start
+     -contact_edge_edge 1|0   pairs of two meshed bodies: contacts between their sharp edges where the
+                              edges cross (src/collision/edges.c; default 1); 0: vertices against
+                              triangles only
+     -contact_separation_speed v  bodies that start a step inside each other are pushed apart at most
+                              this fast: a contact deeper than v h at the start may stay (depth - v h)
+                              deep at the end of the step (> 0, default 1 m/s; docs/hard-cases.md)
+     -contact_intersection_depth d  a point of a pair deeper than d inside the other body at the end of a
+                              step counts in /steps/intersections (>= 0, default 1e-4 m)
+     -contact_fail_on_intersection  stop the run at the first step that ends with an intersection
+                              (default: a warning on the progress line)
    The options of the objects the scene creates are read where those objects live: the constraint
    scheme and its contact solver (-constraint_scheme, -newton_*, -pgs_*, -contact_memory_limit:
    src/scheme/), the compliance builder of each FE body in a contact pair (-compliance_*:
@@ -82,10 +96,14 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   PetscInt  np = FC_MAX_BODIES, nmu = FC_MAX_BODIES;
   PetscReal mu[FC_MAX_BODIES];
   PetscBool set, setmu;
+  char      detection[16] = "continuous";
 
   PetscFunctionBegin;
-  s->pairs.distance = 0.01;
-  s->pairs.passes   = 2;
+  s->pairs.distance           = 0.01;
+  s->pairs.passes             = 2;
+  s->pairs.intersection_depth = 1e-4;
+  s->pairs.edges              = PETSC_TRUE;
+  s->pairs.separation_speed   = 1.0;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
   PetscCall(
       PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
@@ -95,8 +113,28 @@ static PetscErrorCode ReadContactPairs(FCScene s)
                            "Detection passes between two meshed bodies (1 or 2)", &s->pairs.passes, NULL));
     PetscCall(FCOptionsRealList(PetscOptionsObject, "-contact_mu", "Friction coefficient: one value, or one per pair",
                                 FC_MAX_BODIES, mu, &nmu, &setmu));
+    PetscCall(PetscOptionsString("-contact_detection", "Contact detection: continuous or discrete", NULL, detection,
+                                 detection, sizeof(detection), NULL));
+    PetscCall(PetscOptionsBool("-contact_edge_edge", "Edge-edge contacts between two meshed bodies", NULL,
+                               s->pairs.edges, &s->pairs.edges, NULL));
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_separation_speed",
+                            "Largest speed at which bodies that start inside each other are pushed apart (m/s)",
+                            &s->pairs.separation_speed, NULL));
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_intersection_depth",
+                            "Depth inside another body that counts as an intersection (m)",
+                            &s->pairs.intersection_depth, NULL));
+    PetscCall(PetscOptionsBool("-contact_fail_on_intersection", "Stop the run at the first intersection", NULL,
+                               s->pairs.fail_on_intersection, &s->pairs.fail_on_intersection, NULL));
   }
   PetscOptionsEnd();
+  if (!set || np == 0) PetscFunctionReturn(0);
+  PetscCheck(!strcmp(detection, "continuous") || !strcmp(detection, "discrete"), s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_detection must be continuous or discrete, got '%s'", detection);
+  s->pairs.continuous = strcmp(detection, "continuous") ? PETSC_FALSE : PETSC_TRUE;
+  PetscCheck(s->pairs.separation_speed > 0.0, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_separation_speed must be > 0, got %g", (double)s->pairs.separation_speed);
+  PetscCheck(s->pairs.intersection_depth >= 0.0, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_intersection_depth must be >= 0, got %g", (double)s->pairs.intersection_depth);
   if (!set || np == 0) PetscFunctionReturn(0);
   if (!setmu) {
     nmu   = 1;
@@ -253,6 +291,7 @@ PetscErrorCode FCSceneStep(FCScene s)
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
     PetscCall(FCCollisionEndGaps(s->comm, s->nbodies, s->bodies, &s->set));
     FCContactSetMeasure(&s->set, &s->measures);
+    PetscCall(FCCollisionCountIntersections(s->comm, s->nbodies, s->bodies, &s->pairs, &s->measures.intersections));
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
   }
   s->step++;
@@ -319,7 +358,18 @@ PetscErrorCode FCSceneRun(FCScene s)
                         done + 1, (double)((done + 1) * s->h), s->output_file, done);
       return ierr;
     }
-    PetscCall(FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t));
+    PetscCall(
+        FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t, s->pairs.n ? s->measures.intersections : 0));
+    if (s->pairs.fail_on_intersection && s->measures.intersections) { /* the step's frame, then close */
+      if (s->step % s->every && s->step < s->nsteps) PetscCall(WriteOutputStep(s));
+      PetscCall(FCOutputDestroy(&s->output));
+      SETERRQ(s->comm, PETSC_ERR_NOT_CONVERGED,
+              "step %" PetscInt_FMT " (t = %g s) ends with %" PetscInt_FMT
+              " point(s) deeper than -contact_intersection_depth %g inside another body, and "
+              "-contact_fail_on_intersection is set; %s is closed and holds the %" PetscInt_FMT " completed steps",
+              s->step, (double)s->t, s->measures.intersections, (double)s->pairs.intersection_depth, s->output_file,
+              s->step);
+    }
     PetscCall(FCSignalsPending(s->comm, &sig));
     if (sig && s->step < s->nsteps) { /* the last step's frame and restart state, then close */
       if (s->step % s->every) PetscCall(WriteOutputStep(s));

@@ -44,9 +44,9 @@ PetscErrorCode FCSchemeLinearize(FCScheme scheme, FCContactSet *set, const Petsc
       for (int i = 0; i < 3; i++) *frame_change = PetscMax(*frame_change, PetscAbsReal(n[i] - c->n[i]));
       for (int i = 0; i < 3; i++) c->n[i] = n[i];
       FCContactFrame(c->n, c->t1, c->t2);
-      q[c->row] = gap - FCDot(c->n, dd);
+      q[c->row] = gap - FCDot(c->n, dd) + c->slack;
     } else
-      q[c->row] = FCDot(c->n, &dfree[3 * k]);
+      q[c->row] = FCDot(c->n, &dfree[3 * k]) + c->slack;
     if (c->dim == 3) {
       PetscReal rel[3];
       for (int i = 0; i < 3; i++) rel[i] = dfree[3 * k + i] - d0[3 * k + i];
@@ -86,7 +86,7 @@ void FCSchemeStartLinearization(const FCContactSet *set, PetscReal dfree[], Pets
       d0[3 * k + i]    = c->p0[0][i] - c->p0[1][i];
       rel[i]           = dfree[3 * k + i] - d0[3 * k + i];
     }
-    q[c->row] = FCDot(c->n, &dfree[3 * k]);
+    q[c->row] = FCDot(c->n, &dfree[3 * k]) + c->slack; /* the penetration the step may leave (collision.c) */
     if (c->dim == 3) {
       q[c->row + 1] = FCDot(c->t1, rel);
       q[c->row + 2] = FCDot(c->t2, rel);

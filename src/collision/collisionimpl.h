@@ -1,0 +1,77 @@
+/* What the files of src/collision/ share: the spatial hash of surface triangles (collision.c),
+   the closest-point kernels (geometry.c), the continuous tests (ccd.c) and the edges of a
+   surface (edges.c). */
+#pragma once
+#include "../fcimpl.h"
+#include <stdint.h>
+
+typedef struct {
+  int64_t  key;
+  PetscInt tri;
+} FCCellEntry;
+
+struct _FCSurface {
+  PetscInt           n, nentries;
+  FCSurfaceTriangle *tri;
+  FCCellEntry       *cells;
+  PetscReal          h;       /* cell size */
+  PetscBool          swept;   /* triangles hashed by their boxes over the step (x0 and xf) */
+  PetscInt          *stamp;   /* per triangle: the last query that visited it (swept queries) */
+  PetscInt           nquery;  /* swept queries so far */
+  PetscReal          inflate; /* what each triangle's box was inflated by */
+};
+
+/* The surface triangles of a body (FE or mesh shape) as they are now, gathered on every rank
+   (*tri to be freed, or handed to FCSurfaceCreate) */
+PETSC_INTERN PetscErrorCode FCSurfaceGather(MPI_Comm, FCBody, PetscInt *ntri, FCSurfaceTriangle **tri);
+/* A surface hashed by the boxes of its triangles over the whole step (start and free-motion
+   positions), inflated by `inflate`: the broad phase of continuous detection. Takes tri over. */
+PETSC_INTERN PetscErrorCode FCSurfaceCreateSwept(PetscInt n, FCSurfaceTriangle *tri, PetscReal inflate, FCSurface **);
+/* The triangles whose swept boxes overlap the box [lo, hi], each once: cand gets their indices
+   (at most S->n), ncand their number */
+PETSC_INTERN void FCSurfaceQueryBox(FCSurface *, const PetscReal lo[3], const PetscReal hi[3], PetscInt cand[],
+                                    PetscInt *ncand);
+
+/* intersection.c: the triangles of a closed surface bucketed across a fixed ray direction; a
+   point is inside when the ray from it crosses the surface an odd number of times (start-of-step
+   positions x0 of the surface) */
+typedef struct {
+  PetscReal    u[3], v[3], h; /* the grid's axes across the ray and its cell size */
+  PetscInt     n;
+  FCCellEntry *cells;
+  PetscReal    lo[3], hi[3]; /* bounding box of the surface */
+} FCRayGrid;
+PETSC_INTERN PetscErrorCode FCRayGridCreate(const FCSurface *, FCRayGrid *);
+PETSC_INTERN PetscBool      FCRayGridInside(const FCSurface *, const FCRayGrid *, const PetscReal x[3]);
+
+/* edges.c: the edge-edge contacts of the sharp edges of A (FE) against those of B (FE or mesh) */
+PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt pair,
+                                                const FCContactPairs *, FCContactSet *);
+
+/* geometry.c: closest point to p on triangle (a, b, c) with its barycentric weights (Ericson,
+   5.1.5); the unit normal of a triangle (x[0], x[1], x[2]), counter-clockwise = outward; the
+   closest points of segments (p0, p1) and (q0, q1): p0 + s (p1 - p0), q0 + t (q1 - q0), with
+   the squared distance (Ericson, 5.1.9) */
+PETSC_INTERN void      FCClosestPointTriangle(const PetscReal p[3], const PetscReal a[3], const PetscReal b[3],
+                                              const PetscReal c[3], PetscReal cp[3], PetscReal w[3]);
+PETSC_INTERN void      FCTriangleNormal(const PetscReal x[3][3], PetscReal n[3]);
+PETSC_INTERN PetscReal FCClosestSegmentSegment(const PetscReal p0[3], const PetscReal p1[3], const PetscReal q0[3],
+                                               const PetscReal q1[3], PetscReal *s, PetscReal *t);
+/* Whether the ray x + s dir, s > 0, crosses triangle (a, b, c) (Moeller-Trumbore) */
+PETSC_INTERN PetscBool FCRayHitsTriangle(const PetscReal x[3], const PetscReal dir[3], const PetscReal a[3],
+                                         const PetscReal b[3], const PetscReal c[3]);
+
+/* ccd.c: conservative continuous tests over the step, all points moving linearly from their
+   start to their free-motion positions. Each returns whether the two features come closer than
+   tau at some time of the step (never a miss; a near miss within tau counts as a hit) and the
+   earliest such time found. */
+PETSC_INTERN PetscErrorCode FCCCDPointShape(FCBody shape, const PetscReal x0[3], const PetscReal xf[3], PetscReal d0,
+                                            PetscReal tau, PetscBool *hit);
+PETSC_INTERN PetscBool      FCCCDPointTriangle(const PetscReal p0[3], const PetscReal pf[3], const PetscReal a0[3][3],
+                                               const PetscReal af[3][3], PetscReal tau, PetscReal *thit);
+/* edges a and b as their two ends, flat: a0 = (start of end 0, start of end 1), af the same after the free motion */
+PETSC_INTERN PetscBool FCCCDEdgeEdge(const PetscReal *a0, const PetscReal *af, const PetscReal *b0, const PetscReal *bf,
+                                     PetscReal tau, PetscReal *thit);
+/* The distance below which a continuous test reports a hit: a tenth of the alarm distance (a
+   point whose free motion ends that close was going to touch), never 0 */
+PETSC_INTERN PetscReal FCCCDThreshold(PetscReal distance);

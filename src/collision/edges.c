@@ -1,0 +1,247 @@
+/* Edge-edge contacts between two bodies with surface triangles (FE-FE, FE-mesh): two edges that
+   cross each other where neither body has a vertex (crossed bars) are invisible to the
+   vertex-triangle detection. The candidates are the sharp edges of each surface (adjacent
+   triangles' normals more than FC_SHARP_DEG apart; the edges of a flat face triangulation only
+   repeat what its vertices and triangles already constrain); a pair is a contact when its
+   closest points are inside both edges, the edges are not (nearly) parallel, and they come
+   within the alarm distance at the start of the step, or, with continuous detection, over the
+   step (ccd.c). Each edge of the first body keeps its nearest (or first reached) edge of the
+   other. The contact has two barycentric weights per side (prox nv = 2, eq. 6), so every
+   compliance builder and the fast scheme's H take it as they take a vertex-triangle contact;
+   its normal is the cross product of the two edges at the start, pointing out of the second
+   body. Against a rigid mesh the second side is a point and a normal fixed in the mesh's frame
+   (FC_SIDE_RIGID_TRIANGLE). */
+#include "collisionimpl.h"
+
+#define FC_SHARP_DEG 30.0     /* dihedral turn above which an edge is a feature */
+#define FC_PARALLEL_DEG 10.0  /* edges closer than this to parallel: left to the vertex contacts */
+#define FC_EDGE_INTERIOR 0.02 /* closest points within this fraction of an end: a vertex contact's */
+
+typedef struct {
+  PetscInt  gdof[2];
+  PetscReal X[2][3], x0[2][3], xf[2][3], nout[3]; /* nout: sum of the two adjacent outward normals */
+} Edge;
+
+typedef struct {
+  PetscReal key[6]; /* the reference ends, smaller first */
+  PetscInt  tri, a; /* triangle and its local edge a -> a + 1 */
+} HalfEdge;
+
+static int CompareHalf(const void *x, const void *y)
+{
+  const HalfEdge *a = (const HalfEdge *)x, *b = (const HalfEdge *)y;
+  for (int i = 0; i < 6; i++)
+    if (a->key[i] != b->key[i]) return a->key[i] < b->key[i] ? -1 : 1;
+  return 0;
+}
+
+static int CompareX(const PetscReal a[3], const PetscReal b[3])
+{
+  for (int i = 0; i < 3; i++)
+    if (a[i] != b[i]) return a[i] < b[i] ? -1 : 1;
+  return 0;
+}
+
+/* The sharp edges of a closed surface: the half-edges sorted by their reference ends, each
+   interior edge seen twice (a boundary edge, seen once, is skipped) */
+static PetscErrorCode SharpEdges(PetscInt ntri, const FCSurfaceTriangle *tri, PetscInt *ne, Edge **edges)
+{
+  HalfEdge *h;
+  PetscReal cmax = PetscCosReal(FC_SHARP_DEG * PETSC_PI / 180.0);
+  PetscInt  n    = 0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(3 * ntri + 1, &h));
+  for (PetscInt t = 0; t < ntri; t++)
+    for (int a = 0; a < 3; a++) {
+      const PetscReal *p = tri[t].X[a], *q = tri[t].X[(a + 1) % 3];
+      HalfEdge        *e = &h[3 * t + a];
+      if (CompareX(p, q) > 0) {
+        const PetscReal *s = p;
+        p                  = q;
+        q                  = s;
+      }
+      for (int i = 0; i < 3; i++) {
+        e->key[i]     = p[i];
+        e->key[3 + i] = q[i];
+      }
+      e->tri = t;
+      e->a   = a;
+    }
+  qsort(h, 3 * ntri, sizeof(HalfEdge), CompareHalf);
+  PetscCall(PetscMalloc1(3 * ntri / 2 + 1, edges));
+  for (PetscInt k = 0; k + 1 < 3 * ntri; k++) {
+    PetscReal n1[3], n2[3];
+    if (CompareHalf(&h[k], &h[k + 1])) continue;
+    FCTriangleNormal(tri[h[k].tri].x0, n1);
+    FCTriangleNormal(tri[h[k + 1].tri].x0, n2);
+    if (FCDot(n1, n2) <= cmax) {
+      Edge                    *E = &(*edges)[n];
+      const FCSurfaceTriangle *T = &tri[h[k].tri];
+      for (int j = 0; j < 2; j++) {
+        int v      = (h[k].a + j) % 3;
+        E->gdof[j] = T->gdof[v];
+        for (int i = 0; i < 3; i++) {
+          E->X[j][i]  = T->X[v][i];
+          E->x0[j][i] = T->x0[v][i];
+          E->xf[j][i] = T->xf[v][i];
+        }
+      }
+      for (int i = 0; i < 3; i++) E->nout[i] = n1[i] + n2[i];
+      n++;
+    }
+    k++;
+  }
+  PetscCall(PetscFree(h));
+  *ne = n;
+  PetscFunctionReturn(0);
+}
+
+/* The edges of B as degenerate triangles (a, b, b) for the spatial hash: their boxes over the step
+   (continuous) or at the start (discrete: xf taken as x0) */
+static PetscErrorCode EdgeHash(PetscInt ne, const Edge *E, PetscBool continuous, PetscReal inflate, FCSurface **S)
+{
+  FCSurfaceTriangle *t;
+
+  PetscFunctionBegin;
+  PetscCall(PetscCalloc1(ne + 1, &t));
+  for (PetscInt k = 0; k < ne; k++)
+    for (int a = 0; a < 3; a++)
+      for (int i = 0; i < 3; i++) {
+        t[k].x0[a][i] = E[k].x0[PetscMin(a, 1)][i];
+        t[k].xf[a][i] = continuous ? E[k].xf[PetscMin(a, 1)][i] : t[k].x0[a][i];
+      }
+  PetscCall(FCSurfaceCreateSwept(ne, t, inflate, S));
+  PetscFunctionReturn(0);
+}
+
+/* The contact of edge a (body ia, FE) with edge b (body ib) at parameters s, t, normal n */
+static PetscErrorCode AddEdgeContact(FCBody Bb, PetscInt ia, PetscInt ib, const Edge *a, const Edge *b, PetscReal s,
+                                     PetscReal t, const PetscReal n[3], PetscInt pair, PetscReal mu, PetscMPIInt rank,
+                                     FCContactSet *set)
+{
+  FCContact c;
+  PetscReal ws[2] = {1 - s, s}, wt[2] = {1 - t, t}, d[3];
+
+  PetscFunctionBegin;
+  PetscCall(PetscMemzero(&c, sizeof(c)));
+  c.pair       = pair;
+  c.body[0]    = ia;
+  c.body[1]    = ib;
+  c.prox[0].nv = 2;
+  c.prox[1].nv = 2;
+  for (int j = 0; j < 2; j++) {
+    c.prox[0].gdof[j] = a->gdof[j];
+    c.prox[1].gdof[j] = b->gdof[j];
+    c.prox[0].w[j]    = ws[j];
+    c.prox[1].w[j]    = wt[j];
+    for (int i = 0; i < 3; i++) {
+      c.prox[0].X[j][i] = a->X[j][i];
+      c.prox[1].X[j][i] = b->X[j][i];
+    }
+  }
+  for (int i = 0; i < 3; i++) {
+    c.key[i]      = ws[0] * a->X[0][i] + ws[1] * a->X[1][i];
+    c.n[i]        = n[i];
+    c.p0[0][i]    = ws[0] * a->x0[0][i] + ws[1] * a->x0[1][i];
+    c.pfree[0][i] = ws[0] * a->xf[0][i] + ws[1] * a->xf[1][i];
+    c.p0[1][i]    = wt[0] * b->x0[0][i] + wt[1] * b->x0[1][i];
+    c.pfree[1][i] = wt[0] * b->xf[0][i] + wt[1] * b->xf[1][i];
+    d[i]          = c.p0[0][i] - c.p0[1][i];
+  }
+  c.side2 = FC_SIDE_FE_EDGE;
+  if (!FCBodyIsDeformable(Bb)) { /* a rigid or kinematic mesh: point and normal fixed in its frame */
+    c.side2      = FC_SIDE_RIGID_TRIANGLE;
+    c.prox[1].nv = 0;
+    PetscCall(FCBodyToBodyFrame(Bb, FC_AT_NOW, c.p0[1], PETSC_FALSE, c.prox[1].r));
+    PetscCall(FCBodyToBodyFrame(Bb, FC_AT_NOW, n, PETSC_TRUE, c.nb));
+    PetscCall(FCBodyProximityPosition(Bb, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+  }
+  c.gap0  = FCDot(n, d);
+  c.mu    = mu;
+  c.owner = rank;
+  PetscCall(FCContactSetAdd(set, &c));
+  PetscFunctionReturn(0);
+}
+
+/* The unit normal of a pair of crossing edges, out of b (side 2) and into a; PETSC_FALSE when the
+   edges are nearly parallel or do not face each other (a's outward side away from b's) */
+static PetscBool EdgeNormal(const Edge *a, const Edge *b, PetscReal n[3])
+{
+  PetscReal ea[3], eb[3], la, lb, ln, smin = PetscSinReal(FC_PARALLEL_DEG * PETSC_PI / 180.0);
+  for (int i = 0; i < 3; i++) {
+    ea[i] = a->x0[1][i] - a->x0[0][i];
+    eb[i] = b->x0[1][i] - b->x0[0][i];
+  }
+  FCCross(ea, eb, n);
+  la = PetscSqrtReal(FCDot(ea, ea));
+  lb = PetscSqrtReal(FCDot(eb, eb));
+  ln = PetscSqrtReal(FCDot(n, n));
+  if (!(ln > smin * la * lb)) return PETSC_FALSE;
+  for (int i = 0; i < 3; i++) n[i] /= ln;
+  if (FCDot(n, b->nout) < 0)
+    for (int i = 0; i < 3; i++) n[i] = -n[i];
+  return FCDot(n, b->nout) > 0 && FCDot(n, a->nout) < 0 ? PETSC_TRUE : PETSC_FALSE;
+}
+
+PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt pair,
+                                   const FCContactPairs *pairs, FCContactSet *set)
+{
+  PetscInt           nta, ntb, nea, neb, *cand;
+  FCSurfaceTriangle *ta, *tb;
+  Edge              *ea, *eb;
+  FCSurface         *S;
+  PetscMPIInt        rank, size;
+  PetscReal          dist = pairs->distance, tau = FCCCDThreshold(dist), lo = FC_EDGE_INTERIOR, hi = 1 - lo;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(FCSurfaceGather(comm, A, &nta, &ta));
+  PetscCall(FCSurfaceGather(comm, B, &ntb, &tb));
+  PetscCall(SharpEdges(nta, ta, &nea, &ea));
+  PetscCall(SharpEdges(ntb, tb, &neb, &eb));
+  PetscCall(EdgeHash(neb, eb, pairs->continuous, PetscMax(dist, tau), &S));
+  PetscCall(PetscMalloc1(neb + 1, &cand));
+  for (PetscInt k = rank; k < nea; k += size) { /* the edges are on every rank: each takes its share */
+    const Edge *a = &ea[k];
+    PetscReal   blo[3], bhi[3], best = PETSC_MAX_REAL, bs = 0, bt = 0, bn[3] = {0, 0, 0};
+    PetscInt    nc, bj = -1;
+    for (int i = 0; i < 3; i++) {
+      blo[i] = PetscMin(a->x0[0][i], a->x0[1][i]);
+      bhi[i] = PetscMax(a->x0[0][i], a->x0[1][i]);
+      if (pairs->continuous) {
+        blo[i] = PetscMin(blo[i], PetscMin(a->xf[0][i], a->xf[1][i]));
+        bhi[i] = PetscMax(bhi[i], PetscMax(a->xf[0][i], a->xf[1][i]));
+      }
+      blo[i] -= tau;
+      bhi[i] += tau;
+    }
+    FCSurfaceQueryBox(S, blo, bhi, cand, &nc);
+    for (PetscInt m = 0; m < nc; m++) {
+      const Edge *b = &eb[cand[m]];
+      PetscReal   s, t, d2, n[3], th, rank_key;
+      d2 = FCClosestSegmentSegment(a->x0[0], a->x0[1], b->x0[0], b->x0[1], &s, &t);
+      if (d2 <= dist * dist)
+        rank_key = d2; /* discrete: the nearest edge */
+      else if (pairs->continuous && FCCCDEdgeEdge(&a->x0[0][0], &a->xf[0][0], &b->x0[0][0], &b->xf[0][0], tau, &th))
+        rank_key = dist * dist + th;
+      else
+        continue; /* (continuous: the first edge reached, after every edge within the distance) */
+      if (s <= lo || s >= hi || t <= lo || t >= hi || !EdgeNormal(a, b, n) || rank_key >= best) continue;
+      best = rank_key;
+      bj   = cand[m];
+      bs   = s;
+      bt   = t;
+      for (int i = 0; i < 3; i++) bn[i] = n[i];
+    }
+    if (bj >= 0) PetscCall(AddEdgeContact(B, ia, ib, a, &eb[bj], bs, bt, bn, pair, pairs->mu[pair], rank, set));
+  }
+  PetscCall(PetscFree(cand));
+  PetscCall(FCSurfaceDestroy(&S));
+  PetscCall(PetscFree(ta));
+  PetscCall(PetscFree(tb));
+  PetscCall(PetscFree(ea));
+  PetscCall(PetscFree(eb));
+  PetscFunctionReturn(0);
+}

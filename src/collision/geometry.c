@@ -1,0 +1,139 @@
+/* Closest-point and ray kernels of the collision detection (src/collision/collisionimpl.h). */
+#include "collisionimpl.h"
+
+void FCClosestPointTriangle(const PetscReal p[3], const PetscReal a[3], const PetscReal b[3], const PetscReal c[3],
+                            PetscReal cp[3], PetscReal w[3])
+{
+  PetscReal ab[3], ac[3], ap[3], bp[3], cpv[3], d1, d2, d3, d4, d5, d6, va, vb, vc, v, t, den;
+  for (int i = 0; i < 3; i++) {
+    ab[i]  = b[i] - a[i];
+    ac[i]  = c[i] - a[i];
+    ap[i]  = p[i] - a[i];
+    bp[i]  = p[i] - b[i];
+    cpv[i] = p[i] - c[i];
+  }
+  d1 = FCDot(ab, ap);
+  d2 = FCDot(ac, ap);
+  d3 = FCDot(ab, bp);
+  d4 = FCDot(ac, bp);
+  d5 = FCDot(ab, cpv);
+  d6 = FCDot(ac, cpv);
+  vc = d1 * d4 - d3 * d2;
+  vb = d5 * d2 - d1 * d6;
+  va = d3 * d6 - d5 * d4;
+  if (d1 <= 0 && d2 <= 0) {
+    w[0] = 1;
+    w[1] = 0;
+    w[2] = 0;
+  } else if (d3 >= 0 && d4 <= d3) {
+    w[0] = 0;
+    w[1] = 1;
+    w[2] = 0;
+  } else if (d6 >= 0 && d5 <= d6) {
+    w[0] = 0;
+    w[1] = 0;
+    w[2] = 1;
+  } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    v    = d1 / (d1 - d3);
+    w[0] = 1 - v;
+    w[1] = v;
+    w[2] = 0;
+  } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    t    = d2 / (d2 - d6);
+    w[0] = 1 - t;
+    w[1] = 0;
+    w[2] = t;
+  } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    t    = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    w[0] = 0;
+    w[1] = 1 - t;
+    w[2] = t;
+  } else {
+    den  = 1.0 / (va + vb + vc);
+    w[1] = vb * den;
+    w[2] = vc * den;
+    w[0] = 1 - w[1] - w[2];
+  }
+  for (int i = 0; i < 3; i++) cp[i] = w[0] * a[i] + w[1] * b[i] + w[2] * c[i];
+}
+
+void FCTriangleNormal(const PetscReal x[3][3], PetscReal n[3])
+{
+  PetscReal e1[3], e2[3], l;
+  for (int i = 0; i < 3; i++) {
+    e1[i] = x[1][i] - x[0][i];
+    e2[i] = x[2][i] - x[0][i];
+  }
+  FCCross(e1, e2, n);
+  l = PetscSqrtReal(FCDot(n, n));
+  for (int i = 0; i < 3; i++) n[i] /= l > 0 ? l : 1.0;
+}
+
+static PetscReal Clamp01(PetscReal x)
+{
+  return x < 0 ? 0 : (x > 1 ? 1 : x);
+}
+
+PetscReal FCClosestSegmentSegment(const PetscReal p0[3], const PetscReal p1[3], const PetscReal q0[3],
+                                  const PetscReal q1[3], PetscReal *s, PetscReal *t)
+{
+  PetscReal d1[3], d2[3], r[3], a, e, f, c, b, den, dist2 = 0.0;
+  for (int i = 0; i < 3; i++) {
+    d1[i] = p1[i] - p0[i];
+    d2[i] = q1[i] - q0[i];
+    r[i]  = p0[i] - q0[i];
+  }
+  a = FCDot(d1, d1);
+  e = FCDot(d2, d2);
+  f = FCDot(d2, r);
+  if (a <= PETSC_SMALL * PETSC_SMALL && e <= PETSC_SMALL * PETSC_SMALL) {
+    *s = *t = 0.0;
+  } else if (a <= PETSC_SMALL * PETSC_SMALL) {
+    *s = 0.0;
+    *t = Clamp01(f / e);
+  } else {
+    c = FCDot(d1, r);
+    if (e <= PETSC_SMALL * PETSC_SMALL) {
+      *t = 0.0;
+      *s = Clamp01(-c / a);
+    } else {
+      b   = FCDot(d1, d2);
+      den = a * e - b * b;
+      *s  = den > 0 ? Clamp01((b * f - c * e) / den) : 0.0; /* parallel: any s, take 0 */
+      *t  = (b * (*s) + f) / e;
+      if (*t < 0) {
+        *t = 0.0;
+        *s = Clamp01(-c / a);
+      } else if (*t > 1) {
+        *t = 1.0;
+        *s = Clamp01((b - c) / a);
+      }
+    }
+  }
+  for (int i = 0; i < 3; i++) {
+    PetscReal x = p0[i] + (*s) * d1[i] - q0[i] - (*t) * d2[i];
+    dist2 += x * x;
+  }
+  return dist2;
+}
+
+PetscBool FCRayHitsTriangle(const PetscReal x[3], const PetscReal dir[3], const PetscReal a[3], const PetscReal b[3],
+                            const PetscReal c[3])
+{
+  PetscReal e1[3], e2[3], pv[3], tv[3], qv[3], det, u, v, s;
+  for (int i = 0; i < 3; i++) {
+    e1[i] = b[i] - a[i];
+    e2[i] = c[i] - a[i];
+    tv[i] = x[i] - a[i];
+  }
+  FCCross(dir, e2, pv);
+  det = FCDot(e1, pv);
+  if (det == 0.0) return PETSC_FALSE; /* the ray is parallel to the triangle's plane */
+  u = FCDot(tv, pv) / det;
+  if (u < 0.0 || u > 1.0) return PETSC_FALSE;
+  FCCross(tv, e1, qv);
+  v = FCDot(dir, qv) / det;
+  if (v < 0.0 || u + v > 1.0) return PETSC_FALSE;
+  s = FCDot(e2, qv) / det;
+  return s > 0.0 ? PETSC_TRUE : PETSC_FALSE;
+}

@@ -1,0 +1,175 @@
+/* The intersection check at the end of every step (docs/output.md, /steps/intersections): how
+   many points of the contact pairs are inside the other body of their pair, deeper than
+   -contact_intersection_depth, on the real end-of-step geometry. It sees what the contact
+   constraints of the step did not hold, whatever the reason (a crossing the detection missed, a
+   constraint left open, bodies that started inside each other).
+   The points are those the detection constrains: the candidate points of a body (owned FE
+   boundary vertices, the vertices of a mesh shape, the points of a bounded rigid shape) against
+   the analytic shape of the other body (its signed distance), and, between two bodies with
+   surface triangles (FE-FE, FE-mesh), the vertices of each against the other's closed surface,
+   both ways whatever -contact_fe_passes. A point of an analytic shape is not tested against an FE
+   body (a sphere has no vertices; those are its picture's), nor is an edge crossing an edge.
+   Inside a closed surface: an odd number of crossings of a ray from the point (in a fixed,
+   generic direction, so that it does not run along the edges of structured meshes), the
+   triangles bucketed in a 2D grid across the ray; deeper than d: no triangle within d (the
+   spatial hash of collision.c, inflated by d). */
+#include "collisionimpl.h"
+
+/* A generic direction: no mesh of the repository has an edge or a face along it */
+static const PetscReal RayDir[3] = {0.2672612419124244, 0.5345224838248488, 0.8017837257372732};
+
+typedef FCRayGrid RayGrid;
+
+static int CompareEntry(const void *a, const void *b)
+{
+  const FCCellEntry *x = (const FCCellEntry *)a, *y = (const FCCellEntry *)b;
+  if (x->key != y->key) return x->key < y->key ? -1 : 1;
+  return (x->tri > y->tri) - (x->tri < y->tri);
+}
+
+static int64_t Key2(int64_t i, int64_t j)
+{
+  return ((i + ((int64_t)1 << 30)) << 32) | ((j + ((int64_t)1 << 30)) & 0xffffffff);
+}
+
+PetscErrorCode FCRayGridCreate(const FCSurface *S, FCRayGrid *G)
+{
+  PetscFunctionBegin;
+  G->u[0] = RayDir[1];
+  G->u[1] = -RayDir[0];
+  G->u[2] = 0.0;
+  {
+    PetscReal l = PetscSqrtReal(FCDot(G->u, G->u));
+    for (int d = 0; d < 3; d++) G->u[d] /= l;
+  }
+  FCCross(RayDir, G->u, G->v);
+  G->h = S->h;
+  for (int d = 0; d < 3; d++) {
+    G->lo[d] = PETSC_MAX_REAL;
+    G->hi[d] = -PETSC_MAX_REAL;
+  }
+  G->n     = 0;
+  G->cells = NULL;
+  for (int pass = 0; pass < 2; pass++) {
+    PetscInt e = 0;
+    for (PetscInt t = 0; t < S->n; t++) {
+      PetscReal mn[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, mx[2] = {-PETSC_MAX_REAL, -PETSC_MAX_REAL};
+      for (int a = 0; a < 3; a++) {
+        PetscReal pu = FCDot(S->tri[t].x0[a], G->u), pv = FCDot(S->tri[t].x0[a], G->v);
+        mn[0] = PetscMin(mn[0], pu);
+        mx[0] = PetscMax(mx[0], pu);
+        mn[1] = PetscMin(mn[1], pv);
+        mx[1] = PetscMax(mx[1], pv);
+        if (!pass)
+          for (int d = 0; d < 3; d++) {
+            G->lo[d] = PetscMin(G->lo[d], S->tri[t].x0[a][d]);
+            G->hi[d] = PetscMax(G->hi[d], S->tri[t].x0[a][d]);
+          }
+      }
+      for (int64_t i = (int64_t)PetscFloorReal(mn[0] / G->h); i <= (int64_t)PetscFloorReal(mx[0] / G->h); i++)
+        for (int64_t j = (int64_t)PetscFloorReal(mn[1] / G->h); j <= (int64_t)PetscFloorReal(mx[1] / G->h); j++) {
+          if (pass) {
+            G->cells[e].key = Key2(i, j);
+            G->cells[e].tri = t;
+          }
+          e++;
+        }
+    }
+    if (!pass) {
+      G->n = e;
+      PetscCall(PetscMalloc1(e + 1, &G->cells));
+    }
+  }
+  qsort(G->cells, G->n, sizeof(FCCellEntry), CompareEntry);
+  PetscFunctionReturn(0);
+}
+
+/* Odd number of crossings of the ray from x: inside the closed surface */
+PetscBool FCRayGridInside(const FCSurface *S, const FCRayGrid *G, const PetscReal x[3])
+{
+  int64_t  key = Key2((int64_t)PetscFloorReal(FCDot(x, G->u) / G->h), (int64_t)PetscFloorReal(FCDot(x, G->v) / G->h));
+  PetscInt lo = 0, hi = G->n, crossings = 0;
+
+  for (int d = 0; d < 3; d++)
+    if (x[d] < G->lo[d] || x[d] > G->hi[d]) return PETSC_FALSE;
+  while (lo < hi) {
+    PetscInt mid = (lo + hi) / 2;
+    if (G->cells[mid].key < key)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  for (; lo < G->n && G->cells[lo].key == key; lo++) {
+    const FCSurfaceTriangle *T = &S->tri[G->cells[lo].tri];
+    if (FCRayHitsTriangle(x, RayDir, T->x0[0], T->x0[1], T->x0[2])) crossings++;
+  }
+  return crossings % 2 ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* Points of P inside the closed surface of B, deeper than depth */
+static PetscErrorCode PointsInSurface(MPI_Comm comm, FCBody P, FCBody B, PetscReal depth, PetscInt *count)
+{
+  PetscInt           n, ntri;
+  FCProximity       *prox;
+  PetscReal         *x, *xf, *key;
+  FCSurfaceTriangle *tri;
+  FCSurface         *S;
+  RayGrid            G;
+
+  PetscFunctionBegin;
+  PetscCall(FCSurfaceGather(comm, B, &ntri, &tri));
+  PetscCall(FCSurfaceCreate(ntri, tri, depth, &S));
+  PetscCall(FCRayGridCreate(S, &G));
+  PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x, &xf, &key));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscInt  best;
+    PetscReal w[3], cp[3], d2;
+    if (!FCRayGridInside(S, &G, &x[3 * i])) continue;
+    FCSurfaceClosest(S, &x[3 * i], &best, w, cp, &d2);
+    if (best < 0 || d2 > depth * depth) (*count)++;
+  }
+  PetscCall(PetscFree(G.cells));
+  PetscCall(FCSurfaceDestroy(&S));
+  PetscFunctionReturn(0);
+}
+
+/* Points of P inside the analytic shape of B, deeper than depth */
+static PetscErrorCode PointsInShape(FCBody P, FCBody B, PetscReal depth, PetscInt *count)
+{
+  PetscInt     n;
+  FCProximity *prox;
+  PetscReal   *x, *xf, *key;
+
+  PetscFunctionBegin;
+  PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x, &xf, &key));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscReal d, nrm[3], cpb[3];
+    PetscCall(FCBodyShapeDistance(B, FC_AT_NOW, &x[3 * i], &d, nrm, cpb));
+    if (d < -depth) (*count)++;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCCollisionCountIntersections(MPI_Comm comm, PetscInt nbodies, FCBody bodies[],
+                                             const FCContactPairs *pairs, PetscInt *count)
+{
+  PetscInt local = 0;
+
+  PetscFunctionBegin;
+  for (PetscInt p = 0; p < pairs->n; p++) {
+    FCBody A = bodies[pairs->body[p][0]], B = bodies[pairs->body[p][1]];
+    if (FCBodyHasSurfaceTriangles(A) && FCBodyHasSurfaceTriangles(B)) {
+      PetscCall(PointsInSurface(comm, A, B, pairs->intersection_depth, &local));
+      PetscCall(PointsInSurface(comm, B, A, pairs->intersection_depth, &local));
+      continue;
+    }
+    for (int s = 0; s < 2; s++) { /* a body with points against the other's analytic shape */
+      FCBody X = s ? B : A, Y = s ? A : B;
+      if (!FCBodyHasShape(Y)) continue;
+      if (!FCBodyIsDeformable(X) && !FCBodyHasBoundedShape(X)) continue; /* a plane has no points */
+      PetscCall(PointsInShape(X, Y, pairs->intersection_depth, &local));
+    }
+  }
+  PetscCall(MPIU_Allreduce(&local, count, 1, MPIU_INT, MPI_SUM, comm));
+  PetscFunctionReturn(0);
+}
