@@ -44,7 +44,7 @@ struct _FCSchurFactor {
   PetscInt   ns, *S;          /* Schur DOFs (sorted) of the current analysis */
   PetscInt   nsnext, *Snext;  /* requested by FCSchurFactorSetSchur */
   MUMPS_INT *perm, *list;
-  PetscReal *sigma, *C, *red;
+  PetscReal *sigma, *C, *red; /* Sigma from MUMPS, inverted in place (C = sigma); reduced rhs */
   Vec        bseq;
   VecScatter tohost;
   PetscBool  analysed, factored;
@@ -287,9 +287,10 @@ static PetscErrorCode Analyse(FCSchurFactor f)
     f->nsnext = 0;
     PetscCall(Ordering(f));
     PetscCall(PetscFree(f->list));
-    PetscCall(PetscFree3(f->sigma, f->C, f->red));
+    PetscCall(PetscFree2(f->sigma, f->red));
     PetscCall(PetscMalloc1(f->ns + 1, &f->list));
-    PetscCall(PetscMalloc3(f->ns * f->ns + 1, &f->sigma, f->ns * f->ns + 1, &f->C, f->ns + 1, &f->red));
+    PetscCall(PetscMalloc2(f->ns * f->ns + 1, &f->sigma, f->ns + 1, &f->red));
+    f->C = f->sigma; /* inverted in place after each factorization */
     for (PetscInt i = 0; i < f->ns; i++) f->list[i] = (MUMPS_INT)(f->S[i] + 1);
     f->id.perm_in       = f->perm;
     f->id.size_schur    = (MUMPS_INT)f->ns;
@@ -334,18 +335,17 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
     PetscBLASInt n, info;
     PetscInt     ns = f->ns;
     PetscCall(PetscBLASIntCast(ns, &n));
-    for (PetscInt i = 0; i < ns; i++) /* lower triangle by rows = column-major upper: mirror it */
-      for (PetscInt j = 0; j <= i; j++) f->C[i + j * ns] = f->C[j + i * ns] = f->sigma[i * ns + j];
-    PetscCallBLAS("LAPACKpotrf", LAPACKpotrf_("L", &n, f->C, &n, &info));
+    /* MUMPS returns the lower triangle by rows: the upper one of the column-major array */
+    PetscCallBLAS("LAPACKpotrf", LAPACKpotrf_("U", &n, f->C, &n, &info));
     PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
                "The Schur complement of A of body '%s' on its %" PetscInt_FMT " contact DOFs is not positive definite "
                "(LAPACK potrf info %d)",
                f->name, ns, (int)info);
-    PetscCallBLAS("LAPACKpotri", LAPACKpotri_("L", &n, f->C, &n, &info));
+    PetscCallBLAS("LAPACKpotri", LAPACKpotri_("U", &n, f->C, &n, &info));
     PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK potri on the Schur complement of body '%s': %d",
                f->name, (int)info);
     for (PetscInt j = 0; j < ns; j++)
-      for (PetscInt i = j + 1; i < ns; i++) f->C[j + i * ns] = f->C[i + j * ns];
+      for (PetscInt i = j + 1; i < ns; i++) f->C[i + j * ns] = f->C[j + i * ns]; /* the lower from the upper */
   }
   PetscCall(PetscLogEventEnd(EV_INVERSE, 0, 0, 0, 0));
   f->factored = PETSC_TRUE;
@@ -437,7 +437,7 @@ PetscErrorCode FCSchurFactorDestroy(FCSchurFactor *sf)
   PetscCall(PetscFree(f->Snext));
   PetscCall(PetscFree(f->perm));
   PetscCall(PetscFree(f->list));
-  PetscCall(PetscFree3(f->sigma, f->C, f->red));
+  PetscCall(PetscFree2(f->sigma, f->red));
   PetscCall(VecDestroy(&f->bseq));
   PetscCall(VecScatterDestroy(&f->tohost));
   PetscCallMPI(MPI_Comm_free(&f->comm));
