@@ -94,14 +94,15 @@ def p1_displacement(cells, X, U, x):
     return bary[k] @ U[cells[k]]
 
 
-def measure(h5path, P):
-    """F, d and Hertz's force for d from a finished run (see the module docstring)"""
+def measure(h5path, P, frame=-1):
+    """F (last step), d (at the written frame `frame`) and Hertz's force for d from a finished
+    run (see the module docstring)"""
     with h5py.File(h5path, "r") as H:
         off = H["contacts/offset"][:]
         F = H["contacts/force"][off[-2]:off[-1], 0].sum()
         cells = H["bodies/ball/mesh/cells"][:]
         X = H["bodies/ball/positions"][0]
-        U = H["bodies/ball/positions"][-1] - X
+        U = H["bodies/ball/positions"][frame] - X
         steps = H["steps"]
         m = dict(F=F, contacts=int(steps["contacts"][-1]), residual=float(steps["residual"][-1]),
                  intersections=int(steps["intersections"][:].max()),
