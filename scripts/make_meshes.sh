@@ -41,6 +41,12 @@ MESHES=(
   "thin_slab    table1.geo    nx 16 ny 16 nz 2 d 0.02"
   "small_cube   table1.geo    nx 4 ny 4 nz 4 d 0.05"
   "bar          table1.geo    nx 12 ny 3 nz 3 d 0.05"
+  "hertz_sphere_1  hertz_sphere.geo  lc_min 0.04"
+  "hertz_sphere_2  hertz_sphere.geo  lc_min 0.02"
+  "hertz_sphere_3  hertz_sphere.geo  lc_min 0.01"
+  "hertz_block_1   hertz_block.geo   lc_min 0.04"
+  "hertz_block_2   hertz_block.geo   lc_min 0.02"
+  "hertz_block_3   hertz_block.geo   lc_min 0.01"
 )
 
 failed=()

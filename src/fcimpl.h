@@ -381,6 +381,7 @@ typedef struct {
   PetscReal *mu;
   PetscReal  distance;   /* alarm distance */
   PetscInt   passes;     /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
+  PetscReal  pass2_drop; /* -contact_fe_pass2_drop: drop 2nd-pass vertices held by the 1st pass (< 0: off) */
   PetscBool  continuous; /* -contact_detection continuous (default) or discrete */
   PetscBool  edges;      /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
   PetscReal

@@ -80,6 +80,8 @@ cases = [
     ("contact pair, unknown body", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cube:floor", "-quiet"], "unknown body 'floor'"),
     ("contact pair with itself", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cube:cube", "-quiet"], "with itself"),
     ("contact pair, malformed", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cubeground", "-quiet"], "body1:body2"),
+    ("pass-2 drop weight 1", ["-options_file", "input/two_cubes.opts", "-contact_fe_pass2_drop", "1", "-quiet"], "-contact_fe_pass2_drop"),
+    ("pass-2 drop weight nan", ["-options_file", "input/two_cubes.opts", "-contact_fe_pass2_drop", "nan", "-quiet"], "-contact_fe_pass2_drop"),
     ("contact mu negative", ["-options_file", "input/cube_drop.opts", "-contact_mu", "-0.3", "-quiet"], "-contact_mu"),
     ("restart file missing", opts(restart="nonexistent.h5"), "Cannot open the restart file"),
     ("contact matrices over the memory limit", ["-options_file", "input/cube_drop.opts", "-contact_memory_limit", "1e3", "-quiet"],

@@ -382,6 +382,49 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
   PetscFunctionReturn(0);
 }
 
+static int CompareX(const void *a, const void *b)
+{
+  const PetscReal *x = (const PetscReal *)a, *y = (const PetscReal *)b;
+  for (int i = 0; i < 3; i++)
+    if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
+  return 0;
+}
+
+/* -contact_fe_pass2_drop w: in every FE-FE or FE-mesh pair detected both ways, drop the contacts
+   of the second pass (a vertex of the pair's second body against the first's surface) whose vertex
+   has a barycentric weight > w in some first-pass contact (a vertex of the first body against a
+   triangle of the second): that vertex is already held by the first pass, and the two constraints
+   are nearly redundant (W ill-conditioned, docs/hard-cases.md). Vertices are matched by their
+   reference position. Runs on the gathered set, the same on every rank, so it keeps the order. */
+static PetscErrorCode DropPaired(const FCContactPairs *pairs, FCContactSet *set)
+{
+  PetscReal *held;
+  PetscInt   nheld = 0, kept = 0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(9 * set->n + 3, &held));
+  for (PetscInt k = 0; k < set->n; k++) {
+    const FCContact *c = &set->c[k];
+    if (c->side2 != FC_SIDE_FE_TRIANGLE || c->body[0] != pairs->body[c->pair][0]) continue;
+    for (int a = 0; a < 3; a++)
+      if (c->prox[1].w[a] > pairs->pass2_drop) {
+        for (int d = 0; d < 3; d++) held[3 * nheld + d] = c->prox[1].X[a][d];
+        nheld++;
+      }
+  }
+  if (nheld > 1) qsort(held, nheld, 3 * sizeof(PetscReal), CompareX);
+  for (PetscInt k = 0; k < set->n; k++) {
+    const FCContact *c    = &set->c[k];
+    PetscBool        drop = PETSC_FALSE;
+    if (c->side2 == FC_SIDE_FE_TRIANGLE && c->body[0] == pairs->body[c->pair][1] && c->prox[0].nv == 1 && nheld)
+      drop = bsearch(c->prox[0].X[0], held, nheld, 3 * sizeof(PetscReal), CompareX) ? PETSC_TRUE : PETSC_FALSE;
+    if (!drop) set->c[kept++] = *c;
+  }
+  set->n = kept;
+  PetscCall(PetscFree(held));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], const FCContactPairs *pairs,
                                  FCContactSet *set)
 {
@@ -454,6 +497,7 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     }
   }
   PetscCall(FCContactSetGather(set, comm));
+  if (pairs->passes == 2 && pairs->pass2_drop >= 0.0) PetscCall(DropPaired(pairs, set));
   /* The start-inside rule: a contact that starts d deep is not asked to close in one step (an
      impulse of d / h, the energy burst of bodies placed inside each other) but by at most
      -contact_separation_speed v per step: the step may leave max(0, d - v h) of it (q_n += slack,

@@ -18,6 +18,11 @@
                               surface (nothing crosses either surface, but the two constraint sets are
                               nearly redundant and PGS may stall, docs/hard-cases.md); 1 = the first
                               body's vertices against the second's surface only (default 2)
+     -contact_fe_pass2_drop w  with 2 passes: drop a second-pass contact (a vertex of the second body
+                              against the first's surface) whose vertex has a barycentric weight > w
+                              in a first-pass contact of the same pair: that vertex is already held by
+                              the first pass, and its own contact is the nearly redundant one
+                              (0 <= w < 1; default -1: keep every contact; docs/hard-cases.md)
      -contact_detection continuous|discrete   continuous (default): a point whose motion over the step
                               (start to free-motion end) reaches the other side is a contact too, with
                               its start-of-step gap and normal, so nothing passes through a thin body
@@ -101,6 +106,7 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   PetscFunctionBegin;
   s->pairs.distance           = 0.01;
   s->pairs.passes             = 2;
+  s->pairs.pass2_drop         = -1.0;
   s->pairs.intersection_depth = 1e-4;
   s->pairs.edges              = PETSC_TRUE;
   s->pairs.separation_speed   = 1.0;
@@ -111,6 +117,10 @@ static PetscErrorCode ReadContactPairs(FCScene s)
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_distance", "Alarm distance", &s->pairs.distance, NULL));
     PetscCall(FCOptionsInt(PetscOptionsObject, "-contact_fe_passes",
                            "Detection passes between two meshed bodies (1 or 2)", &s->pairs.passes, NULL));
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_drop",
+                            "With 2 passes: drop a second-pass contact whose vertex has a weight > w in a first-pass "
+                            "contact of the pair (< 0: keep all)",
+                            &s->pairs.pass2_drop, NULL));
     PetscCall(FCOptionsRealList(PetscOptionsObject, "-contact_mu", "Friction coefficient: one value, or one per pair",
                                 FC_MAX_BODIES, mu, &nmu, &setmu));
     PetscCall(PetscOptionsString("-contact_detection", "Contact detection: continuous or discrete", NULL, detection,
@@ -148,6 +158,10 @@ static PetscErrorCode ReadContactPairs(FCScene s)
                "Option -contact_mu: entry %" PetscInt_FMT " must be a finite number >= 0, got %g", i, (double)mu[i]);
   PetscCheck(s->pairs.passes == 1 || s->pairs.passes == 2, s->comm, PETSC_ERR_USER_INPUT,
              "Option -contact_fe_passes must be 1 or 2, got %" PetscInt_FMT, s->pairs.passes);
+  PetscCheck(s->pairs.pass2_drop < 1.0 && PetscIsNormalReal(s->pairs.pass2_drop + 2.0), s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_fe_pass2_drop must be a finite number < 1 (a barycentric weight; < 0 keeps every "
+             "contact), got %g",
+             (double)s->pairs.pass2_drop);
   PetscCheck(s->pairs.distance >= 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_distance must be >= 0, got %g",
              (double)s->pairs.distance);
   s->pairs.n = np;
