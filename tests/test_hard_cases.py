@@ -521,10 +521,10 @@ def steps_until_parted(H):
     return last, bool(not n[last:].any())
 
 
-def start_inside(np_=1, checks=True):
+def start_inside(np_=1, checks=True, extra=()):
     """Case 13: input/hard/start_inside.opts (two FE cubes placed 0.1 m inside each other)."""
     label = "FE cubes start 0.1 m inside"
-    H, o, wall = scene(label, ["-options_file", "input/hard/start_inside.opts"], np_)
+    H, o, wall = scene(label, ["-options_file", "input/hard/start_inside.opts"] + list(extra), np_)
     if not checks:
         return H
     label = label if np_ == 1 else label + " [np%d]" % np_
@@ -618,11 +618,13 @@ else:
     compare("ball 20 m/s on 2 cm FE slab", ball_thin_slab(1, checks=False), ball_thin_slab(NP))
     compare("FE cube 20 m/s on 1 cm plate", cube_thin_plate(1, checks=False), cube_thin_plate(NP))
     compare("crossed bars edge-edge", crossed_bars(1, checks=False), crossed_bars(NP))
-    # the push-out solves 88 contacts whose right-hand sides carry the 0.1 m overlap for 73 steps:
-    # each solve is exact to pgs_tol x |q| ~ 1e-9 m, and 1 and 2 ranks stop at different sweeps
-    # of it; measured 2.0e-8 m (1.9e-8 with one-way detection, where every solve converges):
-    # bound 1e-7 m, 1e-7 of the bodies
-    compare("FE cubes start 0.1 m inside", start_inside(1, checks=False), start_inside(NP), tol=1e-7)
+    # the push-out carries the 0.1 m overlap in the right-hand sides of 88 contacts for 73 steps,
+    # with contacts switching on and off: it amplifies round-off, and MUMPS' parallel factorization
+    # is not bitwise reproducible from run to run. Measured, final centroids against 1 rank: two
+    # 2-rank runs 6.4e-8 and 9.4e-8 m (condensed), 2.1e-8 and 5.2e-8 m (redundant), up to 2.0e-7 m
+    # in earlier runs; 2-rank runs differ among themselves by as much. Bound 1e-6 m (1e-6 of the
+    # 1 m bodies), 5x the largest seen
+    compare("FE cubes start 0.1 m inside", start_inside(1, checks=False), start_inside(NP), tol=1e-6)
     compare("stack started 1.5 cm inside", stack_overlap(1, checks=False), stack_overlap(NP))
 
 print("\nsummary (np %d): case | wall s | max penetration m | max residual | max E(t) - E(0) J | E(0) J | final speed m/s" % NP)
