@@ -8,10 +8,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 scripts/build.sh
-(cd build && ctest --output-on-failure --timeout 900 "$@")
+(cd build && ctest --output-on-failure --timeout 900 -j"$(nproc)" "$@")
 if [ "${FC_TEST_SANITIZE:-1}" != 0 ]; then
   echo "test: the suite again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)"
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DFC_SANITIZE=address,undefined >/dev/null
   cmake --build build-asan -j"$(nproc)"
-  (cd build-asan && ctest --output-on-failure --timeout 900 "$@")
+  (cd build-asan && ctest --output-on-failure --timeout 900 -j"$(nproc)" "$@")
 fi
