@@ -1,4 +1,4 @@
-/* What the files of src/collision/ share: the spatial hash of surface triangles (collision.c),
+/* What the files of src/collision/ share: the spatial hash of surface triangles (surface.c),
    the closest-point kernels (geometry.c), the continuous tests (ccd.c) and the edges of a
    surface (edges.c). */
 #pragma once
@@ -27,6 +27,9 @@ PETSC_INTERN PetscErrorCode FCSurfaceGather(MPI_Comm, FCBody, PetscInt *ntri, FC
 /* A surface hashed by the boxes of its triangles over the whole step (start and free-motion
    positions), inflated by `inflate`: the broad phase of continuous detection. Takes tri over. */
 PETSC_INTERN PetscErrorCode FCSurfaceCreateSwept(PetscInt n, FCSurfaceTriangle *tri, PetscReal inflate, FCSurface **);
+typedef struct _FCSurface   Surface;
+/* The hashed entries of the cell of x: S->cells[*begin .. *end) */
+PETSC_INTERN void FCSurfaceQueryPoint(const FCSurface *, const PetscReal x[3], PetscInt *begin, PetscInt *end);
 /* The triangles whose swept boxes overlap the box [lo, hi], each once: cand gets their indices
    (at most S->n), ncand their number */
 PETSC_INTERN void FCSurfaceQueryBox(FCSurface *, const PetscReal lo[3], const PetscReal hi[3], PetscInt cand[],
