@@ -208,6 +208,60 @@ PetscErrorCode FCComplianceMumpsCholesky(FCCompliance comp, Mat F, Mat K, const 
   PetscFunctionReturn(0);
 }
 
+/* S (sorted DOFs that J_b touches, the same on every rank: contacts are replicated) and J_S by
+   columns of S: for S index j, the rows a of J_b with J_b(a, S_j) != 0; from all the entries of
+   J_b^T (comp->jtr + lo: global DOF) */
+PetscErrorCode FCComplianceContactDofs(FCCompliance comp, PetscInt *ns_, PetscInt **S_, PetscInt **cptr_,
+                                       PetscInt **crow_, PetscReal **cval_)
+{
+  PetscInt   n = comp->nje, ns = n, *S, *cptr, *crow, *cnt, lo;
+  PetscReal *cval;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(comp->ctx.u, &lo, NULL));
+  PetscCall(PetscMalloc1(n + 1, &S));
+  for (PetscInt q = 0; q < n; q++) S[q] = comp->jtr[q] + lo;
+  PetscCall(PetscSortRemoveDupsInt(&ns, S));
+  PetscCall(PetscCalloc1(ns + 1, &cptr));
+  PetscCall(PetscCalloc1(ns + 1, &cnt));
+  PetscCall(PetscMalloc1(n + 1, &crow));
+  PetscCall(PetscMalloc1(n + 1, &cval));
+  for (int pass = 0; pass < 2; pass++) { /* count, then fill */
+    for (PetscInt q = 0; q < n; q++) {
+      PetscInt at;
+      PetscCall(PetscFindInt(comp->jtr[q] + lo, ns, S, &at));
+      if (!pass)
+        cptr[at + 1]++;
+      else {
+        PetscInt r = cptr[at] + cnt[at]++;
+        crow[r]    = comp->jtc[q];
+        cval[r]    = comp->jtv[q];
+      }
+    }
+    if (!pass)
+      for (PetscInt j = 0; j < ns; j++) cptr[j + 1] += cptr[j];
+  }
+  PetscCall(PetscFree(cnt));
+  *ns_   = ns;
+  *S_    = S;
+  *cptr_ = cptr;
+  *crow_ = crow;
+  *cval_ = cval;
+  PetscFunctionReturn(0);
+}
+
+/* W_b += the part of J_S C J_S^T from column j of C = (A^-1)_SS (Ccol: C(:, j) in the order of
+   S): T = (J_S C)(:, j), then W_b(a, b) += T(a) J_S(b, j); T is ncols of work */
+void FCComplianceAddColumn(PetscInt ncols, PetscInt ns, const PetscInt cptr[], const PetscInt crow[],
+                           const PetscReal cval[], PetscInt j, const PetscScalar Ccol[], PetscReal T[], PetscReal Wb[])
+{
+  for (PetscInt a = 0; a < ncols; a++) T[a] = 0.0;
+  for (PetscInt i = 0; i < ns; i++)
+    for (PetscInt q = cptr[i]; q < cptr[i + 1]; q++) T[crow[q]] += cval[q] * PetscRealPart(Ccol[i]);
+  for (PetscInt q = cptr[j]; q < cptr[j + 1]; q++)
+    for (PetscInt a = 0; a < ncols; a++) Wb[a * ncols + crow[q]] += T[a] * cval[q];
+}
+
 /* Forgets the step's contact columns */
 static PetscErrorCode Reset(FCCompliance comp)
 {

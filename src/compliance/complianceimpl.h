@@ -37,6 +37,15 @@ struct _p_FCCompliance {
 
 /* Frame direction a (0: n, 1: t1, 2: t2) of a contact, signed for side `side` (0 or 1) */
 PETSC_INTERN void FCComplianceDirection(const FCContact *, PetscInt side, PetscInt a, PetscReal e[3]);
+/* S, the sorted global DOFs that J_b touches (the same on every rank: contacts are replicated),
+   and J_S by columns of S: for S index j, the rows crow[cptr[j] .. cptr[j+1]) of J_b and their
+   values (all five arrays to free) */
+PETSC_INTERN PetscErrorCode FCComplianceContactDofs(FCCompliance, PetscInt *ns, PetscInt **S, PetscInt **cptr,
+                                                    PetscInt **crow, PetscReal **cval);
+/* W_b += the part of J_S C J_S^T from column j of C = (A^-1)_SS, given as C(:, j) in S order */
+PETSC_INTERN void FCComplianceAddColumn(PetscInt ncols, PetscInt ns, const PetscInt cptr[], const PetscInt crow[],
+                                        const PetscReal cval[], PetscInt j, const PetscScalar Ccol[], PetscReal T[],
+                                        PetscReal Wb[]);
 /* Whether the body's KSP is preonly + Cholesky by MUMPS (the default) */
 PETSC_INTERN PetscErrorCode FCComplianceBodySolverIsMumps(FCCompliance, PetscBool *);
 /* The factor of A (the body's KSP) */

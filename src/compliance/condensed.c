@@ -160,21 +160,18 @@ static PetscErrorCode Factor_Condensed(FCCompliance comp)
 static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FCContactSet *set, PetscReal Wb[])
 {
   Condensed  *cd    = (Condensed *)comp->data;
-  PetscInt    ncols = comp->ncols, lo;
+  PetscInt    ncols = comp->ncols, *cptr = NULL, *crow = NULL;
+  PetscReal  *cval = NULL;
   PetscMPIInt rank;
   PetscBool   miss = PETSC_FALSE;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
-  PetscCall(VecGetOwnershipRange(comp->ctx.u, &lo, NULL));
-  if (!rank) { /* T: the DOFs the contacts touch (every rank holds every entry of J_b) */
+  if (!rank) { /* T: the DOFs the contacts touch, and J_T by columns (every rank holds every entry of J_b) */
     PetscInt        ns;
     const PetscInt *S;
     PetscCall(PetscFree(cd->T));
-    PetscCall(PetscMalloc1(comp->nje + 1, &cd->T));
-    for (PetscInt q = 0; q < comp->nje; q++) cd->T[q] = comp->jtr[q] + lo;
-    cd->nT = comp->nje;
-    PetscCall(PetscSortRemoveDupsInt(&cd->nT, cd->T));
+    PetscCall(FCComplianceContactDofs(comp, &cd->nT, &cd->T, &cptr, &crow, &cval));
     PetscCall(FCSchurFactorGetInverse(cd->sf, &ns, &S, NULL));
     for (PetscInt i = 0, at; i < cd->nT && !miss; i++) {
       PetscCall(PetscFindInt(cd->T[i], ns, S, &at));
@@ -205,38 +202,22 @@ static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FC
     cd->missed = PETSC_TRUE;
   }
   cd->built = PETSC_TRUE;
-  if (!rank) {
-    PetscInt         ns, *pos, *cptr, *cq;
+  if (!rank) { /* per column j of C restricted to T: the shared J_S C J_S^T accumulation */
+    PetscInt         ns, *pos;
     const PetscInt  *S;
     const PetscReal *C;
-    PetscReal       *t;
+    PetscReal       *col, *work;
     PetscCall(FCSchurFactorGetInverse(cd->sf, &ns, &S, &C));
-    PetscCall(PetscMalloc4(comp->nje + 1, &pos, ncols + 1, &cptr, comp->nje + 1, &cq, ns + 1, &t));
-    PetscCall(PetscArrayzero(cptr, ncols + 1));
-    for (PetscInt q = 0; q < comp->nje; q++) { /* entries by column of J_b^T, with their place in S */
-      PetscCall(PetscFindInt(comp->jtr[q] + lo, ns, S, &pos[q]));
-      cptr[comp->jtc[q] + 1]++;
+    PetscCall(PetscMalloc3(cd->nT + 1, &pos, cd->nT + 1, &col, ncols + 1, &work));
+    for (PetscInt i = 0; i < cd->nT; i++) PetscCall(PetscFindInt(cd->T[i], ns, S, &pos[i])); /* T within S */
+    for (PetscInt j = 0; j < cd->nT; j++) {
+      for (PetscInt i = 0; i < cd->nT; i++) col[i] = C[pos[i] + pos[j] * ns];
+      FCComplianceAddColumn(ncols, cd->nT, cptr, crow, cval, j, col, work, Wb);
     }
-    for (PetscInt a = 0; a < ncols; a++) cptr[a + 1] += cptr[a];
-    {
-      PetscInt *fill;
-      PetscCall(PetscCalloc1(ncols + 1, &fill));
-      for (PetscInt q = 0; q < comp->nje; q++) cq[cptr[comp->jtc[q]] + fill[comp->jtc[q]]++] = q;
-      PetscCall(PetscFree(fill));
-    }
-    for (PetscInt a = 0; a < ncols; a++) { /* t = C J_S^T e_a, then row a of W_b */
-      PetscCall(PetscArrayzero(t, ns));
-      for (PetscInt k = cptr[a]; k < cptr[a + 1]; k++) {
-        const PetscReal *col = C + pos[cq[k]] * ns, v = comp->jtv[cq[k]];
-        for (PetscInt i = 0; i < ns; i++) t[i] += col[i] * v;
-      }
-      for (PetscInt b = 0; b < ncols; b++) {
-        PetscReal w = 0.0;
-        for (PetscInt k = cptr[b]; k < cptr[b + 1]; k++) w += comp->jtv[cq[k]] * t[pos[cq[k]]];
-        Wb[a * ncols + b] = w;
-      }
-    }
-    PetscCall(PetscFree4(pos, cptr, cq, t));
+    PetscCall(PetscFree3(pos, col, work));
+    PetscCall(PetscFree(cptr));
+    PetscCall(PetscFree(crow));
+    PetscCall(PetscFree(cval));
   }
   PetscCallMPI(MPI_Bcast(Wb, (PetscMPIInt)(ncols * ncols), MPIU_REAL, 0, comp->ctx.comm));
   PetscFunctionReturn(0);

@@ -64,47 +64,6 @@ static PetscErrorCode SetFromOptions_Inverse(FCCompliance comp, PetscOptionItems
   PetscFunctionReturn(0);
 }
 
-/* S (sorted DOFs that J_b touches, the same on every rank: contacts are replicated) and J_S by
-   columns of S: for S index j, the rows a of J_b with J_b(a, S_j) != 0; from all the entries of
-   J_b^T (comp->jtr + lo: global DOF) */
-static PetscErrorCode ContactDofs(FCCompliance comp, PetscInt lo, PetscInt *ns_, PetscInt **S_, PetscInt **cptr_,
-                                  PetscInt **crow_, PetscReal **cval_)
-{
-  PetscInt   n = comp->nje, ns = n, *S, *cptr, *crow, *cnt;
-  PetscReal *cval;
-
-  PetscFunctionBegin;
-  PetscCall(PetscMalloc1(n + 1, &S));
-  for (PetscInt q = 0; q < n; q++) S[q] = comp->jtr[q] + lo;
-  PetscCall(PetscSortRemoveDupsInt(&ns, S));
-  PetscCall(PetscCalloc1(ns + 1, &cptr));
-  PetscCall(PetscCalloc1(ns + 1, &cnt));
-  PetscCall(PetscMalloc1(n + 1, &crow));
-  PetscCall(PetscMalloc1(n + 1, &cval));
-  for (int pass = 0; pass < 2; pass++) { /* count, then fill */
-    for (PetscInt q = 0; q < n; q++) {
-      PetscInt at;
-      PetscCall(PetscFindInt(comp->jtr[q] + lo, ns, S, &at));
-      if (!pass)
-        cptr[at + 1]++;
-      else {
-        PetscInt r = cptr[at] + cnt[at]++;
-        crow[r]    = comp->jtc[q];
-        cval[r]    = comp->jtv[q];
-      }
-    }
-    if (!pass)
-      for (PetscInt j = 0; j < ns; j++) cptr[j + 1] += cptr[j];
-  }
-  PetscCall(PetscFree(cnt));
-  *ns_   = ns;
-  *S_    = S;
-  *cptr_ = cptr;
-  *crow_ = crow;
-  *cval_ = cval;
-  PetscFunctionReturn(0);
-}
-
 /* Adds to Wb the part of J_S C J_S^T from the columns j0 <= j < j1 of C = (A^-1)_{SS}, computed
    with the factor F; a rank with j1 > j0 must hold every row of F (rank 0 of a distributed
    factor, or a sequential factor) */
@@ -159,12 +118,8 @@ static PetscErrorCode AddInverseColumns(Mat F, PetscInt N, PetscInt ns, const Pe
     PetscCall(MatGetRow(Btseq, S[j], &nc, &cols, &vals)); /* C(:, j), in the order of S */
     PetscCheck(nc == ns, PETSC_COMM_SELF, PETSC_ERR_LIB,
                "MUMPS returned %" PetscInt_FMT " of %" PetscInt_FMT " entries", nc, ns);
-    PetscCall(PetscArrayzero(T, ncols));
-    for (PetscInt i = 0; i < ns; i++)
-      for (PetscInt q = cptr[i]; q < cptr[i + 1]; q++) T[crow[q]] += cval[q] * PetscRealPart(vals[i]);
+    FCComplianceAddColumn(ncols, ns, cptr, crow, cval, j, vals, T, Wb);
     PetscCall(MatRestoreRow(Btseq, S[j], &nc, &cols, &vals));
-    for (PetscInt q = cptr[j]; q < cptr[j + 1]; q++)
-      for (PetscInt a = 0; a < ncols; a++) Wb[a * ncols + crow[q]] += T[a] * cval[q];
   }
   PetscCall(PetscFree(T));
   PetscCall(MatDestroy(&spRHS));
@@ -257,7 +212,7 @@ static PetscErrorCode Build_Inverse(FCCompliance comp, PetscInt self, const FCCo
 {
   Inverse    *inv = (Inverse *)comp->data;
   PetscMPIInt rank, size;
-  PetscInt    N, lo, ns = 0, *S = NULL, *cptr = NULL, *crow = NULL, j0, j1;
+  PetscInt    N, ns = 0, *S = NULL, *cptr = NULL, *crow = NULL, j0, j1;
   PetscReal  *cval = NULL;
   Mat         F;
 
@@ -266,8 +221,7 @@ static PetscErrorCode Build_Inverse(FCCompliance comp, PetscInt self, const FCCo
   PetscCallMPI(MPI_Comm_size(comp->ctx.comm, &size));
   PetscCall(VecGetSize(comp->ctx.u, &N));
   PetscCall(FCComplianceGetFactor(comp, &F)); /* MUMPS: checked at set-up */
-  PetscCall(VecGetOwnershipRange(comp->ctx.u, &lo, NULL));
-  PetscCall(ContactDofs(comp, lo, &ns, &S, &cptr, &crow, &cval));
+  PetscCall(FCComplianceContactDofs(comp, &ns, &S, &cptr, &crow, &cval));
   if (!ns) { /* every contact DOF is fixed: W_b = 0 (MUMPS refuses an empty selection, INFOG(1) = -45) */
     PetscCall(PetscFree(S));
     PetscCall(PetscFree(cptr));
