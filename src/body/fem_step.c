@@ -93,13 +93,15 @@ PetscErrorCode FCFEMFactorA(FCBody body)
   PetscFunctionReturn(0);
 }
 
-/* x = A^-1 b with the body's factor (factored first when stale) */
+/* x = A^-1 b with the body's factor (current: the caller factors a stale A first, inside its own
+   phase) */
 PetscErrorCode FCFEMSolveA(FCBody body, Vec b, Vec x, const char what[], PetscReal t)
 {
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
-  if (!fem->factored) PetscCall(FCFEMFactorA(body));
+  PetscCheck(fem->factored, body->comm, PETSC_ERR_PLIB, "%s solve of body '%s' with a stale factor of A", what,
+             body->name);
   if (fem->comp && FCComplianceFactorsA(fem->comp))
     PetscCall(FCComplianceSolve(fem->comp, b, x));
   else {

@@ -52,7 +52,7 @@ static PetscErrorCode SetUp_Condensed(FCCompliance comp)
 {
   Condensed      *cd = (Condensed *)comp->data;
   PetscMPIInt     size, rank, n = (PetscMPIInt)comp->ctx.nsurface, *counts = NULL, *displs = NULL;
-  PetscInt       *all = NULL, nb, N;
+  PetscInt       *all = NULL, nb;
   const PetscInt *xadj, *adj;
 
   PetscBool mumps;
@@ -77,7 +77,6 @@ static PetscErrorCode SetUp_Condensed(FCCompliance comp)
   PetscCallMPI(MPI_Gatherv(comp->ctx.surface, n, MPIU_INT, all, counts, displs, MPIU_INT, 0, comp->ctx.comm));
   if (!rank) {
     PetscCall(FCSchurFactorGetGraph(cd->sf, &nb, &xadj, &adj));
-    PetscCall(MatGetSize(comp->ctx.A, &N, NULL));
     PetscCall(PetscCalloc1(nb + 1, &cd->surf));
     for (PetscMPIInt i = 0; i < displs[size]; i++) cd->surf[all[i] / 3] = PETSC_TRUE;
     PetscCall(PetscFree(all));

@@ -44,7 +44,7 @@ struct _FCSchurFactor {
   PetscInt   ns, *S;          /* Schur DOFs (sorted) of the current analysis */
   PetscInt   nsnext, *Snext;  /* requested by FCSchurFactorSetSchur */
   MUMPS_INT *perm, *list;
-  PetscReal *sigma, *C, *red; /* Sigma from MUMPS, inverted in place (C = sigma); reduced rhs */
+  PetscReal *sigma, *red; /* Sigma from MUMPS, inverted in place into C = (A^-1)_SS; reduced rhs */
   Vec        bseq;
   VecScatter tohost;
   PetscBool  analysed, factored;
@@ -290,7 +290,6 @@ static PetscErrorCode Analyse(FCSchurFactor f)
     PetscCall(PetscFree2(f->sigma, f->red));
     PetscCall(PetscMalloc1(f->ns + 1, &f->list));
     PetscCall(PetscMalloc2(f->ns * f->ns + 1, &f->sigma, f->ns + 1, &f->red));
-    f->C = f->sigma; /* inverted in place after each factorization */
     for (PetscInt i = 0; i < f->ns; i++) f->list[i] = (MUMPS_INT)(f->S[i] + 1);
     f->id.perm_in       = f->perm;
     f->id.size_schur    = (MUMPS_INT)f->ns;
@@ -336,16 +335,16 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
     PetscInt     ns = f->ns;
     PetscCall(PetscBLASIntCast(ns, &n));
     /* MUMPS returns the lower triangle by rows: the upper one of the column-major array */
-    PetscCallBLAS("LAPACKpotrf", LAPACKpotrf_("U", &n, f->C, &n, &info));
+    PetscCallBLAS("LAPACKpotrf", LAPACKpotrf_("U", &n, f->sigma, &n, &info));
     PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
                "The Schur complement of A of body '%s' on its %" PetscInt_FMT " contact DOFs is not positive definite "
                "(LAPACK potrf info %d)",
                f->name, ns, (int)info);
-    PetscCallBLAS("LAPACKpotri", LAPACKpotri_("U", &n, f->C, &n, &info));
+    PetscCallBLAS("LAPACKpotri", LAPACKpotri_("U", &n, f->sigma, &n, &info));
     PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK potri on the Schur complement of body '%s': %d",
                f->name, (int)info);
     for (PetscInt j = 0; j < ns; j++)
-      for (PetscInt i = j + 1; i < ns; i++) f->C[i + j * ns] = f->C[j + i * ns]; /* the lower from the upper */
+      for (PetscInt i = j + 1; i < ns; i++) f->sigma[i + j * ns] = f->sigma[j + i * ns]; /* the lower from the upper */
   }
   PetscCall(PetscLogEventEnd(EV_INVERSE, 0, 0, 0, 0));
   f->factored = PETSC_TRUE;
@@ -378,7 +377,7 @@ PetscErrorCode FCSchurFactorSolve(FCSchurFactor f, Vec b, Vec x)
       PetscCall(PetscMalloc1(f->ns, &y));
       for (PetscInt i = 0; i < f->ns; i++) y[i] = 0.0;
       for (PetscInt j = 0; j < f->ns; j++) /* C symmetric, column-major */
-        for (PetscInt i = 0; i < f->ns; i++) y[i] += f->C[i + j * f->ns] * f->red[j];
+        for (PetscInt i = 0; i < f->ns; i++) y[i] += f->sigma[i + j * f->ns] * f->red[j];
       PetscCall(PetscArraycpy(f->red, y, f->ns));
       PetscCall(PetscFree(y));
     }
@@ -401,7 +400,7 @@ PetscErrorCode FCSchurFactorGetInverse(FCSchurFactor f, PetscInt *ns, const Pets
   PetscFunctionBegin;
   *ns = f->ns;
   if (S) *S = f->S;
-  if (C) *C = f->C;
+  if (C) *C = f->sigma;
   PetscFunctionReturn(0);
 }
 
