@@ -8,10 +8,10 @@
 
    Why MUMPS directly and not through PETSc: PETSc 3.18 ignores the ordering argument of a MUMPS
    Cholesky factorization, and MUMPS asked for a Schur complement without a given ordering falls
-   back to AMD, which on a 17.5k-DOF cube doubles the flops of the factorization (2.17e10 against
-   1.02e10; scripts/bench_compliance.py prints both). Here the ordering is METIS nested dissection
-   of the vertex graph of the interior (V \ S), S appended last (ICNTL(7) = 1): the Schur
-   factorization then costs what a plain one costs.
+   back to AMD (INFOG(7) = 0 whatever ICNTL(7) says), whose fill is far larger. Here the
+   ordering is METIS nested dissection of the vertex graph of the interior (V \ S), S appended
+   last (ICNTL(7) = 1): on a cube resting on a whole face the Schur factorization then takes 1.8x
+   the flops of a plain one (docs/method.md has the command that prints both).
 
    Layout: A is handed to MUMPS as the upper triangles of each rank's rows (distributed input,
    ICNTL(18) = 3 on several ranks); the ordering, the Schur complement and the right-hand sides are
