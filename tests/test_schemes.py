@@ -86,4 +86,22 @@ with h5py.File(dump, "r") as D:
 c.check(m == rows[rows > 0][0], "dump: %d rows, the first contact step's %d" % (m, rows[rows > 0][0]))
 p = subprocess.run([os.environ["FCLIB_SOLVE"], "-problem", dump], capture_output=True, text=True, check=True)
 c.check(" converged 1 " in p.stdout, "dump: solved alone by fclib_solve: " + p.stdout.strip()[-80:])
+
+# -pgs_dump_unconverged: the first problem the solver stops on unconverged (here by -pgs_max_it 3),
+# written after the solve; the solver alone, with 3 sweeps from zero, does not converge on it either
+# and with the default 1000 it does
+dump, f = out("dumpu_np%d.hdf5" % NP), out("dumpu_np%d.h5" % NP)
+run(["-options_file", "input/cube_drop.opts", "-time_steps", "45", "-pgs_max_it", "3", "-pgs_fail_residual", "10", "-pgs_dump_problem", dump,
+     "-pgs_dump_unconverged", "-output_file", f, "-quiet"], np_=NP)
+H = h5py.File(f, "r")
+res = H["steps/residual"][:]
+first = int(np.argmax(res > 1e-8))
+with h5py.File(dump, "r") as D:
+    m = int(D["fclib_local/W/m"][0])
+c.check(res.max() > 1e-8 and m == H["steps/constraint_rows"][first],
+        "dump unconverged: %d rows, those of step %d, the first with residual %.1e > 1e-8" % (m, first, res[first]))
+p3 = subprocess.run([os.environ["FCLIB_SOLVE"], "-problem", dump, "-pgs_max_it", "3"], capture_output=True, text=True, check=True)
+p = subprocess.run([os.environ["FCLIB_SOLVE"], "-problem", dump], capture_output=True, text=True, check=True)
+c.check(" converged 0 " in p3.stdout and " converged 1 " in p.stdout,
+        "dump unconverged: fclib_solve 3 sweeps: %s; 1000: %s" % (p3.stdout.strip()[-60:], p.stdout.strip()[-60:]))
 c.done()

@@ -22,7 +22,9 @@
                            sweeps on the FCLIB problems, docs/contact-solver.md)
      -pgs_dump_problem f.hdf5   write the first contact problem with at least -pgs_dump_rows rows
                            (default 1) in the FCLIB layout, for tools/bench_pgs, tools/fclib_solve or
-                           Siconos (rank 0; contacts with friction and without cannot be mixed) */
+                           Siconos (rank 0; contacts with friction and without cannot be mixed); with
+                           -pgs_dump_unconverged, the first such problem the solver does not converge on
+                           (the last linearization of the step), for a bug report */
 #include "contactimpl.h"
 
 struct _p_FCContactSolver {
@@ -32,8 +34,8 @@ struct _p_FCContactSolver {
   PetscBool               converged, nncg, root;    /* root: rank 0 solves and broadcasts (-pgs_ranks root) */
   char                    dump[PETSC_MAX_PATH_LEN]; /* -pgs_dump_problem */
   PetscInt                dump_rows;
-  PetscBool               dumped;
-  FCContactSolverUpdateFn update; /* after every sweep (FCContactSolverSetUpdate) */
+  PetscBool               dumped, dump_unconverged; /* -pgs_dump_unconverged: the first unconverged problem */
+  FCContactSolverUpdateFn update;                   /* after every sweep (FCContactSolverSetUpdate) */
   void                   *updatectx;
 };
 
@@ -78,6 +80,8 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
   if (s->dump[0]) {
     PetscCall(FCOptionsInt(PetscOptionsObject, "-pgs_dump_rows", "Dump the first problem with at least this many rows",
                            &s->dump_rows, NULL));
+    PetscCall(PetscOptionsBool("-pgs_dump_unconverged", "Dump the first problem the solver does not converge on", NULL,
+                               s->dump_unconverged, &s->dump_unconverged, NULL));
     PetscCheck(s->dump_rows >= 1, s->comm, PETSC_ERR_USER_INPUT,
                "Option -pgs_dump_rows must be >= 1, got %" PetscInt_FMT, s->dump_rows);
   }
@@ -163,6 +167,28 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
 
 static PetscErrorCode SolveHere(FCContactSolver, FCContactProblem, PetscReal[]);
 
+/* -pgs_dump_problem: rank 0 writes p; its failure (e.g. contacts with and without friction) stops every rank */
+static PetscErrorCode Dump(FCContactSolver s, FCContactProblem p)
+{
+  PetscMPIInt    rank;
+  PetscErrorCode werr = 0;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  if (!rank) {
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    werr = FCContactProblemWriteFCLIB(p, s->dump);
+    PetscCall(PetscPopErrorHandler());
+  }
+  PetscCallMPI(MPI_Bcast(&werr, 1, MPI_INT, 0, s->comm));
+  PetscCheck(!werr, s->comm, PETSC_ERR_FILE_WRITE,
+             "Option -pgs_dump_problem: could not write the contact problem to '%s' (FCLIB needs the same rows for "
+             "every contact: all with friction or all without)",
+             s->dump);
+  s->dumped = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 /* The problem is replicated: every rank solves it (-pgs_ranks all, no communication), or rank 0
    does and broadcasts the forces (-pgs_ranks root: the others wait) */
 PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, PetscReal r[])
@@ -172,33 +198,22 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  if (s->dump[0] && !s->dumped && p->n >= s->dump_rows) {
-    PetscErrorCode werr = 0;
-    if (!rank) { /* rank 0 writes; its failure (e.g. contacts with and without friction) stops every rank */
-      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-      werr = FCContactProblemWriteFCLIB(p, s->dump);
-      PetscCall(PetscPopErrorHandler());
-    }
-    PetscCallMPI(MPI_Bcast(&werr, 1, MPI_INT, 0, s->comm));
-    PetscCheck(!werr, s->comm, PETSC_ERR_FILE_WRITE,
-               "Option -pgs_dump_problem: could not write the contact problem to '%s' (FCLIB needs the same rows for "
-               "every contact: all with friction or all without)",
-               s->dump);
-    s->dumped = PETSC_TRUE;
-  }
-  if (!s->root || size == 1) {
+  if (s->dump[0] && !s->dump_unconverged && !s->dumped && p->n >= s->dump_rows) PetscCall(Dump(s, p));
+  if (!s->root || size == 1)
     PetscCall(SolveHere(s, p, r));
-    PetscFunctionReturn(0);
-  }
-  if (!rank) PetscCall(SolveHere(s, p, r));
-  {
-    PetscReal info[3] = {(PetscReal)s->sweeps, s->residual, (PetscReal)s->converged};
+  else {
+    PetscReal info[3];
+    if (!rank) PetscCall(SolveHere(s, p, r));
+    info[0] = (PetscReal)s->sweeps;
+    info[1] = s->residual;
+    info[2] = (PetscReal)s->converged;
     PetscCallMPI(MPI_Bcast(info, 3, MPIU_REAL, 0, s->comm));
     PetscCallMPI(MPI_Bcast(r, (PetscMPIInt)p->n, MPIU_REAL, 0, s->comm));
     s->sweeps    = (PetscInt)info[0];
     s->residual  = info[1];
     s->converged = info[2] != 0.0 ? PETSC_TRUE : PETSC_FALSE;
   }
+  if (s->dump[0] && s->dump_unconverged && !s->dumped && !s->converged && p->n >= s->dump_rows) PetscCall(Dump(s, p));
   PetscFunctionReturn(0);
 }
 
