@@ -110,6 +110,9 @@ typedef struct {
   IS         vertexNumbering, cellNumbering; /* global numbers (negative: not owned)      */
   PetscInt  *visVert;                        /* owned vertices (local index) in increasing global number    */
 } FCMesh;
+/* src/mesh/partmetis.c: the PetscPartitioner type "metis" (METIS k-way on the gathered cell graph) */
+#define FC_PARTITIONER_METIS "metis"
+PETSC_INTERN PetscErrorCode FCPartitionerRegisterMetis(void);
 PETSC_INTERN PetscErrorCode FCMeshLoad(MPI_Comm, const char prefix[], const char bodyname[], FCMesh *);
 PETSC_INTERN PetscErrorCode FCMeshTransform(FCMesh *, const PetscReal center[3], const PetscReal R[9],
                                             const PetscReal t[3]);

@@ -1,4 +1,5 @@
-/* Package registration: type registries (bodies, materials, shapes, compliance builders, schemes) and log events. */
+/* Package registration: type registries (bodies, materials, shapes, compliance builders, schemes), the
+   METIS mesh partitioner (a PetscPartitioner type) and log events. */
 #include "fcimpl.h"
 
 static PetscBool initialized = PETSC_FALSE;
@@ -18,6 +19,7 @@ PetscErrorCode FCInitializePackage(void)
   PetscCall(FCShapeRegisterAll());
   PetscCall(FCSchemeRegisterAll());
   PetscCall(FCComplianceRegisterAll());
+  PetscCall(FCPartitionerRegisterMetis());
   PetscCall(PetscRegisterFinalize(FCFinalizePackage));
   PetscFunctionReturn(0);
 }
