@@ -51,6 +51,11 @@ PETSC_INTERN PetscBool      FCRayGridInside(const FCSurface *, const FCRayGrid *
 PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt pair,
                                                 const FCContactPairs *, FCContactSet *);
 
+/* The sharp edges of a closed surface (as edge-edge contacts take them) by their two ends' positions
+   x0: ends[6 k .. 6 k + 5] (to be freed) */
+PETSC_INTERN PetscErrorCode FCSurfaceSharpEdgeEnds(PetscInt ntri, const FCSurfaceTriangle *, PetscInt *ne,
+                                                   PetscReal **ends);
+
 /* geometry.c: closest point to p on triangle (a, b, c) with its barycentric weights (Ericson,
    5.1.5); the unit normal of a triangle (x[0], x[1], x[2]), counter-clockwise = outward; the
    closest points of segments (p0, p1) and (q0, q1): p0 + s (p1 - p0), q0 + t (q1 - q0), with

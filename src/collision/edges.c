@@ -245,3 +245,17 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
   PetscCall(PetscFree(eb));
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode FCSurfaceSharpEdgeEnds(PetscInt ntri, const FCSurfaceTriangle *tri, PetscInt *ne, PetscReal **ends)
+{
+  Edge *E;
+
+  PetscFunctionBegin;
+  PetscCall(SharpEdges(ntri, tri, ne, &E));
+  PetscCall(PetscMalloc1(6 * (*ne) + 1, ends));
+  for (PetscInt k = 0; k < *ne; k++)
+    for (int j = 0; j < 2; j++)
+      for (int i = 0; i < 3; i++) (*ends)[6 * k + 3 * j + i] = E[k].x0[j][i];
+  PetscCall(PetscFree(E));
+  PetscFunctionReturn(0);
+}

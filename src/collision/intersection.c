@@ -7,8 +7,11 @@
    boundary vertices, the vertices of a mesh shape, the points of a bounded rigid shape) against
    the analytic shape of the other body (its signed distance), and, between two bodies with
    surface triangles (FE-FE, FE-mesh), the vertices of each against the other's closed surface,
-   both ways whatever -contact_fe_passes. A point of an analytic shape is not tested against an FE
-   body (a sphere has no vertices; those are its picture's), nor is an edge crossing an edge.
+   both ways whatever -contact_fe_passes; and between those, the sharp edges of each (edges.c)
+   through the other with both ends outside it: an edge whose point at 1/4, 1/2 or 3/4 of its
+   length is inside deeper than the depth (crossed bars sunk into each other edge on edge, where
+   no vertex is inside). A point of an analytic shape is not tested against an FE body (a sphere
+   has no vertices; those are its picture's).
    Inside a closed surface: an odd number of crossings of a ray from the point (in a fixed,
    generic direction, so that it does not run along the edges of structured meshes), the
    triangles bucketed in a 2D grid across the ray; deeper than d: no triangle within d (the
@@ -133,6 +136,47 @@ static PetscErrorCode PointsInSurface(MPI_Comm comm, FCBody P, FCBody B, PetscRe
   PetscFunctionReturn(0);
 }
 
+/* Sharp edges of P through the closed surface of B: both ends outside B, a point of the edge inside
+   deeper than depth. The edges are gathered on every rank: rank r counts those with k % size == r */
+static PetscErrorCode EdgesThroughSurface(MPI_Comm comm, FCBody P, FCBody B, PetscReal depth, PetscInt *count)
+{
+  PetscInt           ne, ntri, ptri;
+  PetscReal         *ends;
+  FCSurfaceTriangle *tri, *ptris;
+  FCSurface         *S;
+  RayGrid            G;
+  PetscMPIInt        rank, size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(FCSurfaceGather(comm, P, &ptri, &ptris));
+  PetscCall(FCSurfaceSharpEdgeEnds(ptri, ptris, &ne, &ends));
+  PetscCall(PetscFree(ptris));
+  PetscCall(FCSurfaceGather(comm, B, &ntri, &tri));
+  PetscCall(FCSurfaceCreate(ntri, tri, depth, &S));
+  PetscCall(FCRayGridCreate(S, &G));
+  for (PetscInt k = rank; k < ne; k += size) {
+    const PetscReal *a = &ends[6 * k], *b = &ends[6 * k + 3];
+    if (FCRayGridInside(S, &G, a) || FCRayGridInside(S, &G, b)) continue; /* a vertex inside: counted as one */
+    for (int q = 1; q <= 3; q++) {
+      PetscReal x[3], w[3], cp[3], d2;
+      PetscInt  best;
+      for (int i = 0; i < 3; i++) x[i] = a[i] + 0.25 * q * (b[i] - a[i]);
+      if (!FCRayGridInside(S, &G, x)) continue;
+      FCSurfaceClosest(S, x, &best, w, cp, &d2);
+      if (best < 0 || d2 > depth * depth) {
+        (*count)++;
+        break;
+      }
+    }
+  }
+  PetscCall(PetscFree(ends));
+  PetscCall(PetscFree(G.cells));
+  PetscCall(FCSurfaceDestroy(&S));
+  PetscFunctionReturn(0);
+}
+
 /* Points of P inside the analytic shape of B, deeper than depth */
 static PetscErrorCode PointsInShape(FCBody P, FCBody B, PetscReal depth, PetscInt *count)
 {
@@ -161,6 +205,8 @@ PetscErrorCode FCCollisionCountIntersections(MPI_Comm comm, PetscInt nbodies, FC
     if (FCBodyHasSurfaceTriangles(A) && FCBodyHasSurfaceTriangles(B)) {
       PetscCall(PointsInSurface(comm, A, B, pairs->intersection_depth, &local));
       PetscCall(PointsInSurface(comm, B, A, pairs->intersection_depth, &local));
+      PetscCall(EdgesThroughSurface(comm, A, B, pairs->intersection_depth, &local));
+      PetscCall(EdgesThroughSurface(comm, B, A, pairs->intersection_depth, &local));
       continue;
     }
     for (int s = 0; s < 2; s++) { /* a body with points against the other's analytic shape */
