@@ -150,6 +150,9 @@ PETSC_EXTERN PetscErrorCode FCContactProblemCreateCSR(PetscInt nc, const PetscIn
                                                       const PetscReal val[], const PetscReal q[], FCContactProblem *);
 PETSC_EXTERN PetscErrorCode FCContactProblemLoadFCLIB(const char path[], FCContactProblem *);
 PETSC_EXTERN PetscErrorCode FCContactProblemWriteFCLIB(FCContactProblem, const char path[]);
+/* W as a dense n x n row-major array (to be freed with PetscFree; the caller then makes a dense
+   problem of it with FCContactProblemCreateDense, e.g. tools/fclib_solve -dense) */
+PETSC_EXTERN PetscErrorCode FCContactProblemGetDenseW(FCContactProblem, PetscReal **W);
 PETSC_EXTERN PetscErrorCode FCContactProblemGetSizes(FCContactProblem, PetscInt *ncontacts, PetscInt *nrows);
 PETSC_EXTERN PetscErrorCode FCContactProblemGetFriction(FCContactProblem, PetscReal mu[]); /* per contact */
 /* New right-hand side q (n values); a dense W borrowed by the problem may change in place too */

@@ -1,6 +1,9 @@
 /* fclib_solve: solve a local frictional contact problem stored in the FCLIB HDF5 layout with
    fecontact's contact solver; prints contacts, sweeps, residual and time, and writes r and u.
-     fclib_solve -problem file.hdf5 [-pgs_tol 1e-8] [-pgs_max_it N] [-solution out.h5]   */
+     fclib_solve -problem file.hdf5 [-pgs_tol 1e-8] [-pgs_max_it N] [-solution out.h5] [-dense]
+   -dense: W expanded to a dense array (what the schemes hand the solver), which -pgs_ranks split
+   needs; the solver then runs on PETSC_COMM_WORLD, so that `mpirun -n p fclib_solve -dense
+   -pgs_ranks split` times the split sweeps on p ranks (every rank reads the problem). */
 #include <fecontact.h>
 #include <hdf5.h>
 
@@ -21,7 +24,8 @@ static PetscErrorCode WriteVector(hid_t f, const char name[], PetscInt n, const 
 int main(int argc, char **argv)
 {
   char             path[PETSC_MAX_PATH_LEN] = "", sol[PETSC_MAX_PATH_LEN] = "";
-  PetscBool        set, conv;
+  PetscBool        set, conv, dense = PETSC_FALSE;
+  PetscReal       *Wd = NULL;
   FCContactProblem p;
   FCContactSolver  s;
   PetscInt         nc, n, sweeps;
@@ -35,7 +39,23 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetString(NULL, NULL, "-solution", sol, sizeof(sol), NULL));
   PetscCall(FCContactProblemLoadFCLIB(path, &p));
   PetscCall(FCContactProblemGetSizes(p, &nc, &n));
-  PetscCall(FCContactSolverCreate(PETSC_COMM_SELF, &s));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-dense", &dense, NULL));
+  if (dense) { /* the same problem with W dense */
+    FCContactProblem pd;
+    PetscInt        *dim;
+    PetscReal       *mu, *q, *zero;
+    PetscCall(PetscMalloc4(nc, &dim, nc, &mu, n, &q, n, &zero));
+    PetscCall(FCContactProblemGetDenseW(p, &Wd));
+    PetscCall(FCContactProblemGetFriction(p, mu));
+    for (PetscInt i = 0; i < n; i++) zero[i] = 0.0;
+    PetscCall(FCContactProblemVelocity(p, zero, q)); /* q = W 0 + q */
+    for (PetscInt i = 0; i < nc; i++) dim[i] = n / nc;
+    PetscCall(FCContactProblemCreateDense(nc, dim, mu, Wd, q, &pd));
+    PetscCall(PetscFree4(dim, mu, q, zero));
+    PetscCall(FCContactProblemDestroy(&p));
+    p = pd;
+  }
+  PetscCall(FCContactSolverCreate(dense ? PETSC_COMM_WORLD : PETSC_COMM_SELF, &s));
   PetscCall(FCContactSolverSetFromOptions(s));
   PetscCall(PetscCalloc2(n, &r, n, &u));
   PetscCall(PetscTime(&t0));
@@ -58,6 +78,7 @@ int main(int argc, char **argv)
   PetscCall(PetscFree2(r, u));
   PetscCall(FCContactSolverDestroy(&s));
   PetscCall(FCContactProblemDestroy(&p));
+  PetscCall(PetscFree(Wd));
   PetscCall(PetscFinalize());
   return 0;
 }

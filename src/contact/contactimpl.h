@@ -22,6 +22,10 @@ PETSC_INTERN PetscReal FCContactProblemResidualFromVelocity(FCContactProblem, co
 /* u += W[:, rows of contact i] delta (d_i values): the change of u when r_i changes by delta (the
    rows of contact i in W when W is symmetric, in W^T otherwise) */
 PETSC_INTERN void FCContactProblemAddColumns(FCContactProblem, PetscInt i, const PetscReal delta[], PetscReal u[]);
+/* u += x a + y b + z c over n entries (the vectorized inner loop of a sweep, problem.c) */
+PETSC_INTERN void FCContactAddRows3(PetscInt n, const PetscReal *restrict a, const PetscReal *restrict b,
+                                    const PetscReal *restrict c, PetscReal x, PetscReal y, PetscReal z,
+                                    PetscReal *restrict u);
 /* The diagonal block W_ii (d_i x d_i, row-major) */
 PETSC_INTERN void FCContactProblemDiagonalBlock(FCContactProblem, PetscInt i, PetscReal Wii[9]);
 
@@ -33,3 +37,9 @@ PETSC_INTERN PetscErrorCode FCContactLocalSolveReference(PetscInt d, const Petsc
 PETSC_INTERN void FCContactProjectCone(PetscInt d, PetscReal mu, const PetscReal x[], PetscReal p[]);
 /* ||e||^2 of the natural map of one contact (see FCContactProblemResidual) */
 PETSC_INTERN PetscReal FCContactNaturalMapError2(PetscInt dim, PetscReal mu, const PetscReal r[], const PetscReal u[]);
+
+/* pgs_split.c: the sweeps split over the ranks of comm (-pgs_ranks split), dense W only; r in:
+   the warm start (the same on every rank), out: the forces (the same on every rank) */
+PETSC_INTERN PetscErrorCode FCContactSolveSplit(MPI_Comm, FCContactProblem, PetscReal tol, PetscInt max_it,
+                                                PetscReal omega, PetscReal proximal, PetscReal r[], PetscInt *sweeps,
+                                                PetscReal *residual);

@@ -12,8 +12,11 @@
                            s = rho tr(W_ii)/d_i. A fixed point is a solution of the original problem,
                            and the local problems stay well-posed when W_ii is (nearly) singular or
                            contacts are redundant (>= 0, default 0)
-     -pgs_ranks all|root   the problem is replicated: every rank solves it (default, no communication) or
-                           rank 0 does and broadcasts the forces (docs/scaling.md measures both)
+     -pgs_ranks all|root|split   the problem is replicated: every rank solves it (default, no
+                           communication), rank 0 does and broadcasts the forces, or the ranks split
+                           the sweeps, each its own block of contacts, Jacobi between blocks
+                           (pgs_split.c; dense W, without NNCG; a solver with a per-sweep update, the
+                           fast scheme's -fast_update sweep, runs replicated) (docs/scaling.md)
      -pgs_acceleration none|nncg   nonsmooth nonlinear conjugate gradient on top of the sweeps
                            (Silcowitz, Niebe, Erleben 2010): after a sweep with step g = r_k+1 - r_k,
                            r += beta p, p = beta p + g, beta = |g|^2 / |g_prev|^2, restart when
@@ -32,6 +35,7 @@ struct _p_FCContactSolver {
   PetscReal               tol, residual, omega, proximal;
   PetscInt                max_it, sweeps;
   PetscBool               converged, nncg, root;    /* root: rank 0 solves and broadcasts (-pgs_ranks root) */
+  PetscBool               split;                    /* -pgs_ranks split: each rank sweeps its own block */
   char                    dump[PETSC_MAX_PATH_LEN]; /* -pgs_dump_problem */
   PetscInt                dump_rows;
   PetscBool               dumped, dump_unconverged; /* -pgs_dump_unconverged: the first unconverged problem */
@@ -69,11 +73,12 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
     s->nncg = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
   {
-    const char *where[] = {"all", "root"};
-    PetscInt    a       = s->root ? 1 : 0;
-    PetscCall(PetscOptionsEList("-pgs_ranks", "Where the contact solver runs: every rank or rank 0", NULL, where, 2,
-                                where[a], &a, NULL));
-    s->root = a == 1 ? PETSC_TRUE : PETSC_FALSE;
+    const char *where[] = {"all", "root", "split"};
+    PetscInt    a       = s->root ? 1 : (s->split ? 2 : 0);
+    PetscCall(PetscOptionsEList("-pgs_ranks", "Where the contact solver runs: every rank, rank 0, or split by blocks",
+                                NULL, where, 3, where[a], &a, NULL));
+    s->root  = a == 1 ? PETSC_TRUE : PETSC_FALSE;
+    s->split = a == 2 ? PETSC_TRUE : PETSC_FALSE;
   }
   PetscCall(PetscOptionsString("-pgs_dump_problem", "Write a contact problem to this FCLIB file", NULL, s->dump,
                                s->dump, sizeof(s->dump), NULL));
@@ -199,7 +204,10 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   if (s->dump[0] && !s->dump_unconverged && !s->dumped && p->n >= s->dump_rows) PetscCall(Dump(s, p));
-  if (!s->root || size == 1)
+  if (s->split && size > 1 && p->Wd && !s->update) {
+    PetscCall(FCContactSolveSplit(s->comm, p, s->tol, s->max_it, s->omega, s->proximal, r, &s->sweeps, &s->residual));
+    s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
+  } else if (!s->root || size == 1)
     PetscCall(SolveHere(s, p, r));
   else {
     PetscReal info[3];

@@ -179,8 +179,8 @@ void FCContactProblemDiagonalBlock(FCContactProblem p, PetscInt i, PetscReal Wii
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=haswell", "default")))
 #endif
-static void
-AddRows3(PetscInt n, const PetscReal *restrict a, const PetscReal *restrict b, const PetscReal *restrict c, PetscReal x,
+void
+FCContactAddRows3(PetscInt n, const PetscReal *restrict a, const PetscReal *restrict b, const PetscReal *restrict c, PetscReal x,
          PetscReal y, PetscReal z, PetscReal *restrict u)
 {
   PetscInt k = 0;
@@ -200,9 +200,9 @@ void FCContactProblemAddColumns(FCContactProblem p, PetscInt i, const PetscReal 
   if (p->Wd) {
     const PetscReal *a = p->Wd + o * n;
     if (d == 3)
-      AddRows3(n, a, a + n, a + 2 * n, delta[0], delta[1], delta[2], u);
+      FCContactAddRows3(n, a, a + n, a + 2 * n, delta[0], delta[1], delta[2], u);
     else
-      for (PetscInt e = 0; e < d; e++) AddRows3(n, a + e * n, a + e * n, a + e * n, delta[e], 0.0, 0.0, u);
+      for (PetscInt e = 0; e < d; e++) FCContactAddRows3(n, a + e * n, a + e * n, a + e * n, delta[e], 0.0, 0.0, u);
     return;
   }
   if (p->transpose) p = p->transpose;                          /* W^T's row i is W's column i */
@@ -215,6 +215,23 @@ void FCContactProblemAddColumns(FCContactProblem p, PetscInt i, const PetscReal 
       u[p->off[j] + c] += acc;
     }
   }
+}
+
+PetscErrorCode FCContactProblemGetDenseW(FCContactProblem p, PetscReal **W)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscCalloc1(p->n * p->n + 1, W));
+  if (p->Wd)
+    PetscCall(PetscArraycpy(*W, p->Wd, p->n * p->n));
+  else
+    for (PetscInt i = 0; i < p->nc; i++)
+      for (PetscInt b = p->rowptr[i]; b < p->rowptr[i + 1]; b++) {
+        PetscInt j = p->col[b], di = p->dim[i], dj = p->dim[j];
+        for (PetscInt a = 0; a < di; a++)
+          for (PetscInt c = 0; c < dj; c++)
+            (*W)[(p->off[i] + a) * p->n + p->off[j] + c] = p->val[p->boff[b] + a * dj + c];
+      }
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode FCContactProblemGetSizes(FCContactProblem p, PetscInt *nc, PetscInt *n)

@@ -1,0 +1,169 @@
+/* The contact solver's sweeps split over the ranks (-pgs_ranks split, src/contact/pgs.c): each rank
+   owns a contiguous block of contacts (balanced by rows; contacts are sorted by their reference
+   position, so a block is a patch of the contact zone) and sweeps only those, Gauss-Seidel inside
+   its block with the velocities of its own rows, u_b = q_b + W_b: r; between blocks the sweep is
+   Jacobi: after each sweep the ranks exchange the forces of their blocks (one MPI_Allgatherv of
+   the changed forces) and each adds to its u_b what the other blocks' changes did,
+   W_b,other (r - r_prev). A sweep then costs n_b n flops per rank instead of n^2 (the product
+   with W of the replicated sweep, split p ways); the price is the Jacobi coupling between
+   blocks, which can need more sweeps (docs/contact-solver.md measures both). The residual is the
+   same natural-map residual as the replicated solver's, summed over the blocks (an MPI_Allreduce),
+   so every rank stops at the same sweep with the same forces. Dense W only (what the schemes
+   build); the stopping test and the exact recomputation of u every FC_PGS_EXACT sweeps follow the
+   replicated solver. */
+#include "contactimpl.h"
+#include <petscblaslapack.h>
+
+#define FC_SPLIT_EXACT 16
+
+/* ub (+)= W[lo:hi, j0:j1] x[j0:j1] (beta 0 overwrites, 1 adds): W row-major is W^T = W
+   column-major, whose columns [lo, hi) are W's rows; BLAS gemv on its rows [j0, j1), transposed */
+static PetscErrorCode BlockProduct(FCContactProblem p, PetscInt lo, PetscInt hi, PetscInt j0, PetscInt j1,
+                                   const PetscReal x[], PetscReal beta, PetscReal ub[])
+{
+  PetscBLASInt n, m, nb, one = 1;
+  PetscReal    alpha = 1.0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscBLASIntCast(p->n, &n));
+  PetscCall(PetscBLASIntCast(j1 - j0, &m));
+  PetscCall(PetscBLASIntCast(hi - lo, &nb));
+  if (nb && m)
+    PetscCallBLAS("BLASgemv",
+                  BLASgemv_("T", &m, &nb, &alpha, p->Wd + lo * p->n + j0, &n, x + j0, &one, &beta, ub, &one));
+  else if (nb && beta == 0.0)
+    for (PetscInt k = 0; k < nb; k++) ub[k] = 0.0;
+  PetscFunctionReturn(0);
+}
+
+/* u_b = q_b + W_b: r for the rows [lo, hi) */
+static PetscErrorCode BlockVelocity(FCContactProblem p, PetscInt lo, PetscInt hi, const PetscReal r[], PetscReal ub[])
+{
+  PetscFunctionBegin;
+  PetscCall(BlockProduct(p, lo, hi, 0, p->n, r, 0.0, ub));
+  for (PetscInt k = lo; k < hi; k++) ub[k - lo] += p->q[k];
+  PetscFunctionReturn(0);
+}
+
+static PetscReal BlockResidual2(FCContactProblem p, PetscInt c0, PetscInt c1, PetscInt lo, const PetscReal r[],
+                                const PetscReal ub[])
+{
+  PetscReal sum = 0.0;
+  for (PetscInt i = c0; i < c1; i++)
+    sum += FCContactNaturalMapError2(p->dim[i], p->mu[i], &r[p->off[i]], &ub[p->off[i] - lo]);
+  return sum;
+}
+
+PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal tol, PetscInt max_it, PetscReal omega,
+                                   PetscReal proximal, PetscReal r[], PetscInt *sweeps, PetscReal *residual)
+{
+  PetscMPIInt size, rank, *counts, *displs;
+  PetscInt   *cfirst, c0, c1, lo, hi, nb, n = p->n;
+  PetscReal  *ub, *rprev, res2, qn = PetscMax(p->qnorm, PETSC_MACHINE_EPSILON);
+
+  PetscFunctionBegin;
+  PetscCheck(p->Wd, comm, PETSC_ERR_SUP, "Option -pgs_ranks split needs a dense W (the schemes' problems)");
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscMalloc3(size + 1, &cfirst, size, &counts, size, &displs));
+  { /* contiguous blocks of contacts, about n / size rows each */
+    PetscInt c = 0;
+    for (PetscMPIInt b = 0; b < size; b++) {
+      cfirst[b] = c;
+      while (c < p->nc && p->off[c] < (b + 1) * n / size) c++;
+    }
+    cfirst[size] = p->nc;
+    for (PetscMPIInt b = 0; b < size; b++) {
+      counts[b] = (PetscMPIInt)(p->off[cfirst[b + 1]] - p->off[cfirst[b]]);
+      displs[b] = (PetscMPIInt)p->off[cfirst[b]];
+    }
+  }
+  c0 = cfirst[rank];
+  c1 = cfirst[rank + 1];
+  lo = p->off[c0];
+  hi = p->off[c1];
+  nb = hi - lo;
+  PetscCall(PetscMalloc2(nb + 1, &ub, n + 1, &rprev));
+  PetscCall(BlockVelocity(p, lo, hi, r, ub));
+  res2 = BlockResidual2(p, c0, c1, lo, r, ub);
+  PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &res2, 1, MPIU_REAL, MPIU_SUM, comm));
+  *residual = PetscSqrtReal(res2) / qn;
+  *sweeps   = 0;
+  while (*residual > tol && *sweeps < max_it) {
+    PetscCall(PetscArraycpy(rprev, r, n));
+    for (PetscInt i = c0; i < c1; i++) { /* Gauss-Seidel inside the block */
+      PetscInt  d = p->dim[i], o = p->off[i];
+      PetscReal qi[3], Wi[9], ri[3], delta[3];
+      PetscBool changed = PETSC_FALSE;
+      FCContactProblemDiagonalBlock(p, i, Wi);
+      for (PetscInt a = 0; a < d; a++) {
+        qi[a] = ub[o - lo + a];
+        for (PetscInt b = 0; b < d; b++) qi[a] -= Wi[a * d + b] * r[o + b];
+        ri[a] = r[o + a];
+      }
+      if (proximal > 0.0) { /* as the replicated sweep: the same fixed points */
+        PetscReal tr = 0.0, sigma;
+        for (PetscInt a = 0; a < d; a++) tr += Wi[a * d + a];
+        sigma = proximal * tr / d;
+        for (PetscInt a = 0; a < d; a++) {
+          Wi[a * d + a] += sigma;
+          qi[a] -= sigma * r[o + a];
+        }
+      }
+      PetscCall(FCContactLocalSolve(d, Wi, qi, p->mu[i], ri, NULL));
+      if (omega != 1.0) {
+        PetscReal x[3];
+        for (PetscInt a = 0; a < d; a++) x[a] = (1.0 - omega) * r[o + a] + omega * ri[a];
+        FCContactProjectCone(d, p->mu[i], x, ri);
+      }
+      for (PetscInt a = 0; a < d; a++) {
+        delta[a] = ri[a] - r[o + a];
+        changed  = changed || delta[a] != 0.0;
+        r[o + a] = ri[a];
+      }
+      if (changed) { /* u_b += W_b,i delta: the rows of contact i restricted to the block (W symmetric) */
+        const PetscReal *w = p->Wd + o * n + lo;
+        if (d == 3)
+          FCContactAddRows3(nb, w, w + n, w + 2 * n, delta[0], delta[1], delta[2], ub);
+        else
+          for (PetscInt a = 0; a < d; a++)
+            FCContactAddRows3(nb, w + a * n, w + a * n, w + a * n, delta[a], 0.0, 0.0, ub);
+      }
+    }
+    /* Jacobi between blocks: every block's new forces to every rank, and their effect on u_b */
+    PetscCallMPI(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, r, counts, displs, MPIU_REAL, comm));
+    (*sweeps)++;
+    if (*sweeps % FC_SPLIT_EXACT == 0)
+      PetscCall(BlockVelocity(p, lo, hi, r, ub));
+    else {
+      for (PetscInt j = 0; j < n; j++) rprev[j] = (j >= lo && j < hi) ? 0.0 : r[j] - rprev[j];
+      for (PetscInt k = lo; k < hi; k++) {
+        const PetscReal *w   = p->Wd + k * n;
+        PetscReal        acc = 0.0;
+        for (PetscInt j = 0; j < lo; j++) acc += w[j] * rprev[j];
+        for (PetscInt j = hi; j < n; j++) acc += w[j] * rprev[j];
+        ub[k - lo] += acc;
+      }
+    }
+    res2 = BlockResidual2(p, c0, c1, lo, r, ub);
+    PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &res2, 1, MPIU_REAL, MPIU_SUM, comm));
+    *residual = PetscSqrtReal(res2) / qn;
+    if (*residual <= tol && *sweeps % FC_SPLIT_EXACT) { /* converged on the carried u: confirm on the exact one */
+      PetscCall(BlockVelocity(p, lo, hi, r, ub));
+      res2 = BlockResidual2(p, c0, c1, lo, r, ub);
+      PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &res2, 1, MPIU_REAL, MPIU_SUM, comm));
+      *residual = PetscSqrtReal(res2) / qn;
+    }
+    PetscCheck(!PetscIsInfOrNanReal(*residual), comm, PETSC_ERR_FP,
+               "Contact solver (-pgs_ranks split) diverged (NaN residual) after %" PetscInt_FMT " sweeps", *sweeps);
+  }
+  if (*residual > tol && *sweeps % FC_SPLIT_EXACT) { /* stopped by max_it: the exact residual */
+    PetscCall(BlockVelocity(p, lo, hi, r, ub));
+    res2 = BlockResidual2(p, c0, c1, lo, r, ub);
+    PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &res2, 1, MPIU_REAL, MPIU_SUM, comm));
+    *residual = PetscSqrtReal(res2) / qn;
+  }
+  PetscCall(PetscFree2(ub, rprev));
+  PetscCall(PetscFree3(cfirst, counts, displs));
+  PetscFunctionReturn(0);
+}
