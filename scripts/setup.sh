@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian packages fecontact needs, only those missing. Idempotent; run as root
 # (or with sudo available). Usage: scripts/setup.sh
+# ParaView (paraview, python3-paraview: pvbatch) and xvfb (xvfb-run: a display for pvbatch on a
+# headless machine) draw the output (scripts/render.py, README command 1) and are what
+# tests/test_paraview.py reads it with; FC_SKIP_PARAVIEW=1 installs neither (that test then skips,
+# README command 1 draws no scene picture).
 set -euo pipefail
 
 PKGS=(
@@ -9,6 +13,9 @@ PKGS=(
   libopenblas0-pthread gmsh
   python3-petsc4py python3-h5py python3-matplotlib python3-numpy python3-siconos
 )
+if [ "${FC_SKIP_PARAVIEW:-0}" != "1" ]; then
+  PKGS+=(paraview python3-paraview xvfb)
+fi
 
 missing=()
 for p in "${PKGS[@]}"; do

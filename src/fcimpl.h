@@ -59,13 +59,19 @@ struct _p_FCMaterial {
   /* Element elastic energy */
   PetscErrorCode (*energy)(FCMaterial, const PetscReal x[12], const PetscReal X[12], const PetscReal Dminv[9],
                            PetscReal vol, PetscReal *E);
+  /* Element stress (3x3, row-major, Pa) of the model's linear law: sigma = lambda tr(eps) I + 2 mu eps with
+     eps the small strain of the element (co-rotational: in the element's rotated frame, R^T F - I) */
+  PetscErrorCode (*stress)(FCMaterial, const PetscReal x[12], const PetscReal X[12], const PetscReal Dminv[9],
+                           PetscReal sigma[9]);
 };
 PETSC_EXTERN PetscFunctionList FCMaterialList;
 PETSC_INTERN PetscErrorCode    FCMaterialRegisterAll(void);
 PETSC_INTERN PetscErrorCode    FCMaterialCreate(const char type[], PetscReal young, PetscReal poisson, FCMaterial *);
-PETSC_INTERN PetscErrorCode    FCMaterialDestroy(FCMaterial *);
-PETSC_INTERN PetscErrorCode    FCMaterialCreate_Linear(FCMaterial);
-PETSC_INTERN PetscErrorCode    FCMaterialCreate_Corotational(FCMaterial);
+PETSC_INTERN void              FCMaterialHooke(FCMaterial, const PetscReal H[9], PetscReal sigma[9]);
+PETSC_INTERN void FCMaterialDeformationGradient(const PetscReal x[12], const PetscReal Dminv[9], PetscReal F[9]);
+PETSC_INTERN PetscErrorCode FCMaterialDestroy(FCMaterial *);
+PETSC_INTERN PetscErrorCode FCMaterialCreate_Linear(FCMaterial);
+PETSC_INTERN PetscErrorCode FCMaterialCreate_Corotational(FCMaterial);
 
 /* ---------------------------------------------------------------------------------------
    Shapes (src/shape/): analytic geometry of rigid and kinematic bodies
@@ -152,6 +158,7 @@ typedef struct {
   PetscReal nb[3]; /* FC_SIDE_RIGID_TRIANGLE: the normal in side 2's body frame             */
   PetscReal wnn;   /* normal diagonal entry of the step's W (m/N): scales the end measures  */
   PetscReal n_end[3], d_end[3]; /* end of the step: normal on the real geometry, d = p1 - p2 (world)  */
+  PetscReal p_end[3];           /* end of the step: the side-1 proximity point (world)                */
 } FCContact;
 /* FC_SIDE_FE_EDGE: an edge-edge contact between two FE bodies (prox[0] and prox[1] each an edge,
    nv = 2; the normal is the cross product of the two edges). An FE edge against an edge of a
@@ -188,6 +195,18 @@ PETSC_EXTERN PetscErrorCode FCSurfaceDestroy(FCSurface **);
 /* ---------------------------------------------------------------------------------------
    Body
    --------------------------------------------------------------------------------------- */
+/* Fields of a body's picture written at output frames (-output_fields, src/io/fields.c): point
+   fields have 3 values per visual vertex, cell fields 1 value per visual cell */
+typedef enum {
+  FC_FIELD_DISPLACEMENT,   /* point: x - X (m)                                               */
+  FC_FIELD_VELOCITY,       /* point: dx/dt (m/s)                                             */
+  FC_FIELD_VON_MISES,      /* cell, FE: von Mises stress of the material's linear stress (Pa) */
+  FC_FIELD_ENERGY_DENSITY, /* cell, FE: elastic energy / reference volume (J/m^3 = Pa)        */
+  FC_FIELD_NUM
+} FCVisualField;
+PETSC_INTERN const char *const FCVisualFieldNames[FC_FIELD_NUM];
+PETSC_INTERN PetscBool         FCVisualFieldIsCell(FCVisualField);
+
 typedef struct {
   PetscErrorCode (*setfromoptions)(FCBody);
   PetscErrorCode (*setup)(FCBody);
@@ -197,6 +216,9 @@ typedef struct {
   PetscErrorCode (*getrotation)(FCBody, PetscReal[4], PetscBool *);
   PetscErrorCode (*getenergy)(FCBody, FCEnergy *);
   PetscErrorCode (*getvisualpositions)(FCBody, PetscReal[]);
+  /* a field of the picture (FCVisualField): per owned visual vertex (3 values) or per owned visual
+     cell (1 value), in the visual order; *has = PETSC_FALSE when the type has no such field */
+  PetscErrorCode (*getvisualfield)(FCBody, FCVisualField, PetscReal[], PetscBool *has);
   PetscErrorCode (*checkstate)(FCBody, PetscInt);
   /* restart: FE bodies 6 values (u, v) per owned vertex in the visual order; rigid and kinematic
      bodies 13 values (x, q, v, w), the same on every rank */
@@ -268,6 +290,8 @@ PETSC_INTERN PetscBool FCBodyHasSurfaceTriangles(FCBody); /* FE bodies and mesh 
    row of `cols` values on rank 0 */
 PETSC_INTERN PetscErrorCode FCBodyGetStateLayout(FCBody, PetscInt *cols, PetscBool *pervertex);
 PETSC_INTERN PetscErrorCode FCBodyGetState(FCBody, PetscReal[]);
+/* A field of the body's picture (see FCBodyOps.getvisualfield); *has = PETSC_FALSE when the body has none */
+PETSC_INTERN PetscErrorCode FCBodyGetVisualField(FCBody, FCVisualField, PetscReal[], PetscBool *has);
 PETSC_INTERN PetscErrorCode FCBodySetState(FCBody, const PetscReal[]);
 /* Contact geometry (see FCBodyOps for the meaning of each) */
 PETSC_INTERN PetscErrorCode FCBodyGetContactPoints(FCBody, PetscInt *n, FCProximity **prox, PetscReal **x0,
@@ -372,8 +396,11 @@ PETSC_INTERN PetscErrorCode FCOutputWriteRestart(FCOutput, PetscInt step, PetscR
 PETSC_INTERN PetscErrorCode FCRestartLoad(MPI_Comm, const char file[], PetscInt nbodies, FCBody[],
                                           FCContactSet *previous, PetscInt *step, PetscReal *t);
 PETSC_INTERN PetscErrorCode FCOutputDestroy(FCOutput *);
-PETSC_INTERN PetscErrorCode FCXdmfWrite(const char h5name[], const char xmfname[], PetscInt nbodies, FCBody[],
-                                        PetscInt nframes, const PetscReal times[]);
+PETSC_INTERN PetscErrorCode FCXdmfWrite(FCOutput);
+/* -output_fields: the list of field names (FCVisualFieldNames, or "none") as a bit mask, 1 << field;
+   an unknown name is an error naming the option */
+PETSC_INTERN PetscErrorCode FCOutputFieldsParse(MPI_Comm, const char list[], PetscInt *mask);
+PETSC_INTERN PetscErrorCode FCOutputSetFields(FCOutput, PetscInt mask); /* before FCOutputWriteHeader */
 
 /* ---------------------------------------------------------------------------------------
    Contact pairs, collision detection (src/collision/) and the constraint schemes (src/scheme/)

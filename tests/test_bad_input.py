@@ -69,6 +69,8 @@ cases = [
     ("bad body name", opts(scene_bodies="cu-be"), "cu-be"),
     ("negative step count", opts(time_steps="-3"), "-time_steps"),
     ("output every 0", opts(output_every="0"), "-output_every"),
+    ("misspelt output field", opts(output_fields="displacement,velocty"), "Unknown field 'velocty' in -output_fields"),
+    ("output fields none and a field", opts(output_fields="none,velocity"), "-output_fields"),
     ("unwritable output path", opts(output_file="/nonexistent_dir/run.h5"), "/nonexistent_dir/run.h5"),
     ("malformed options file", ["-options_file", badfile, "-quiet"], "bad.opts line 4"),
     ("fixed box fixes everything", opts(cube_fixed_box="-9,-9,-9,9,9,9"), "fixed"),
@@ -115,7 +117,7 @@ cases = [
 ]
 # on several ranks, the cases whose detection involves communication or several ranks' data
 PARALLEL = {"missing mesh file", "not a gmsh file", "truncated mesh", "2D mesh", "inverted element", "zero-volume element",
-            "unknown body type", "NaN Young", "misspelt option", "unwritable output path", "fixed box fixes everything",
+            "unknown body type", "NaN Young", "misspelt option", "misspelt output field", "unwritable output path", "fixed box fixes everything",
             "surface not closed", "contact pair, unknown body", "mesh that crashes PETSc's reader",
             "contact matrices over the memory limit", "redundant groups 0", "dump path unwritable"}
 if NP > 1:

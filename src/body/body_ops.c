@@ -59,6 +59,15 @@ PetscErrorCode FCBodySetState(FCBody body, const PetscReal s[])
   PetscFunctionReturn(0);
 }
 
+/* A type without fields has none (*has = PETSC_FALSE) */
+PetscErrorCode FCBodyGetVisualField(FCBody body, FCVisualField field, PetscReal out[], PetscBool *has)
+{
+  PetscFunctionBegin;
+  *has = PETSC_FALSE;
+  if (body->ops.getvisualfield) PetscCall((*body->ops.getvisualfield)(body, field, out, has));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCBodyGetContactPoints(FCBody body, PetscInt *n, FCProximity **prox, PetscReal **x0, PetscReal **xf,
                                       PetscReal **key)
 {

@@ -277,6 +277,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.getcentroid        = GetCentroid_FEM;
   body->ops.getenergy          = GetEnergy_FEM;
   body->ops.getvisualpositions = GetVisualPositions_FEM;
+  body->ops.getvisualfield     = GetVisualField_FEM;
   body->ops.checkstate         = CheckState_FEM;
   body->ops.getstate           = GetState_FEM;
   body->ops.setstate           = SetState_FEM;

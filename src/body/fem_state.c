@@ -1,5 +1,6 @@
-/* FE body, what it reports of its state: centroid, energies, the positions of its visual mesh,
-   the restart state (get and set) and the NaN check. */
+/* FE body, what it reports of its state: centroid, energies, the positions of its visual mesh and
+   its fields (displacement, velocity, von Mises stress, energy density), the restart state (get
+   and set) and the NaN check. */
 #include "femimpl.h"
 
 /* Mass-weighted centroid: for P1, int x dV over a tet is V times the mean of its vertices */
@@ -69,6 +70,92 @@ PetscErrorCode GetVisualPositions_FEM(FCBody body, PetscReal x[])
       x[3 * i + d] = m->X[3 * v + d] + (fem->fixed[v] ? 0.0 : PetscRealPart(ul[fem->ldof[v] + d]));
   }
   PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
+  PetscFunctionReturn(0);
+}
+
+/* A vector (u or v) at the owned visual vertices, 0 on fixed vertices */
+static PetscErrorCode VisualVertexValues(FCBody body, Vec g, PetscReal out[])
+{
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  Vec                loc;
+  const PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCall(DMGetLocalVector(m->dm, &loc));
+  PetscCall(DMGlobalToLocal(m->dm, g, INSERT_VALUES, loc));
+  PetscCall(VecGetArrayRead(loc, &a));
+  for (PetscInt i = 0; i < body->visual.nv; i++) {
+    PetscInt v = m->visVert[i];
+    for (int d = 0; d < 3; d++) out[3 * i + d] = fem->fixed[v] ? 0.0 : PetscRealPart(a[fem->ldof[v] + d]);
+  }
+  PetscCall(VecRestoreArrayRead(loc, &a));
+  PetscCall(DMRestoreLocalVector(m->dm, &loc));
+  PetscFunctionReturn(0);
+}
+
+/* A value per owned cell (the visual cells, in their order): the von Mises stress of the
+   material's stress, or the element's elastic energy over its reference volume */
+static PetscErrorCode VisualCellValues(FCBody body, FCVisualField field, PetscReal out[])
+{
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  const PetscScalar *ul;
+  const PetscInt    *gc;
+  PetscInt           k = 0;
+
+  PetscFunctionBegin;
+  PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
+  PetscCall(VecGetArrayRead(fem->uloc, &ul));
+  PetscCall(ISGetIndices(m->cellNumbering, &gc));
+  for (PetscInt e = 0; e < m->cEnd - m->cStart; e++) {
+    PetscReal X[12], x[12];
+    if (gc[e] < 0) continue; /* a ghost cell: its owner writes it */
+    FCFEMGatherElement(fem, e, ul, X, x);
+    if (field == FC_FIELD_VON_MISES) {
+      PetscReal S[9], p, s2 = 0.0;
+      PetscCall((*fem->mat->stress)(fem->mat, x, X, &fem->Dminv[9 * e], S));
+      p = (S[0] + S[4] + S[8]) / 3.0;
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+          PetscReal sij = S[3 * i + j] - (i == j ? p : 0.0);
+          s2 += sij * sij;
+        }
+      out[k++] = PetscSqrtReal(1.5 * s2);
+    } else {
+      PetscReal E;
+      PetscCall((*fem->mat->energy)(fem->mat, x, X, &fem->Dminv[9 * e], fem->vol[e], &E));
+      out[k++] = E / fem->vol[e];
+    }
+  }
+  PetscCall(ISRestoreIndices(m->cellNumbering, &gc));
+  PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
+  PetscCheck(k == body->visual.nc, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+             "Body '%s': %" PetscInt_FMT " owned cells, %" PetscInt_FMT " visual cells", body->name, k,
+             body->visual.nc);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GetVisualField_FEM(FCBody body, FCVisualField field, PetscReal out[], PetscBool *has)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  *has = PETSC_TRUE;
+  switch (field) {
+  case FC_FIELD_DISPLACEMENT:
+    PetscCall(VisualVertexValues(body, fem->u, out));
+    break;
+  case FC_FIELD_VELOCITY:
+    PetscCall(VisualVertexValues(body, fem->v, out));
+    break;
+  case FC_FIELD_VON_MISES:
+  case FC_FIELD_ENERGY_DENSITY:
+    PetscCall(VisualCellValues(body, field, out));
+    break;
+  default:
+    *has = PETSC_FALSE;
+  }
   PetscFunctionReturn(0);
 }
 

@@ -1,7 +1,7 @@
 /* Private data of an FE body, shared by its files:
      fem.c          options, set-up, destroy, type registration, accessors for tests and tools
      fem_step.c     element loops, A and its factorization, free motion (eq. 5), integration (eq. 2)
-     fem_state.c    centroid, energies, visual positions, restart state, NaN check
+     fem_state.c    centroid, energies, visual positions and fields, restart state, NaN check
      fem_contact.c  contact points, surface triangles, proximity positions, the compliance builder */
 #pragma once
 #include "../fcimpl.h"
@@ -81,6 +81,7 @@ PETSC_INTERN PetscErrorCode Integrate_FEM(FCBody, PetscReal);
 PETSC_INTERN PetscErrorCode GetCentroid_FEM(FCBody, PetscReal[3]);
 PETSC_INTERN PetscErrorCode GetEnergy_FEM(FCBody, FCEnergy *);
 PETSC_INTERN PetscErrorCode GetVisualPositions_FEM(FCBody, PetscReal[]);
+PETSC_INTERN PetscErrorCode GetVisualField_FEM(FCBody, FCVisualField, PetscReal[], PetscBool *);
 PETSC_INTERN PetscErrorCode GetState_FEM(FCBody, PetscReal[]);
 PETSC_INTERN PetscErrorCode SetState_FEM(FCBody, const PetscReal[]);
 PETSC_INTERN PetscErrorCode CheckState_FEM(FCBody, PetscInt);

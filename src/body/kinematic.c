@@ -81,6 +81,16 @@ static PetscErrorCode TrialPosition_Kinematic(FCBody body, const FCProximity *p,
   PetscFunctionReturn(0);
 }
 
+/* the velocity v of x(t) moves the pivot */
+static PetscErrorCode GetVisualField_Kinematic(FCBody body, FCVisualField field, PetscReal out[], PetscBool *has)
+{
+  Kinematic *k = (Kinematic *)body->data;
+
+  PetscFunctionBegin;
+  PetscCall(FCPoseVisualField(body, &k->pose, k->pivot, field, out, has));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy_Kinematic(FCBody body)
 {
   PetscFunctionBegin;
@@ -104,6 +114,7 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   body->ops.getcentroid        = FCPoseGetCentroid;
   body->ops.getrotation        = FCPoseGetRotation;
   body->ops.getvisualpositions = FCPoseGetVisualPositions;
+  body->ops.getvisualfield     = GetVisualField_Kinematic;
   body->ops.getstate           = FCPoseGetState;
   body->ops.setstate           = FCPoseSetState;
   body->ops.destroy            = Destroy_Kinematic;

@@ -178,6 +178,42 @@ PetscErrorCode FCPoseGetVisualPositions(FCBody body, PetscReal x[])
   PetscFunctionReturn(0);
 }
 
+/* Fields of the picture of a body moving rigidly: displacement x - X of each vertex, and velocity
+   v + w x (x - c) with c a point whose velocity is v: the centre for a rigid body (pivot NULL); for a
+   kinematic body the pivot, carried along: c = x_centre - R(q q0^-1) (x0_centre - pivot). No cell
+   fields (*has = PETSC_FALSE). */
+PetscErrorCode FCPoseVisualField(FCBody body, FCPose *P, const PetscReal pivot[3], FCVisualField field, PetscReal out[],
+                                 PetscBool *has)
+{
+  const FCBodyVisual *vis = &body->visual;
+
+  PetscFunctionBegin;
+  *has = field == FC_FIELD_DISPLACEMENT || field == FC_FIELD_VELOCITY ? PETSC_TRUE : PETSC_FALSE;
+  if (!*has) PetscFunctionReturn(0);
+  PetscCall(FCPoseVisualPositions(body, P, out));
+  if (field == FC_FIELD_DISPLACEMENT) {
+    for (PetscInt i = 0; i < 3 * vis->nv; i++) out[i] -= vis->reference[i];
+  } else {
+    PetscReal c[3];
+    for (int d = 0; d < 3; d++) c[d] = P->x[d];
+    if (pivot) {
+      PetscReal q0c[4] = {P->q0[0], -P->q0[1], -P->q0[2], -P->q0[3]}, dq[4], R[9], r[3], Rr[3];
+      FCQuatMult(P->q, q0c, dq);
+      FCQuatToMat3(dq, R);
+      for (int d = 0; d < 3; d++) r[d] = P->x0[d] - pivot[d];
+      FCMat3Vec(R, r, Rr);
+      for (int d = 0; d < 3; d++) c[d] -= Rr[d];
+    }
+    for (PetscInt i = 0; i < vis->nv; i++) {
+      PetscReal r[3], wr[3];
+      for (int d = 0; d < 3; d++) r[d] = out[3 * i + d] - c[d];
+      FCCross(P->w, r, wr);
+      for (int d = 0; d < 3; d++) out[3 * i + d] = P->v[d] + wr[d];
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 static void Transform(const PetscReal x[3], const PetscReal q[4], const PetscReal r[3], PetscReal p[3])
 {
   PetscReal R[9];

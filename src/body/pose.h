@@ -21,6 +21,10 @@ typedef struct {
 PETSC_INTERN PetscErrorCode FCPoseSetUp(FCBody, FCPose *);
 PETSC_INTERN PetscErrorCode FCPoseVisualPositions(FCBody, FCPose *, PetscReal[]);
 PETSC_INTERN PetscErrorCode FCPoseDestroy(FCPose *);
+/* displacement and velocity of the picture's vertices; pivot: the point the velocity P->v moves
+   (NULL: the centre) */
+PETSC_INTERN PetscErrorCode FCPoseVisualField(FCBody, FCPose *, const PetscReal pivot[3], FCVisualField, PetscReal[],
+                                              PetscBool *);
 /* Body ops shared by rigid and kinematic bodies, whose data begins with an FCPose */
 PETSC_INTERN PetscErrorCode FCPoseGetCentroid(FCBody, PetscReal[3]);
 PETSC_INTERN PetscErrorCode FCPoseGetRotation(FCBody, PetscReal[4], PetscBool *);

@@ -227,6 +227,13 @@ static PetscErrorCode ApplyCorrection_Rigid(FCBody body, PetscInt self, const FC
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode GetVisualField_Rigid(FCBody body, FCVisualField field, PetscReal out[], PetscBool *has)
+{
+  PetscFunctionBegin;
+  PetscCall(FCPoseVisualField(body, &((Rigid *)body->data)->pose, NULL, field, out, has));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy_Rigid(FCBody body)
 {
   PetscFunctionBegin;
@@ -253,6 +260,7 @@ PetscErrorCode FCBodyCreate_Rigid(FCBody body)
   body->ops.getrotation        = FCPoseGetRotation;
   body->ops.getenergy          = GetEnergy_Rigid;
   body->ops.getvisualpositions = FCPoseGetVisualPositions;
+  body->ops.getvisualfield     = GetVisualField_Rigid;
   body->ops.getstate           = FCPoseGetState;
   body->ops.setstate           = FCPoseSetState;
   body->ops.checkstate         = CheckState_Rigid;

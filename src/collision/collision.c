@@ -299,21 +299,24 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
 PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCContactSet *set)
 {
   PetscMPIInt rank;
-  PetscReal  *g; /* per contact: gap, end normal (3), d = p1 - p2 (3) */
+  PetscReal  *g; /* per contact: gap, end normal (3), d = p1 - p2 (3), p1 (3) */
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(PetscCalloc1(7 * set->n + 1, &g));
+  PetscCall(PetscCalloc1(10 * set->n + 1, &g));
   for (PetscInt k = 0; k < set->n; k++) {
     FCContact *c = &set->c[k];
     PetscReal  x[3], p2[3], cpb[3];
     if (c->side2 != FC_SIDE_SHAPE || c->owner != rank) continue; /* triangles below */
     PetscCall(FCBodyProximityPosition(bodies[c->body[0]], &c->prox[0], FC_AT_NOW, x));
-    PetscCall(FCBodyShapeDistance(bodies[c->body[1]], FC_AT_NOW, x, &g[7 * k], &g[7 * k + 1], cpb));
+    PetscCall(FCBodyShapeDistance(bodies[c->body[1]], FC_AT_NOW, x, &g[10 * k], &g[10 * k + 1], cpb));
     PetscCall(FCBodyProximityPosition(bodies[c->body[1]], &c->prox[1], FC_AT_NOW, p2));
-    for (int d = 0; d < 3; d++) g[7 * k + 4 + d] = x[d] - p2[d];
+    for (int d = 0; d < 3; d++) {
+      g[10 * k + 4 + d] = x[d] - p2[d];
+      g[10 * k + 7 + d] = x[d];
+    }
   }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, g, 7 * set->n, MPIU_REAL, MPIU_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, g, 10 * set->n, MPIU_REAL, MPIU_SUM, comm));
   { /* contacts against FE triangles: the point and the triangle's vertices now, summed over the
        ranks that own them; the gap is measured along the triangle's end-of-step normal */
     PetscInt   nfe = 0, *idx;
@@ -353,7 +356,7 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, xs, 12 * nfe, MPIU_REAL, MPIU_SUM, comm));
     for (PetscInt j = 0; j < nfe; j++) {
       FCContact *c = &set->c[idx[j]];
-      PetscReal  tri[3][3], p2[3] = {0, 0, 0}, nrm[3], *x1 = &xs[12 * j], *gk = &g[7 * idx[j]];
+      PetscReal  tri[3][3], p2[3] = {0, 0, 0}, nrm[3], *x1 = &xs[12 * j], *gk = &g[10 * idx[j]];
       if (c->side2 == FC_SIDE_FE_EDGE) { /* the edges' cross product, on the start normal's side */
         PetscReal ea[3], eb[3], l;
         for (int d = 0; d < 3; d++) {
@@ -387,6 +390,7 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
       for (int d = 0; d < 3; d++) {
         gk[1 + d] = nrm[d];
         gk[4 + d] = x1[d] - p2[d];
+        gk[7 + d] = x1[d];
       }
       gk[0] = FCDot(nrm, &gk[4]);
     }
@@ -394,10 +398,11 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
   }
   for (PetscInt k = 0; k < set->n; k++) {
     FCContact *c = &set->c[k];
-    c->gap_end   = g[7 * k];
+    c->gap_end   = g[10 * k];
     for (int d = 0; d < 3; d++) {
-      c->n_end[d] = g[7 * k + 1 + d];
-      c->d_end[d] = g[7 * k + 4 + d];
+      c->n_end[d] = g[10 * k + 1 + d];
+      c->d_end[d] = g[10 * k + 4 + d];
+      c->p_end[d] = g[10 * k + 7 + d];
     }
   }
   PetscCall(PetscFree(g));

@@ -3,7 +3,8 @@
      records.c  the per-step records: /steps (and per-body centroid, rotation, energy), /contacts
      restart.c  the restart format /restart/slot0|1: creating, writing and reading it
      h5util.c   HDF5 helpers shared by these
-     xdmf.c     the XDMF index of the frames */
+     fields.c   the fields of the frames (-output_fields): /bodies/<name>/<field>
+     xdmf.c     the XDMF index of the frames and its per-frame views /xdmf/frame<k> */
 #pragma once
 
 #include "../fcimpl.h"
@@ -45,6 +46,7 @@ typedef struct {
 typedef struct {
   long long bodies[2], state;
   double    point[3], normal[3], force[3], gap, gap_end;
+  double    point_end[3], force_world[3], force_tangential;
 } FCContactRecord;
 typedef struct {
   long long         contacts, rows, sweeps, offset, newton, intersections;
@@ -68,17 +70,38 @@ struct _p_FCOutput {
   PetscInt  nframes, xdmfwritten;
   /* contacts (scenes with contact pairs only) */
   PetscBool contacts;
-  hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state;
+  hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state, c_pointend, c_fworld, c_ftan;
   hid_t     s_contacts, s_rows, s_sweeps, s_residual, s_maxpen, s_newton, s_violation, s_rmspen, s_compl, s_cone,
       s_intersections;
   long long        ctotal;             /* contacts recorded so far */
+  long long        clast;              /* contacts of the last recorded step */
   PetscInt         nc, maxc, ns, maxs; /* buffered contact records and per-step rows */
   FCContactRecord *cbuf;
   FCStepRecord    *sbuf;
   double          *frametimes;
   PetscInt         maxframes;
   FCRestartWriter  restart;
+  /* fields of the frames (fields.c): the -output_fields mask, per body the dataset of each field
+     (-1: not written) */
+  PetscInt fieldmask;
+  hid_t (*fields)[FC_FIELD_NUM];
+  /* the XDMF index (xdmf.c): per frame, its time and its step's contacts (the last xcount records) */
+  PetscInt   xframes, xmax;
+  double    *xtime;
+  long long *xfirst, *xcount;
+  hid_t      xvertex; /* /xdmf/vertex: 0, 1, 2, ... (the contact point sets' vertex cells) */
+  long long  xnvertex;
 };
+
+/* Fields of the frames (fields.c): Create (with the header) makes a dataset per body and requested
+   field the body has, Write appends the frame's row, Destroy closes them */
+PETSC_INTERN PetscErrorCode FCOutputFieldsCreate(FCOutput);
+PETSC_INTERN PetscErrorCode FCOutputFieldsWrite(FCOutput);
+PETSC_INTERN PetscErrorCode FCOutputFieldsDestroy(FCOutput);
+/* The XDMF index (xdmf.c): AddFrame (collective, after the frame's datasets are written) creates the
+   frame's views /xdmf/frame<k> and remembers what FCXdmfWrite (rank 0) indexes */
+PETSC_INTERN PetscErrorCode FCXdmfAddFrame(FCOutput, PetscReal t);
+PETSC_INTERN PetscErrorCode FCXdmfDestroy(FCOutput);
 
 /* The per-step records (records.c): the initial_energy attribute, /steps and /contacts are created
    by FCOutputRecordsCreate (in FCOutputWriteHeader, before /frames and /bodies); the per-body

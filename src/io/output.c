@@ -126,6 +126,7 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     pv[1] = 3;
     PetscCall(FCH5CreateRows(bo->group, "positions", H5T_NATIVE_DOUBLE, 3, pv, 1, &bo->positions));
   }
+  PetscCall(FCOutputFieldsCreate(out)); /* fields.c: the -output_fields datasets */
   H5Gclose(gb);
   PetscCall(FCRestartWriterCreate(out->comm, out->file, nbodies, bodies, &out->restart));
   PetscFunctionReturn(0);
@@ -169,8 +170,10 @@ PetscErrorCode FCOutputWriteFrame(FCOutput out, PetscInt step, PetscReal t, Pets
     H5Sclose(fspace);
     PetscCall(PetscFree(x));
   }
+  PetscCall(FCOutputFieldsWrite(out)); /* fields.c */
   PetscCall(FCH5AppendRows(out->rank, out->ftime, H5T_NATIVE_DOUBLE, 1, &tt));
   PetscCall(FCH5AppendRows(out->rank, out->fstep, H5T_NATIVE_LLONG, 1, &ss));
+  PetscCall(FCXdmfAddFrame(out, t)); /* xdmf.c: the frame's views for the XDMF index */
   if (out->nframes == out->maxframes) {
     double *f;
     out->maxframes = PetscMax(64, 2 * out->maxframes);
@@ -193,8 +196,7 @@ PetscErrorCode FCOutputFlush(FCOutput out)
   PetscCall(FCOutputRecordsFlush(out));
   FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush");
   if (out->nframes >= 2 * out->xdmfwritten || out->nframes == 1) {
-    if (out->rank == 0)
-      PetscCall(FCXdmfWrite(out->filename, out->xdmfname, out->nbodies, out->bodies, out->nframes, out->frametimes));
+    if (out->rank == 0) PetscCall(FCXdmfWrite(out));
     out->xdmfwritten = out->nframes;
   }
   PetscFunctionReturn(0);
@@ -217,8 +219,7 @@ PetscErrorCode FCOutputDestroy(FCOutput *output)
   if (!out) PetscFunctionReturn(0);
   if (out->bo) {
     PetscCall(FCOutputFlush(out));
-    if (out->rank == 0 && out->xdmfwritten != out->nframes)
-      PetscCall(FCXdmfWrite(out->filename, out->xdmfname, out->nbodies, out->bodies, out->nframes, out->frametimes));
+    if (out->rank == 0 && out->xdmfwritten != out->nframes) PetscCall(FCXdmfWrite(out));
     for (PetscInt i = 0; i < out->nbodies; i++) {
       H5Dclose(out->bo[i].centroid);
       H5Dclose(out->bo[i].energy);
@@ -228,6 +229,8 @@ PetscErrorCode FCOutputDestroy(FCOutput *output)
     }
     H5Dclose(out->ftime);
     H5Dclose(out->fstep);
+    PetscCall(FCOutputFieldsDestroy(out));
+    PetscCall(FCXdmfDestroy(out));
     PetscCall(FCRestartWriterDestroy(&out->restart));
     PetscCall(FCOutputRecordsDestroy(out));
     PetscCall(PetscFree(out->bo));

@@ -48,6 +48,9 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
     PetscCall(FCH5CreateRows(gc, "gap", H5T_NATIVE_DOUBLE, 1, NULL, 1024, &out->c_gap));
     PetscCall(FCH5CreateRows(gc, "gap_end", H5T_NATIVE_DOUBLE, 1, NULL, 1024, &out->c_gapend));
     PetscCall(FCH5CreateRows(gc, "state", H5T_NATIVE_LLONG, 1, NULL, 1024, &out->c_state));
+    PetscCall(FCH5CreateRows(gc, "point_end", H5T_NATIVE_DOUBLE, 2, three, 1024, &out->c_pointend));
+    PetscCall(FCH5CreateRows(gc, "force_world", H5T_NATIVE_DOUBLE, 2, three, 1024, &out->c_fworld));
+    PetscCall(FCH5CreateRows(gc, "force_tangential", H5T_NATIVE_DOUBLE, 1, NULL, 1024, &out->c_ftan));
     PetscCall(FCH5CreateRows(gs, "contacts", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_contacts));
     PetscCall(FCH5CreateRows(gs, "constraint_rows", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_rows));
     PetscCall(FCH5CreateRows(gs, "pgs_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_sweeps));
@@ -147,9 +150,15 @@ PetscErrorCode FCOutputRecordContacts(FCOutput out, const struct _FCContactSetVi
     }
     out->cbuf[out->nc].gap     = c->gap0;
     out->cbuf[out->nc].gap_end = c->gap_end;
+    for (int i = 0; i < 3; i++) { /* the force on side 1 in world axes: lambda_n n + lambda_t1 t1 + lambda_t2 t2 */
+      out->cbuf[out->nc].point_end[i]   = c->p_end[i];
+      out->cbuf[out->nc].force_world[i] = c->force[0] * c->n[i] + c->force[1] * c->t1[i] + c->force[2] * c->t2[i];
+    }
+    out->cbuf[out->nc].force_tangential = PetscSqrtReal(c->force[1] * c->force[1] + c->force[2] * c->force[2]);
     out->nc++;
   }
   out->ctotal += set->n;
+  out->clast                       = set->n;
   out->sbuf[out->ns].contacts      = set->n;
   out->sbuf[out->ns].rows          = v->stats->rows;
   out->sbuf[out->ns].sweeps        = v->stats->sweeps;
@@ -190,6 +199,9 @@ static PetscErrorCode FlushContacts(FCOutput out)
       {out->c_gap, H5T_NATIVE_DOUBLE, 0, offsetof(FCContactRecord, gap), 1},
       {out->c_gapend, H5T_NATIVE_DOUBLE, 0, offsetof(FCContactRecord, gap_end), 1},
       {out->c_state, H5T_NATIVE_LLONG, 0, offsetof(FCContactRecord, state), 1},
+      {out->c_pointend, H5T_NATIVE_DOUBLE, 0, offsetof(FCContactRecord, point_end), 3},
+      {out->c_fworld, H5T_NATIVE_DOUBLE, 0, offsetof(FCContactRecord, force_world), 3},
+      {out->c_ftan, H5T_NATIVE_DOUBLE, 0, offsetof(FCContactRecord, force_tangential), 1},
       {out->c_offset, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, offset), 1},
       {out->s_contacts, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, contacts), 1},
       {out->s_rows, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, rows), 1},
@@ -269,10 +281,11 @@ PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
   H5Dclose(out->denergy);
   for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
   if (out->contacts) {
-    hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,       out->c_force,
-                  out->c_gap,    out->c_gapend,   out->c_state,  out->s_contacts,     out->s_rows,
-                  out->s_sweeps, out->s_residual, out->s_maxpen, out->s_newton,       out->s_violation,
-                  out->s_rmspen, out->s_compl,    out->s_cone,   out->s_intersections};
+    hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,        out->c_force,
+                  out->c_gap,    out->c_gapend,   out->c_state,  out->s_contacts,      out->s_rows,
+                  out->s_sweeps, out->s_residual, out->s_maxpen, out->s_newton,        out->s_violation,
+                  out->s_rmspen, out->s_compl,    out->s_cone,   out->s_intersections, out->c_pointend,
+                  out->c_fworld, out->c_ftan};
     for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) H5Dclose(ds[i]);
   }
   PetscCall(PetscFree(out->cbuf));

@@ -74,11 +74,30 @@ static PetscErrorCode Energy_Corotational(FCMaterial m, const PetscReal x[12], c
   PetscFunctionReturn(0);
 }
 
+/* sigma of the small strain in the element's rotated frame: H = R^T F - I (the gradient of
+   u_local = R^T x - X), so a rigid motion has no stress; sigma is expressed in that frame (its
+   invariants, the von Mises stress among them, are those of R sigma R^T) */
+static PetscErrorCode Stress_Corotational(FCMaterial m, const PetscReal x[12], const PetscReal X[12],
+                                          const PetscReal Dminv[9], PetscReal sigma[9])
+{
+  PetscReal F[9], R[9], H[9];
+
+  PetscFunctionBegin;
+  (void)X;
+  FCMaterialDeformationGradient(x, Dminv, F);
+  FCMat3Polar(F, R);
+  FCMat3MultTranspose(R, F, H);
+  for (int i = 0; i < 3; i++) H[4 * i] -= 1.0;
+  FCMaterialHooke(m, H, sigma);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCMaterialCreate_Corotational(FCMaterial m)
 {
   PetscFunctionBegin;
   m->linear  = PETSC_FALSE;
   m->element = Element_Corotational;
   m->energy  = Energy_Corotational;
+  m->stress  = Stress_Corotational;
   PetscFunctionReturn(0);
 }

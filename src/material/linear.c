@@ -33,11 +33,26 @@ static PetscErrorCode Energy_Linear(FCMaterial m, const PetscReal x[12], const P
   PetscFunctionReturn(0);
 }
 
+/* sigma of the small strain of x - X: H = F - I */
+static PetscErrorCode Stress_Linear(FCMaterial m, const PetscReal x[12], const PetscReal X[12],
+                                    const PetscReal Dminv[9], PetscReal sigma[9])
+{
+  PetscReal H[9];
+
+  PetscFunctionBegin;
+  (void)X;
+  FCMaterialDeformationGradient(x, Dminv, H);
+  for (int i = 0; i < 3; i++) H[4 * i] -= 1.0;
+  FCMaterialHooke(m, H, sigma);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCMaterialCreate_Linear(FCMaterial m)
 {
   PetscFunctionBegin;
   m->linear  = PETSC_TRUE;
   m->element = Element_Linear;
   m->energy  = Energy_Linear;
+  m->stress  = Stress_Linear;
   PetscFunctionReturn(0);
 }

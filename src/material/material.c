@@ -33,6 +33,24 @@ PetscErrorCode FCMaterialCreate(const char type[], PetscReal young, PetscReal po
   PetscFunctionReturn(0);
 }
 
+/* Hooke's law on the displacement gradient H: sigma = lambda tr(eps) I + 2 mu eps, eps = (H + H^T) / 2 */
+void FCMaterialHooke(FCMaterial m, const PetscReal H[9], PetscReal sigma[9])
+{
+  PetscReal tr = H[0] + H[4] + H[8];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      sigma[3 * i + j] = m->mu * (H[3 * i + j] + H[3 * j + i]) + (i == j ? m->lambda * tr : 0.0);
+}
+
+/* Deformation gradient of a P1 tetrahedron: F = Ds Dm^-1, Ds the edge vectors x_a - x_0 as columns */
+void FCMaterialDeformationGradient(const PetscReal x[12], const PetscReal Dminv[9], PetscReal F[9])
+{
+  PetscReal Ds[9];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) Ds[3 * i + j] = x[3 * (j + 1) + i] - x[i];
+  FCMat3Mult(Ds, Dminv, F);
+}
+
 PetscErrorCode FCMaterialDestroy(FCMaterial *mat)
 {
   PetscFunctionBegin;

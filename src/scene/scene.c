@@ -6,6 +6,9 @@
      -gravity gx,gy,gz        (default 0,0,-9.81 m/s^2)
      -output_file f.h5        (default fecontact.h5; an XDMF index f.xmf is written beside it)
      -output_every k          write body positions every k steps (>= 1, default 1)
+     -output_fields a,b,...   fields of each frame (src/io/fields.c, docs/output.md): displacement,
+                              velocity (every body's vertices), von_mises, energy_density (FE cells),
+                              or none (default displacement,velocity,von_mises); computed at frames only
      -quiet                   no progress line, no summary
      -restart f.h5            continue from the newest complete restart state of f.h5 (written at every
                               output step: /restart in docs/output.md) up to -time_steps; the same scene
@@ -52,7 +55,7 @@ struct _p_FCScene {
   PetscInt   nbodies;
   FCBody     bodies[FC_MAX_BODIES];
   PetscReal  h, t, gravity[3];
-  PetscInt   nsteps, step, every;
+  PetscInt   nsteps, step, every, fields; /* fields: the -output_fields mask */
   char       output_file[PETSC_MAX_PATH_LEN], restart[PETSC_MAX_PATH_LEN];
   PetscBool  quiet, setupcalled;
   FCOutput   output;
@@ -187,6 +190,7 @@ static PetscErrorCode ReadContactPairs(FCScene s)
 
 PetscErrorCode FCSceneSetFromOptions(FCScene s)
 {
+  char      fields[256] = "displacement,velocity,von_mises";
   char     *names[FC_MAX_BODIES];
   PetscInt  n = FC_MAX_BODIES;
   PetscBool set;
@@ -200,6 +204,10 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   PetscCall(PetscOptionsString("-output_file", "HDF5 output file", NULL, s->output_file, s->output_file,
                                sizeof(s->output_file), NULL));
   PetscCall(FCOptionsInt(PetscOptionsObject, "-output_every", "Write body positions every k steps", &s->every, NULL));
+  /* -output_fields: which fields each frame holds (names in src/io/fields.c); a field not named is never computed */
+  PetscCall(PetscOptionsString("-output_fields",
+                               "Fields of the frames: displacement,velocity,von_mises,energy_density or none", NULL,
+                               fields, fields, sizeof(fields), NULL));
   PetscCall(PetscOptionsBool("-quiet", "No progress line and no summary", NULL, s->quiet, &s->quiet, NULL));
   PetscCall(PetscOptionsString("-restart", "Continue from the last complete output step of this HDF5 file", NULL,
                                s->restart, s->restart, sizeof(s->restart), NULL));
@@ -211,6 +219,7 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
              s->nsteps);
   PetscCheck(s->every >= 1, s->comm, PETSC_ERR_USER_INPUT, "Option -output_every must be >= 1, got %" PetscInt_FMT,
              s->every);
+  PetscCall(FCOutputFieldsParse(s->comm, fields, &s->fields));
   for (PetscInt i = 0; i < n; i++) {
     for (PetscInt j = 0; j < i; j++)
       PetscCheck(strcmp(names[i], names[j]), s->comm, PETSC_ERR_USER_INPUT, "Body '%s' appears twice in -scene_bodies",
@@ -268,6 +277,7 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     s->t = s->step * s->h;
   }
   PetscCall(FCOutputCreate(s->comm, s->output_file, &s->output));
+  PetscCall(FCOutputSetFields(s->output, s->fields));
   PetscCall(FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every,
                                 s->pairs.n ? PETSC_TRUE : PETSC_FALSE));
   PetscCall(WriteOutputStep(s));
