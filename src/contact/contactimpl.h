@@ -41,5 +41,5 @@ PETSC_INTERN PetscReal FCContactNaturalMapError2(PetscInt dim, PetscReal mu, con
 /* pgs_split.c: the sweeps split over the ranks of comm (-pgs_ranks split), dense W only; r in:
    the warm start (the same on every rank), out: the forces (the same on every rank) */
 PETSC_INTERN PetscErrorCode FCContactSolveSplit(MPI_Comm, FCContactProblem, PetscReal tol, PetscInt max_it,
-                                                PetscReal omega, PetscReal proximal, PetscReal r[], PetscInt *sweeps,
-                                                PetscReal *residual);
+                                                PetscReal omega, PetscReal proximal, PetscReal damping, PetscReal r[],
+                                                PetscInt *sweeps, PetscReal *residual);

@@ -17,6 +17,8 @@
                            the sweeps, each its own block of contacts, Jacobi between blocks
                            (pgs_split.c; dense W, without NNCG; a solver with a per-sweep update, the
                            fast scheme's -fast_update sweep, runs replicated) (docs/scaling.md)
+     -pgs_split_damping t  with split: each block takes t times its step, in (0, 1] (default 0.8,
+                           measured on the 149k box and the cube: docs/contact-solver.md)
      -pgs_acceleration none|nncg   nonsmooth nonlinear conjugate gradient on top of the sweeps
                            (Silcowitz, Niebe, Erleben 2010): after a sweep with step g = r_k+1 - r_k,
                            r += beta p, p = beta p + g, beta = |g|^2 / |g_prev|^2, restart when
@@ -36,6 +38,7 @@ struct _p_FCContactSolver {
   PetscInt                max_it, sweeps;
   PetscBool               converged, nncg, root;    /* root: rank 0 solves and broadcasts (-pgs_ranks root) */
   PetscBool               split;                    /* -pgs_ranks split: each rank sweeps its own block */
+  PetscReal               split_damping;            /* -pgs_split_damping */
   char                    dump[PETSC_MAX_PATH_LEN]; /* -pgs_dump_problem */
   PetscInt                dump_rows;
   PetscBool               dumped, dump_unconverged; /* -pgs_dump_unconverged: the first unconverged problem */
@@ -47,12 +50,13 @@ PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
 {
   PetscFunctionBegin;
   PetscCall(PetscNew(solver));
-  (*solver)->comm      = comm;
-  (*solver)->tol       = 1e-8;
-  (*solver)->max_it    = 1000;
-  (*solver)->omega     = 1.0;
-  (*solver)->nncg      = PETSC_TRUE;
-  (*solver)->dump_rows = 1;
+  (*solver)->comm          = comm;
+  (*solver)->tol           = 1e-8;
+  (*solver)->max_it        = 1000;
+  (*solver)->omega         = 1.0;
+  (*solver)->nncg          = PETSC_TRUE;
+  (*solver)->dump_rows     = 1;
+  (*solver)->split_damping = 0.8;
   PetscFunctionReturn(0);
 }
 
@@ -80,6 +84,10 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
     s->root  = a == 1 ? PETSC_TRUE : PETSC_FALSE;
     s->split = a == 2 ? PETSC_TRUE : PETSC_FALSE;
   }
+  if (s->split)
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-pgs_split_damping",
+                            "With -pgs_ranks split: the fraction of each block's step taken (0, 1]", &s->split_damping,
+                            NULL));
   PetscCall(PetscOptionsString("-pgs_dump_problem", "Write a contact problem to this FCLIB file", NULL, s->dump,
                                s->dump, sizeof(s->dump), NULL));
   if (s->dump[0]) {
@@ -108,6 +116,8 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
   PetscCheck(s->proximal >= 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -pgs_proximal must be >= 0, got %g",
              (double)s->proximal);
   PetscCheck(s->tol > 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -pgs_tol must be > 0, got %g", (double)s->tol);
+  PetscCheck(s->split_damping > 0.0 && s->split_damping <= 1.0, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -pgs_split_damping must lie in (0, 1], got %g", (double)s->split_damping);
   PetscCheck(s->max_it >= 1, s->comm, PETSC_ERR_USER_INPUT, "Option -pgs_max_it must be >= 1, got %" PetscInt_FMT,
              s->max_it);
   PetscFunctionReturn(0);
@@ -205,7 +215,8 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   if (s->dump[0] && !s->dump_unconverged && !s->dumped && p->n >= s->dump_rows) PetscCall(Dump(s, p));
   if (s->split && size > 1 && p->Wd && !s->update) {
-    PetscCall(FCContactSolveSplit(s->comm, p, s->tol, s->max_it, s->omega, s->proximal, r, &s->sweeps, &s->residual));
+    PetscCall(FCContactSolveSplit(s->comm, p, s->tol, s->max_it, s->omega, s->proximal, s->split_damping, r, &s->sweeps,
+                                  &s->residual));
     s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
   } else if (!s->root || size == 1)
     PetscCall(SolveHere(s, p, r));

@@ -4,7 +4,9 @@
    its block with the velocities of its own rows, u_b = q_b + W_b: r; between blocks the sweep is
    Jacobi: after each sweep the ranks exchange the forces of their blocks (one MPI_Allgatherv of
    the changed forces) and each adds to its u_b what the other blocks' changes did,
-   W_b,other (r - r_prev). A sweep then costs n_b n flops per rank instead of n^2 (the product
+   W_b,other (r - r_prev). Each block's step is damped (-pgs_split_damping theta: r_b <- r_b_prev +
+   theta (r_b_swept - r_b_prev), a convex combination, so it stays in the cones) against the
+   overshoot of blocks that all move at once. A sweep then costs n_b n flops per rank instead of n^2 (the product
    with W of the replicated sweep, split p ways); the price is the Jacobi coupling between
    blocks, which can need more sweeps (docs/contact-solver.md measures both). The residual is the
    same natural-map residual as the replicated solver's, summed over the blocks (an MPI_Allreduce),
@@ -55,11 +57,12 @@ static PetscReal BlockResidual2(FCContactProblem p, PetscInt c0, PetscInt c1, Pe
 }
 
 PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal tol, PetscInt max_it, PetscReal omega,
-                                   PetscReal proximal, PetscReal r[], PetscInt *sweeps, PetscReal *residual)
+                                   PetscReal proximal, PetscReal damping, PetscReal r[], PetscInt *sweeps,
+                                   PetscReal *residual)
 {
   PetscMPIInt size, rank, *counts, *displs;
   PetscInt   *cfirst, c0, c1, lo, hi, nb, n = p->n;
-  PetscReal  *ub, *rprev, res2, qn = PetscMax(p->qnorm, PETSC_MACHINE_EPSILON);
+  PetscReal  *ub, *rprev, *ustart, res2, qn = PetscMax(p->qnorm, PETSC_MACHINE_EPSILON);
 
   PetscFunctionBegin;
   PetscCheck(p->Wd, comm, PETSC_ERR_SUP, "Option -pgs_ranks split needs a dense W (the schemes' problems)");
@@ -78,12 +81,17 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
       displs[b] = (PetscMPIInt)p->off[cfirst[b]];
     }
   }
+  { /* one non-empty block is plain Gauss-Seidel: nothing to damp */
+    PetscInt nonempty = 0;
+    for (PetscMPIInt b = 0; b < size; b++) nonempty += cfirst[b + 1] > cfirst[b];
+    if (nonempty < 2) damping = 1.0;
+  }
   c0 = cfirst[rank];
   c1 = cfirst[rank + 1];
   lo = p->off[c0];
   hi = p->off[c1];
   nb = hi - lo;
-  PetscCall(PetscMalloc2(nb + 1, &ub, n + 1, &rprev));
+  PetscCall(PetscMalloc3(nb + 1, &ub, n + 1, &rprev, nb + 1, &ustart));
   PetscCall(BlockVelocity(p, lo, hi, r, ub));
   res2 = BlockResidual2(p, c0, c1, lo, r, ub);
   PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &res2, 1, MPIU_REAL, MPIU_SUM, comm));
@@ -91,6 +99,7 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
   *sweeps   = 0;
   while (*residual > tol && *sweeps < max_it) {
     PetscCall(PetscArraycpy(rprev, r, n));
+    PetscCall(PetscArraycpy(ustart, ub, nb));
     for (PetscInt i = c0; i < c1; i++) { /* Gauss-Seidel inside the block */
       PetscInt  d = p->dim[i], o = p->off[i];
       PetscReal qi[3], Wi[9], ri[3], delta[3];
@@ -130,6 +139,11 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
             FCContactAddRows3(nb, w + a * n, w + a * n, w + a * n, delta[a], 0.0, 0.0, ub);
       }
     }
+    if (damping != 1.0) /* r_b and u_b moved by damping times the block's step (a convex combination: in the cones) */
+      for (PetscInt k = lo; k < hi; k++) {
+        r[k]       = rprev[k] + damping * (r[k] - rprev[k]);
+        ub[k - lo] = ustart[k - lo] + damping * (ub[k - lo] - ustart[k - lo]);
+      }
     /* Jacobi between blocks: every block's new forces to every rank, and their effect on u_b */
     PetscCallMPI(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, r, counts, displs, MPIU_REAL, comm));
     (*sweeps)++;
@@ -163,7 +177,7 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
     PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &res2, 1, MPIU_REAL, MPIU_SUM, comm));
     *residual = PetscSqrtReal(res2) / qn;
   }
-  PetscCall(PetscFree2(ub, rprev));
+  PetscCall(PetscFree3(ub, rprev, ustart));
   PetscCall(PetscFree3(cfirst, counts, displs));
   PetscFunctionReturn(0);
 }
