@@ -243,6 +243,9 @@ typedef struct {
   /* rigid and kinematic: a world point or direction in the body frame, at the pose now (start of
      the step during detection) or after the free motion (when = FC_AT_NOW, FC_AT_FREE) */
   PetscErrorCode (*tobody)(FCBody, PetscInt when, const PetscReal x[3], PetscBool direction, PetscReal r[3]);
+  /* the rotation of the body frame over the step (start to free motion): its angle and the
+     body-frame point it turns about (rigid and kinematic bodies; none: no rotation) */
+  PetscErrorCode (*steprotation)(FCBody, PetscReal *theta, PetscReal center[3]);
   /* add w x (current position) of the vertices of a proximity point this rank owns (FE), or
      the point on rank 0 (rigid, kinematic) */
   PetscErrorCode (*partialposition)(FCBody, const FCProximity *, PetscReal x[3]);
@@ -302,6 +305,9 @@ PETSC_INTERN PetscErrorCode FCBodyProximityPosition(FCBody, const FCProximity *,
 PETSC_INTERN PetscErrorCode FCBodyShapeDistance(FCBody, PetscInt when, const PetscReal x[3], PetscReal *d,
                                                 PetscReal n[3], PetscReal cpb[3]);
 /* when: FC_AT_NOW (the pose now) or FC_AT_FREE (after the free motion) */
+/* The angle the body frame turns by over the step and the body-frame point it turns about (0 for
+   bodies that do not rotate rigidly): continuous detection bounds the arc a point follows in it */
+PETSC_INTERN PetscErrorCode FCBodyStepRotation(FCBody, PetscReal *theta, PetscReal center[3]);
 PETSC_INTERN PetscErrorCode FCBodyToBodyFrame(FCBody, PetscInt when, const PetscReal x[3], PetscBool direction,
                                               PetscReal r[3]);
 /* signed distance of a body-frame point to the body's shape: outward normal and closest point, body frame */

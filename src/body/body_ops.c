@@ -105,6 +105,15 @@ PetscErrorCode FCBodyShapeDistance(FCBody body, PetscInt when, const PetscReal x
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCBodyStepRotation(FCBody body, PetscReal *theta, PetscReal center[3])
+{
+  PetscFunctionBegin;
+  *theta = 0.0;
+  for (int d = 0; d < 3; d++) center[d] = 0.0;
+  if (body->ops.steprotation) PetscCall((*body->ops.steprotation)(body, theta, center));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCBodyToBodyFrame(FCBody body, PetscInt when, const PetscReal x[3], PetscBool direction, PetscReal r[3])
 {
   PetscFunctionBegin;

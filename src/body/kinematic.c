@@ -45,6 +45,12 @@ static PetscErrorCode SetUp_Kinematic(FCBody body)
   PetscCall(FCPoseSetUp(body, &k->pose));
   if (k->pivot[0] == PETSC_MAX_REAL)
     for (int d = 0; d < 3; d++) k->pivot[d] = k->pose.x0[d];
+  { /* the pivot is a point of the body (it moves with -velocity only): in the body frame */
+    PetscReal R[9], d[3];
+    FCQuatToMat3(k->pose.q0, R);
+    for (int i = 0; i < 3; i++) d[i] = k->pivot[i] - k->pose.x0[i];
+    FCMat3TVec(R, d, k->pose.pivot_body);
+  }
   PetscFunctionReturn(0);
 }
 
@@ -119,6 +125,7 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   body->ops.setstate           = FCPoseSetState;
   body->ops.destroy            = Destroy_Kinematic;
   body->ops.tobody             = FCPoseToBody;
+  body->ops.steprotation       = FCPoseStepRotation;
   body->ops.partialposition    = FCPosePartialPosition;
   body->ops.trialposition      = TrialPosition_Kinematic;
   body->ops.freemotion         = FreeMotion_Kinematic;

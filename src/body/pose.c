@@ -289,6 +289,20 @@ PetscErrorCode FCPoseSurfaceTriangles(FCBody body, PetscInt *n, FCSurfaceTriangl
   PetscFunctionReturn(0);
 }
 
+/* The angle between the orientations at the start and after the free motion, 2 acos |q . qf| (the
+   quaternions' dot product is the cosine of half the relative rotation, whatever their signs) */
+PetscErrorCode FCPoseStepRotation(FCBody body, PetscReal *theta, PetscReal center[3])
+{
+  FCPose   *P = (FCPose *)body->data;
+  PetscReal c = 0.0;
+
+  PetscFunctionBegin;
+  for (int k = 0; k < 4; k++) c += P->q[k] * P->qf[k];
+  *theta = 2.0 * PetscAcosReal(PetscMin(1.0, PetscAbsReal(c)));
+  for (int d = 0; d < 3; d++) center[d] = P->pivot_body[d];
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCPoseToBody(FCBody body, PetscInt when, const PetscReal x[3], PetscBool direction, PetscReal r[3])
 {
   FCPose          *P = (FCPose *)body->data;

@@ -10,7 +10,8 @@ typedef struct {
   PetscReal          volume, J[9];           /* volume and inertia per unit density, body frame */
   PetscReal         *bodyVerts;              /* visual vertices in the body frame (nv x 3) */
   PetscReal          xf[3], qf[4];           /* after the free motion of the current step */
-  PetscInt           npts;                   /* contact points (the picture's vertices), rank 0 */
+  PetscReal          pivot_body[3]; /* the body-frame point the rotation of a step turns about (0: the centre) */
+  PetscInt           npts;          /* contact points (the picture's vertices), rank 0 */
   FCProximity       *prox;
   PetscReal         *px0, *pxf, *pkey;
   PetscInt           ntri; /* mesh shape: boundary triangles in the body frame (every rank) */
@@ -34,6 +35,7 @@ PETSC_INTERN PetscErrorCode FCPoseContactPoints(FCBody, PetscInt *, FCProximity 
 PETSC_INTERN PetscErrorCode FCPoseProximityPosition(FCBody, const FCProximity *, PetscInt, PetscReal[3]);
 PETSC_INTERN PetscErrorCode FCPoseSurfaceTriangles(FCBody, PetscInt *, FCSurfaceTriangle **);
 PETSC_INTERN PetscErrorCode FCPoseToBody(FCBody, PetscInt, const PetscReal[3], PetscBool, PetscReal[3]);
+PETSC_INTERN PetscErrorCode FCPoseStepRotation(FCBody, PetscReal *, PetscReal[3]);
 PETSC_INTERN PetscErrorCode FCPosePartialPosition(FCBody, const FCProximity *, PetscReal[3]);
 PETSC_INTERN PetscErrorCode FCPoseShapeDistanceFree(FCBody, const PetscReal[3], PetscReal *, PetscReal[3],
                                                     PetscReal[3]);

@@ -266,6 +266,7 @@ PetscErrorCode FCBodyCreate_Rigid(FCBody body)
   body->ops.checkstate         = CheckState_Rigid;
   body->ops.destroy            = Destroy_Rigid;
   body->ops.tobody             = FCPoseToBody;
+  body->ops.steprotation       = FCPoseStepRotation;
   body->ops.partialposition    = FCPosePartialPosition;
   body->ops.contactpoints      = FCPoseContactPoints;
   body->ops.proximityposition  = FCPoseProximityPosition;

@@ -17,23 +17,43 @@ PetscReal FCCCDThreshold(PetscReal distance)
   return distance > 0 ? 0.1 * distance : 1e-9;
 }
 
-/* A point against an analytic shape: the point's path relative to the shape, in the shape's
-   frame, is taken as the segment from its start-of-step body-frame position r0 to its
-   free-motion one rf (exact for translations; for a rotating shape the chord of the true arc).
-   The signed distances of the shapes are 1-Lipschitz, so V = |rf - r0|. d0 is the signed
-   distance at the start (already computed by the discrete test). */
+/* A point against an analytic shape. In the shape's frame the point moves from its start-of-step
+   body-frame position r0 to its free-motion one rf; the test follows the chord r0 -> rf, whose
+   distance to the shape is 1-Lipschitz with speed V = |rf - r0|. The true path is the chord only
+   for a translating shape: when the shape turns by theta over the step about the body-frame
+   point c (its centre, or a kinematic body's -pivot), the point, moving linearly in the world,
+   follows r(t) = Q(t) (y0 + t dy) - c with y0 = r0 - c, |dy| <= |rf - r0| + theta |rf - c|, and
+   Q(t) the rotation by t theta; it leaves the chord by at most
+       e = |y0| theta^2 / 8 + theta |dy| / 4
+   (the sagitta of the arc of radius |y0|, plus t (1 - t) theta |dy|). So a chord that comes within
+   tau + 2 e is a hit: the true path may come within tau (a point on the orbit of a fast kinematic
+   body that the chord cuts inside, input/hard/orbit.opts). d0 is the signed distance at the start
+   (already computed by the discrete test). */
 PetscErrorCode FCCCDPointShape(FCBody S, const PetscReal x0[3], const PetscReal xf[3], PetscReal d0, PetscReal tau,
                                PetscBool *hit)
 {
-  PetscReal r0[3], rf[3], dr[3], L, t = 0.0, d = d0;
+  PetscReal r0[3], rf[3], dr[3], c[3], y0[3], yf[3], theta, L, t = 0.0, d = d0;
 
   PetscFunctionBegin;
   *hit = d0 <= tau ? PETSC_TRUE : PETSC_FALSE;
   if (*hit) PetscFunctionReturn(0);
   PetscCall(FCBodyToBodyFrame(S, FC_AT_NOW, x0, PETSC_FALSE, r0));
   PetscCall(FCBodyToBodyFrame(S, FC_AT_FREE, xf, PETSC_FALSE, rf));
-  for (int i = 0; i < 3; i++) dr[i] = rf[i] - r0[i];
+  PetscCall(FCBodyStepRotation(S, &theta, c));
+  for (int i = 0; i < 3; i++) {
+    dr[i] = rf[i] - r0[i];
+    y0[i] = r0[i] - c[i];
+    yf[i] = rf[i] - c[i];
+  }
   L = PetscSqrtReal(FCDot(dr, dr));
+  if (theta > 0.0) { /* the arc's departure from the chord widens the threshold */
+    PetscReal dy = L + theta * PetscSqrtReal(FCDot(yf, yf));
+    tau += 2.0 * (PetscSqrtReal(FCDot(y0, y0)) * theta * theta / 8.0 + theta * dy / 4.0);
+    if (d0 <= tau) {
+      *hit = PETSC_TRUE;
+      PetscFunctionReturn(0);
+    }
+  }
   /* a non-finite free motion is no motion to follow: the end-of-step state check reports it */
   if (!PetscIsNormalReal(L) || d0 - 0.5 * tau >= L) PetscFunctionReturn(0); /* out of reach in this step */
   for (int it = 0; it < FC_CCD_MAX_IT; it++) {

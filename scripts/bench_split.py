@@ -1,0 +1,81 @@
+#!/usr/bin/python3
+"""The contact solver replicated (-pgs_ranks all) against split over the ranks (-pgs_ranks split,
+src/contact/pgs_split.c), on contact problems of FE scenes: each scene is run one step into
+contact with -pgs_dump_problem, and tools/fclib_solve -dense solves the dumped problem on 1, 2
+and 4 ranks (4: oversubscribed on a 2-core machine). Printed per problem and rank count: sweeps
+to 1e-8 and time (the solve alone, max over ranks), and time per sweep; the crossover is the
+size where split on 2 ranks beats the replicated solver.
+
+    scripts/bench_split.py [--ranks 1,2,4] [--repeat 3] [--markdown FILE]"""
+import argparse
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXE = os.path.join(ROOT, "build", "fecontact")
+SOLVE = os.path.join(ROOT, "build", "fclib_solve")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
+OUT = os.path.join(ROOT, "build", "bench_split")
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from scaling import big_mesh  # noqa: E402
+
+SCENES = [("cube drop 1.1k", ["-options_file", "input/cube_drop.opts", "-time_steps", "45"], 100),
+          ("cube at rest 17.5k", ["-options_file", "input/cube_rest.opts", "-time_steps", "3"], 900),
+          ("Table 1 box 18k", ["-options_file", "input/table1_18k.opts", "-time_steps", "2"], 1000),
+          ("Table 1 box 36k", ["-options_file", "input/table1_36k.opts", "-time_steps", "2"], 1400),
+          ("box 149k", ["-options_file", "input/table1_36k.opts", "-time_steps", "2"], 4000)]
+
+
+def solve(path, np_, split):
+    cmd = [SOLVE, "-problem", path, "-dense"] + (["-pgs_ranks", "split"] if split else [])
+    if np_ > 1:
+        cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
+    o = subprocess.run(cmd, env=ENV, capture_output=True, text=True, check=True, timeout=3600).stdout.split()
+    d = dict(zip(o[0::2], o[1::2]))
+    return int(d["sweeps"]), float(d["residual"]), float(d["time"]), d["converged"] == "1", int(d["rows"])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--ranks", default="1,2,4")
+    ap.add_argument("--repeat", type=int, default=3, help="best of this many solves per line")
+    ap.add_argument("--markdown")
+    a = ap.parse_args()
+    os.makedirs(OUT, exist_ok=True)
+    ranks = [int(x) for x in a.ranks.split(",")]
+    lines = ["| problem | rows | solver | ranks | sweeps | residual | time (s) | per sweep (ms) | vs replicated, 1 rank |",
+             "|---|---:|---|---:|---:|---:|---:|---:|---:|"]
+    for name, opts, rows in SCENES:
+        if "149k" in name:
+            opts = opts + ["-box_dm_plex_filename", big_mesh()]
+        dump = os.path.join(OUT, name.replace(" ", "_") + ".hdf5")
+        if not os.path.exists(dump):
+            subprocess.run([EXE] + opts + ["-pgs_dump_problem", dump, "-pgs_dump_rows", str(rows), "-quiet",
+                                           "-output_file", os.path.join(OUT, "run.h5")], cwd=ROOT, env=ENV, check=True)
+        ref = None
+        for split in (False, True):
+            for np_ in ranks:
+                if split and np_ == 1:
+                    continue
+                best = None
+                for _ in range(a.repeat):
+                    s = solve(dump, np_, split)
+                    best = s if best is None or s[2] < best[2] else best
+                sweeps, res, t, conv, n = best
+                ref = t if ref is None else ref
+                line = "| %s | %d | %s | %d%s | %d | %.1e%s | %.4f | %.3f | %.2f |" % (
+                    name, n, "split" if split else "replicated", np_, " (oversubscribed)" if np_ > os.cpu_count() else "",
+                    sweeps, res, "" if conv else " (not converged)", t, 1e3 * t / max(sweeps, 1), t / ref)
+                print(line, flush=True)
+                lines.append(line)
+    if a.markdown:
+        with open(a.markdown, "w") as f:
+            f.write("Machine: %s, %d cores, `OPENBLAS_NUM_THREADS=1`; `scripts/bench_split.py --ranks %s --repeat %d` "
+                    "(best of %d solves per line, each from a zero start, to -pgs_tol 1e-8).\n\n" %
+                    (os.uname().nodename, os.cpu_count(), a.ranks, a.repeat, a.repeat))
+            f.write("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()
