@@ -17,6 +17,25 @@ PetscReal FCCCDThreshold(PetscReal distance)
   return distance > 0 ? 0.1 * distance : 1e-9;
 }
 
+PetscErrorCode FCCCDArcMargin(FCBody b, PetscInt ntri, const FCSurfaceTriangle *tri, PetscReal *margin)
+{
+  PetscReal theta, c[3], rho2 = 0.0;
+
+  PetscFunctionBegin;
+  *margin = 0.0;
+  if (FCBodyIsDeformable(b)) PetscFunctionReturn(0);
+  PetscCall(FCBodyStepRotation(b, &theta, c));
+  if (theta <= 0.0) PetscFunctionReturn(0);
+  for (PetscInt t = 0; t < ntri; t++)
+    for (int a = 0; a < 3; a++) {
+      PetscReal d2 = 0.0;
+      for (int i = 0; i < 3; i++) d2 += PetscSqr(tri[t].X[a][i] - c[i]);
+      rho2 = PetscMax(rho2, d2);
+    }
+  *margin = PetscSqrtReal(rho2) * theta * theta / 8.0;
+  PetscFunctionReturn(0);
+}
+
 /* A point against an analytic shape. In the shape's frame the point moves from its start-of-step
    body-frame position r0 to its free-motion one rf; the test follows the chord r0 -> rf, whose
    distance to the shape is 1-Lipschitz with speed V = |rf - r0|. The true path is the chord only

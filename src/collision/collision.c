@@ -36,16 +36,18 @@ static PetscErrorCode Sides(FCBody a, FCBody b, PetscInt ia, PetscInt ib, PetscI
    bucketed in a sort-based spatial hash, so detection costs O(n log n) in the surface size. ---- */
 
 /* The surface of a body, gathered on every rank; hashed by the triangles' boxes over the step
-   with continuous detection */
+   with continuous detection (widened by the arc margin of a turning mesh, FCCCDArcMargin) */
 static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, const FCContactPairs *pairs, Surface **S)
 {
   PetscInt           n;
   FCSurfaceTriangle *all;
+  PetscReal          arc;
 
   PetscFunctionBegin;
   PetscCall(FCSurfaceGather(comm, b, &n, &all));
+  PetscCall(FCCCDArcMargin(b, n, all, &arc));
   if (pairs->continuous)
-    PetscCall(FCSurfaceCreateSwept(n, all, pairs->distance, S));
+    PetscCall(FCSurfaceCreateSwept(n, all, pairs->distance + 2.0 * arc, S));
   else
     PetscCall(FCSurfaceCreate(n, all, pairs->distance, S));
   PetscFunctionReturn(0);
@@ -111,6 +113,11 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
   PetscFunctionBegin;
   PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x0, &xf, &key));
   if (pairs->continuous) PetscCall(PetscMalloc1(S->n + 1, &cand));
+  { /* the vertices of a turning mesh leave their chords: a wider threshold covers their arcs */
+    PetscReal arc;
+    PetscCall(FCCCDArcMargin(Sb, S->n, S->tri, &arc));
+    tau += 2.0 * arc;
+  }
   for (PetscInt i = 0; i < n; i++) {
     PetscInt  best;
     PetscReal bestd, bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};

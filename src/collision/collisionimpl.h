@@ -80,6 +80,10 @@ PETSC_INTERN PetscBool      FCCCDPointTriangle(const PetscReal p0[3], const Pets
 /* edges a and b as their two ends, flat: a0 = (start of end 0, start of end 1), af the same after the free motion */
 PETSC_INTERN PetscBool FCCCDEdgeEdge(const PetscReal *a0, const PetscReal *af, const PetscReal *b0, const PetscReal *bf,
                                      PetscReal tau, PetscReal *thit);
+/* How far the vertices of a body that turns over the step (a rigid or kinematic mesh) leave the
+   chords the continuous tests follow: theta^2 / 8 times the largest distance of a vertex of tri
+   (body-frame positions X) from the point the body turns about; 0 for FE bodies */
+PETSC_INTERN PetscErrorCode FCCCDArcMargin(FCBody, PetscInt ntri, const FCSurfaceTriangle *tri, PetscReal *margin);
 /* The distance below which a continuous test reports a hit: a tenth of the alarm distance (a
    point whose free motion ends that close was going to touch), never 0 */
 PETSC_INTERN PetscReal FCCCDThreshold(PetscReal distance);

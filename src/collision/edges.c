@@ -201,6 +201,11 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
   PetscCall(FCSurfaceGather(comm, B, &ntb, &tb));
   PetscCall(SharpEdges(nta, ta, &nea, &ea));
   PetscCall(SharpEdges(ntb, tb, &neb, &eb));
+  { /* B a turning mesh: its edges' ends leave their chords (FCCCDArcMargin) */
+    PetscReal arc;
+    PetscCall(FCCCDArcMargin(B, ntb, tb, &arc));
+    tau += 2.0 * arc;
+  }
   PetscCall(EdgeHash(neb, eb, pairs->continuous, PetscMax(dist, tau), &S));
   PetscCall(PetscMalloc1(neb + 1, &cand));
   for (PetscInt k = rank; k < nea; k += size) { /* the edges are on every rank: each takes its share */
