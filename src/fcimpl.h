@@ -452,6 +452,13 @@ struct _FCContactSetView {
   const FCContactMeasures *measures;
 };
 
+/* The files a run reads, by identity, and the check that an output is none of them
+   (src/util/inputs.c) */
+PETSC_INTERN PetscErrorCode FCInputsReset(void);
+PETSC_INTERN PetscErrorCode FCInputsAdd(const char path[], const char what[]);
+PETSC_INTERN PetscErrorCode FCInputsAddOptionsFiles(void);
+PETSC_INTERN PetscErrorCode FCInputsCheckOutput(MPI_Comm, const char path[], const char what[]);
+
 /* SIGINT/SIGTERM: recorded by a handler, acted on between steps (src/util/signals.c) */
 PETSC_INTERN PetscErrorCode FCSignalsInstall(void);
 PETSC_INTERN PetscErrorCode FCSignalsPending(MPI_Comm, int *sig);

@@ -7,22 +7,37 @@
 #include "ioimpl.h"
 #include <time.h>
 
+/* f.h5 -> f.xmf, other names get .xmf appended */
+static PetscErrorCode FCOutputXdmfName(const char filename[], char xmf[], size_t n)
+{
+  size_t len;
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrlen(filename, &len));
+  PetscCall(PetscStrncpy(xmf, filename, n));
+  if (len > 3 && len < n && !strcmp(filename + len - 3, ".h5")) xmf[len - 3] = 0;
+  PetscCall(PetscStrlcat(xmf, ".xmf", n));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *output)
 {
   FCOutput out;
   hid_t    fapl;
-  size_t   len;
   int      ok;
 
   PetscFunctionBegin;
+  { /* no input of the run may be overwritten (src/util/inputs.c), nor its XDMF index */
+    char xmf[PETSC_MAX_PATH_LEN];
+    PetscCall(FCInputsCheckOutput(comm, filename, "-output_file"));
+    PetscCall(FCOutputXdmfName(filename, xmf, sizeof(xmf)));
+    PetscCall(FCInputsCheckOutput(comm, xmf, "the XDMF index of -output_file"));
+  }
   PetscCall(PetscNew(&out));
   out->comm = comm;
   PetscCallMPI(MPI_Comm_rank(comm, &out->rank));
   PetscCall(PetscStrncpy(out->filename, filename, sizeof(out->filename)));
-  PetscCall(PetscStrlen(filename, &len));
-  PetscCall(PetscStrncpy(out->xdmfname, filename, sizeof(out->xdmfname)));
-  if (len > 3 && !strcmp(filename + len - 3, ".h5")) out->xdmfname[len - 3] = 0;
-  PetscCall(PetscStrlcat(out->xdmfname, ".xmf", sizeof(out->xdmfname)));
+  PetscCall(FCOutputXdmfName(filename, out->xdmfname, sizeof(out->xdmfname)));
   fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL);
   H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST);

@@ -67,6 +67,11 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
   PetscCallMPI(MPI_Bcast(&readable, 1, MPIU_INT, 0, comm));
   PetscCheck(readable, comm, PETSC_ERR_USER_INPUT,
              "Cannot open mesh file '%s' given by -%sdm_plex_filename for body '%s'", fname, prefix, bodyname);
+  { /* an input: no output may overwrite it (src/util/inputs.c) */
+    char what[256];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "mesh of body '%s' (-%sdm_plex_filename)", bodyname, prefix));
+    PetscCall(FCInputsAdd(fname, what));
+  }
 
   PetscCall(DMCreate(comm, &mesh->dm));
   PetscCall(DMSetType(mesh->dm, DMPLEX));

@@ -74,6 +74,8 @@ PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
   PetscFunctionBegin;
   PetscCall(FCInitializePackage());
   PetscCall(PetscNew(&s));
+  PetscCall(FCInputsReset()); /* the files this scene reads, by identity: no output may be one */
+  PetscCall(FCInputsAddOptionsFiles());
   s->comm       = comm;
   s->h          = 0.01;
   s->nsteps     = 100;
@@ -115,8 +117,8 @@ static PetscErrorCode ReadContactPairs(FCScene s)
       PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
   if (set && np > 0) {
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_distance", "Alarm distance", &s->pairs.distance, NULL));
-    PetscCall(FCOptionsInt(PetscOptionsObject, "-contact_fe_passes",
-                           "Detection passes between two meshed bodies (1 or 2)", &s->pairs.passes, NULL));
+    PetscCall(FCOptionsIntRange(PetscOptionsObject, "-contact_fe_passes",
+                                "Detection passes between two meshed bodies (1 or 2)", 1, 2, &s->pairs.passes, NULL));
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_drop",
                             "With 2 passes: drop a second-pass contact whose vertex has a weight > w in a first-pass "
                             "contact of the pair (< 0: keep all)",
@@ -125,16 +127,16 @@ static PetscErrorCode ReadContactPairs(FCScene s)
                                 FC_MAX_BODIES, mu, &nmu, &setmu));
     PetscCall(PetscOptionsString("-contact_detection", "Contact detection: continuous or discrete", NULL, detection,
                                  detection, sizeof(detection), NULL));
-    PetscCall(PetscOptionsBool("-contact_edge_edge", "Edge-edge contacts between two meshed bodies", NULL,
-                               s->pairs.edges, &s->pairs.edges, NULL));
+    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_edge_edge", "Edge-edge contacts between two meshed bodies",
+                            &s->pairs.edges, NULL));
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_separation_speed",
                             "Largest speed at which bodies that start inside each other are pushed apart (m/s)",
                             &s->pairs.separation_speed, NULL));
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_intersection_depth",
                             "Depth inside another body that counts as an intersection (m)",
                             &s->pairs.intersection_depth, NULL));
-    PetscCall(PetscOptionsBool("-contact_fail_on_intersection", "Stop the run at the first intersection", NULL,
-                               s->pairs.fail_on_intersection, &s->pairs.fail_on_intersection, NULL));
+    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_fail_on_intersection",
+                            "Stop the run at the first intersection", &s->pairs.fail_on_intersection, NULL));
   }
   PetscOptionsEnd();
   if (!set || np == 0) PetscFunctionReturn(0);
@@ -195,22 +197,20 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   PetscOptionsBegin(s->comm, NULL, "Scene options", "FCScene");
   PetscCall(PetscOptionsStringArray("-scene_bodies", "Comma-separated body names", NULL, names, &n, &set));
   PetscCall(FCOptionsReal(PetscOptionsObject, "-time_step", "Time step h (s)", &s->h, NULL));
-  PetscCall(FCOptionsInt(PetscOptionsObject, "-time_steps", "Number of time steps", &s->nsteps, NULL));
+  PetscCall(
+      FCOptionsIntRange(PetscOptionsObject, "-time_steps", "Number of time steps", 0, PETSC_MAX_INT, &s->nsteps, NULL));
   PetscCall(FCOptionsRealArray(PetscOptionsObject, "-gravity", "Gravity gx,gy,gz (m/s^2)", 3, s->gravity, NULL));
   PetscCall(PetscOptionsString("-output_file", "HDF5 output file", NULL, s->output_file, s->output_file,
                                sizeof(s->output_file), NULL));
-  PetscCall(FCOptionsInt(PetscOptionsObject, "-output_every", "Write body positions every k steps", &s->every, NULL));
-  PetscCall(PetscOptionsBool("-quiet", "No progress line and no summary", NULL, s->quiet, &s->quiet, NULL));
+  PetscCall(FCOptionsIntRange(PetscOptionsObject, "-output_every", "Write body positions every k steps", 1,
+                              PETSC_MAX_INT, &s->every, NULL));
+  PetscCall(FCOptionsBool(PetscOptionsObject, "-quiet", "No progress line and no summary", &s->quiet, NULL));
   PetscCall(PetscOptionsString("-restart", "Continue from the last complete output step of this HDF5 file", NULL,
                                s->restart, s->restart, sizeof(s->restart), NULL));
   PetscOptionsEnd();
   PetscCheck(set && n > 0, s->comm, PETSC_ERR_USER_INPUT,
              "No bodies: give -scene_bodies name1,name2,... (see docs/options.md)");
   PetscCheck(s->h > 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -time_step must be > 0, got %g", (double)s->h);
-  PetscCheck(s->nsteps >= 0, s->comm, PETSC_ERR_USER_INPUT, "Option -time_steps must be >= 0, got %" PetscInt_FMT,
-             s->nsteps);
-  PetscCheck(s->every >= 1, s->comm, PETSC_ERR_USER_INPUT, "Option -output_every must be >= 1, got %" PetscInt_FMT,
-             s->every);
   for (PetscInt i = 0; i < n; i++) {
     for (PetscInt j = 0; j < i; j++)
       PetscCheck(strcmp(names[i], names[j]), s->comm, PETSC_ERR_USER_INPUT, "Body '%s' appears twice in -scene_bodies",
@@ -253,14 +253,8 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCSchemeSetFromOptions(s->scheme));
   }
   PetscCall(FCOptionsCheckUnused(s->comm)); /* after every object has read its options */
-  if (s->restart[0]) {                      /* before the output is created: it may not be the file we read */
-    char a[PETSC_MAX_PATH_LEN], b[PETSC_MAX_PATH_LEN];
-    if (!realpath(s->restart, a)) PetscCall(PetscStrncpy(a, s->restart, sizeof(a)));
-    if (!realpath(s->output_file, b)) PetscCall(PetscStrncpy(b, s->output_file, sizeof(b)));
-    PetscCheck(strcmp(a, b), s->comm, PETSC_ERR_USER_INPUT,
-               "-restart %s and -output_file are the same file: the restarted run would overwrite the state it reads; "
-               "give another -output_file",
-               s->restart);
+  if (s->restart[0]) { /* an input, by identity: FCOutputCreate refuses to write over it (src/util/inputs.c) */
+    PetscCall(FCInputsAdd(s->restart, "restart file (-restart)"));
     PetscCall(FCRestartLoad(s->comm, s->restart, s->nbodies, s->bodies, &s->previous, &s->step, &s->t));
     PetscCheck(s->step <= s->nsteps, s->comm, PETSC_ERR_USER_INPUT,
                "-restart %s is at step %" PetscInt_FMT ", beyond -time_steps %" PetscInt_FMT, s->restart, s->step,
@@ -410,5 +404,6 @@ PetscErrorCode FCSceneDestroy(FCScene *scene)
   PetscCall(PetscFree2((*scene)->pairs.body, (*scene)->pairs.mu));
   for (PetscInt i = 0; i < (*scene)->nbodies; i++) PetscCall(FCBodyDestroy(&(*scene)->bodies[i]));
   PetscCall(PetscFree(*scene));
+  PetscCall(FCInputsReset());
   PetscFunctionReturn(0);
 }
