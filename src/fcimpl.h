@@ -369,6 +369,9 @@ PETSC_INTERN PetscErrorCode FCOutputWriteRestart(FCOutput, PetscInt step, PetscR
 PETSC_INTERN PetscErrorCode FCRestartLoad(MPI_Comm, const char file[], PetscInt nbodies, FCBody[],
                                           FCContactSet *previous, PetscInt *step, PetscReal *t);
 PETSC_INTERN PetscErrorCode FCOutputDestroy(FCOutput *);
+/* After a write that failed inside HDF5 the output file cannot be closed: the program must then
+   leave without HDF5's clean-up in MPI_Finalize (src/main.c; src/io/output.c, FCOutputDestroy) */
+PETSC_INTERN PetscBool      FCOutputFileLeftOpen(void);
 PETSC_INTERN PetscErrorCode FCXdmfWrite(const char h5name[], const char xmfname[], PetscInt nbodies, FCBody[],
                                         PetscInt nframes, const PetscReal times[]);
 

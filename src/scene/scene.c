@@ -53,6 +53,7 @@ struct _p_FCScene {
   FCBody     bodies[FC_MAX_BODIES];
   PetscReal  h, t, gravity[3];
   PetscInt   nsteps, step, every;
+  PetscInt   written; /* the step of the last output step written completely (frame and restart state) */
   char       output_file[PETSC_MAX_PATH_LEN], restart[PETSC_MAX_PATH_LEN];
   PetscBool  quiet, setupcalled;
   FCOutput   output;
@@ -224,13 +225,15 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   PetscFunctionReturn(0);
 }
 
-/* The state of the current step as a frame (positions) and as the restart state; the frame's
-   flush makes both durable */
+/* The state of the current step as a frame (positions, with the step rows before it) and then
+   as the restart state, each flushed: if a write fails, the restart state is never ahead of the
+   frames and rows (docs/output.md) */
 static PetscErrorCode WriteOutputStep(FCScene s)
 {
   PetscFunctionBegin;
-  PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
   PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
+  PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
+  s->written = s->step;
   PetscFunctionReturn(0);
 }
 
@@ -262,9 +265,15 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     s->t = s->step * s->h;
   }
   PetscCall(FCOutputCreate(s->comm, s->output_file, &s->output));
-  PetscCall(FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every,
-                                s->pairs.n ? PETSC_TRUE : PETSC_FALSE));
-  PetscCall(WriteOutputStep(s));
+  { /* a failed write (collective, src/io/h5util.c) closes the file on every rank before returning */
+    PetscErrorCode ierr = FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every,
+                                              s->pairs.n ? PETSC_TRUE : PETSC_FALSE);
+    if (!ierr) ierr = WriteOutputStep(s);
+    if (ierr) {
+      (void)FCOutputDestroy(&s->output);
+      return ierr;
+    }
+  }
   PetscCall(FCPhaseResetTimes());
   s->setupcalled = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -358,6 +367,16 @@ PetscErrorCode FCSceneRun(FCScene s)
     PetscInt       done = s->step;
     PetscErrorCode ierr = FCSceneStep(s);
     int            sig;
+    if (ierr == PETSC_ERR_FILE_WRITE) { /* the output failed (on every rank alike): the file is closed */
+      (void)FCOutputDestroy(&s->output);
+      (void)PetscPrintf(s->comm,
+                        "fecontact: the output of step %" PetscInt_FMT
+                        " could not be written; %s holds the steps up to "
+                        "%" PetscInt_FMT " (its last complete output step: frames, step rows and restart state; "
+                        "-restart from it continues the run)\n",
+                        s->step, s->output_file, s->written);
+      return ierr;
+    }
     if (ierr) {
       (void)FCOutputDestroy(&s->output);
       (void)PetscPrintf(s->comm,
