@@ -9,7 +9,12 @@
      -quiet                   no progress line, no summary
      -restart f.h5            continue from the newest complete restart state of f.h5 (written at every
                               output step: /restart in docs/output.md) up to -time_steps; the same scene
-                              options are needed, -output_file must be another file
+                              options are needed; -output_file may not be f.h5 nor any other file the
+                              run reads (compared by device and inode: src/util/inputs.c). With another
+                              -time_step than the earlier run's, the run continues at the stored time
+                              with the new step (step k at t_restart + (k - step_restart) h)
+     -energy_growth_limit g   stop a run whose total energy grows by more than g times the energy the
+                              scene can receive (>= 0, default 10; 0: off; src/scene/energy.c)
      -contact_pairs a:b,c:d   pairs of bodies that may touch (none: no collision work at all)
      -contact_mu m[,m2,...]   Coulomb friction, one value or one per pair (>= 0; 0 = frictionless,
                               one constraint row per contact; default 0)
@@ -48,17 +53,20 @@
 #include <stdlib.h>
 
 struct _p_FCScene {
-  MPI_Comm   comm;
-  PetscInt   nbodies;
-  FCBody     bodies[FC_MAX_BODIES];
-  PetscReal  h, t, gravity[3];
-  PetscInt   nsteps, step, every;
-  PetscInt   written; /* the step of the last output step written completely (frame and restart state) */
-  char       output_file[PETSC_MAX_PATH_LEN], restart[PETSC_MAX_PATH_LEN];
-  PetscBool  quiet, setupcalled;
-  FCOutput   output;
-  FCProgress progress;
-  PetscReal  phase_total[FC_PHASE_NUM];
+  MPI_Comm      comm;
+  PetscInt      nbodies;
+  FCBody        bodies[FC_MAX_BODIES];
+  PetscReal     h, t, gravity[3];
+  PetscInt      nsteps, step, every;
+  PetscInt      written; /* the step of the last output step written completely (frame and restart state) */
+  PetscReal     t0;      /* the time of step step0: 0 and 0, or a restart's stored time and step; step k */
+  PetscInt      step0;   /* is at t0 + (k - step0) h, whatever time step the earlier run had */
+  FCEnergyGuard guard;   /* -energy_growth_limit (energy.c) */
+  char          output_file[PETSC_MAX_PATH_LEN], restart[PETSC_MAX_PATH_LEN];
+  PetscBool     quiet, setupcalled;
+  FCOutput      output;
+  FCProgress    progress;
+  PetscReal     phase_total[FC_PHASE_NUM];
   /* contact */
   FCContactPairs    pairs;
   FCContactSet      set;
@@ -222,6 +230,7 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   }
   for (PetscInt i = 0; i < n; i++) PetscCall(PetscFree(names[i]));
   PetscCall(ReadContactPairs(s));
+  PetscCall(FCEnergyGuardSetFromOptions(&s->guard, s->comm));
   PetscFunctionReturn(0);
 }
 
@@ -262,8 +271,13 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCheck(s->step <= s->nsteps, s->comm, PETSC_ERR_USER_INPUT,
                "-restart %s is at step %" PetscInt_FMT ", beyond -time_steps %" PetscInt_FMT, s->restart, s->step,
                s->nsteps);
-    s->t = s->step * s->h;
+    /* the run continues at the stored time, with this run's -time_step (which may differ from the
+       earlier run's): step k is at t0 + (k - step0) h, kinematic bodies go on from where they were */
+    s->t0    = s->t;
+    s->step0 = s->step;
   }
+  PetscCall(FCEnergyGuardSetUp(&s->guard, s->comm, s->nbodies, s->bodies, s->h, s->nsteps - s->step,
+                               s->pairs.n ? s->pairs.separation_speed : 0.0));
   PetscCall(FCOutputCreate(s->comm, s->output_file, &s->output));
   { /* a failed write (collective, src/io/h5util.c) closes the file on every rank before returning */
     PetscErrorCode ierr = FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every,
@@ -312,8 +326,9 @@ PetscErrorCode FCSceneStep(FCScene s)
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
   }
   s->step++;
-  s->t = s->step * s->h; /* no drift from repeated additions */
+  s->t = s->t0 + (s->step - s->step0) * s->h; /* no drift from repeated additions */
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyCheckState(s->bodies[i], s->step));
+  PetscCall(FCEnergyGuardCheck(&s->guard, s->comm, s->nbodies, s->bodies, s->step, s->t, s->h));
   PetscCall(FCPhaseGetTimes(timing));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, timing, FC_PHASE_NUM, MPIU_REAL, MPIU_MAX, s->comm));
   for (int p = 0; p < FC_PHASE_NUM; p++) s->phase_total[p] += timing[p];
@@ -382,7 +397,7 @@ PetscErrorCode FCSceneRun(FCScene s)
       (void)PetscPrintf(s->comm,
                         "fecontact: step %" PetscInt_FMT " (t = %g s) failed; %s holds the %" PetscInt_FMT
                         " completed steps\n",
-                        done + 1, (double)((done + 1) * s->h), s->output_file, done);
+                        done + 1, (double)(s->t0 + (done + 1 - s->step0) * s->h), s->output_file, done);
       return ierr;
     }
     PetscCall(
