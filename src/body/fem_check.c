@@ -12,6 +12,14 @@
    fewer than 3 significant digits in double precision */
 #define FC_MASS_RATIO_MIN 1e-13
 
+/* |v| without overflow of the squares */
+static PetscReal Norm3(const PetscReal v[3])
+{
+  PetscReal m = PetscMax(PetscAbsReal(v[0]), PetscMax(PetscAbsReal(v[1]), PetscAbsReal(v[2])));
+  if (m == 0.0 || !PetscIsNormalReal(m)) return m;
+  return m * PetscSqrtReal(PetscSqr(v[0] / m) + PetscSqr(v[1] / m) + PetscSqr(v[2] / m));
+}
+
 PetscErrorCode FCFEMCheckDerived(FCBody body)
 {
   FEM        *fem = (FEM *)body->data;
@@ -37,16 +45,17 @@ PetscErrorCode FCFEMCheckDerived(FCBody body)
     loc[0] = vol;
   }
   /* mass, weight and motion: m (|g| R + s^2) with R the largest |X| and s the largest initial speed */
-  g = PetscSqrtReal(FCDot(body->gravity, body->gravity));
-  s = PetscSqrtReal(FCDot(body->velocity, body->velocity)) +
-      PetscSqrtReal(FCDot(body->angular_velocity, body->angular_velocity)) * 2.0 * loc[1];
+  g = Norm3(body->gravity);
+  s = Norm3(body->velocity) + Norm3(body->angular_velocity) * 2.0 * loc[1];
   {
     PetscReal perrho = loc[0] * (g * loc[1] + s * s + 1.0); /* energy scale per unit density, >= volume */
     PetscCheck(PetscIsNormalReal(fem->mass) && fem->mass > 0.0 && rho * perrho <= FC_DERIVED_MAX, body->comm,
                PETSC_ERR_USER_INPUT,
-               "Body '%s': -%sdensity %g gives it a mass of %g kg, whose weight and motion energies (up to m (|g| %g m "
-               "+ v^2), v = %g m/s) are not finite in double precision: -%sdensity must be at most %g kg/m^3 here",
-               body->name, p, (double)rho, (double)(rho * loc[0]), (double)loc[1], (double)s, p,
+               "Body '%s': -%sdensity %g gives it a mass of %g kg, whose weight and motion energies, m (|g| R + v^2) "
+               "with |g| = %g m/s^2 (-gravity), heights R up to %g m and speeds v up to %g m/s (-%svelocity, "
+               "-%sangular_velocity), are not finite in double precision: -%sdensity must be at most %g kg/m^3 here "
+               "(or -gravity or the speeds smaller)",
+               body->name, p, (double)rho, (double)(rho * loc[0]), (double)g, (double)loc[1], (double)s, p, p, p,
                (double)(FC_DERIVED_MAX / perrho));
   }
   /* the matrices: K's entries grow like E times the size of an element */
@@ -57,9 +66,9 @@ PetscErrorCode FCFEMCheckDerived(FCBody body)
     PetscReal scale = PetscMax(1.0, h * fem->beta + h * h), emax = FC_DERIVED_MAX / (64.0 * loc[2] * scale);
     PetscCheck(PetscIsNormalReal(nK) && nK <= FC_DERIVED_MAX && PetscIsNormalReal(nA) && nA <= FC_DERIVED_MAX,
                body->comm, PETSC_ERR_USER_INPUT,
-               "Body '%s': -%syoung %g (with -%spoisson %g) overflows its stiffness matrix on this mesh (||K|| = %g, "
-               "||A|| = %g): -%syoung must be at most about %g Pa here",
-               body->name, p, (double)E, p, (double)nu, (double)nK, (double)nA, p, (double)emax);
+               "Body '%s': -%syoung %g (with -%spoisson %g) overflows its stiffness matrix on this mesh (K or A has "
+               "entries that are not finite): -%syoung must be at most about %g Pa here",
+               body->name, p, (double)E, p, (double)nu, p, (double)emax);
     PetscCheck(PetscIsNormalReal(nM) && nM <= FC_DERIVED_MAX, body->comm, PETSC_ERR_USER_INPUT,
                "Body '%s': its mass matrix is not finite (||M|| = %g; -%sdensity %g)", body->name, (double)nM, p,
                (double)rho);

@@ -246,6 +246,19 @@ static PetscErrorCode WriteOutputStep(FCScene s)
   PetscFunctionReturn(0);
 }
 
+/* The same, closing the output if it fails (the failure is collective: src/io/h5util.c) */
+static PetscErrorCode WriteOutputStepOrClose(FCScene s)
+{
+  PetscErrorCode ierr = WriteOutputStep(s);
+
+  PetscFunctionBegin;
+  if (ierr) {
+    (void)FCOutputDestroy(&s->output);
+    return ierr;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCSceneSetUp(FCScene s)
 {
   PetscFunctionBegin;
@@ -403,7 +416,7 @@ PetscErrorCode FCSceneRun(FCScene s)
     PetscCall(
         FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t, s->pairs.n ? s->measures.intersections : 0));
     if (s->pairs.fail_on_intersection && s->measures.intersections) { /* the step's frame, then close */
-      if (s->step % s->every && s->step < s->nsteps) PetscCall(WriteOutputStep(s));
+      if (s->step % s->every && s->step < s->nsteps) PetscCall(WriteOutputStepOrClose(s));
       PetscCall(FCOutputDestroy(&s->output));
       SETERRQ(s->comm, PETSC_ERR_NOT_CONVERGED,
               "step %" PetscInt_FMT " (t = %g s) ends with %" PetscInt_FMT
@@ -414,7 +427,7 @@ PetscErrorCode FCSceneRun(FCScene s)
     }
     PetscCall(FCSignalsPending(s->comm, &sig));
     if (sig && s->step < s->nsteps) { /* the last step's frame and restart state, then close */
-      if (s->step % s->every) PetscCall(WriteOutputStep(s));
+      if (s->step % s->every) PetscCall(WriteOutputStepOrClose(s));
       PetscCall(FCOutputDestroy(&s->output));
       SETERRQ(s->comm, PETSC_ERR_SIG,
               "interrupted by %s after step %" PetscInt_FMT " (t = %g s); %s is closed and holds the %" PetscInt_FMT
