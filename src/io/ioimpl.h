@@ -62,6 +62,7 @@ PETSC_INTERN PetscErrorCode FCH5AttrInt(hid_t loc, const char name[], long long 
    into the older of its two slots */
 typedef struct _p_FCRestartWriter *FCRestartWriter;
 PETSC_INTERN PetscErrorCode FCRestartWriterCreate(MPI_Comm, hid_t file, PetscInt nbodies, FCBody[], FCRestartWriter *);
+PETSC_INTERN PetscErrorCode FCRestartWriterBegin(FCRestartWriter); /* the next slot's step := -1 */
 PETSC_INTERN PetscErrorCode FCRestartWriterWrite(FCRestartWriter, PetscInt step, PetscReal t, PetscInt nbodies,
                                                  FCBody[], const FCContactSet *previous);
 PETSC_INTERN PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *);

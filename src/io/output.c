@@ -227,6 +227,7 @@ PetscErrorCode FCOutputWriteFrame(FCOutput out, PetscInt step, PetscReal t, Pets
     out->frametimes = f;
   }
   out->frametimes[out->nframes++] = t;
+  PetscCall(FCRestartWriterBegin(out->restart)); /* the restart slot's first stage, flushed with the frame */
   PetscCall(FCOutputFlush(out));
   PetscCall(FCPhaseEnd(FC_PHASE_OUTPUT));
   PetscFunctionReturn(0);

@@ -128,21 +128,31 @@ PetscErrorCode FCRestartWriterCreate(MPI_Comm comm, hid_t file, PetscInt nbodies
   PetscFunctionReturn(0);
 }
 
+/* Marks the slot the next state goes to as incomplete (step -1); flushed with the frame before
+   that state is written (src/io/output.c) */
+PetscErrorCode FCRestartWriterBegin(FCRestartWriter w)
+{
+  long long none = -1;
+
+  PetscFunctionBegin;
+  FCH5Check(H5Dwrite(w->step[w->nwritten % 2], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &none), "restart step");
+  PetscFunctionReturn(0);
+}
+
 /* The state at the end of step `step` into the older slot: the step as -1, the bodies, the
    previous contacts, the time, and the step last (collective) */
 PetscErrorCode FCRestartWriterWrite(FCRestartWriter w, PetscInt step, PetscReal t, PetscInt nbodies, FCBody bodies[],
                                     const FCContactSet *previous)
 {
   PetscInt  k = w->nwritten++ % 2, nc = previous ? previous->n : 0;
-  long long none = -1, st = step;
+  long long st      = step;
   double    tt      = t, *buf;
   hsize_t   dims[2] = {(hsize_t)nc, FC_RESTART_CONTACT};
 
   PetscFunctionBegin;
   /* each of the three stages is flushed before the next: HDF5 writes what a flush holds in no
-     set order, so a slot marked complete on disk never holds a half-written state */
-  FCH5Check(H5Dwrite(w->step[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &none), "restart step");
-  FCH5Check(H5Fflush(w->slot[k], H5F_SCOPE_GLOBAL), "flush of the restart slot");
+     set order, so a slot marked complete on disk never holds a half-written state. The first
+     stage, the step as -1, was written by FCRestartWriterBegin and flushed with the frame */
   for (PetscInt i = 0; i < nbodies; i++) {
     hid_t   fspace = H5Dget_space(w->body[k][i]), mspace;
     hsize_t rows, start[2] = {0, 0}, count[2];
