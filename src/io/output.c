@@ -247,7 +247,7 @@ static PetscErrorCode WriteXdmf(FCOutput out)
     err   = errno;
     PetscCall(PetscPopErrorHandler());
   }
-  PetscCall(FCH5Agree(!ierr, err, "its XDMF index (.xmf)"));
+  PetscCall(FCH5AgreeClean(!ierr, err, "its XDMF index (.xmf)")); /* not HDF5's: the file can still be closed */
   out->xdmfwritten = out->nframes;
   PetscFunctionReturn(0);
 }

@@ -1,6 +1,7 @@
 /* XDMF index of the HDF5 output, so that ParaView opens the run (File > Open out.xmf): one
    temporal collection per body, each frame a hyperslab of /bodies/<name>/positions. */
 #include "../fcimpl.h"
+#include <errno.h>
 
 PetscErrorCode FCXdmfWrite(const char h5name[], const char xmfname[], PetscInt nbodies, FCBody bodies[],
                            PetscInt nframes, const PetscReal times[])
@@ -44,7 +45,15 @@ PetscErrorCode FCXdmfWrite(const char h5name[], const char xmfname[], PetscInt n
     fprintf(fp, "  </Grid>\n");
   }
   fprintf(fp, " </Domain>\n</Xdmf>\n");
-  fclose(fp);
+  { /* a failed write (a full disk) leaves the previous index in place */
+    int bad = ferror(fp), err = errno;
+    if (fclose(fp)) bad = 1, err = errno;
+    if (bad) {
+      (void)remove(tmpname);
+      errno = err;
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write XDMF file '%s'", tmpname);
+    }
+  }
   PetscCheck(!rename(tmpname, xmfname), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename '%s' to '%s'", tmpname,
              xmfname);
   PetscFunctionReturn(0);
