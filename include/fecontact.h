@@ -44,9 +44,15 @@ PETSC_EXTERN PetscLogEvent     FC_EVENT_NEWTON; /* one Newton iteration of a rec
 /* ---------------------------------------------------------------------------------------
    Options helpers: every numeric option is checked for NaN/Inf and range, errors name it
    --------------------------------------------------------------------------------------- */
-/* Inside PetscOptionsBegin/End: a real that must be finite, an array of exactly n finite reals */
+/* Inside PetscOptionsBegin/End: an integer in [min, max] (checked before conversion: never
+   wrapped), an integer in PetscInt's range, a logical (no value or true/false/yes/no/on/off/1/0),
+   a real that must be finite (and normal or 0), an array of exactly n such reals */
+PETSC_EXTERN PetscErrorCode FCOptionsIntRange(PetscOptionItems *, const char opt[], const char text[], PetscInt min,
+                                              PetscInt max, PetscInt *, PetscBool *);
 PETSC_EXTERN PetscErrorCode FCOptionsInt(PetscOptionItems *, const char opt[], const char text[], PetscInt *,
                                          PetscBool *);
+PETSC_EXTERN PetscErrorCode FCOptionsBool(PetscOptionItems *, const char opt[], const char text[], PetscBool *,
+                                          PetscBool *);
 PETSC_EXTERN PetscErrorCode FCOptionsReal(PetscOptionItems *, const char opt[], const char text[], PetscReal *,
                                           PetscBool *);
 PETSC_EXTERN PetscErrorCode FCOptionsRealArray(PetscOptionItems *, const char opt[], const char text[], PetscInt n,

@@ -119,6 +119,9 @@ typedef struct {
 /* src/mesh/partmetis.c: the PetscPartitioner type "metis" (METIS k-way on the gathered cell graph) */
 #define FC_PARTITIONER_METIS "metis"
 PETSC_INTERN PetscErrorCode FCPartitionerRegisterMetis(void);
+/* The largest accepted magnitude of a mesh coordinate (m): a cell's volume, the cube of its size,
+   stays finite with room to spare */
+#define FC_MESH_MAX_COORDINATE 1e100
 PETSC_INTERN PetscErrorCode FCMeshLoad(MPI_Comm, const char prefix[], const char bodyname[], FCMesh *);
 PETSC_INTERN PetscErrorCode FCMeshTransform(FCMesh *, const PetscReal center[3], const PetscReal R[9],
                                             const PetscReal t[3]);
@@ -278,6 +281,7 @@ struct _p_FCBody {
   PetscReal    translate[3], rotate[4], center[3], velocity[3], angular_velocity[3];
   PetscBool    center_set;
   PetscReal    density;
+  PetscReal    mass; /* set by the type at set-up (fem, rigid); 0: kinematic */
   FCBodyVisual visual;
   FCShape      shape; /* rigid and kinematic bodies: their shape (owned by the pose) */
 };
@@ -289,6 +293,7 @@ PETSC_INTERN PetscBool FCBodyIsPrescribed(FCBody);        /* kinematic: given mo
 PETSC_INTERN PetscBool FCBodyHasShape(FCBody);            /* a signed distance (rigid, kinematic)     */
 PETSC_INTERN PetscBool FCBodyHasBoundedShape(FCBody);     /* ... of a closed shape (not a plane)      */
 PETSC_INTERN PetscBool FCBodyHasSurfaceTriangles(FCBody); /* FE bodies and mesh shapes           */
+PETSC_INTERN PetscReal FCBodyGetMass(FCBody);             /* after set-up; 0 for kinematic bodies */
 /* Restart state: `cols` values per visual vertex (pervertex, distributed like the visual) or one
    row of `cols` values on rank 0 */
 PETSC_INTERN PetscErrorCode FCBodyGetStateLayout(FCBody, PetscInt *cols, PetscBool *pervertex);
@@ -407,6 +412,9 @@ PETSC_INTERN PetscErrorCode FCXdmfWrite(FCOutput);
    an unknown name is an error naming the option */
 PETSC_INTERN PetscErrorCode FCOutputFieldsParse(MPI_Comm, const char list[], PetscInt *mask);
 PETSC_INTERN PetscErrorCode FCOutputSetFields(FCOutput, PetscInt mask); /* before FCOutputWriteHeader */
+/* After a write that failed inside HDF5 the output file cannot be closed: the program must then
+   leave without HDF5's clean-up in MPI_Finalize (src/main.c; src/io/output.c, FCOutputDestroy) */
+PETSC_INTERN PetscBool FCOutputFileLeftOpen(void);
 
 /* ---------------------------------------------------------------------------------------
    Contact pairs, collision detection (src/collision/) and the constraint schemes (src/scheme/)
@@ -487,6 +495,28 @@ struct _FCContactSetView {
   const FCSchemeStats     *stats;
   const FCContactMeasures *measures;
 };
+
+/* The guard on the total energy of the scene (src/scene/energy.c): -energy_growth_limit */
+typedef struct {
+  PetscReal limit; /* stop when the energy grows by more than limit * scale (0: never) */
+  PetscReal E0;    /* total energy at set-up (or at the restart point) */
+  PetscReal scale; /* the energy the scene may receive (J) */
+  PetscReal Eb0[FC_MAX_BODIES];
+  PetscBool reported; /* stops once */
+} FCEnergyGuard;
+PETSC_INTERN PetscErrorCode FCEnergyGuardSetFromOptions(FCEnergyGuard *, MPI_Comm);
+/* speed: the largest speed of separation the contact response may give (0: no contact pairs) */
+PETSC_INTERN PetscErrorCode FCEnergyGuardSetUp(FCEnergyGuard *, MPI_Comm, PetscInt nbodies, FCBody[], PetscReal h,
+                                               PetscInt nsteps, PetscReal speed);
+PETSC_INTERN PetscErrorCode FCEnergyGuardCheck(FCEnergyGuard *, MPI_Comm, PetscInt nbodies, FCBody[], PetscInt step,
+                                               PetscReal t, PetscReal h);
+
+/* The files a run reads, by identity, and the check that an output is none of them
+   (src/util/inputs.c) */
+PETSC_INTERN PetscErrorCode FCInputsReset(void);
+PETSC_INTERN PetscErrorCode FCInputsAdd(const char path[], const char what[]);
+PETSC_INTERN PetscErrorCode FCInputsAddOptionsFiles(void);
+PETSC_INTERN PetscErrorCode FCInputsCheckOutput(MPI_Comm, const char path[], const char what[]);
 
 /* SIGINT/SIGTERM: recorded by a handler, acted on between steps (src/util/signals.c) */
 PETSC_INTERN PetscErrorCode FCSignalsInstall(void);

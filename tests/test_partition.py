@@ -61,7 +61,7 @@ y = h5py.File(out("cube_drop_ptscotch_np%d.h5" % NP), "r")["bodies/cube/centroid
 c.check(np.abs(x - y).max() / np.abs(y).max() <= 1e-10, "metis objective volume: the same trajectory")
 for opt, val, msg in [("imbalance", "1", "-cube_petscpartitioner_metis_imbalance must lie in (1, 100)"),
                       ("objective", "speed", "-cube_petscpartitioner_metis_objective"),
-                      ("seed", "-2", "-cube_petscpartitioner_metis_seed must be >= 0")]:
+                      ("seed", "-2", "-cube_petscpartitioner_metis_seed must be an integer in [0, ")]:
     p = run(SCENES[0][1] + ["-cube_petscpartitioner_type", "metis", "-cube_petscpartitioner_metis_" + opt, val,
                             "-quiet", "-output_file", out("bad.h5")], np_=NP, check=False)
     c.check(p.returncode != 0 and msg in p.stdout + p.stderr,

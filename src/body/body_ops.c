@@ -29,6 +29,11 @@ PetscBool FCBodyHasSurfaceTriangles(FCBody body)
   return body->ops.surfacetriangles ? PETSC_TRUE : PETSC_FALSE;
 }
 
+PetscReal FCBodyGetMass(FCBody body)
+{
+  return body->prescribed ? 0.0 : body->mass;
+}
+
 /* An operation the body's type lacks, asked for anyway */
 static PetscErrorCode Missing(FCBody body, const char what[])
 {

@@ -205,6 +205,7 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   PetscCall(FCFEMAssembleMass(body));
   PetscCall(FCFEMAssembleElastic(body, fem->u, fem->fint, fem->K));
   PetscCall(FCFEMFormA(body)); /* factored at first use: by the KSP or by the compliance builder */
+  PetscCall(FCFEMCheckDerived(body));
   fem->Acurrent = PETSC_TRUE;
   PetscCall(FCMeshCreateVisual(m, &body->visual));
   PetscCall(FCBodyFEMGetReferenceCoordinates(body, &fem->Xg));

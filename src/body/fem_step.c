@@ -168,6 +168,7 @@ PetscErrorCode FCFEMAssembleMass(FCBody body)
   PetscCall(MatAssemblyBegin(fem->M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(fem->M, MAT_FINAL_ASSEMBLY));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &fem->mass, 1, MPIU_REAL, MPIU_SUM, body->comm));
+  body->mass = fem->mass;
   PetscCall(FCPhaseEnd(FC_PHASE_ASSEMBLY));
   PetscFunctionReturn(0);
 }

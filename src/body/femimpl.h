@@ -2,7 +2,8 @@
      fem.c          options, set-up, destroy, type registration, accessors for tests and tools
      fem_step.c     element loops, A and its factorization, free motion (eq. 5), integration (eq. 2)
      fem_state.c    centroid, energies, visual positions and fields, restart state, NaN check
-     fem_contact.c  contact points, surface triangles, proximity positions, the compliance builder */
+     fem_contact.c  contact points, surface triangles, proximity positions, the compliance builder
+     fem_check.c    the checks of the derived quantities (mass, energies, M, K, A) at set-up */
 #pragma once
 #include "../fcimpl.h"
 
@@ -68,6 +69,8 @@ static inline void FCFEMElementIndices(FEM *fem, PetscInt c, PetscInt idx[12])
 
 PETSC_INTERN PetscErrorCode FCFEMGet(FCBody, FEM **); /* checks that the body is an FE body */
 
+/* fem_check.c: after M, K and A are assembled */
+PETSC_INTERN PetscErrorCode FCFEMCheckDerived(FCBody);
 /* fem_step.c */
 PETSC_INTERN PetscErrorCode FCFEMCreateOperators(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMAssembleMass(FCBody);

@@ -37,7 +37,8 @@ static PetscErrorCode SetUp_Rigid(FCBody body)
   PetscCheck(r->pose.shape->bounded, body->comm, PETSC_ERR_USER_INPUT,
              "Rigid body '%s' cannot be a %s (no finite mass): make it -%stype kinematic", body->name,
              r->pose.shape->type, body->prefix);
-  r->mass = body->density * r->pose.volume;
+  r->mass    = body->density * r->pose.volume;
+  body->mass = r->mass;
   PetscFunctionReturn(0);
 }
 

@@ -93,8 +93,8 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
   if (s->dump[0]) {
     PetscCall(FCOptionsInt(PetscOptionsObject, "-pgs_dump_rows", "Dump the first problem with at least this many rows",
                            &s->dump_rows, NULL));
-    PetscCall(PetscOptionsBool("-pgs_dump_unconverged", "Dump the first problem the solver does not converge on", NULL,
-                               s->dump_unconverged, &s->dump_unconverged, NULL));
+    PetscCall(FCOptionsBool(PetscOptionsObject, "-pgs_dump_unconverged",
+                            "Dump the first problem the solver does not converge on", &s->dump_unconverged, NULL));
     PetscCheck(s->dump_rows >= 1, s->comm, PETSC_ERR_USER_INPUT,
                "Option -pgs_dump_rows must be >= 1, got %" PetscInt_FMT, s->dump_rows);
   }

@@ -135,7 +135,7 @@ PetscErrorCode FCOutputFieldsWrite(FCOutput out)
 PetscErrorCode FCOutputFieldsDestroy(FCOutput out)
 {
   PetscFunctionBegin;
-  if (out->fields)
+  if (out->fields && !FCH5FailedInside())
     for (PetscInt i = 0; i < out->nbodies; i++)
       for (int f = 0; f < FC_FIELD_NUM; f++)
         if (out->fields[i][f] >= 0) H5Dclose(out->fields[i][f]);

@@ -9,11 +9,41 @@
 
 #include "../fcimpl.h"
 #include <hdf5.h>
+#include <errno.h>
 
+/* Every HDF5 call of the output goes through FCH5Check, and every failure is collective: the
+   outcome of the call is reduced over the output file's communicator at once (FCH5Agree), so that
+   all ranks leave the same call with the same error, PETSC_ERR_FILE_WRITE, whose message names the
+   file and the cause (errno, else the innermost message of HDF5's error stack, of the first rank
+   that failed); none is left waiting in the next collective call. Outside an output file
+   (FCH5ContextSet not called) a failure is this rank's alone. */
 #define FCH5Check(call, msg)                                                                                           \
   do {                                                                                                                 \
-    if ((call) < 0) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "HDF5 failed: %s", msg);                                   \
+    int fc_ok_, fc_errno_;                                                                                             \
+    errno     = 0;                                                                                                     \
+    fc_ok_    = (call) >= 0;                                                                                           \
+    fc_errno_ = errno;                                                                                                 \
+    PetscCall(FCH5Agree(fc_ok_, fc_errno_, msg));                                                                      \
   } while (0)
+
+/* The output file whose writes FCH5Check makes collective (one at a time in a process) */
+PETSC_INTERN PetscErrorCode FCH5ContextSet(MPI_Comm, const char filename[]);
+PETSC_INTERN PetscErrorCode FCH5ContextClear(void);
+/* ok: this rank's outcome, err: its errno right after the call; collective in a context */
+PETSC_INTERN PetscErrorCode FCH5Agree(int ok, int err, const char what[]);
+/* The same for a failure outside HDF5 (disk space not reserved, the XDMF index): HDF5 holds
+   nothing unwritten then, and the file can still be closed */
+PETSC_INTERN PetscErrorCode FCH5AgreeClean(int ok, int err, const char what[]);
+/* Whether a write of the current output file has failed (then nothing more is written to it), and
+   whether it failed inside HDF5 (then the file cannot be closed: FCOutputDestroy) */
+PETSC_INTERN PetscBool FCH5Failed(void);
+PETSC_INTERN PetscBool FCH5FailedInside(void);
+
+/* Disk space (reserve.c): `bytes` beyond the end of the file, reserved by rank 0 before HDF5
+   writes (collective; failure: FCH5AgreeClean), given back after the close; the file's size */
+PETSC_INTERN PetscErrorCode FCH5Reserve(MPI_Comm, const char file[], size_t bytes, const char what[]);
+PETSC_INTERN PetscErrorCode FCH5Release(MPI_Comm, const char file[]);
+PETSC_INTERN size_t         FCH5FileSize(const char file[]);
 
 /* HDF5 helpers (h5util.c) */
 /* An extendible dataset of rows of shape rowdims[0..rank-2], chunked by `chunkrows` rows */
@@ -33,6 +63,7 @@ PETSC_INTERN PetscErrorCode FCH5AttrInt(hid_t loc, const char name[], long long 
    into the older of its two slots */
 typedef struct _p_FCRestartWriter *FCRestartWriter;
 PETSC_INTERN PetscErrorCode FCRestartWriterCreate(MPI_Comm, hid_t file, PetscInt nbodies, FCBody[], FCRestartWriter *);
+PETSC_INTERN PetscErrorCode FCRestartWriterBegin(FCRestartWriter); /* the next slot's step := -1 */
 PETSC_INTERN PetscErrorCode FCRestartWriterWrite(FCRestartWriter, PetscInt step, PetscReal t, PetscInt nbodies,
                                                  FCBody[], const FCContactSet *previous);
 PETSC_INTERN PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *);
@@ -68,6 +99,7 @@ struct _p_FCOutput {
   PetscInt *rstep;
   double    elast; /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt  nframes, xdmfwritten;
+  size_t    lastsize, growth; /* file size after the last output step, largest growth of one (reserve.c) */
   /* contacts (scenes with contact pairs only) */
   PetscBool contacts;
   hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state, c_pointend, c_fworld, c_ftan;

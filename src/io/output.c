@@ -7,22 +7,41 @@
 #include "ioimpl.h"
 #include <time.h>
 
+/* f.h5 -> f.xmf, other names get .xmf appended */
+static PetscErrorCode FCOutputXdmfName(const char filename[], char xmf[], size_t n)
+{
+  size_t len;
+
+  PetscFunctionBegin;
+  PetscCall(PetscStrlen(filename, &len));
+  PetscCall(PetscStrncpy(xmf, filename, n));
+  if (len > 3 && len < n && !strcmp(filename + len - 3, ".h5")) xmf[len - 3] = 0;
+  PetscCall(PetscStrlcat(xmf, ".xmf", n));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *output)
 {
   FCOutput out;
   hid_t    fapl;
-  size_t   len;
   int      ok;
 
   PetscFunctionBegin;
+  { /* no input of the run may be overwritten (src/util/inputs.c), nor its XDMF index */
+    char xmf[PETSC_MAX_PATH_LEN];
+    PetscCall(FCInputsCheckOutput(comm, filename, "-output_file"));
+    PetscCall(FCOutputXdmfName(filename, xmf, sizeof(xmf)));
+    PetscCall(FCInputsCheckOutput(comm, xmf, "the XDMF index of -output_file"));
+  }
   PetscCall(PetscNew(&out));
   out->comm = comm;
   PetscCallMPI(MPI_Comm_rank(comm, &out->rank));
   PetscCall(PetscStrncpy(out->filename, filename, sizeof(out->filename)));
-  PetscCall(PetscStrlen(filename, &len));
-  PetscCall(PetscStrncpy(out->xdmfname, filename, sizeof(out->xdmfname)));
-  if (len > 3 && !strcmp(filename + len - 3, ".h5")) out->xdmfname[len - 3] = 0;
-  PetscCall(PetscStrlcat(out->xdmfname, ".xmf", sizeof(out->xdmfname)));
+  PetscCall(FCOutputXdmfName(filename, out->xdmfname, sizeof(out->xdmfname)));
+  /* every write's failure is collective from now on (h5util.c); a device that takes no data
+     (/dev/full) is found before HDF5 writes to it (reserve.c) */
+  PetscCall(FCH5ContextSet(comm, filename));
+  PetscCall(FCH5Reserve(comm, filename, 4096, "the file"));
   fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL);
   H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST);
@@ -33,12 +52,30 @@ PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *ou
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, comm));
   if (!ok) {
     if (out->file >= 0) H5Fclose(out->file);
+    PetscCall(FCH5ContextClear());
     PetscCall(PetscFree(out));
     SETERRQ(comm, PETSC_ERR_FILE_OPEN,
             "Cannot create output file '%s' (-output_file): check that its directory exists and is writable", filename);
   }
   *output = out;
   PetscFunctionReturn(0);
+}
+
+/* Disk space to reserve (reserve.c) for the header (the meshes, the restart datasets) or for one
+   output step before its size has been seen (a frame, a restart state), with room for the chunks
+   of 256 rows that every row dataset allocates now and then */
+static size_t ReserveBytes(PetscInt nbodies, FCBody bodies[], PetscBool header)
+{
+  size_t bytes = 262144 + 32768 * (size_t)nbodies;
+  for (PetscInt i = 0; i < nbodies; i++) {
+    const FCBodyVisual *vis;
+    PetscInt            cols = 0;
+    PetscBool           pervertex;
+    if (FCBodyGetVisual(bodies[i], &vis) || FCBodyGetStateLayout(bodies[i], &cols, &pervertex)) continue;
+    bytes += (size_t)vis->nv_global * (24 + 8 * (size_t)cols) * (header ? 4 : 2);
+    if (header) bytes += (size_t)vis->nc_global * (size_t)vis->nvpc * 8;
+  }
+  return bytes;
 }
 
 PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies[], PetscReal h, PetscInt nsteps,
@@ -48,6 +85,7 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
   char *opts;
 
   PetscFunctionBegin;
+  PetscCall(FCH5Reserve(out->comm, out->filename, ReserveBytes(nbodies, bodies, PETSC_TRUE), "the file's header"));
   out->nbodies = nbodies;
   out->bodies  = bodies;
   PetscCall(PetscCalloc1(nbodies, &out->bo));
@@ -139,6 +177,15 @@ PetscErrorCode FCOutputWriteFrame(FCOutput out, PetscInt step, PetscReal t, Pets
 
   PetscFunctionBegin;
   PetscCall(FCPhaseBegin(FC_PHASE_OUTPUT));
+  /* the space of the output step (frame and restart state) first, while HDF5 holds nothing
+     unwritten: the largest step so far with a margin, or an estimate (reserve.c) */
+  PetscCall(FCH5Reserve(out->comm, out->filename,
+                        PetscMax(out->growth + 262144, ReserveBytes(nbodies, bodies, PETSC_FALSE)),
+                        "the next output step"));
+  /* the order keeps a consistent prefix if a write fails: the step rows, the positions, then
+     /frames/time and /frames/step (a frame exists once these hold it), then the flush; the
+     restart state only after that (FCOutputWriteRestart) */
+  PetscCall(FCOutputRecordsFlush(out));
   for (PetscInt i = 0; i < nbodies; i++) {
     const FCBodyVisual *vis;
     PetscReal          *x;
@@ -183,8 +230,28 @@ PetscErrorCode FCOutputWriteFrame(FCOutput out, PetscInt step, PetscReal t, Pets
     out->frametimes = f;
   }
   out->frametimes[out->nframes++] = t;
+  PetscCall(FCRestartWriterBegin(out->restart)); /* the restart slot's first stage, flushed with the frame */
   PetscCall(FCOutputFlush(out));
   PetscCall(FCPhaseEnd(FC_PHASE_OUTPUT));
+  PetscFunctionReturn(0);
+}
+
+/* The XDMF index (rank 0), its failure made collective like an HDF5 write's */
+static PetscErrorCode WriteXdmf(FCOutput out)
+{
+  PetscErrorCode ierr = 0;
+  int            err  = 0;
+
+  PetscFunctionBegin;
+  if (out->rank == 0) {
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); /* the agreed error below names it */
+    errno = 0;
+    ierr  = FCXdmfWrite(out);
+    err   = errno;
+    PetscCall(PetscPopErrorHandler());
+  }
+  PetscCall(FCH5AgreeClean(!ierr, err, "its XDMF index (.xmf)")); /* not HDF5's: the file can still be closed */
+  out->xdmfwritten = out->nframes;
   PetscFunctionReturn(0);
 }
 
@@ -195,48 +262,89 @@ PetscErrorCode FCOutputFlush(FCOutput out)
   PetscFunctionBegin;
   PetscCall(FCOutputRecordsFlush(out));
   FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush");
-  if (out->nframes >= 2 * out->xdmfwritten || out->nframes == 1) {
-    if (out->rank == 0) PetscCall(FCXdmfWrite(out));
-    out->xdmfwritten = out->nframes;
-  }
+  if (out->nframes >= 2 * out->xdmfwritten || out->nframes == 1) PetscCall(WriteXdmf(out));
   PetscFunctionReturn(0);
 }
 
-/* The restart state (restart.c), written before the frame's flush */
+/* The restart state (restart.c), written after the frame of the same step has been written and
+   flushed, then flushed itself: the newest complete restart slot is never ahead of the frames and
+   step rows, whatever write fails */
 PetscErrorCode FCOutputWriteRestart(FCOutput out, PetscInt step, PetscReal t, PetscInt nbodies, FCBody bodies[],
                                     const FCContactSet *previous)
 {
   PetscFunctionBegin;
+  PetscCall(FCPhaseBegin(FC_PHASE_OUTPUT));
   PetscCall(FCRestartWriterWrite(out->restart, step, t, nbodies, bodies, previous));
+  FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush of the restart state");
+  if (out->rank == 0) { /* the growth of the file over one output step: the next reservation */
+    size_t size = FCH5FileSize(out->filename);
+    if (out->lastsize && size > out->lastsize) out->growth = PetscMax(out->growth, size - out->lastsize);
+    out->lastsize = size;
+  }
+  PetscCall(FCPhaseEnd(FC_PHASE_OUTPUT));
   PetscFunctionReturn(0);
 }
 
+/* Writes what is buffered and closes the file. After a failed write nothing more is written.
+   A failure outside HDF5 (disk space not reserved, the XDMF index) leaves nothing unwritten in
+   HDF5, and the file is closed. After one inside HDF5 (FCH5FailedInside, on every rank alike) it
+   is not even closed: HDF5 1.10 cannot close a file whose metadata it cannot write (H5Fclose fails
+   half-way and leaves a dangling handle, which its clean-up at MPI_Finalize dereferences), so the
+   file is left open as its last flush made it and the program exits without that clean-up
+   (FCOutputFileLeftOpen, src/main.c). Returns the (collective) error of a final write that fails. */
 PetscErrorCode FCOutputDestroy(FCOutput *output)
 {
-  FCOutput out = *output;
+  FCOutput       out  = *output;
+  PetscErrorCode ierr = 0;
+  MPI_Comm       comm;
+  char           msg[1024] = "";
 
   PetscFunctionBegin;
   if (!out) PetscFunctionReturn(0);
+  comm = out->comm;
+  if (out->bo && !FCH5Failed()) {
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); /* reported once, at the end */
+    ierr = FCOutputFlush(out);
+    if (!ierr && out->xdmfwritten != out->nframes) ierr = WriteXdmf(out);
+    PetscCall(PetscPopErrorHandler());
+  }
   if (out->bo) {
-    PetscCall(FCOutputFlush(out));
-    if (out->rank == 0 && out->xdmfwritten != out->nframes) PetscCall(FCXdmfWrite(out));
-    for (PetscInt i = 0; i < out->nbodies; i++) {
-      H5Dclose(out->bo[i].centroid);
-      H5Dclose(out->bo[i].energy);
-      H5Dclose(out->bo[i].positions);
-      if (out->bo[i].rotation >= 0) H5Dclose(out->bo[i].rotation);
-      H5Gclose(out->bo[i].group);
+    if (!FCH5FailedInside()) {
+      for (PetscInt i = 0; i < out->nbodies; i++) {
+        H5Dclose(out->bo[i].centroid);
+        H5Dclose(out->bo[i].energy);
+        H5Dclose(out->bo[i].positions);
+        if (out->bo[i].rotation >= 0) H5Dclose(out->bo[i].rotation);
+        H5Gclose(out->bo[i].group);
+      }
+      H5Dclose(out->ftime);
+      H5Dclose(out->fstep);
     }
-    H5Dclose(out->ftime);
-    H5Dclose(out->fstep);
-    PetscCall(FCOutputFieldsDestroy(out));
+    PetscCall(FCOutputFieldsDestroy(out)); /* these three close nothing after a failure inside HDF5 */
     PetscCall(FCXdmfDestroy(out));
     PetscCall(FCRestartWriterDestroy(&out->restart));
     PetscCall(FCOutputRecordsDestroy(out));
     PetscCall(PetscFree(out->bo));
   }
   PetscCall(PetscFree(out->frametimes));
-  H5Fclose(out->file);
+  if (!FCH5FailedInside()) {
+    PetscErrorCode cerr;
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    errno = 0;
+    cerr  = H5Fclose(out->file) < 0 ? FCH5Agree(0, errno, "close") : FCH5Agree(1, 0, "close");
+    PetscCall(PetscPopErrorHandler());
+    if (!ierr) ierr = cerr;
+    if (!FCH5FailedInside()) {
+      PetscCall(FCH5Release(comm, out->filename));
+      PetscCall(FCH5ContextClear());
+    }
+  }
+  if (ierr) {
+    char *specific = NULL;
+    PetscCall(PetscErrorMessage(ierr, NULL, &specific));
+    if (specific) PetscCall(PetscStrncpy(msg, specific, sizeof(msg)));
+  }
   PetscCall(PetscFree(*output));
+  PetscCheck(!ierr, comm, PETSC_ERR_FILE_WRITE, "%s", msg);
   PetscFunctionReturn(0);
 }

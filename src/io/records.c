@@ -275,6 +275,7 @@ PetscErrorCode FCOutputRecordsFlush(FCOutput out)
 PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
 {
   PetscFunctionBegin;
+  if (FCH5FailedInside()) goto release; /* after a failed write nothing is closed (output.c, FCOutputDestroy) */
   H5Dclose(out->time);
   H5Dclose(out->step);
   H5Dclose(out->energy);
@@ -288,6 +289,7 @@ PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
                   out->c_fworld, out->c_ftan};
     for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) H5Dclose(ds[i]);
   }
+release:
   PetscCall(PetscFree(out->cbuf));
   PetscCall(PetscFree(out->sbuf));
   PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));

@@ -4,7 +4,8 @@
                                       older one each time), so that a run killed while writing one
                                       still has a complete state in the other; in each:
        step       scalar int64        the step the state belongs to; -1 while the slot is being
-                                      written (it is written first as -1 and last as the step)
+                                      written (it is written first as -1 and last as the step,
+                                      each stage flushed before the next)
        time       scalar float64      its time
        ncontacts  scalar int64        contacts of the step (the warm start of the next step)
        contacts   (>= ncontacts, FC_RESTART_CONTACT) float64, chunked and extendible (it only
@@ -127,18 +128,31 @@ PetscErrorCode FCRestartWriterCreate(MPI_Comm comm, hid_t file, PetscInt nbodies
   PetscFunctionReturn(0);
 }
 
+/* Marks the slot the next state goes to as incomplete (step -1); flushed with the frame before
+   that state is written (src/io/output.c) */
+PetscErrorCode FCRestartWriterBegin(FCRestartWriter w)
+{
+  long long none = -1;
+
+  PetscFunctionBegin;
+  FCH5Check(H5Dwrite(w->step[w->nwritten % 2], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &none), "restart step");
+  PetscFunctionReturn(0);
+}
+
 /* The state at the end of step `step` into the older slot: the step as -1, the bodies, the
    previous contacts, the time, and the step last (collective) */
 PetscErrorCode FCRestartWriterWrite(FCRestartWriter w, PetscInt step, PetscReal t, PetscInt nbodies, FCBody bodies[],
                                     const FCContactSet *previous)
 {
   PetscInt  k = w->nwritten++ % 2, nc = previous ? previous->n : 0;
-  long long none = -1, st = step;
+  long long st      = step;
   double    tt      = t, *buf;
   hsize_t   dims[2] = {(hsize_t)nc, FC_RESTART_CONTACT};
 
   PetscFunctionBegin;
-  FCH5Check(H5Dwrite(w->step[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &none), "restart step");
+  /* each of the three stages is flushed before the next: HDF5 writes what a flush holds in no
+     set order, so a slot marked complete on disk never holds a half-written state. The first
+     stage, the step as -1, was written by FCRestartWriterBegin and flushed with the frame */
   for (PetscInt i = 0; i < nbodies; i++) {
     hid_t   fspace = H5Dget_space(w->body[k][i]), mspace;
     hsize_t rows, start[2] = {0, 0}, count[2];
@@ -188,6 +202,7 @@ PetscErrorCode FCRestartWriterWrite(FCRestartWriter w, PetscInt step, PetscReal 
     FCH5Check(H5Dwrite(w->ncontacts[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &n), "restart ncontacts");
   }
   FCH5Check(H5Dwrite(w->time[k], H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &tt), "restart time");
+  FCH5Check(H5Fflush(w->slot[k], H5F_SCOPE_GLOBAL), "flush of the restart state");
   FCH5Check(H5Dwrite(w->step[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &st), "restart step");
   PetscFunctionReturn(0);
 }
@@ -199,13 +214,15 @@ PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *writer)
   PetscFunctionBegin;
   if (!w) PetscFunctionReturn(0);
   for (int k = 0; k < 2; k++) {
-    for (PetscInt i = 0; i < w->nbodies; i++) H5Dclose(w->body[k][i]);
+    if (!FCH5FailedInside()) { /* after a failed write nothing is closed (output.c, FCOutputDestroy) */
+      for (PetscInt i = 0; i < w->nbodies; i++) H5Dclose(w->body[k][i]);
+      H5Dclose(w->step[k]);
+      H5Dclose(w->time[k]);
+      H5Dclose(w->contacts[k]);
+      H5Dclose(w->ncontacts[k]);
+      H5Gclose(w->slot[k]);
+    }
     PetscCall(PetscFree(w->body[k]));
-    H5Dclose(w->step[k]);
-    H5Dclose(w->time[k]);
-    H5Dclose(w->contacts[k]);
-    H5Dclose(w->ncontacts[k]);
-    H5Gclose(w->slot[k]);
   }
   PetscCall(PetscFree(*writer));
   PetscFunctionReturn(0);

@@ -9,6 +9,7 @@
    /bodies/<name>/{positions,<field>} and of the frame's rows of /contacts, with no copy of the
    data; a frame without contacts is an empty spatial collection. */
 #include "ioimpl.h"
+#include <errno.h>
 
 /* A virtual dataset `name` in `loc`: rows [row, row + n) of the source dataset `src` (of row shape
    rowdims[0..rank-2]), or, with col >= 0, column col of those rows as a (n,) dataset */
@@ -127,7 +128,7 @@ PetscErrorCode FCXdmfDestroy(FCOutput out)
 {
   PetscFunctionBegin;
   PetscCall(PetscFree3(out->xtime, out->xfirst, out->xcount));
-  if (out->xframes) H5Dclose(out->xvertex);
+  if (out->xframes && !FCH5FailedInside()) H5Dclose(out->xvertex); /* nothing closes after a failure inside HDF5 */
   PetscFunctionReturn(0);
 }
 
@@ -235,7 +236,15 @@ PetscErrorCode FCXdmfWrite(FCOutput out)
     fprintf(fp, "  </Grid>\n");
   }
   fprintf(fp, " </Domain>\n</Xdmf>\n");
-  PetscCheck(!fclose(fp), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write XDMF file '%s'", tmpname);
+  { /* a failed write (a full disk) leaves the previous index in place */
+    int bad = ferror(fp), err = errno;
+    if (fclose(fp)) bad = 1, err = errno;
+    if (bad) {
+      (void)remove(tmpname);
+      errno = err;
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write XDMF file '%s'", tmpname);
+    }
+  }
   PetscCheck(!rename(tmpname, out->xdmfname), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot rename '%s' to '%s'",
              tmpname, out->xdmfname);
   PetscFunctionReturn(0);

@@ -67,6 +67,11 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
   PetscCallMPI(MPI_Bcast(&readable, 1, MPIU_INT, 0, comm));
   PetscCheck(readable, comm, PETSC_ERR_USER_INPUT,
              "Cannot open mesh file '%s' given by -%sdm_plex_filename for body '%s'", fname, prefix, bodyname);
+  { /* an input: no output may overwrite it (src/util/inputs.c) */
+    char what[256];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "mesh of body '%s' (-%sdm_plex_filename)", bodyname, prefix));
+    PetscCall(FCInputsAdd(fname, what));
+  }
 
   PetscCall(DMCreate(comm, &mesh->dm));
   PetscCall(DMSetType(mesh->dm, DMPLEX));
@@ -143,10 +148,27 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
              "Mesh '%s' of body '%s' has a tetrahedron without 4 distinct vertices (missing or repeated node)", fname,
              bodyname);
 
-  /* Reference coordinates per local vertex */
+  /* Reference coordinates per local vertex: 3 per vertex, and none elsewhere (a second-order
+     mesh's coordinates live on edges and cells too, and its vertices have none of their own) */
   PetscCall(PetscMalloc2(3 * (mesh->vEnd - mesh->vStart), &mesh->X, mesh->vEnd - mesh->vStart, &mesh->owned));
   PetscCall(DMGetCoordinatesLocal(mesh->dm, &coords));
   PetscCall(DMGetCoordinateSection(mesh->dm, &csec));
+  {
+    PetscInt pStart, pEnd, highorder = 0;
+    PetscCall(PetscSectionGetChart(csec, &pStart, &pEnd));
+    for (PetscInt p = pStart; p < pEnd; p++) {
+      PetscInt dof;
+      PetscCall(PetscSectionGetDof(csec, p, &dof));
+      if (p >= mesh->vStart && p < mesh->vEnd ? dof != 3 : dof != 0) highorder = 1;
+    }
+    if (mesh->vEnd > mesh->vStart && (mesh->vStart < pStart || mesh->vEnd > pEnd)) highorder = 1;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &highorder, 1, MPIU_INT, MPI_MAX, comm));
+    PetscCheck(!highorder, comm, PETSC_ERR_USER_INPUT,
+               "Mesh '%s' of body '%s' (-%sdm_plex_filename) is not a first-order mesh: its coordinates are not 3 per "
+               "vertex (second-order, 10-node tetrahedra?); fecontact needs linear 4-node tetrahedra: mesh it again "
+               "with gmsh -order 1 (Mesh.ElementOrder = 1)",
+               fname, bodyname, prefix);
+  }
   PetscCall(VecGetArrayRead(coords, &c));
   for (PetscInt v = mesh->vStart; v < mesh->vEnd; v++) {
     PetscInt off;
@@ -154,11 +176,35 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
     for (PetscInt d = 0; d < 3; d++) mesh->X[3 * (v - mesh->vStart) + d] = PetscRealPart(c[off + d]);
   }
   PetscCall(VecRestoreArrayRead(coords, &c));
-  for (PetscInt i = 0; i < 3 * (mesh->vEnd - mesh->vStart); i++)
-    PetscCheck(PetscIsNormalReal(mesh->X[i]) || mesh->X[i] == 0.0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-               "Mesh '%s' of body '%s' has a non-finite vertex coordinate", fname, bodyname);
+  { /* finite and below FC_MESH_MAX_COORDINATE in magnitude (metres): a cell's volume, of the
+       cube of its size, stays finite; the first vertex that is not, by its global number */
+    PetscInt        first  = PETSC_MAX_INT, gfirst;
+    PetscReal       bad[3] = {0, 0, 0};
+    const PetscInt *gv;
+    PetscCall(DMPlexGetVertexNumbering(mesh->dm, &mesh->vertexNumbering));
+    PetscCall(ISGetIndices(mesh->vertexNumbering, &gv));
+    for (PetscInt v = 0; v < mesh->vEnd - mesh->vStart; v++) {
+      PetscInt g = gv[v] < 0 ? -(gv[v] + 1) : gv[v];
+      for (int d = 0; d < 3; d++) {
+        PetscReal x = mesh->X[3 * v + d];
+        if (!(PetscAbsReal(x) <= FC_MESH_MAX_COORDINATE) && g < first) {
+          first = g;
+          for (int e = 0; e < 3; e++) bad[e] = mesh->X[3 * v + e];
+        }
+      }
+    }
+    PetscCall(ISRestoreIndices(mesh->vertexNumbering, &gv));
+    PetscCall(MPIU_Allreduce(&first, &gfirst, 1, MPIU_INT, MPI_MIN, comm));
+    if (first != gfirst) bad[0] = bad[1] = bad[2] = 0.0;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, bad, 3, MPIU_REAL, MPIU_SUM, comm));
+    PetscCheck(gfirst == PETSC_MAX_INT, comm, PETSC_ERR_USER_INPUT,
+               "Mesh '%s' of body '%s' (-%sdm_plex_filename): vertex %" PetscInt_FMT
+               " (0-based, PETSc numbering) is at (%g, %g, %g); vertex coordinates must be finite numbers of magnitude "
+               "at most %g (metres): check the file's coordinates and units",
+               fname, bodyname, prefix, gfirst, (double)bad[0], (double)bad[1], (double)bad[2],
+               (double)FC_MESH_MAX_COORDINATE);
+  }
 
-  PetscCall(DMPlexGetVertexNumbering(mesh->dm, &mesh->vertexNumbering));
   PetscCall(DMPlexGetCellNumbering(mesh->dm, &mesh->cellNumbering));
   {
     const PetscInt *gv;

@@ -60,7 +60,8 @@ static PetscErrorCode SetFromOptions_Metis(PetscPartitioner part, PetscOptionIte
                              m->imbalance, &m->imbalance, NULL));
   PetscCall(PetscOptionsEList("-petscpartitioner_metis_objective", "Objective: edge cut or communication volume", "",
                               objectives, 2, objectives[m->objective], &m->objective, NULL));
-  PetscCall(PetscOptionsInt("-petscpartitioner_metis_seed", "METIS random seed", "", m->seed, &m->seed, NULL));
+  PetscCall(FCOptionsIntRange(PetscOptionsObject, "-petscpartitioner_metis_seed", "METIS random seed", 0, PETSC_MAX_INT,
+                              &m->seed, NULL));
   PetscOptionsHeadEnd();
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)part, &prefix));
   PetscCheck(m->imbalance > 1.0 && m->imbalance < 100.0, PetscObjectComm((PetscObject)part), PETSC_ERR_USER_INPUT,

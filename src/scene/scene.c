@@ -12,7 +12,12 @@
      -quiet                   no progress line, no summary
      -restart f.h5            continue from the newest complete restart state of f.h5 (written at every
                               output step: /restart in docs/output.md) up to -time_steps; the same scene
-                              options are needed, -output_file must be another file
+                              options are needed; -output_file may not be f.h5 nor any other file the
+                              run reads (compared by device and inode: src/util/inputs.c). With another
+                              -time_step than the earlier run's, the run continues at the stored time
+                              with the new step (step k at t_restart + (k - step_restart) h)
+     -energy_growth_limit g   stop a run whose total energy grows by more than g times the energy the
+                              scene can receive (>= 0, default 10; 0: off; src/scene/energy.c)
      -contact_pairs a:b,c:d   pairs of bodies that may touch (none: no collision work at all)
      -contact_mu m[,m2,...]   Coulomb friction, one value or one per pair (>= 0; 0 = frictionless,
                               one constraint row per contact; default 0)
@@ -51,16 +56,20 @@
 #include <stdlib.h>
 
 struct _p_FCScene {
-  MPI_Comm   comm;
-  PetscInt   nbodies;
-  FCBody     bodies[FC_MAX_BODIES];
-  PetscReal  h, t, gravity[3];
-  PetscInt   nsteps, step, every, fields; /* fields: the -output_fields mask */
-  char       output_file[PETSC_MAX_PATH_LEN], restart[PETSC_MAX_PATH_LEN];
-  PetscBool  quiet, setupcalled;
-  FCOutput   output;
-  FCProgress progress;
-  PetscReal  phase_total[FC_PHASE_NUM];
+  MPI_Comm      comm;
+  PetscInt      nbodies;
+  FCBody        bodies[FC_MAX_BODIES];
+  PetscReal     h, t, gravity[3];
+  PetscInt      nsteps, step, every, fields; /* fields: the -output_fields mask */
+  PetscInt      written; /* the step of the last output step written completely (frame and restart state) */
+  PetscReal     t0;      /* the time of step step0: 0 and 0, or a restart's stored time and step; step k */
+  PetscInt      step0;   /* is at t0 + (k - step0) h, whatever time step the earlier run had */
+  FCEnergyGuard guard;   /* -energy_growth_limit (energy.c) */
+  char          output_file[PETSC_MAX_PATH_LEN], restart[PETSC_MAX_PATH_LEN];
+  PetscBool     quiet, setupcalled;
+  FCOutput      output;
+  FCProgress    progress;
+  PetscReal     phase_total[FC_PHASE_NUM];
   /* contact */
   FCContactPairs    pairs;
   FCContactSet      set;
@@ -77,6 +86,8 @@ PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
   PetscFunctionBegin;
   PetscCall(FCInitializePackage());
   PetscCall(PetscNew(&s));
+  PetscCall(FCInputsReset()); /* the files this scene reads, by identity: no output may be one */
+  PetscCall(FCInputsAddOptionsFiles());
   s->comm       = comm;
   s->h          = 0.01;
   s->nsteps     = 100;
@@ -118,8 +129,8 @@ static PetscErrorCode ReadContactPairs(FCScene s)
       PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
   if (set && np > 0) {
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_distance", "Alarm distance", &s->pairs.distance, NULL));
-    PetscCall(FCOptionsInt(PetscOptionsObject, "-contact_fe_passes",
-                           "Detection passes between two meshed bodies (1 or 2)", &s->pairs.passes, NULL));
+    PetscCall(FCOptionsIntRange(PetscOptionsObject, "-contact_fe_passes",
+                                "Detection passes between two meshed bodies (1 or 2)", 1, 2, &s->pairs.passes, NULL));
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_drop",
                             "With 2 passes: drop a second-pass contact whose vertex has a weight > w in a first-pass "
                             "contact of the pair (< 0: keep all)",
@@ -128,16 +139,16 @@ static PetscErrorCode ReadContactPairs(FCScene s)
                                 FC_MAX_BODIES, mu, &nmu, &setmu));
     PetscCall(PetscOptionsString("-contact_detection", "Contact detection: continuous or discrete", NULL, detection,
                                  detection, sizeof(detection), NULL));
-    PetscCall(PetscOptionsBool("-contact_edge_edge", "Edge-edge contacts between two meshed bodies", NULL,
-                               s->pairs.edges, &s->pairs.edges, NULL));
+    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_edge_edge", "Edge-edge contacts between two meshed bodies",
+                            &s->pairs.edges, NULL));
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_separation_speed",
                             "Largest speed at which bodies that start inside each other are pushed apart (m/s)",
                             &s->pairs.separation_speed, NULL));
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_intersection_depth",
                             "Depth inside another body that counts as an intersection (m)",
                             &s->pairs.intersection_depth, NULL));
-    PetscCall(PetscOptionsBool("-contact_fail_on_intersection", "Stop the run at the first intersection", NULL,
-                               s->pairs.fail_on_intersection, &s->pairs.fail_on_intersection, NULL));
+    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_fail_on_intersection",
+                            "Stop the run at the first intersection", &s->pairs.fail_on_intersection, NULL));
   }
   PetscOptionsEnd();
   if (!set || np == 0) PetscFunctionReturn(0);
@@ -199,26 +210,24 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   PetscOptionsBegin(s->comm, NULL, "Scene options", "FCScene");
   PetscCall(PetscOptionsStringArray("-scene_bodies", "Comma-separated body names", NULL, names, &n, &set));
   PetscCall(FCOptionsReal(PetscOptionsObject, "-time_step", "Time step h (s)", &s->h, NULL));
-  PetscCall(FCOptionsInt(PetscOptionsObject, "-time_steps", "Number of time steps", &s->nsteps, NULL));
+  PetscCall(
+      FCOptionsIntRange(PetscOptionsObject, "-time_steps", "Number of time steps", 0, PETSC_MAX_INT, &s->nsteps, NULL));
   PetscCall(FCOptionsRealArray(PetscOptionsObject, "-gravity", "Gravity gx,gy,gz (m/s^2)", 3, s->gravity, NULL));
   PetscCall(PetscOptionsString("-output_file", "HDF5 output file", NULL, s->output_file, s->output_file,
                                sizeof(s->output_file), NULL));
-  PetscCall(FCOptionsInt(PetscOptionsObject, "-output_every", "Write body positions every k steps", &s->every, NULL));
+  PetscCall(FCOptionsIntRange(PetscOptionsObject, "-output_every", "Write body positions every k steps", 1,
+                              PETSC_MAX_INT, &s->every, NULL));
   /* -output_fields: which fields each frame holds (names in src/io/fields.c); a field not named is never computed */
   PetscCall(PetscOptionsString("-output_fields",
                                "Fields of the frames: displacement,velocity,von_mises,energy_density or none", NULL,
                                fields, fields, sizeof(fields), NULL));
-  PetscCall(PetscOptionsBool("-quiet", "No progress line and no summary", NULL, s->quiet, &s->quiet, NULL));
+  PetscCall(FCOptionsBool(PetscOptionsObject, "-quiet", "No progress line and no summary", &s->quiet, NULL));
   PetscCall(PetscOptionsString("-restart", "Continue from the last complete output step of this HDF5 file", NULL,
                                s->restart, s->restart, sizeof(s->restart), NULL));
   PetscOptionsEnd();
   PetscCheck(set && n > 0, s->comm, PETSC_ERR_USER_INPUT,
              "No bodies: give -scene_bodies name1,name2,... (see docs/options.md)");
   PetscCheck(s->h > 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -time_step must be > 0, got %g", (double)s->h);
-  PetscCheck(s->nsteps >= 0, s->comm, PETSC_ERR_USER_INPUT, "Option -time_steps must be >= 0, got %" PetscInt_FMT,
-             s->nsteps);
-  PetscCheck(s->every >= 1, s->comm, PETSC_ERR_USER_INPUT, "Option -output_every must be >= 1, got %" PetscInt_FMT,
-             s->every);
   PetscCall(FCOutputFieldsParse(s->comm, fields, &s->fields));
   for (PetscInt i = 0; i < n; i++) {
     for (PetscInt j = 0; j < i; j++)
@@ -230,16 +239,32 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   }
   for (PetscInt i = 0; i < n; i++) PetscCall(PetscFree(names[i]));
   PetscCall(ReadContactPairs(s));
+  PetscCall(FCEnergyGuardSetFromOptions(&s->guard, s->comm));
   PetscFunctionReturn(0);
 }
 
-/* The state of the current step as a frame (positions) and as the restart state; the frame's
-   flush makes both durable */
+/* The state of the current step as a frame (positions, with the step rows before it) and then
+   as the restart state, each flushed: if a write fails, the restart state is never ahead of the
+   frames and rows (docs/output.md) */
 static PetscErrorCode WriteOutputStep(FCScene s)
 {
   PetscFunctionBegin;
-  PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
   PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
+  PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
+  s->written = s->step;
+  PetscFunctionReturn(0);
+}
+
+/* The same, closing the output if it fails (the failure is collective: src/io/h5util.c) */
+static PetscErrorCode WriteOutputStepOrClose(FCScene s)
+{
+  PetscErrorCode ierr = WriteOutputStep(s);
+
+  PetscFunctionBegin;
+  if (ierr) {
+    (void)FCOutputDestroy(&s->output);
+    return ierr;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -262,25 +287,30 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCSchemeSetFromOptions(s->scheme));
   }
   PetscCall(FCOptionsCheckUnused(s->comm)); /* after every object has read its options */
-  if (s->restart[0]) {                      /* before the output is created: it may not be the file we read */
-    char a[PETSC_MAX_PATH_LEN], b[PETSC_MAX_PATH_LEN];
-    if (!realpath(s->restart, a)) PetscCall(PetscStrncpy(a, s->restart, sizeof(a)));
-    if (!realpath(s->output_file, b)) PetscCall(PetscStrncpy(b, s->output_file, sizeof(b)));
-    PetscCheck(strcmp(a, b), s->comm, PETSC_ERR_USER_INPUT,
-               "-restart %s and -output_file are the same file: the restarted run would overwrite the state it reads; "
-               "give another -output_file",
-               s->restart);
+  if (s->restart[0]) { /* an input, by identity: FCOutputCreate refuses to write over it (src/util/inputs.c) */
+    PetscCall(FCInputsAdd(s->restart, "restart file (-restart)"));
     PetscCall(FCRestartLoad(s->comm, s->restart, s->nbodies, s->bodies, &s->previous, &s->step, &s->t));
     PetscCheck(s->step <= s->nsteps, s->comm, PETSC_ERR_USER_INPUT,
                "-restart %s is at step %" PetscInt_FMT ", beyond -time_steps %" PetscInt_FMT, s->restart, s->step,
                s->nsteps);
-    s->t = s->step * s->h;
+    /* the run continues at the stored time, with this run's -time_step (which may differ from the
+       earlier run's): step k is at t0 + (k - step0) h, kinematic bodies go on from where they were */
+    s->t0    = s->t;
+    s->step0 = s->step;
   }
+  PetscCall(FCEnergyGuardSetUp(&s->guard, s->comm, s->nbodies, s->bodies, s->h, s->nsteps - s->step,
+                               s->pairs.n ? s->pairs.separation_speed : 0.0));
   PetscCall(FCOutputCreate(s->comm, s->output_file, &s->output));
   PetscCall(FCOutputSetFields(s->output, s->fields));
-  PetscCall(FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every,
-                                s->pairs.n ? PETSC_TRUE : PETSC_FALSE));
-  PetscCall(WriteOutputStep(s));
+  { /* a failed write (collective, src/io/h5util.c) closes the file on every rank before returning */
+    PetscErrorCode ierr = FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every,
+                                              s->pairs.n ? PETSC_TRUE : PETSC_FALSE);
+    if (!ierr) ierr = WriteOutputStep(s);
+    if (ierr) {
+      (void)FCOutputDestroy(&s->output);
+      return ierr;
+    }
+  }
   PetscCall(FCPhaseResetTimes());
   s->setupcalled = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -319,8 +349,9 @@ PetscErrorCode FCSceneStep(FCScene s)
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
   }
   s->step++;
-  s->t = s->step * s->h; /* no drift from repeated additions */
+  s->t = s->t0 + (s->step - s->step0) * s->h; /* no drift from repeated additions */
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyCheckState(s->bodies[i], s->step));
+  PetscCall(FCEnergyGuardCheck(&s->guard, s->comm, s->nbodies, s->bodies, s->step, s->t, s->h));
   PetscCall(FCPhaseGetTimes(timing));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, timing, FC_PHASE_NUM, MPIU_REAL, MPIU_MAX, s->comm));
   for (int p = 0; p < FC_PHASE_NUM; p++) s->phase_total[p] += timing[p];
@@ -374,18 +405,28 @@ PetscErrorCode FCSceneRun(FCScene s)
     PetscInt       done = s->step;
     PetscErrorCode ierr = FCSceneStep(s);
     int            sig;
+    if (ierr == PETSC_ERR_FILE_WRITE) { /* the output failed (on every rank alike): the file is closed */
+      (void)FCOutputDestroy(&s->output);
+      (void)PetscPrintf(s->comm,
+                        "fecontact: the output of step %" PetscInt_FMT
+                        " could not be written; %s holds the steps up to "
+                        "%" PetscInt_FMT " (its last complete output step: frames, step rows and restart state; "
+                        "-restart from it continues the run)\n",
+                        s->step, s->output_file, s->written);
+      return ierr;
+    }
     if (ierr) {
       (void)FCOutputDestroy(&s->output);
       (void)PetscPrintf(s->comm,
                         "fecontact: step %" PetscInt_FMT " (t = %g s) failed; %s holds the %" PetscInt_FMT
                         " completed steps\n",
-                        done + 1, (double)((done + 1) * s->h), s->output_file, done);
+                        done + 1, (double)(s->t0 + (done + 1 - s->step0) * s->h), s->output_file, done);
       return ierr;
     }
     PetscCall(
         FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t, s->pairs.n ? s->measures.intersections : 0));
     if (s->pairs.fail_on_intersection && s->measures.intersections) { /* the step's frame, then close */
-      if (s->step % s->every && s->step < s->nsteps) PetscCall(WriteOutputStep(s));
+      if (s->step % s->every && s->step < s->nsteps) PetscCall(WriteOutputStepOrClose(s));
       PetscCall(FCOutputDestroy(&s->output));
       SETERRQ(s->comm, PETSC_ERR_NOT_CONVERGED,
               "step %" PetscInt_FMT " (t = %g s) ends with %" PetscInt_FMT
@@ -396,7 +437,7 @@ PetscErrorCode FCSceneRun(FCScene s)
     }
     PetscCall(FCSignalsPending(s->comm, &sig));
     if (sig && s->step < s->nsteps) { /* the last step's frame and restart state, then close */
-      if (s->step % s->every) PetscCall(WriteOutputStep(s));
+      if (s->step % s->every) PetscCall(WriteOutputStepOrClose(s));
       PetscCall(FCOutputDestroy(&s->output));
       SETERRQ(s->comm, PETSC_ERR_SIG,
               "interrupted by %s after step %" PetscInt_FMT " (t = %g s); %s is closed and holds the %" PetscInt_FMT
@@ -420,5 +461,6 @@ PetscErrorCode FCSceneDestroy(FCScene *scene)
   PetscCall(PetscFree2((*scene)->pairs.body, (*scene)->pairs.mu));
   for (PetscInt i = 0; i < (*scene)->nbodies; i++) PetscCall(FCBodyDestroy(&(*scene)->bodies[i]));
   PetscCall(PetscFree(*scene));
+  PetscCall(FCInputsReset());
   PetscFunctionReturn(0);
 }

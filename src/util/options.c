@@ -1,7 +1,10 @@
-/* Option helpers: numeric options are checked for NaN/Inf and exact arity, range errors name
+/* Option helpers: numeric options are checked for NaN/Inf, subnormals and exact arity, integers
+   against their range before conversion, logical options for their accepted words; errors name
    the full option, and options nobody read are reported (a misspelt option is an error,
    never a silent default). */
 #include "../fcimpl.h"
+#include <errno.h>
+#include <float.h>
 
 static const char *PrefixOf(PetscOptionItems *obj)
 {
@@ -33,13 +36,81 @@ static PetscErrorCode CheckNumbers(PetscOptionItems *obj, const char opt[], Pets
   PetscFunctionReturn(0);
 }
 
+/* The one helper behind every integer option: the text is parsed as a 64-bit integer and checked
+   against [min, max] (within PetscInt's range) before it is converted, so that a value past the
+   range is an error that names the option and the range, never a wrapped value */
+PetscErrorCode FCOptionsIntRange(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[],
+                                 PetscInt min, PetscInt max, PetscInt *v, PetscBool *set)
+{
+  char      buf[256], *end;
+  PetscBool flg;
+  long long x;
+
+  PetscFunctionBegin;
+  min = PetscMax(min, PETSC_MIN_INT);
+  max = PetscMin(max, PETSC_MAX_INT);
+  PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_TRUE));
+  PetscCall(
+      PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, buf, sizeof(buf), &flg));
+  if (flg) {
+    errno = 0;
+    x     = strtoll(buf, &end, 10);
+    PetscCheck(errno != ERANGE && x >= (long long)min && x <= (long long)max, PetscOptionsObject->comm,
+               PETSC_ERR_USER_INPUT,
+               "Option -%s%s must be an integer in [%" PetscInt_FMT ", %" PetscInt_FMT "], got %s",
+               PrefixOf(PetscOptionsObject), opt + 1, min, max, buf);
+  }
+  PetscCall(PetscOptionsInt(opt, text, NULL, *v, v, set));
+  PetscFunctionReturn(0);
+}
+
+/* An integer option in PetscInt's whole range (callers that need a narrower one check it after, or
+   call FCOptionsIntRange) */
 PetscErrorCode FCOptionsInt(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscInt *v,
                             PetscBool *set)
 {
   PetscFunctionBegin;
-  PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_TRUE));
-  PetscCall(PetscOptionsInt(opt, text, NULL, *v, v, set));
+  PetscCall(FCOptionsIntRange(PetscOptionsObject, opt, text, PETSC_MIN_INT, PETSC_MAX_INT, v, set));
   PetscFunctionReturn(0);
+}
+
+/* A logical option: no value, or one of the words PETSc accepts; PETSc's own parse error would
+   neither name the option nor say what is accepted */
+PetscErrorCode FCOptionsBool(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscBool *v,
+                             PetscBool *set)
+{
+  static const char *words[] = {"1", "0", "true", "false", "yes", "no", "on", "off", NULL};
+  char               buf[256];
+  PetscBool          flg, ok = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCall(
+      PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, buf, sizeof(buf), &flg));
+  if (flg && buf[0]) {
+    for (int i = 0; words[i] && !ok; i++) PetscCall(PetscStrcasecmp(buf, words[i], &ok));
+    PetscCheck(ok, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT,
+               "Option -%s%s takes no value or one of true, false, yes, no, on, off, 1, 0; got '%s'",
+               PrefixOf(PetscOptionsObject), opt + 1, buf);
+  }
+  PetscCall(PetscOptionsBool(opt, text, NULL, *v, v, set));
+  PetscFunctionReturn(0);
+}
+
+/* A real value must be finite and, unless 0, normal: a subnormal (below 2.2e-308 in magnitude)
+   has lost precision and makes every quantity derived from it meaningless. entry < 0: a scalar */
+static PetscErrorCode CheckReal(PetscOptionItems *obj, const char opt[], PetscInt entry, PetscReal v)
+{
+  char where[64] = "";
+
+  PetscFunctionBegin;
+  if (PetscIsNormalReal(v) || v == 0.0) PetscFunctionReturn(0);
+  if (entry >= 0) PetscCall(PetscSNPrintf(where, sizeof(where), ": entry %" PetscInt_FMT, entry));
+  PetscCheck(!PetscIsInfOrNanReal(v), obj->comm, PETSC_ERR_USER_INPUT, "Option -%s%s%s must be a finite number, got %g",
+             PrefixOf(obj), opt + 1, where, (double)v);
+  SETERRQ(obj->comm, PETSC_ERR_USER_INPUT,
+          "Option -%s%s%s: %g is subnormal (a magnitude below %g, the smallest normal double, has lost its "
+          "precision); give 0 or a magnitude in [%g, %g]",
+          PrefixOf(obj), opt + 1, where, (double)v, DBL_MIN, DBL_MIN, (double)PETSC_MAX_REAL);
 }
 
 PetscErrorCode FCOptionsReal(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[], PetscReal *v,
@@ -50,8 +121,7 @@ PetscErrorCode FCOptionsReal(PetscOptionItems *PetscOptionsObject, const char op
   PetscFunctionBegin;
   PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_FALSE));
   PetscCall(PetscOptionsReal(opt, text, NULL, *v, v, &flg));
-  PetscCheck(!flg || PetscIsNormalReal(*v) || *v == 0.0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT,
-             "Option -%s%s must be a finite number, got %g", PrefixOf(PetscOptionsObject), opt + 1, (double)*v);
+  if (flg) PetscCall(CheckReal(PetscOptionsObject, opt, -1, *v));
   if (set) *set = flg;
   PetscFunctionReturn(0);
 }
@@ -73,10 +143,7 @@ PetscErrorCode FCOptionsRealArray(PetscOptionItems *PetscOptionsObject, const ch
     PetscCheck(got == n, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT,
                "Option -%s%s needs %" PetscInt_FMT " comma-separated numbers, got %" PetscInt_FMT,
                PrefixOf(PetscOptionsObject), opt + 1, n, got);
-    for (PetscInt i = 0; i < n; i++)
-      PetscCheck(PetscIsNormalReal(tmp[i]) || tmp[i] == 0.0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT,
-                 "Option -%s%s: entry %" PetscInt_FMT " must be a finite number, got %g", PrefixOf(PetscOptionsObject),
-                 opt + 1, i, (double)tmp[i]);
+    for (PetscInt i = 0; i < n; i++) PetscCall(CheckReal(PetscOptionsObject, opt, i, tmp[i]));
     PetscCall(PetscArraycpy(v, tmp, n));
   }
   if (set) *set = flg;
@@ -93,10 +160,7 @@ PetscErrorCode FCOptionsRealList(PetscOptionItems *PetscOptionsObject, const cha
   PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_FALSE));
   *n = nmax;
   PetscCall(PetscOptionsRealArray(opt, text, NULL, v, n, &flg));
-  for (PetscInt i = 0; flg && i < *n; i++)
-    PetscCheck(PetscIsNormalReal(v[i]) || v[i] == 0.0, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT,
-               "Option -%s%s: entry %" PetscInt_FMT " must be a finite number, got %g", PrefixOf(PetscOptionsObject),
-               opt + 1, i, (double)v[i]);
+  for (PetscInt i = 0; flg && i < *n; i++) PetscCall(CheckReal(PetscOptionsObject, opt, i, v[i]));
   if (set) *set = flg;
   PetscFunctionReturn(0);
 }
