@@ -48,6 +48,7 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
   PetscBool          set;
   PetscMPIInt        rank;
   PetscInt           dim, readable = 1, bad = 0, nc;
+  PetscBool          distribute = PETSC_TRUE;
   Vec                coords;
   PetscSection       csec;
   const PetscScalar *c;
@@ -77,26 +78,44 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
   PetscCall(DMSetType(mesh->dm, DMPLEX));
   PetscCall(PetscObjectSetName((PetscObject)mesh->dm, bodyname));
   PetscCall(DMSetOptionsPrefix(mesh->dm, prefix));
-  { /* -<body>_petscpartitioner_type (default ptscotch) */
-    PetscPartitioner part;
-    PetscCall(DMPlexGetPartitioner(mesh->dm, &part));
-    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)part, prefix));
-    PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
-    PetscCall(PetscPartitionerSetFromOptions(part));
-  }
   {
-    /* reads (on rank 0), interpolates, distributes, refines; a malformed file fails on rank 0
-       only, so this stays an abort-class error */
+    /* reads (on rank 0), interpolates, refines; a malformed file fails on rank 0 only, so this
+       stays an abort-class error. Not distributed here: the reader replaces the DM's data, and
+       with it the partitioner, by a default one that never sees the body's options; the mesh is
+       distributed below, by a partitioner that does (-<body>_dm_distribute, read here, is
+       restored after the read) */
     PetscErrorCode ierr;
+    char           opt[FC_MAX_NAME + 32];
+    PetscCall(PetscOptionsGetBool(NULL, prefix, "-dm_distribute", &distribute, NULL));
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sdm_distribute", prefix));
+    PetscCall(PetscOptionsSetValue(NULL, opt, "0"));
     ReaderGuard(PETSC_TRUE, fname, prefix, bodyname);
     ierr = DMSetFromOptions(mesh->dm);
     ReaderGuard(PETSC_FALSE, fname, prefix, bodyname);
+    PetscCall(PetscOptionsSetValue(NULL, opt, distribute ? "1" : "0"));
     if (ierr) { /* PETSc has printed the reader's message; name the file and the option */
       fprintf(stderr,
               "fecontact: error: cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': not a valid or "
               "complete gmsh file\n",
               fname, prefix, bodyname);
       return ierr;
+    }
+  }
+  if (distribute) { /* -<body>_petscpartitioner_type (default ptscotch; metis: src/mesh/partmetis.c) */
+    PetscPartitioner part;
+    DM               pdm = NULL;
+    PetscMPIInt      size;
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    PetscCall(DMPlexGetPartitioner(mesh->dm, &part));
+    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)part, prefix));
+    PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
+    PetscCall(PetscPartitionerSetFromOptions(part));
+    if (size > 1) PetscCall(DMPlexDistribute(mesh->dm, 0, NULL, &pdm));
+    if (pdm) {
+      PetscCall(DMDestroy(&mesh->dm));
+      mesh->dm = pdm;
+      PetscCall(PetscObjectSetName((PetscObject)mesh->dm, bodyname));
+      PetscCall(DMSetOptionsPrefix(mesh->dm, prefix));
     }
   }
   PetscCall(DMViewFromOptions(mesh->dm, NULL, "-dm_view"));
