@@ -360,8 +360,11 @@ def write_doc(a, rows):
           "So with `redundant` the W_H phase scales until the replicated contact phases set the floor: with m fixed, "
           "the step time tends to t_serial (mostly PGS); with m growing like the surface (N^(2/3)), the replicated "
           "O(m^2) work grows like N^(4/3) per rank while the distributed work shrinks like N/p, and the contact "
-          "solver dominates at scale. Distributing PGS (block Jacobi across ranks, or a parallel NNCG) is the next "
-          "step for large contact counts.", "",
+          "solver dominates at scale. `-pgs_ranks split` shares the sweeps over the ranks (each rank its own block of "
+          "contacts, damped Jacobi between blocks: src/contact/pgs_split.c); its sweeps and times against the "
+          "replicated solver on 1, 2 and 4 ranks, up to the 149k box's 1600 contacts, are in "
+          "[docs/contact-solver.md](contact-solver.md#split-over-the-ranks) (`scripts/bench_split.py`). The mesh "
+          "partitioners (ptscotch, metis, simple) are compared in [docs/partitioners.md](partitioners.md).", "",
           "![weak scaling](scaling/weak.png)", "", "The CSV is `docs/scaling/scaling.csv`.", "",
           "## Memory of the mesh", "",
           "Peak resident memory of every rank (MB, `/usr/bin/time`) loading the 149k-DOF box and taking one step with "
