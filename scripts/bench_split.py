@@ -22,7 +22,7 @@ from scaling import big_mesh  # noqa: E402
 
 SCENES = [("cube drop 1.1k", ["-options_file", "input/cube_drop.opts", "-time_steps", "45"], 100),
           ("cube at rest 17.5k", ["-options_file", "input/cube_rest.opts", "-time_steps", "3"], 900),
-          ("Table 1 box 18k", ["-options_file", "input/table1_18k.opts", "-time_steps", "4"], 1000),
+          ("Table 1 box 18k", ["-options_file", "input/table1_18k.opts", "-time_steps", "4"], 800),
           ("Table 1 box 36k", ["-options_file", "input/table1_36k.opts", "-time_steps", "4"], 1400),
           ("box 149k", ["-options_file", "input/table1_36k.opts", "-time_steps", "2"], 4000)]
 
