@@ -1,7 +1,8 @@
 """The main scenes on N ranks (3 with --oversubscribe: an uneven split of every mesh) give the
 1-rank answer: final vertex positions of every FE body and poses of rigid bodies (partition-
-independent order), the number of contacts of every step, and the contact forces of the last
-step. Tolerance 1e-8 relative: different partitions sum in different orders, and contact scenes
+independent order), the number of contacts that carry a force at every step (a force-free
+speculative contact may come and go with round-off), and the contact forces of the last step.
+Tolerance 1e-8 relative: different partitions sum in different orders, and contact scenes
 amplify round-off a little through the solver's stopping test (measured up to 1e-10).
 Usage: test_parallel.py --np N"""
 import h5py
@@ -39,10 +40,21 @@ for name, args, *np_only in SCENES:
     d = np.abs(x - y).max() / np.abs(x).max()
     c.check(d <= 1e-8, "%s: %d ranks vs 1: final state rel. diff %.1e <= 1e-8" % (name, NP, d))
     if "contacts" in a:
-        same = np.array_equal(a["steps/contacts"][:], b["steps/contacts"][:])
-        fa = a["contacts/force"][a["contacts/offset"][-2]:]
-        fb = b["contacts/force"][b["contacts/offset"][-2]:]
+        # the contacts that carry a force, step by step, and their forces at the last step. A
+        # speculative contact (continuous detection) whose chord passes at the threshold of the
+        # arc bound may be in one run and not the other, since the FE positions of 1 and N ranks
+        # differ by round-off (MUMPS sums in another order, and its parallel factorization is not
+        # reproducible from run to run): it carries no force either way, so it is counted apart
+        def active(h):
+            off, f = h["contacts/offset"][:], np.abs(h["contacts/force"][:]).max(axis=1) > 0
+            return np.array([f[off[k]:off[k + 1]].sum() for k in range(len(off) - 1)]), off, f
+        na, offa, acta = active(a)
+        nb, offb, actb = active(b)
+        same = np.array_equal(na, nb)
+        fa = a["contacts/force"][offa[-2]:][acta[offa[-2]:]]
+        fb = b["contacts/force"][offb[-2]:][actb[offb[-2]:]]
         e = np.abs(fa - fb).max() / max(np.abs(fa).max(), 1e-300) if same and fa.shape == fb.shape and fa.size else (0.0 if same else np.inf)
-        c.check(same and e <= 1e-6, "%s: same contacts every step (%d in all), last forces rel. diff %.1e <= 1e-6" % (
-            name, int(a["contacts/offset"][-1]), e))
+        extra = int(np.abs(a["steps/contacts"][:] - b["steps/contacts"][:]).sum())
+        c.check(same and e <= 1e-6, "%s: same loaded contacts every step (%d in all; %d force-free ones differ), last forces "
+                "rel. diff %.1e <= 1e-6" % (name, int(na.sum()), extra, e))
 c.done()
