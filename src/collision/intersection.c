@@ -109,71 +109,85 @@ PetscBool FCRayGridInside(const FCSurface *S, const FCRayGrid *G, const PetscRea
   return crossings % 2 ? PETSC_TRUE : PETSC_FALSE;
 }
 
-/* Points of P inside the closed surface of B, deeper than depth */
-static PetscErrorCode PointsInSurface(MPI_Comm comm, FCBody P, FCBody B, PetscReal depth, PetscInt *count)
+/* A body's closed surface, gathered, hashed and bucketed across the ray once per check: its points
+   are tested against the other body's, and its sharp edges come from its triangles (S->tri) */
+typedef struct {
+  FCSurface *S;
+  RayGrid    G;
+} Closed;
+
+static PetscErrorCode ClosedCreate(MPI_Comm comm, FCBody b, PetscReal depth, Closed *c)
 {
-  PetscInt           n, ntri;
-  FCProximity       *prox;
-  PetscReal         *x, *xf, *key;
+  PetscInt           n;
   FCSurfaceTriangle *tri;
-  FCSurface         *S;
-  RayGrid            G;
 
   PetscFunctionBegin;
-  PetscCall(FCSurfaceGather(comm, B, &ntri, &tri));
-  PetscCall(FCSurfaceCreate(ntri, tri, depth, &S));
-  PetscCall(FCRayGridCreate(S, &G));
-  PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x, &xf, &key));
-  for (PetscInt i = 0; i < n; i++) {
-    PetscInt  best;
-    PetscReal w[3], cp[3], d2;
-    if (!FCRayGridInside(S, &G, &x[3 * i])) continue;
-    FCSurfaceClosest(S, &x[3 * i], &best, w, cp, &d2);
-    if (best < 0 || d2 > depth * depth) (*count)++;
-  }
-  PetscCall(PetscFree(G.cells));
-  PetscCall(FCSurfaceDestroy(&S));
+  PetscCall(FCSurfaceGather(comm, b, &n, &tri));
+  PetscCall(FCSurfaceCreate(n, tri, depth, &c->S));
+  PetscCall(FCRayGridCreate(c->S, &c->G));
   PetscFunctionReturn(0);
 }
 
-/* Sharp edges of P through the closed surface of B: both ends outside B, a point of the edge inside
-   deeper than depth. The edges are gathered on every rank: rank r counts those with k % size == r */
-static PetscErrorCode EdgesThroughSurface(MPI_Comm comm, FCBody P, FCBody B, PetscReal depth, PetscInt *count)
+static PetscErrorCode ClosedDestroy(Closed *c)
 {
-  PetscInt           ne, ntri, ptri;
-  PetscReal         *ends;
-  FCSurfaceTriangle *tri, *ptris;
-  FCSurface         *S;
-  RayGrid            G;
-  PetscMPIInt        rank, size;
+  PetscFunctionBegin;
+  PetscCall(PetscFree(c->G.cells));
+  PetscCall(FCSurfaceDestroy(&c->S));
+  PetscFunctionReturn(0);
+}
+
+/* x inside the closed surface, and no triangle of it within depth */
+static PetscBool DeepInside(const Closed *c, const PetscReal x[3], PetscReal depth)
+{
+  PetscInt  best;
+  PetscReal w[3], cp[3], d2;
+  if (!FCRayGridInside(c->S, &c->G, x)) return PETSC_FALSE;
+  FCSurfaceClosest(c->S, x, &best, w, cp, &d2);
+  return best < 0 || d2 > depth * depth ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* Points of P inside the closed surface B, deeper than depth */
+static PetscErrorCode PointsInSurface(FCBody P, const Closed *B, PetscReal depth, PetscInt *count)
+{
+  PetscInt     n;
+  FCProximity *prox;
+  PetscReal   *x, *xf, *key;
+
+  PetscFunctionBegin;
+  PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x, &xf, &key));
+  for (PetscInt i = 0; i < n; i++)
+    if (DeepInside(B, &x[3 * i], depth)) (*count)++;
+  PetscFunctionReturn(0);
+}
+
+/* Sharp edges of the closed surface P through the closed surface B: both ends outside B, a point
+   of the edge inside deeper than depth. The edges are on every rank: rank r counts those with
+   k % size == r */
+static PetscErrorCode EdgesThroughSurface(MPI_Comm comm, const Closed *P, const Closed *B, PetscReal depth,
+                                          PetscInt *count)
+{
+  PetscInt    ne;
+  PetscReal  *ends;
+  PetscMPIInt rank, size;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(FCSurfaceGather(comm, P, &ptri, &ptris));
-  PetscCall(FCSurfaceSharpEdgeEnds(ptri, ptris, &ne, &ends));
-  PetscCall(PetscFree(ptris));
-  PetscCall(FCSurfaceGather(comm, B, &ntri, &tri));
-  PetscCall(FCSurfaceCreate(ntri, tri, depth, &S));
-  PetscCall(FCRayGridCreate(S, &G));
+  PetscCall(FCSurfaceSharpEdgeEnds(P->S->n, P->S->tri, &ne, &ends));
   for (PetscInt k = rank; k < ne; k += size) {
     const PetscReal *a = &ends[6 * k], *b = &ends[6 * k + 3];
-    if (FCRayGridInside(S, &G, a) || FCRayGridInside(S, &G, b)) continue; /* a vertex inside: counted as one */
+    if (FCRayGridInside(B->S, &B->G, a) || FCRayGridInside(B->S, &B->G, b))
+      continue; /* a vertex inside: counted as one */
     for (int q = 1; q <= 3; q++) {
-      PetscReal x[3], w[3], cp[3], d2;
-      PetscInt  best;
+      PetscReal x[3];
       for (int i = 0; i < 3; i++) x[i] = a[i] + 0.25 * q * (b[i] - a[i]);
-      if (!FCRayGridInside(S, &G, x)) continue;
-      FCSurfaceClosest(S, x, &best, w, cp, &d2);
-      if (best < 0 || d2 > depth * depth) {
+      if (DeepInside(B, x, depth)) {
         (*count)++;
         break;
       }
     }
   }
   PetscCall(PetscFree(ends));
-  PetscCall(PetscFree(G.cells));
-  PetscCall(FCSurfaceDestroy(&S));
   PetscFunctionReturn(0);
 }
 
@@ -203,10 +217,16 @@ PetscErrorCode FCCollisionCountIntersections(MPI_Comm comm, PetscInt nbodies, FC
   for (PetscInt p = 0; p < pairs->n; p++) {
     FCBody A = bodies[pairs->body[p][0]], B = bodies[pairs->body[p][1]];
     if (FCBodyHasSurfaceTriangles(A) && FCBodyHasSurfaceTriangles(B)) {
-      PetscCall(PointsInSurface(comm, A, B, pairs->intersection_depth, &local));
-      PetscCall(PointsInSurface(comm, B, A, pairs->intersection_depth, &local));
-      PetscCall(EdgesThroughSurface(comm, A, B, pairs->intersection_depth, &local));
-      PetscCall(EdgesThroughSurface(comm, B, A, pairs->intersection_depth, &local));
+      Closed    ca, cb;
+      PetscReal depth = pairs->intersection_depth;
+      PetscCall(ClosedCreate(comm, A, depth, &ca));
+      PetscCall(ClosedCreate(comm, B, depth, &cb));
+      PetscCall(PointsInSurface(A, &cb, depth, &local));
+      PetscCall(PointsInSurface(B, &ca, depth, &local));
+      PetscCall(EdgesThroughSurface(comm, &ca, &cb, depth, &local));
+      PetscCall(EdgesThroughSurface(comm, &cb, &ca, depth, &local));
+      PetscCall(ClosedDestroy(&ca));
+      PetscCall(ClosedDestroy(&cb));
       continue;
     }
     for (int s = 0; s < 2; s++) { /* a body with points against the other's analytic shape */
