@@ -50,6 +50,7 @@ static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, const FCContactPairs
     PetscCall(FCSurfaceCreateSwept(n, all, pairs->distance + 2.0 * arc, S));
   else
     PetscCall(FCSurfaceCreate(n, all, pairs->distance, S));
+  (*S)->arc = arc;
   PetscFunctionReturn(0);
 }
 
@@ -113,11 +114,7 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
   PetscFunctionBegin;
   PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x0, &xf, &key));
   if (pairs->continuous) PetscCall(PetscMalloc1(S->n + 1, &cand));
-  { /* the vertices of a turning mesh leave their chords: a wider threshold covers their arcs */
-    PetscReal arc;
-    PetscCall(FCCCDArcMargin(Sb, S->n, S->tri, &arc));
-    tau += 2.0 * arc;
-  }
+  tau += 2.0 * S->arc; /* the vertices of a turning mesh leave their chords: a wider threshold covers their arcs */
   for (PetscInt i = 0; i < n; i++) {
     PetscInt  best;
     PetscReal bestd, bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};

@@ -19,6 +19,7 @@ struct _FCSurface {
   PetscInt          *stamp;   /* per triangle: the last query that visited it (swept queries) */
   PetscInt           nquery;  /* swept queries so far */
   PetscReal          inflate; /* what each triangle's box was inflated by */
+  PetscReal          arc;     /* SurfaceBuild: how far a turning mesh's vertices leave their chords (FCCCDArcMargin) */
 };
 
 /* The surface triangles of a body (FE or mesh shape) as they are now, gathered on every rank
