@@ -26,6 +26,12 @@ PETSC_INTERN void FCContactProblemAddColumns(FCContactProblem, PetscInt i, const
 PETSC_INTERN void FCContactAddRows3(PetscInt n, const PetscReal *restrict a, const PetscReal *restrict b,
                                     const PetscReal *restrict c, PetscReal x, PetscReal y, PetscReal z,
                                     PetscReal *restrict u);
+/* One contact's step of a sweep (pgs.c, shared by the replicated and the split sweeps): the local
+   problem (W_ii, u_i - W_ii r_i) with u_i = ui (its d_i rows of u = q + W r), proximal damping and
+   relaxation; r_i updated in place, delta = its change, changed = whether it moved */
+PETSC_INTERN PetscErrorCode FCContactLocalUpdate(FCContactProblem, PetscInt i, const PetscReal ui[], PetscReal omega,
+                                                 PetscReal proximal, PetscReal r[], PetscReal delta[],
+                                                 PetscBool *changed);
 /* The diagonal block W_ii (d_i x d_i, row-major) */
 PETSC_INTERN void FCContactProblemDiagonalBlock(FCContactProblem, PetscInt i, PetscReal Wii[9]);
 

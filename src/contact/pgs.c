@@ -142,39 +142,50 @@ PetscErrorCode FCContactSolverSetTolerances(FCContactSolver s, PetscReal tol, Pe
 /* One sweep over the contacts, in place (eq. 19). u = q + W r is kept current: contact i's local
    problem is (W_ii, u_i - W_ii r_i), and after it u += W[:, i] (r_i^new - r_i), the rows of
    contact i in W (W symmetric: every dense W) or in W^T, read once per sweep with unit stride. */
+PetscErrorCode FCContactLocalUpdate(FCContactProblem p, PetscInt i, const PetscReal ui[], PetscReal omega,
+                                    PetscReal proximal, PetscReal r[], PetscReal delta[], PetscBool *changed)
+{
+  PetscInt  d = p->dim[i], o = p->off[i];
+  PetscReal qi[3], Wi[9], ri[3], *r0 = &r[o];
+
+  PetscFunctionBegin;
+  *changed = PETSC_FALSE;
+  FCContactProblemDiagonalBlock(p, i, Wi);
+  for (PetscInt a = 0; a < d; a++) {
+    qi[a] = ui[a];
+    for (PetscInt b = 0; b < d; b++) qi[a] -= Wi[a * d + b] * r0[b];
+  }
+  for (PetscInt a = 0; a < d; a++) ri[a] = r0[a];
+  if (proximal > 0.0) { /* (W_ii + sigma I) r = -(q_i - sigma r_i): the same fixed points */
+    PetscReal tr = 0.0, sigma;
+    for (PetscInt a = 0; a < d; a++) tr += Wi[a * d + a];
+    sigma = proximal * tr / d;
+    for (PetscInt a = 0; a < d; a++) {
+      Wi[a * d + a] += sigma;
+      qi[a] -= sigma * r0[a];
+    }
+  }
+  PetscCall(FCContactLocalSolve(d, Wi, qi, p->mu[i], ri, NULL));
+  if (omega != 1.0) {
+    PetscReal x[3];
+    for (PetscInt a = 0; a < d; a++) x[a] = (1.0 - omega) * r0[a] + omega * ri[a];
+    FCContactProjectCone(d, p->mu[i], x, ri);
+  }
+  for (PetscInt a = 0; a < d; a++) {
+    delta[a] = ri[a] - r0[a];
+    *changed = *changed || delta[a] != 0.0;
+    r0[a]    = ri[a];
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[], PetscReal u[])
 {
   PetscFunctionBegin;
   for (PetscInt i = 0; i < p->nc; i++) {
-    PetscInt  d = p->dim[i], o = p->off[i];
-    PetscReal qi[3], Wi[9], ri[3], delta[3], *r0 = &r[o];
-    PetscBool changed = PETSC_FALSE;
-    FCContactProblemDiagonalBlock(p, i, Wi);
-    for (PetscInt a = 0; a < d; a++) {
-      qi[a] = u[o + a];
-      for (PetscInt b = 0; b < d; b++) qi[a] -= Wi[a * d + b] * r0[b];
-    }
-    for (PetscInt a = 0; a < d; a++) ri[a] = r0[a];
-    if (s->proximal > 0.0) { /* (W_ii + sigma I) r = -(q_i - sigma r_i): the same fixed points */
-      PetscReal tr = 0.0, sigma;
-      for (PetscInt a = 0; a < d; a++) tr += Wi[a * d + a];
-      sigma = s->proximal * tr / d;
-      for (PetscInt a = 0; a < d; a++) {
-        Wi[a * d + a] += sigma;
-        qi[a] -= sigma * r0[a];
-      }
-    }
-    PetscCall(FCContactLocalSolve(d, Wi, qi, p->mu[i], ri, NULL));
-    if (s->omega != 1.0) {
-      PetscReal x[3];
-      for (PetscInt a = 0; a < d; a++) x[a] = (1.0 - s->omega) * r0[a] + s->omega * ri[a];
-      FCContactProjectCone(d, p->mu[i], x, ri);
-    }
-    for (PetscInt a = 0; a < d; a++) {
-      delta[a] = ri[a] - r0[a];
-      changed  = changed || delta[a] != 0.0;
-      r0[a]    = ri[a];
-    }
+    PetscReal delta[3];
+    PetscBool changed;
+    PetscCall(FCContactLocalUpdate(p, i, &u[p->off[i]], s->omega, s->proximal, r, delta, &changed));
     if (changed) FCContactProblemAddColumns(p, i, delta, u);
   }
   PetscFunctionReturn(0);

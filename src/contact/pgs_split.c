@@ -4,56 +4,48 @@
    its block with the velocities of its own rows, u_b = q_b + W_b: r; between blocks the sweep is
    Jacobi: after each sweep the ranks exchange the forces of their blocks (one MPI_Allgatherv of
    the changed forces) and each adds to its u_b what the other blocks' changes did,
-   W_b,other (r - r_prev). Each block's step is damped (-pgs_split_damping theta: r_b <- r_b_prev +
-   theta (r_b_swept - r_b_prev), a convex combination, so it stays in the cones) against the
-   overshoot of blocks that all move at once. A sweep then costs n_b n flops per rank instead of n^2 (the product
-   with W of the replicated sweep, split p ways); the price is the Jacobi coupling between
-   blocks, which can need more sweeps (docs/contact-solver.md measures both). The residual is the
-   same natural-map residual as the replicated solver's, summed over the blocks (an MPI_Allreduce),
-   so every rank stops at the same sweep with the same forces. Dense W only (what the schemes
-   build); the stopping test and the exact recomputation of u every FC_PGS_EXACT sweeps follow the
-   replicated solver. */
+   W_b,other (r - r_prev), one pass over the off-block columns of its rows. Each block's step is damped
+   (-pgs_split_damping theta: r_b <- r_b_prev + theta (r_b_swept - r_b_prev), a convex combination, so it stays in the
+   cones) against the overshoot of blocks that all move at once. A sweep then costs n_b n flops per rank instead of n^2
+   (the product with W of the replicated sweep, split p ways); the price is the Jacobi coupling between blocks, which
+   can need more sweeps (docs/contact-solver.md measures both). The residual is the same natural-map residual as the
+   replicated solver's, summed over the blocks (an MPI_Allreduce), so every rank stops at the same sweep with the same
+   forces. Dense W only (what the schemes build); the stopping test and the exact recomputation of u every FC_PGS_EXACT
+   sweeps follow the replicated solver. */
 #include "contactimpl.h"
 #include <petscblaslapack.h>
 
 #define FC_SPLIT_EXACT 16
 
-/* ub (+)= W[lo:hi, j0:j1] x[j0:j1] (beta 0 overwrites, 1 adds): W row-major is W^T = W
-   column-major, whose columns [lo, hi) are W's rows; BLAS gemv on its rows [j0, j1), transposed */
-static PetscErrorCode BlockProduct(FCContactProblem p, PetscInt lo, PetscInt hi, PetscInt j0, PetscInt j1,
-                                   const PetscReal x[], PetscReal beta, PetscReal ub[])
+/* u_b = q_b + W_b: r for the rows [lo, hi): W row-major is W^T = W column-major, whose columns
+   [lo, hi) are W's rows (one BLAS gemv, transposed) */
+static PetscErrorCode BlockVelocity(FCContactProblem p, PetscInt lo, PetscInt hi, const PetscReal r[], PetscReal ub[])
 {
-  PetscBLASInt n, m, nb, one = 1;
-  PetscReal    alpha = 1.0;
+  PetscBLASInt n, nb, one = 1;
+  PetscReal    alpha = 1.0, beta = 1.0;
 
   PetscFunctionBegin;
   PetscCall(PetscBLASIntCast(p->n, &n));
-  PetscCall(PetscBLASIntCast(j1 - j0, &m));
   PetscCall(PetscBLASIntCast(hi - lo, &nb));
-  if (nb && m)
-    PetscCallBLAS("BLASgemv",
-                  BLASgemv_("T", &m, &nb, &alpha, p->Wd + lo * p->n + j0, &n, x + j0, &one, &beta, ub, &one));
-  else if (nb && beta == 0.0)
-    for (PetscInt k = 0; k < nb; k++) ub[k] = 0.0;
+  for (PetscInt k = lo; k < hi; k++) ub[k - lo] = p->q[k];
+  if (nb && n)
+    PetscCallBLAS("BLASgemv", BLASgemv_("T", &n, &nb, &alpha, p->Wd + lo * p->n, &n, r, &one, &beta, ub, &one));
   PetscFunctionReturn(0);
 }
 
-/* u_b = q_b + W_b: r for the rows [lo, hi) */
-static PetscErrorCode BlockVelocity(FCContactProblem p, PetscInt lo, PetscInt hi, const PetscReal r[], PetscReal ub[])
-{
-  PetscFunctionBegin;
-  PetscCall(BlockProduct(p, lo, hi, 0, p->n, r, 0.0, ub));
-  for (PetscInt k = lo; k < hi; k++) ub[k - lo] += p->q[k];
-  PetscFunctionReturn(0);
-}
-
-static PetscReal BlockResidual2(FCContactProblem p, PetscInt c0, PetscInt c1, PetscInt lo, const PetscReal r[],
-                                const PetscReal ub[])
+/* The natural-map residual / ||q|| of the whole problem: this block's contacts [c0, c1), summed
+   over the blocks (every rank gets the same value, so all stop at the same sweep) */
+static PetscErrorCode Residual(MPI_Comm comm, FCContactProblem p, PetscInt c0, PetscInt c1, PetscInt lo,
+                               const PetscReal r[], const PetscReal ub[], PetscReal *residual)
 {
   PetscReal sum = 0.0;
+
+  PetscFunctionBegin;
   for (PetscInt i = c0; i < c1; i++)
     sum += FCContactNaturalMapError2(p->dim[i], p->mu[i], &r[p->off[i]], &ub[p->off[i] - lo]);
-  return sum;
+  PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPIU_SUM, comm));
+  *residual = PetscSqrtReal(sum) / PetscMax(p->qnorm, PETSC_MACHINE_EPSILON);
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal tol, PetscInt max_it, PetscReal omega,
@@ -62,7 +54,7 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
 {
   PetscMPIInt size, rank, *counts, *displs;
   PetscInt   *cfirst, c0, c1, lo, hi, nb, n = p->n;
-  PetscReal  *ub, *rprev, *ustart, res2, qn = PetscMax(p->qnorm, PETSC_MACHINE_EPSILON);
+  PetscReal  *ub, *rprev, *ustart;
 
   PetscFunctionBegin;
   PetscCheck(p->Wd, comm, PETSC_ERR_SUP, "Option -pgs_ranks split needs a dense W (the schemes' problems)");
@@ -93,43 +85,16 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
   nb = hi - lo;
   PetscCall(PetscMalloc3(nb + 1, &ub, n + 1, &rprev, nb + 1, &ustart));
   PetscCall(BlockVelocity(p, lo, hi, r, ub));
-  res2 = BlockResidual2(p, c0, c1, lo, r, ub);
-  PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &res2, 1, MPIU_REAL, MPIU_SUM, comm));
-  *residual = PetscSqrtReal(res2) / qn;
-  *sweeps   = 0;
+  PetscCall(Residual(comm, p, c0, c1, lo, r, ub, residual));
+  *sweeps = 0;
   while (*residual > tol && *sweeps < max_it) {
     PetscCall(PetscArraycpy(rprev, r, n));
     PetscCall(PetscArraycpy(ustart, ub, nb));
     for (PetscInt i = c0; i < c1; i++) { /* Gauss-Seidel inside the block */
       PetscInt  d = p->dim[i], o = p->off[i];
-      PetscReal qi[3], Wi[9], ri[3], delta[3];
-      PetscBool changed = PETSC_FALSE;
-      FCContactProblemDiagonalBlock(p, i, Wi);
-      for (PetscInt a = 0; a < d; a++) {
-        qi[a] = ub[o - lo + a];
-        for (PetscInt b = 0; b < d; b++) qi[a] -= Wi[a * d + b] * r[o + b];
-        ri[a] = r[o + a];
-      }
-      if (proximal > 0.0) { /* as the replicated sweep: the same fixed points */
-        PetscReal tr = 0.0, sigma;
-        for (PetscInt a = 0; a < d; a++) tr += Wi[a * d + a];
-        sigma = proximal * tr / d;
-        for (PetscInt a = 0; a < d; a++) {
-          Wi[a * d + a] += sigma;
-          qi[a] -= sigma * r[o + a];
-        }
-      }
-      PetscCall(FCContactLocalSolve(d, Wi, qi, p->mu[i], ri, NULL));
-      if (omega != 1.0) {
-        PetscReal x[3];
-        for (PetscInt a = 0; a < d; a++) x[a] = (1.0 - omega) * r[o + a] + omega * ri[a];
-        FCContactProjectCone(d, p->mu[i], x, ri);
-      }
-      for (PetscInt a = 0; a < d; a++) {
-        delta[a] = ri[a] - r[o + a];
-        changed  = changed || delta[a] != 0.0;
-        r[o + a] = ri[a];
-      }
+      PetscReal delta[3];
+      PetscBool changed;
+      PetscCall(FCContactLocalUpdate(p, i, &ub[o - lo], omega, proximal, r, delta, &changed));
       if (changed) { /* u_b += W_b,i delta: the rows of contact i restricted to the block (W symmetric) */
         const PetscReal *w = p->Wd + o * n + lo;
         if (d == 3)
@@ -159,23 +124,17 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
         ub[k - lo] += acc;
       }
     }
-    res2 = BlockResidual2(p, c0, c1, lo, r, ub);
-    PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &res2, 1, MPIU_REAL, MPIU_SUM, comm));
-    *residual = PetscSqrtReal(res2) / qn;
+    PetscCall(Residual(comm, p, c0, c1, lo, r, ub, residual));
     if (*residual <= tol && *sweeps % FC_SPLIT_EXACT) { /* converged on the carried u: confirm on the exact one */
       PetscCall(BlockVelocity(p, lo, hi, r, ub));
-      res2 = BlockResidual2(p, c0, c1, lo, r, ub);
-      PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &res2, 1, MPIU_REAL, MPIU_SUM, comm));
-      *residual = PetscSqrtReal(res2) / qn;
+      PetscCall(Residual(comm, p, c0, c1, lo, r, ub, residual));
     }
     PetscCheck(!PetscIsInfOrNanReal(*residual), comm, PETSC_ERR_FP,
                "Contact solver (-pgs_ranks split) diverged (NaN residual) after %" PetscInt_FMT " sweeps", *sweeps);
   }
   if (*residual > tol && *sweeps % FC_SPLIT_EXACT) { /* stopped by max_it: the exact residual */
     PetscCall(BlockVelocity(p, lo, hi, r, ub));
-    res2 = BlockResidual2(p, c0, c1, lo, r, ub);
-    PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &res2, 1, MPIU_REAL, MPIU_SUM, comm));
-    *residual = PetscSqrtReal(res2) / qn;
+    PetscCall(Residual(comm, p, c0, c1, lo, r, ub, residual));
   }
   PetscCall(PetscFree3(ub, rprev, ustart));
   PetscCall(PetscFree3(cfirst, counts, displs));
