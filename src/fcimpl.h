@@ -116,6 +116,10 @@ typedef struct {
   IS         vertexNumbering, cellNumbering; /* global numbers (negative: not owned)      */
   PetscInt  *visVert;                        /* owned vertices (local index) in increasing global number    */
 } FCMesh;
+/* src/util/gather.c: n records of `size` bytes from every rank, concatenated in rank order on every
+   rank (*all: total records, to be freed) */
+PETSC_INTERN PetscErrorCode FCAllgatherRecords(MPI_Comm, PetscInt n, size_t size, const void *loc, PetscInt *total,
+                                               void **all);
 /* src/mesh/partmetis.c: the PetscPartitioner type "metis" (METIS k-way on the gathered cell graph) */
 #define FC_PARTITIONER_METIS "metis"
 PETSC_INTERN PetscErrorCode FCPartitionerRegisterMetis(void);

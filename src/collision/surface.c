@@ -21,27 +21,12 @@ static int64_t CellKey(int64_t i, int64_t j, int64_t k)
 /* The surface triangles of a body (FE or mesh shape), gathered on every rank (*tri: to free) */
 PetscErrorCode FCSurfaceGather(MPI_Comm comm, FCBody b, PetscInt *ntri, FCSurfaceTriangle **tri)
 {
-  PetscMPIInt        size, nloc, *counts, *displs, total = 0;
   PetscInt           n;
-  FCSurfaceTriangle *loc, *all;
+  FCSurfaceTriangle *loc;
 
   PetscFunctionBegin;
   PetscCall(FCBodyGetSurfaceTriangles(b, &n, &loc));
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  nloc = (PetscMPIInt)n;
-  PetscCall(PetscMalloc2(size, &counts, size, &displs));
-  PetscCallMPI(MPI_Allgather(&nloc, 1, MPI_INT, counts, 1, MPI_INT, comm));
-  for (PetscMPIInt r = 0; r < size; r++) {
-    displs[r] = total * (PetscMPIInt)sizeof(FCSurfaceTriangle);
-    total += counts[r];
-    counts[r] *= (PetscMPIInt)sizeof(FCSurfaceTriangle);
-  }
-  PetscCall(PetscMalloc1(total + 1, &all));
-  PetscCallMPI(MPI_Allgatherv(loc, nloc * (PetscMPIInt)sizeof(FCSurfaceTriangle), MPI_BYTE, all, counts, displs,
-                              MPI_BYTE, comm));
-  PetscCall(PetscFree2(counts, displs));
-  *ntri = total;
-  *tri  = all;
+  PetscCall(FCAllgatherRecords(comm, n, sizeof(FCSurfaceTriangle), loc, ntri, (void **)tri));
   PetscFunctionReturn(0);
 }
 

@@ -67,27 +67,18 @@ PetscErrorCode FCContactSetCopy(const FCContactSet *from, FCContactSet *to)
 
 PetscErrorCode FCContactSetGather(FCContactSet *set, MPI_Comm comm)
 {
-  PetscMPIInt size, n = (PetscMPIInt)set->n, *counts, *displs, total = 0;
-  FCContact  *all;
+  PetscMPIInt size;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   if (size > 1) {
-    PetscCall(PetscMalloc2(size, &counts, size, &displs));
-    PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts, 1, MPI_INT, comm));
-    for (PetscMPIInt r = 0; r < size; r++) {
-      displs[r] = total * (PetscMPIInt)sizeof(FCContact);
-      total += counts[r];
-      counts[r] *= (PetscMPIInt)sizeof(FCContact);
-    }
-    PetscCall(PetscMalloc1(total + 1, &all));
-    PetscCallMPI(
-        MPI_Allgatherv(set->c, n * (PetscMPIInt)sizeof(FCContact), MPI_BYTE, all, counts, displs, MPI_BYTE, comm));
+    PetscInt   total;
+    FCContact *all;
+    PetscCall(FCAllgatherRecords(comm, set->n, sizeof(FCContact), set->c, &total, (void **)&all));
     PetscCall(PetscFree(set->c));
     set->c   = all;
     set->n   = total;
     set->max = total + 1;
-    PetscCall(PetscFree2(counts, displs));
   }
   if (set->n > 1) qsort(set->c, set->n, sizeof(FCContact), CompareContacts);
   PetscFunctionReturn(0);
