@@ -22,16 +22,21 @@ SCENE = ["-options_file", "input/grasp_rotate.opts", "-time_steps", "1000000", "
 
 
 def consistent(f, what, killed=False):
-    """A closed file: every per-step dataset has S rows and the frames end at step S. After kill -9
-    the file is as of the last flush plus whatever of the next output step reached the disk: the
-    complete steps are S = the shortest per-step dataset, and every frame up to step S must be
-    there and finite (what is beyond S is an interrupted write, not a completed step)."""
+    """A closed file: every per-step dataset has S rows, the frames end at step S and /complete_step
+    says S. After kill -9 the file is as of the last flush plus whatever of the next output step
+    reached the disk (a flush cut short may have written part of its metadata): the complete steps
+    are S = /complete_step, written after each flush; every per-step dataset must hold at least S
+    rows and every frame up to step S must be there, readable and finite (what is beyond S is an
+    interrupted write, not a completed step)."""
     h = h5py.File(f, "r")
     rows = [len(h["steps/" + k]) for k in h["steps"] if isinstance(h["steps/" + k], h5py.Dataset)]
     rows += [len(h["steps/timing/" + k]) for k in h["steps/timing"]]
     rows += [len(h["bodies/%s/centroid" % b]) for b in h["bodies"]]
     rows.append(len(h["contacts/offset"]) - 1)
-    S = min(rows)
+    S = int(h["complete_step"][()])
+    if S > min(rows) or (not killed and S != min(rows)):
+        c.check(False, "%s: /complete_step %d, per-step datasets hold %d..%d rows" % (what, S, min(rows), max(rows)))
+        return S
     fstep = h["frames/step"][:]
     pos = h["bodies/object/positions"]
     done = [k for k in range(min(len(fstep), pos.shape[0])) if fstep[k] <= S]

@@ -41,9 +41,8 @@ PETSC_INTERN PetscBool FCH5FailedInside(void);
 
 /* Disk space (reserve.c): `bytes` beyond the end of the file, reserved by rank 0 before HDF5
    writes (collective; failure: FCH5AgreeClean), given back after the close; the file's size */
-PETSC_INTERN PetscErrorCode FCH5Reserve(MPI_Comm, const char file[], size_t bytes, const char what[]);
+PETSC_INTERN PetscErrorCode FCH5Reserve(MPI_Comm, const char file[], hid_t h5, size_t bytes, const char what[]);
 PETSC_INTERN PetscErrorCode FCH5Release(MPI_Comm, const char file[]);
-PETSC_INTERN size_t         FCH5FileSize(const char file[]);
 
 /* HDF5 helpers (h5util.c) */
 /* An extendible dataset of rows of shape rowdims[0..rank-2], chunked by `chunkrows` rows */
@@ -99,6 +98,8 @@ struct _p_FCOutput {
   PetscInt *rstep;
   double    elast; /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt  nframes, xdmfwritten;
+  hid_t     complete;         /* /complete_step: the last step all of whose rows and frame a flush has put on disk */
+  long long laststep;         /* the last step whose rows or frame have been written (flushed or not) */
   size_t    lastsize, growth; /* file size after the last output step, largest growth of one (reserve.c) */
   /* contacts (scenes with contact pairs only) */
   PetscBool contacts;

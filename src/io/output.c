@@ -41,10 +41,28 @@ PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *ou
   /* every write's failure is collective from now on (h5util.c); a device that takes no data
      (/dev/full) is found before HDF5 writes to it (reserve.c) */
   PetscCall(FCH5ContextSet(comm, filename));
-  PetscCall(FCH5Reserve(comm, filename, 4096, "the file"));
+  PetscCall(FCH5Reserve(comm, filename, -1, 4096, "the file"));
   fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL);
   H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST);
+  { /* Metadata reaches the disk only at the flush that ends an output step. With the default cache,
+       HDF5 evicts dirty metadata (a chunk index that names a chunk just allocated) whenever it
+       likes; after a kill -9 the file could then index data beyond the end of file its superblock
+       records ("addr overflow"), and a completed step would not read. No eviction, no automatic
+       resizing, and the parallel sync threshold at its maximum keep the file on disk exactly as
+       the last flush left it (a step's metadata is a few kB; the cache is emptied by each flush). */
+    H5AC_cache_config_t mdc;
+    mdc.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+    if (H5Pget_mdc_config(fapl, &mdc) >= 0) {
+      mdc.evictions_enabled     = 0;
+      mdc.incr_mode             = H5C_incr__off;
+      mdc.flash_incr_mode       = H5C_flash_incr__off;
+      mdc.decr_mode             = H5C_decr__off;
+      mdc.dirty_bytes_threshold = 32 * 1024 * 1024; /* H5AC__MAX_DIRTY_BYTES_THRESHOLD */
+      PetscCheck(H5Pset_mdc_config(fapl, &mdc) >= 0, comm, PETSC_ERR_LIB,
+                 "HDF5 refused the metadata cache settings of '%s'", filename);
+    }
+  }
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* our own messages name the file */
   out->file = H5Fcreate(filename, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   H5Pclose(fapl);
@@ -85,7 +103,8 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
   char *opts;
 
   PetscFunctionBegin;
-  PetscCall(FCH5Reserve(out->comm, out->filename, ReserveBytes(nbodies, bodies, PETSC_TRUE), "the file's header"));
+  PetscCall(
+      FCH5Reserve(out->comm, out->filename, out->file, ReserveBytes(nbodies, bodies, PETSC_TRUE), "the file's header"));
   out->nbodies = nbodies;
   out->bodies  = bodies;
   PetscCall(PetscCalloc1(nbodies, &out->bo));
@@ -112,6 +131,15 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     H5Sclose(space);
     PetscCall(FCH5AttrInt(out->file, "time_steps", nsteps));
     PetscCall(FCH5AttrInt(out->file, "output_every", every));
+  }
+  { /* /complete_step, written after each flush (FCOutputFlush): -1 until the first frame is on disk */
+    hid_t     space = H5Screate(H5S_SCALAR);
+    long long none  = -1;
+    out->complete = H5Dcreate2(out->file, "complete_step", H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Sclose(space);
+    FCH5Check(out->complete < 0 ? -1 : 0, "complete_step");
+    FCH5Check(H5Dwrite(out->complete, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &none), "complete_step");
+    out->laststep = -1;
   }
   PetscCall(FCOutputRecordsCreate(out, nbodies, bodies, contacts));
   gf = H5Gcreate2(out->file, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -179,7 +207,7 @@ PetscErrorCode FCOutputWriteFrame(FCOutput out, PetscInt step, PetscReal t, Pets
   PetscCall(FCPhaseBegin(FC_PHASE_OUTPUT));
   /* the space of the output step (frame and restart state) first, while HDF5 holds nothing
      unwritten: the largest step so far with a margin, or an estimate (reserve.c) */
-  PetscCall(FCH5Reserve(out->comm, out->filename,
+  PetscCall(FCH5Reserve(out->comm, out->filename, out->file,
                         PetscMax(out->growth + 262144, ReserveBytes(nbodies, bodies, PETSC_FALSE)),
                         "the next output step"));
   /* the order keeps a consistent prefix if a write fails: the step rows, the positions, then
@@ -221,6 +249,7 @@ PetscErrorCode FCOutputWriteFrame(FCOutput out, PetscInt step, PetscReal t, Pets
   PetscCall(FCH5AppendRows(out->rank, out->ftime, H5T_NATIVE_DOUBLE, 1, &tt));
   PetscCall(FCH5AppendRows(out->rank, out->fstep, H5T_NATIVE_LLONG, 1, &ss));
   PetscCall(FCXdmfAddFrame(out, t)); /* xdmf.c: the frame's views for the XDMF index */
+  out->laststep = PetscMax(out->laststep, ss);
   if (out->nframes == out->maxframes) {
     double *f;
     out->maxframes = PetscMax(64, 2 * out->maxframes);
@@ -262,6 +291,10 @@ PetscErrorCode FCOutputFlush(FCOutput out)
   PetscFunctionBegin;
   PetscCall(FCOutputRecordsFlush(out));
   FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush");
+  /* only now, with everything up to that step on disk, the mark that says so: one raw write at a
+     fixed place (no metadata), so after a crash or kill -9 a reader trusts the steps up to
+     /complete_step and nothing beyond (a flush cut short may have put later metadata on disk) */
+  FCH5Check(H5Dwrite(out->complete, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &out->laststep), "complete_step");
   if (out->nframes >= 2 * out->xdmfwritten || out->nframes == 1) PetscCall(WriteXdmf(out));
   PetscFunctionReturn(0);
 }
@@ -276,8 +309,10 @@ PetscErrorCode FCOutputWriteRestart(FCOutput out, PetscInt step, PetscReal t, Pe
   PetscCall(FCPhaseBegin(FC_PHASE_OUTPUT));
   PetscCall(FCRestartWriterWrite(out->restart, step, t, nbodies, bodies, previous));
   FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush of the restart state");
-  if (out->rank == 0) { /* the growth of the file over one output step: the next reservation */
-    size_t size = FCH5FileSize(out->filename);
+  if (out->rank == 0) { /* the growth of HDF5's allocation over one output step: the next reservation
+                           (the file itself is longer, by what is reserved: reserve.c) */
+    haddr_t eoa  = 0;
+    size_t  size = H5Fget_eoa(out->file, &eoa) >= 0 ? (size_t)eoa : 0;
     if (out->lastsize && size > out->lastsize) out->growth = PetscMax(out->growth, size - out->lastsize);
     out->lastsize = size;
   }
@@ -319,6 +354,7 @@ PetscErrorCode FCOutputDestroy(FCOutput *output)
       }
       H5Dclose(out->ftime);
       H5Dclose(out->fstep);
+      H5Dclose(out->complete);
     }
     PetscCall(FCOutputFieldsDestroy(out)); /* these three close nothing after a failure inside HDF5 */
     PetscCall(FCXdmfDestroy(out));

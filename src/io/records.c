@@ -265,6 +265,7 @@ PetscErrorCode FCOutputRecordsFlush(FCOutput out)
         PetscCall(FCH5AppendRows(out->rank, out->bo[i].rotation, H5T_NATIVE_DOUBLE, n, tmp));
       }
     }
+    out->laststep = PetscMax(out->laststep, (long long)out->rstep[n - 1]);
     PetscCall(PetscFree2(tmp, steps));
     out->nrows = 0;
   }

@@ -3,19 +3,25 @@
    (chunk allocation, metadata flush): that rank leaves the operation, the others wait in it for
    ever, and a file whose metadata cannot be written cannot be closed. So a full disk is met here,
    outside HDF5: before the header and before every output step, rank 0 allocates the space the
-   writes will need beyond the end of the file (fallocate, FALLOC_FL_KEEP_SIZE: the file's size is
-   unchanged, HDF5 sees nothing), and its failure is agreed by all ranks (FCH5Agree) while HDF5
-   holds nothing unwritten, so that the file closes cleanly. Where fallocate is not supported
-   (some network file systems) nothing is reserved and a failure inside HDF5 is still collective
-   per call (FCH5Check), but may hang or leave the file unclosable; a file that is not a regular
-   file (a device) is probed by writing a byte. */
+   writes will need beyond HDF5's end of allocation (EOA) and its failure is agreed by all ranks
+   (FCH5Agree) while HDF5 holds nothing unwritten, so that the file closes cleanly.
+
+   The space is allocated as part of the file (fallocate mode 0: the file's size grows), not kept
+   beyond its end: HDF5 1.10 writes the superblock's EOA at a flush before the file has grown to
+   it (a chunk allocated but not yet written, fill values off), and a process killed then leaves a
+   file shorter than its superblock says, which HDF5 refuses to open at all ("truncated file").
+   With the file always at least EOA + the reservation long, that cannot happen; the zeros beyond
+   the EOA are cut off when the file is closed (FCH5Release). Where fallocate is not supported
+   (some network file systems) the file is only extended (ftruncate, sparse: nothing reserved) and
+   a failure inside HDF5 is still collective per call (FCH5Check), but may hang or leave the file
+   unclosable; a file that is not a regular file (a device) is probed by writing a byte. */
 #define _GNU_SOURCE
 #include "ioimpl.h"
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-PetscErrorCode FCH5Reserve(MPI_Comm comm, const char file[], size_t bytes, const char what[])
+PetscErrorCode FCH5Reserve(MPI_Comm comm, const char file[], hid_t h5, size_t bytes, const char what[])
 {
   PetscMPIInt rank;
   int         ok = 1, err = 0;
@@ -34,9 +40,20 @@ PetscErrorCode FCH5Reserve(MPI_Comm comm, const char file[], size_t bytes, const
       ok  = 0;
       err = errno;
     } else if (S_ISREG(st.st_mode)) {
-      if (fallocate(fd, FALLOC_FL_KEEP_SIZE, st.st_size, (off_t)bytes) && errno != EOPNOTSUPP && errno != ENOSYS) {
-        ok  = 0;
-        err = errno;
+      haddr_t eoa = 0;
+      off_t   end;
+      if (h5 < 0 || H5Fget_eoa(h5, &eoa) < 0) eoa = (haddr_t)st.st_size;
+      end = (off_t)(eoa + bytes);
+      if (end > st.st_size && fallocate(fd, 0, st.st_size, end - st.st_size)) {
+        if (errno == EOPNOTSUPP || errno == ENOSYS) {
+          if (ftruncate(fd, end)) {
+            ok  = 0;
+            err = errno;
+          }
+        } else {
+          ok  = 0;
+          err = errno;
+        }
       }
     } else if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) {
       const char zero = 0;
@@ -52,25 +69,27 @@ PetscErrorCode FCH5Reserve(MPI_Comm comm, const char file[], size_t bytes, const
   PetscFunctionReturn(0);
 }
 
-/* Gives back what was reserved beyond the end of the file (after the file is closed) */
+/* Cuts what was reserved beyond HDF5's end of allocation (after the file is closed by every rank:
+   rank 0 reads the EOA the closed file records and truncates the file to it) */
 PetscErrorCode FCH5Release(MPI_Comm comm, const char file[])
 {
   PetscMPIInt rank;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) {
-    int         fd = open(file, O_WRONLY);
+  if (rank == 0 && !getenv("FECONTACT_NO_RESERVE")) {
     struct stat st;
-    if (fd >= 0 && !fstat(fd, &st) && S_ISREG(st.st_mode)) (void)!ftruncate(fd, st.st_size);
-    if (fd >= 0) close(fd);
+    if (!stat(file, &st) && S_ISREG(st.st_mode)) {
+      hid_t   f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+      haddr_t eoa;
+      if (f >= 0) {
+        if (H5Fget_eoa(f, &eoa) >= 0 && (off_t)eoa < st.st_size && (off_t)eoa > 0) {
+          H5Fclose(f);
+          (void)!truncate(file, (off_t)eoa);
+        } else
+          H5Fclose(f);
+      }
+    }
   }
   PetscFunctionReturn(0);
-}
-
-/* The size of the file (rank 0's view, 0 on the others and where unknown) */
-size_t FCH5FileSize(const char file[])
-{
-  struct stat st;
-  return stat(file, &st) || !S_ISREG(st.st_mode) ? 0 : (size_t)st.st_size;
 }
