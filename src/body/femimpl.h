@@ -8,26 +8,28 @@
 #include "../fcimpl.h"
 
 typedef struct {
-  FCMesh     mesh;
-  FCMaterial mat;
-  char       material[FC_MAX_NAME];
-  PetscReal  young, poisson, alpha, beta;
-  PetscBool  lumped, has_fixed_box;
-  PetscReal  fixed_box[6];
-  PetscInt   nfixed;      /* global number of fixed vertices */
-  PetscInt  *ldof;        /* per local vertex: offset in the local vector */
-  PetscInt  *gdof;        /* per local vertex: first global DOF, -1 when fixed */
-  PetscBool *fixed;       /* per local vertex */
-  PetscReal *Dminv, *vol; /* per cell */
-  Mat        M, K, A;
-  Vec        u, v, dv, b, fint, fgrav, work, uloc, floc;
-  KSP        ksp;
-  PetscInt   nassembly, nfactor;
-  PetscBool  Acurrent;       /* K and f_int belong to the current state */
-  PetscBool  factored;       /* the factor of A is that of the current A */
-  PetscInt   refactor_every; /* co-rotational: factor A every k steps, reuse the older factor between */
-  PetscInt   factor_age;     /* steps since A was last factored */
-  PetscReal  mass;
+  FCMesh           mesh;
+  FCMaterial       mat;
+  char             material[FC_MAX_NAME];
+  PetscReal        young, poisson, alpha, beta;
+  PetscBool        lumped, has_fixed_box;
+  PetscReal        fixed_box[6];
+  PetscInt         nfixed;      /* global number of fixed vertices */
+  PetscInt        *ldof;        /* per local vertex: offset in the local vector */
+  PetscInt        *gdof;        /* per local vertex: first global DOF, -1 when fixed */
+  PetscBool       *fixed;       /* per local vertex */
+  PetscReal       *Dminv, *vol; /* per cell */
+  Mat              M, K, A;
+  Vec              u, v, dv, b, fint, fgrav, work, uloc, floc;
+  KSP              ksp;
+  PetscInt         nassembly, nfactor;
+  PetscBool        Acurrent;       /* K and f_int belong to the current state */
+  PetscBool        factored;       /* the factor of A is that of the current A */
+  PetscInt         refactor_every; /* co-rotational: factor A every k steps, reuse the older factor between */
+  PetscInt         factor_age;     /* steps since A was last factored */
+  PetscReal        mass;
+  FCEnergy         energy;             /* the last energy computed (GetEnergy_FEM) ... */
+  PetscObjectState energy_u, energy_v; /* ... for these states of u and v (0: none yet) */
   /* contact */
   PetscInt           nbv, *bv; /* owned boundary vertices (local vertex indices)             */
   PetscInt           nsurface; /* ... their first global DOF, the non-fixed ones             */

@@ -12,11 +12,13 @@
                            s = rho tr(W_ii)/d_i. A fixed point is a solution of the original problem,
                            and the local problems stay well-posed when W_ii is (nearly) singular or
                            contacts are redundant (>= 0, default 0)
-     -pgs_ranks all|root|split   the problem is replicated: every rank solves it (default, no
-                           communication), rank 0 does and broadcasts the forces, or the ranks split
+     -pgs_ranks all|root|split   the problem is replicated: every rank solves it (no
+                           communication), rank 0 does and broadcasts the forces (default: the sweeps
+                           are bound by memory bandwidth, which ranks on one node share, so the same
+                           sweeps on every rank were slower: docs/scaling.md), or the ranks split
                            the sweeps, each its own block of contacts, Jacobi between blocks
-                           (pgs_split.c; dense W, without NNCG; a solver with a per-sweep update, the
-                           fast scheme's -fast_update sweep, runs replicated) (docs/scaling.md)
+                           (pgs_split.c; dense W, without NNCG). A solver with a per-sweep update (the
+                           fast scheme's -fast_update sweep, collective) runs on every rank.
      -pgs_split_damping t  with split: each block takes t times its step, in (0, 1] (default 0.8,
                            measured on the 149k box and the cube: docs/contact-solver.md)
      -pgs_acceleration none|nncg   nonsmooth nonlinear conjugate gradient on top of the sweeps
@@ -55,6 +57,7 @@ PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
   (*solver)->max_it        = 1000;
   (*solver)->omega         = 1.0;
   (*solver)->nncg          = PETSC_TRUE;
+  (*solver)->root          = PETSC_TRUE; /* -pgs_ranks root: docs/scaling.md */
   (*solver)->dump_rows     = 1;
   (*solver)->split_damping = 0.8;
   PetscFunctionReturn(0);
@@ -229,7 +232,7 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
     PetscCall(FCContactSolveSplit(s->comm, p, s->tol, s->max_it, s->omega, s->proximal, s->split_damping, r, &s->sweeps,
                                   &s->residual));
     s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
-  } else if (!s->root || size == 1)
+  } else if (!s->root || size == 1 || s->update) /* the update after each sweep is collective */
     PetscCall(SolveHere(s, p, r));
   else {
     PetscReal info[3];

@@ -88,13 +88,14 @@ struct _p_FCOutput {
   MPI_Comm    comm;
   PetscMPIInt rank;
   char        filename[PETSC_MAX_PATH_LEN], xdmfname[PETSC_MAX_PATH_LEN];
-  hid_t       file, time, step, energy, denergy, timing[FC_PHASE_NUM], ftime, fstep;
+  hid_t       file, time, step, energy, denergy, wall, timing[FC_PHASE_NUM], ftime, fstep;
   PetscInt    nbodies;
   FCBody     *bodies;
   BodyOut    *bo;
   /* rows buffered since the last flush (rank 0) */
-  PetscInt  nrows, maxrows;
-  double   *rtime, *renergy, *rtiming, *rbody; /* rbody: per row, per body: centroid 3, quaternion 4, energy 3 */
+  PetscInt nrows, maxrows;
+  double  *rtime, *renergy, *rtiming, *rbody; /* rtiming: per row the phases, then the wall time; rbody: per row,
+                                                per body: centroid 3, quaternion 4, energy 3 */
   PetscInt *rstep;
   double    elast; /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt  nframes, xdmfwritten;

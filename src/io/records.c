@@ -29,6 +29,7 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
   PetscCall(FCH5CreateRows(g, "step", H5T_NATIVE_LLONG, 1, NULL, 256, &out->step));
   PetscCall(FCH5CreateRows(g, "energy", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->energy));
   PetscCall(FCH5CreateRows(g, "energy_change", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->denergy));
+  PetscCall(FCH5CreateRows(g, "wall_time", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->wall));
   gt = H5Gcreate2(g, "timing", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   for (int p = 0; p < FC_PHASE_NUM; p++)
     PetscCall(FCH5CreateRows(gt, FCPhaseNames[p], H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->timing[p]));
@@ -67,14 +68,14 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
     H5Gclose(gc);
   }
   out->maxrows = (PetscInt)nrow;
-  PetscCall(PetscMalloc5(nrow, &out->rtime, nrow, &out->renergy, nrow * FC_PHASE_NUM, &out->rtiming,
+  PetscCall(PetscMalloc5(nrow, &out->rtime, nrow, &out->renergy, nrow * (FC_PHASE_NUM + 1), &out->rtiming,
                          nrow * nbodies * 10 + 1, &out->rbody, nrow, &out->rstep));
   PetscFunctionReturn(0);
 }
 
 /* One row per completed step (buffered until the next flush) */
 PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, const PetscReal timing[FC_PHASE_NUM],
-                                  PetscInt nbodies, FCBody bodies[])
+                                  PetscReal wall, PetscInt nbodies, FCBody bodies[])
 {
   PetscInt r    = out->nrows;
   double   etot = 0.0;
@@ -83,10 +84,10 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
   if (r == out->maxrows) {
     double   *a, *b, *c, *d;
     PetscInt *e, n = 2 * out->maxrows;
-    PetscCall(PetscMalloc5(n, &a, n, &b, n * FC_PHASE_NUM, &c, n * nbodies * 10 + 1, &d, n, &e));
+    PetscCall(PetscMalloc5(n, &a, n, &b, n * (FC_PHASE_NUM + 1), &c, n * nbodies * 10 + 1, &d, n, &e));
     PetscCall(PetscArraycpy(a, out->rtime, r));
     PetscCall(PetscArraycpy(b, out->renergy, r));
-    PetscCall(PetscArraycpy(c, out->rtiming, r * FC_PHASE_NUM));
+    PetscCall(PetscArraycpy(c, out->rtiming, r * (FC_PHASE_NUM + 1)));
     PetscCall(PetscArraycpy(d, out->rbody, r * nbodies * 10));
     PetscCall(PetscArraycpy(e, out->rstep, r));
     PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
@@ -99,7 +100,8 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
   }
   out->rtime[r] = t;
   out->rstep[r] = step;
-  for (int p = 0; p < FC_PHASE_NUM; p++) out->rtiming[r * FC_PHASE_NUM + p] = timing[p];
+  for (int p = 0; p < FC_PHASE_NUM; p++) out->rtiming[r * (FC_PHASE_NUM + 1) + p] = timing[p];
+  out->rtiming[r * (FC_PHASE_NUM + 1) + FC_PHASE_NUM] = wall;
   for (PetscInt i = 0; i < nbodies; i++) {
     double   *row = &out->rbody[(r * nbodies + i) * 10];
     FCEnergy  E;
@@ -248,9 +250,9 @@ PetscErrorCode FCOutputRecordsFlush(FCOutput out)
       out->elast = out->renergy[r];
     }
     PetscCall(FCH5AppendRows(out->rank, out->denergy, H5T_NATIVE_DOUBLE, n, tmp));
-    for (int p = 0; p < FC_PHASE_NUM; p++) {
-      for (PetscInt r = 0; r < n; r++) tmp[r] = out->rtiming[r * FC_PHASE_NUM + p];
-      PetscCall(FCH5AppendRows(out->rank, out->timing[p], H5T_NATIVE_DOUBLE, n, tmp));
+    for (int p = 0; p <= FC_PHASE_NUM; p++) { /* the phases, then the wall time */
+      for (PetscInt r = 0; r < n; r++) tmp[r] = out->rtiming[r * (FC_PHASE_NUM + 1) + p];
+      PetscCall(FCH5AppendRows(out->rank, p < FC_PHASE_NUM ? out->timing[p] : out->wall, H5T_NATIVE_DOUBLE, n, tmp));
     }
     for (PetscInt i = 0; i < nb; i++) {
       for (PetscInt r = 0; r < n; r++)
@@ -281,6 +283,7 @@ PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
   H5Dclose(out->step);
   H5Dclose(out->energy);
   H5Dclose(out->denergy);
+  H5Dclose(out->wall);
   for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
   if (out->contacts) {
     hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,        out->c_force,

@@ -58,19 +58,25 @@ static PetscErrorCode Element_Corotational(FCMaterial m, const PetscReal x[12], 
   PetscFunctionReturn(0);
 }
 
+/* 1/2 u_l^T K_e u_l with u_l = R^T x - X, computed from the strain it produces: the gradient of
+   u_l is H = R^T F - I (P1: constant over the element), so the energy is vol/2 sigma(H) : H with
+   Hooke's sigma, equal to the quadratic form to round-off without forming K_e (the form cost as
+   much as the polar decomposition; this runs for every element at every step: the energy guard,
+   the step's row) */
 static PetscErrorCode Energy_Corotational(FCMaterial m, const PetscReal x[12], const PetscReal X[12],
                                           const PetscReal Dminv[9], PetscReal vol, PetscReal *E)
 {
-  PetscReal R[9], G[12], Ke[144], ul[12];
+  PetscReal F[9], R[9], H[9], sigma[9], e = 0.0;
 
   PetscFunctionBegin;
-  PetscCall(Rotation(x, Dminv, R));
-  FCTetGradients(Dminv, G);
-  FCTetStiffness(G, vol, m->lambda, m->mu, Ke);
-  LocalDisplacement(R, x, X, ul);
-  *E = 0.0;
-  for (int i = 0; i < 12; i++)
-    for (int j = 0; j < 12; j++) *E += 0.5 * ul[i] * Ke[12 * i + j] * ul[j];
+  (void)X;
+  FCMaterialDeformationGradient(x, Dminv, F);
+  FCMat3Polar(F, R);
+  FCMat3MultTranspose(R, F, H);
+  for (int i = 0; i < 3; i++) H[4 * i] -= 1.0;
+  FCMaterialHooke(m, H, sigma);
+  for (int k = 0; k < 9; k++) e += sigma[k] * H[k];
+  *E = 0.5 * vol * e;
   PetscFunctionReturn(0);
 }
 

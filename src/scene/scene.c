@@ -56,20 +56,21 @@
 #include <stdlib.h>
 
 struct _p_FCScene {
-  MPI_Comm      comm;
-  PetscInt      nbodies;
-  FCBody        bodies[FC_MAX_BODIES];
-  PetscReal     h, t, gravity[3];
-  PetscInt      nsteps, step, every, fields; /* fields: the -output_fields mask */
-  PetscInt      written; /* the step of the last output step written completely (frame and restart state) */
-  PetscReal     t0;      /* the time of step step0: 0 and 0, or a restart's stored time and step; step k */
-  PetscInt      step0;   /* is at t0 + (k - step0) h, whatever time step the earlier run had */
-  FCEnergyGuard guard;   /* -energy_growth_limit (energy.c) */
-  char          output_file[PETSC_MAX_PATH_LEN], restart[PETSC_MAX_PATH_LEN];
-  PetscBool     quiet, setupcalled;
-  FCOutput      output;
-  FCProgress    progress;
-  PetscReal     phase_total[FC_PHASE_NUM];
+  MPI_Comm       comm;
+  PetscInt       nbodies;
+  FCBody         bodies[FC_MAX_BODIES];
+  PetscReal      h, t, gravity[3];
+  PetscInt       nsteps, step, every, fields; /* fields: the -output_fields mask */
+  PetscInt       written; /* the step of the last output step written completely (frame and restart state) */
+  PetscReal      t0;      /* the time of step step0: 0 and 0, or a restart's stored time and step; step k */
+  PetscInt       step0;   /* is at t0 + (k - step0) h, whatever time step the earlier run had */
+  FCEnergyGuard  guard;   /* -energy_growth_limit (energy.c) */
+  char           output_file[PETSC_MAX_PATH_LEN], restart[PETSC_MAX_PATH_LEN];
+  PetscBool      quiet, setupcalled;
+  FCOutput       output;
+  FCProgress     progress;
+  PetscReal      phase_total[FC_PHASE_NUM];
+  PetscLogDouble tmark; /* when the ranks last met at the end of a step (FCSceneStep: the wall time of a step) */
   /* contact */
   FCContactPairs    pairs;
   FCContactSet      set;
@@ -329,9 +330,10 @@ PetscErrorCode FCSceneGetBody(FCScene s, const char name[], FCBody *body)
 /* One time step: free motion (eq. 5) -> [contacts] -> integration (eq. 2) -> output */
 PetscErrorCode FCSceneStep(FCScene s)
 {
-  PetscReal timing[FC_PHASE_NUM];
+  PetscReal timing[FC_PHASE_NUM], wall;
 
   PetscFunctionBegin;
+  if (s->tmark == 0.0) PetscCall(PetscTime(&s->tmark)); /* the first step's wall time starts here */
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyComputeFreeMotion(s->bodies[i], s->t));
   if (s->pairs.n) {
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
@@ -352,12 +354,23 @@ PetscErrorCode FCSceneStep(FCScene s)
   s->t = s->t0 + (s->step - s->step0) * s->h; /* no drift from repeated additions */
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyCheckState(s->bodies[i], s->step));
   PetscCall(FCEnergyGuardCheck(&s->guard, s->comm, s->nbodies, s->bodies, s->step, s->t, s->h));
-  PetscCall(FCPhaseGetTimes(timing));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, timing, FC_PHASE_NUM, MPIU_REAL, MPIU_MAX, s->comm));
+  { /* per phase the largest time of a rank; the step's wall time (the ranks meet here every step, so
+       the time since the last meeting, largest over the ranks) is not their sum: a rank that waits
+       for another in one phase does not add that wait to the step twice */
+    PetscReal      t[FC_PHASE_NUM + 1];
+    PetscLogDouble now;
+    PetscCall(FCPhaseGetTimes(t));
+    PetscCall(PetscTime(&now));
+    t[FC_PHASE_NUM] = (PetscReal)(now - s->tmark);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, t, FC_PHASE_NUM + 1, MPIU_REAL, MPIU_MAX, s->comm));
+    PetscCall(PetscTime(&s->tmark));
+    PetscCall(PetscArraycpy(timing, t, FC_PHASE_NUM));
+    wall = t[FC_PHASE_NUM];
+  }
   for (int p = 0; p < FC_PHASE_NUM; p++) s->phase_total[p] += timing[p];
   PetscCall(FCPhaseResetTimes());
   /* the output of this step (frame and flush) is counted in the next step's row */
-  PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, s->nbodies, s->bodies));
+  PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, wall, s->nbodies, s->bodies));
   if (s->pairs.n) {
     struct _FCContactSetView v = {&s->set, &s->stats, &s->measures};
     PetscCall(FCOutputRecordContacts(s->output, &v));
