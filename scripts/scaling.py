@@ -110,7 +110,9 @@ def memory(mesh, np_):
     if p.returncode:
         sys.stderr.write(p.stdout + p.stderr)
         raise RuntimeError("failed: " + " ".join(cmd))
-    return sorted(int(l.split()[1]) / 1024.0 for l in (p.stdout + p.stderr).splitlines() if l.startswith("maxrss_kb"))
+    # (searched anywhere in a line: the ranks' outputs interleave, and a line once came back glued
+    # to another one, which left the figures of a run empty)
+    return sorted(int(x) / 1024.0 for x in re.findall(r"maxrss_kb (\d+)", p.stdout + p.stderr))
 
 
 def stored(a, name, stamp, compute):
