@@ -115,54 +115,28 @@ PetscErrorCode FCFEMSolveA(FCBody body, Vec b, Vec x, const char what[], PetscRe
 }
 
 /* A failed factorization by the KSP is recorded, not raised (PETSc 3.18): raise it */
-/* PETSc 3.18 records a failed factorization in the PC instead of raising it. Parallel MUMPS
-   intermittently underestimates its workspace (INFOG(1) = -9: seen on 4 oversubscribed ranks at
-   step 1 of the 36k box, about once in 15 runs): like the builders' own factorizations
-   (FCComplianceMumpsCholesky), out of memory is retried with ICNTL(14), the workspace margin in
-   percent, doubled, up to 3 times, before the run stops with a message naming the option. */
+/* PETSc 3.18 records a failed factorization in the PC instead of raising it. With MUMPS the factor
+   is checked by MUMPS' own status and, out of workspace (intermittent on several ranks: the 36k box
+   on 4 oversubscribed ranks, about once in 15 runs), refactored with a larger margin
+   (FCMumpsFactorChecked, src/util/mumps.c); with another solver its PC's reason is checked. */
 static PetscErrorCode CheckFactor(FCBody body)
 {
   FEM           *fem = (FEM *)body->data;
   PC             pc;
   PCFailedReason reason;
-  MatSolverType  stype;
-  PetscBool      mumps = PETSC_FALSE, chol;
+  MatSolverType  stype = NULL;
+  PetscBool      mumps = PETSC_FALSE, chol, lu;
 
   PetscFunctionBegin;
   PetscCall(KSPGetPC(fem->ksp, &pc));
-  PetscCall(PCGetFailedReason(pc, &reason));
-  if (reason == PC_FACTOR_OUTMEMORY) {
-    PetscCall(PCFactorGetMatSolverType(pc, &stype));
-    PetscCall(PetscStrcmp(stype, MATSOLVERMUMPS, &mumps));
-  }
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &chol));
-  for (int attempt = 0; mumps && reason == PC_FACTOR_OUTMEMORY && attempt < 3; attempt++) {
-    Mat            F;
-    MatFactorInfo  info;
-    MatFactorError err;
-    PetscInt       icntl14;
-    PetscCall(PCFactorGetMatrix(pc, &F));
-    PetscCall(MatMumpsGetIcntl(F, 14, &icntl14));
-    PetscCall(PetscInfo(
-        pc, "MUMPS out of workspace factoring A of body %s: ICNTL(14) %" PetscInt_FMT " -> %" PetscInt_FMT "\n",
-        body->name, icntl14, 2 * icntl14 + 20));
-    PetscCall(MatMumpsSetIcntl(F, 14, 2 * icntl14 + 20));
-    PetscCall(MatFactorClearError(F));
-    PetscCall(MatFactorInfoInitialize(&info));
-    if (chol)
-      PetscCall(MatCholeskyFactorNumeric(F, fem->A, &info));
-    else
-      PetscCall(MatLUFactorNumeric(F, fem->A, &info));
-    PetscCall(MatFactorGetError(F, &err));
-    reason =
-        err == MAT_FACTOR_NOERROR ? PC_NOERROR : (err == MAT_FACTOR_OUTMEMORY ? PC_FACTOR_OUTMEMORY : PC_FACTOR_OTHER);
-    PetscCall(PCSetFailedReason(pc, reason));
-  }
-  PetscCheck(reason == PC_NOERROR, body->comm, PETSC_ERR_CONV_FAILED,
-             "Factorization of A for body '%s' failed: %s (out of memory with MUMPS, which underestimates its "
-             "workspace now and then on several ranks, even after the margin was doubled 3 times: raise it, "
-             "-%smat_mumps_icntl_14 200)",
-             body->name, PCFailedReasons[reason], body->prefix);
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
+  if (chol || lu) PetscCall(PCFactorGetMatSolverType(pc, &stype));
+  if (stype) PetscCall(PetscStrcmp(stype, MATSOLVERMUMPS, &mumps));
+  if (mumps) { PetscCall(FCMumpsKSPChecked(fem->ksp, fem->A, "A", body->name)); }
+  PetscCall(PCGetFailedReason(pc, &reason));
+  PetscCheck(reason == PC_NOERROR, body->comm, PETSC_ERR_CONV_FAILED, "Factorization of A for body '%s' failed: %s",
+             body->name, PCFailedReasons[reason]);
   PetscFunctionReturn(0);
 }
 

@@ -181,30 +181,16 @@ PetscErrorCode FCComplianceGetFactor(FCCompliance comp, Mat *F)
 /* Numeric Cholesky factorization by MUMPS of a matrix a builder owns (the Schur builder's
    augmented matrix, the redundant copies of A), checked: PETSc 3.18 records a MUMPS failure in the
    factor instead of raising it, and parallel MUMPS intermittently underestimates its workspace
-   (INFOG(1) = -9, seen on 2 ranks: an unchecked failure gave an all-zero Schur complement). Out of
-   memory is retried with ICNTL(14), the workspace margin in percent, doubled, up to 3 times. */
-PetscErrorCode FCComplianceMumpsCholesky(FCCompliance comp, Mat F, Mat K, const char what[])
+   (INFOG(1) = -9, seen on 2 and 4 ranks: an unchecked failure gave an all-zero Schur complement).
+   Out of memory is retried on a new factor with ICNTL(14), the workspace margin in percent,
+   doubled, up to 3 times (src/util/mumps.c: PETSc's numeric phase returns at once, with no error
+   and nothing factored, while MUMPS' INFOG(1) still holds the last failure: the retry before this
+   did nothing and gave the intermittent "W(0,0) = 0" of the schur builder on 4 ranks). *F may be
+   replaced; schur: the Schur indices of a new factor (NULL: none). */
+PetscErrorCode FCComplianceMumpsCholesky(FCCompliance comp, Mat *F, Mat K, IS schur, const char what[])
 {
-  MatFactorInfo  info;
-  MatFactorError err;
-
   PetscFunctionBegin;
-  PetscCall(MatFactorInfoInitialize(&info));
-  for (int attempt = 0;; attempt++) {
-    PetscInt icntl14;
-    PetscCall(MatCholeskyFactorNumeric(F, K, &info));
-    PetscCall(MatFactorGetError(F, &err));
-    if (err == MAT_FACTOR_NOERROR) break;
-    PetscCall(MatMumpsGetIcntl(F, 14, &icntl14));
-    PetscCheck(err == MAT_FACTOR_OUTMEMORY && attempt < 3, comp->ctx.comm, PETSC_ERR_CONV_FAILED,
-               "MUMPS factorization of %s of body '%s' failed (PETSc MatFactorError %d, ICNTL(14) = %" PetscInt_FMT ")",
-               what, comp->ctx.name, (int)err, icntl14);
-    PetscCall(PetscInfo(F,
-                        "MUMPS out of workspace in %s of body %s: ICNTL(14) %" PetscInt_FMT " -> %" PetscInt_FMT "\n",
-                        what, comp->ctx.name, icntl14, 2 * icntl14 + 20));
-    PetscCall(MatMumpsSetIcntl(F, 14, 2 * icntl14 + 20));
-    PetscCall(MatFactorClearError(F));
-  }
+  PetscCall(FCMumpsCholeskyChecked(F, K, schur, what, comp->ctx.name, ""));
   PetscFunctionReturn(0);
 }
 

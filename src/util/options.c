@@ -215,6 +215,9 @@ static PetscBool IsPetscRuntimeOption(const char name[])
     if (!strcmp(name, exact[i])) return PETSC_TRUE;
   for (int i = 0; starts[i]; i++)
     if (!strncmp(name, starts[i], strlen(starts[i]))) return PETSC_TRUE;
+  /* MUMPS' options (-[<body>_]mat_mumps_icntl_14, ...) are read when a factor is set up, at its
+     first use, after this check: the error messages of a failed factorization name them */
+  if (strstr(name, "mat_mumps_")) return PETSC_TRUE;
   /* viewers and reports read when a solve finishes: -xxx_view, -xxx_view_*, -xxx_converged_reason */
   if ((len >= 5 && !strcmp(name + len - 5, "_view")) || strstr(name, "_view_") ||
       (len >= 16 && !strcmp(name + len - 16, "converged_reason")))
