@@ -22,31 +22,31 @@ SCENE = ["-options_file", "input/grasp_rotate.opts", "-time_steps", "1000000", "
 
 
 def consistent(f, what, killed=False):
-    """A closed file: every per-step dataset has S rows, the frames end at step S and /complete_step
-    says S. After kill -9 the file is as of the last flush plus whatever of the next output step
-    reached the disk (a flush cut short may have written part of its metadata): the complete steps
-    are S = /complete_step, written after each flush; every per-step dataset must hold at least S
-    rows and every frame up to step S must be there, readable and finite (what is beyond S is an
-    interrupted write, not a completed step)."""
+    """A closed file: every per-step dataset has S rows, there are F frames ending at step S, and
+    /complete says (S, F). After kill -9 the file is as of the last flush plus whatever of the next
+    output step reached the disk (a flush cut short may have written part of its metadata, even
+    indexing a chunk beyond the end of file the superblock records): the complete steps and frames
+    are (S, F) = /complete, written after each flush; every per-step dataset must hold at least S
+    rows, and the rows up to S and the frames up to F must read, be finite, and be frames of the
+    steps 0..S (what is beyond is an interrupted write, and is not read)."""
     h = h5py.File(f, "r")
     rows = [len(h["steps/" + k]) for k in h["steps"] if isinstance(h["steps/" + k], h5py.Dataset)]
     rows += [len(h["steps/timing/" + k]) for k in h["steps/timing"]]
     rows += [len(h["bodies/%s/centroid" % b]) for b in h["bodies"]]
     rows.append(len(h["contacts/offset"]) - 1)
-    S = int(h["complete_step"][()])
+    S, F = (int(x) for x in h["complete"][:])
     if S > min(rows) or (not killed and S != min(rows)):
-        c.check(False, "%s: /complete_step %d, per-step datasets hold %d..%d rows" % (what, S, min(rows), max(rows)))
+        c.check(False, "%s: /complete step %d, per-step datasets hold %d..%d rows" % (what, S, min(rows), max(rows)))
         return S
-    fstep = h["frames/step"][:]
+    fstep = h["frames/step"][:F]
     pos = h["bodies/object/positions"]
-    done = [k for k in range(min(len(fstep), pos.shape[0])) if fstep[k] <= S]
-    ok = (S > 0 and np.array_equal(h["steps/step"][:S], np.arange(1, S + 1)) and [fstep[k] for k in done] == list(range(S + 1))
-          and all(np.isfinite(pos[k]).all() for k in done) and np.isfinite(h["steps/energy"][:S]).all()
+    ok = (S > 0 and np.array_equal(h["steps/step"][:S], np.arange(1, S + 1)) and list(fstep) == list(range(S + 1))
+          and all(np.isfinite(pos[k]).all() for k in range(F)) and np.isfinite(h["steps/energy"][:S]).all()
           and h["contacts/offset"][S] <= len(h["contacts/force"]))
     if not killed:
-        ok = ok and all(r == S for r in rows) and len(fstep) == S + 1 and pos.shape[0] == S + 1
+        ok = ok and all(r == S for r in rows) and len(h["frames/step"]) == F and pos.shape[0] == F
     c.check(ok, "%s: %d complete steps, frames of steps 0..%d all there and finite%s (rows per dataset %d..%d, %d frames)" % (
-        what, S, S, "" if killed else ", nothing beyond", min(rows), max(rows), len(fstep)))
+        what, S, S, "" if killed else ", nothing beyond", min(rows), max(rows), F))
     return S
 
 

@@ -21,7 +21,7 @@ wall = H["steps/wall_time"][:]
 phases = sum(H["steps/timing/" + p][:] for p in H["steps/timing"])
 c.check(wall.shape == (23,) and np.all(wall > 0) and np.all(wall >= phases - 2e-4),
         "/steps/wall_time per step, at least the sum of its phases (largest shortfall %.1e s)" % np.max(phases - wall))
-c.check(int(H["complete_step"][()]) == 23, "/complete_step of a finished run is its last step (%d)" % int(H["complete_step"][()]))
+c.check(list(H["complete"][:]) == [23, 6], "/complete of a finished run: its last step and its frames (%s)" % list(H["complete"][:]))
 c.check(list(H["frames/step"][:]) == [0, 5, 10, 15, 20, 23], "frames at 0, every 5 steps and the last: %s" % list(H["frames/step"][:]))
 c.check("-cube_young 1e5" in H.attrs["options"].decode() if isinstance(H.attrs["options"], bytes) else "-cube_young 1e5" in H.attrs["options"],
         "root attribute 'options' holds the options")

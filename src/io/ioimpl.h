@@ -99,7 +99,7 @@ struct _p_FCOutput {
   PetscInt *rstep;
   double    elast; /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt  nframes, xdmfwritten;
-  hid_t     complete;         /* /complete_step: the last step all of whose rows and frame a flush has put on disk */
+  hid_t     complete;         /* /complete: the last step, and the frames, that a flush has put on disk */
   long long laststep;         /* the last step whose rows or frame have been written (flushed or not) */
   size_t    lastsize, growth; /* file size after the last output step, largest growth of one (reserve.c) */
   /* contacts (scenes with contact pairs only) */

@@ -59,6 +59,9 @@ PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *ou
       mdc.flash_incr_mode       = H5C_flash_incr__off;
       mdc.decr_mode             = H5C_decr__off;
       mdc.dirty_bytes_threshold = 32 * 1024 * 1024; /* H5AC__MAX_DIRTY_BYTES_THRESHOLD */
+      /* and rank 0 writes all of it: a flush has then put everything on disk when rank 0 returns
+         from it (FCOutputFlush writes /complete after it) */
+      mdc.metadata_write_strategy = H5AC_METADATA_WRITE_STRATEGY__PROCESS_0_ONLY;
       PetscCheck(H5Pset_mdc_config(fapl, &mdc) >= 0, comm, PETSC_ERR_LIB,
                  "HDF5 refused the metadata cache settings of '%s'", filename);
     }
@@ -132,13 +135,15 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     PetscCall(FCH5AttrInt(out->file, "time_steps", nsteps));
     PetscCall(FCH5AttrInt(out->file, "output_every", every));
   }
-  { /* /complete_step, written after each flush (FCOutputFlush): -1 until the first frame is on disk */
-    hid_t     space = H5Screate(H5S_SCALAR);
-    long long none  = -1;
-    out->complete = H5Dcreate2(out->file, "complete_step", H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  { /* /complete = (last step, frames) safely on disk, written after each flush (FCOutputFlush):
+       (-1, 0) until the first frame is */
+    hsize_t   two[1]  = {2};
+    hid_t     space   = H5Screate_simple(1, two, NULL);
+    long long none[2] = {-1, 0};
+    out->complete     = H5Dcreate2(out->file, "complete", H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     H5Sclose(space);
-    FCH5Check(out->complete < 0 ? -1 : 0, "complete_step");
-    FCH5Check(H5Dwrite(out->complete, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &none), "complete_step");
+    FCH5Check(out->complete < 0 ? -1 : 0, "complete");
+    FCH5Check(H5Dwrite(out->complete, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, none), "complete");
     out->laststep = -1;
   }
   PetscCall(FCOutputRecordsCreate(out, nbodies, bodies, contacts));
@@ -293,8 +298,18 @@ PetscErrorCode FCOutputFlush(FCOutput out)
   FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush");
   /* only now, with everything up to that step on disk, the mark that says so: one raw write at a
      fixed place (no metadata), so after a crash or kill -9 a reader trusts the steps up to
-     /complete_step and nothing beyond (a flush cut short may have put later metadata on disk) */
-  FCH5Check(H5Dwrite(out->complete, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &out->laststep), "complete_step");
+     /complete and nothing beyond (a flush cut short may have put later metadata on disk: the
+     index of a chunk allocated for the next frame, beyond the end of file the superblock records).
+     Parallel HDF5 shares a flush's metadata writes among the ranks, and a rank may return from
+     H5Fflush before another has written its share: the barrier makes every share written first
+     (with rank 0 writing all metadata, FCOutputCreate, and this barrier, no rank's share can lag:
+     a kill -9 under the sanitizers on 2 ranks once left the mark one step ahead of a dataset).
+     The step and the frame count go in one write, so they always agree. */
+  PetscCallMPI(MPI_Barrier(out->comm));
+  {
+    long long mark[2] = {out->laststep, (long long)out->nframes};
+    FCH5Check(H5Dwrite(out->complete, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, mark), "complete");
+  }
   if (out->nframes >= 2 * out->xdmfwritten || out->nframes == 1) PetscCall(WriteXdmf(out));
   PetscFunctionReturn(0);
 }
