@@ -68,6 +68,7 @@ PETSC_EXTERN PetscFunctionList FCMaterialList;
 PETSC_INTERN PetscErrorCode    FCMaterialRegisterAll(void);
 PETSC_INTERN PetscErrorCode    FCMaterialCreate(const char type[], PetscReal young, PetscReal poisson, FCMaterial *);
 PETSC_INTERN void              FCMaterialHooke(FCMaterial, const PetscReal H[9], PetscReal sigma[9]);
+PETSC_INTERN PetscReal         FCMaterialHookeEnergy(FCMaterial, const PetscReal H[9], PetscReal vol);
 PETSC_INTERN void FCMaterialDeformationGradient(const PetscReal x[12], const PetscReal Dminv[9], PetscReal F[9]);
 PETSC_INTERN PetscErrorCode FCMaterialDestroy(FCMaterial *);
 PETSC_INTERN PetscErrorCode FCMaterialCreate_Linear(FCMaterial);

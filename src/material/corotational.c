@@ -6,12 +6,10 @@
 
 static PetscErrorCode Rotation(const PetscReal x[12], const PetscReal Dminv[9], PetscReal R[9])
 {
-  PetscReal Ds[9], F[9];
+  PetscReal F[9];
 
   PetscFunctionBegin;
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) Ds[3 * i + j] = x[3 * (j + 1) + i] - x[i];
-  FCMat3Mult(Ds, Dminv, F);
+  FCMaterialDeformationGradient(x, Dminv, F);
   FCMat3Polar(F, R);
   PetscFunctionReturn(0);
 }
@@ -58,42 +56,42 @@ static PetscErrorCode Element_Corotational(FCMaterial m, const PetscReal x[12], 
   PetscFunctionReturn(0);
 }
 
-/* 1/2 u_l^T K_e u_l with u_l = R^T x - X, computed from the strain it produces: the gradient of
-   u_l is H = R^T F - I (P1: constant over the element), so the energy is vol/2 sigma(H) : H with
-   Hooke's sigma, equal to the quadratic form to round-off without forming K_e (the form cost as
-   much as the polar decomposition; this runs for every element at every step: the energy guard,
-   the step's row) */
-static PetscErrorCode Energy_Corotational(FCMaterial m, const PetscReal x[12], const PetscReal X[12],
-                                          const PetscReal Dminv[9], PetscReal vol, PetscReal *E)
+/* The gradient of u_local = R^T x - X in the element's rotated frame: H = R^T F - I (constant over
+   a P1 element), so a rigid motion has none */
+static void RotatedGradient(const PetscReal x[12], const PetscReal Dminv[9], PetscReal H[9])
 {
-  PetscReal F[9], R[9], H[9], sigma[9], e = 0.0;
-
-  PetscFunctionBegin;
-  (void)X;
+  PetscReal F[9], R[9];
   FCMaterialDeformationGradient(x, Dminv, F);
   FCMat3Polar(F, R);
   FCMat3MultTranspose(R, F, H);
   for (int i = 0; i < 3; i++) H[4 * i] -= 1.0;
-  FCMaterialHooke(m, H, sigma);
-  for (int k = 0; k < 9; k++) e += sigma[k] * H[k];
-  *E = 0.5 * vol * e;
+}
+
+/* 1/2 u_l^T K_e u_l, from the strain it produces (FCMaterialHookeEnergy: forming K_e cost as much as
+   the polar decomposition, and this runs for every element at every step: the energy guard, the
+   step's row) */
+static PetscErrorCode Energy_Corotational(FCMaterial m, const PetscReal x[12], const PetscReal X[12],
+                                          const PetscReal Dminv[9], PetscReal vol, PetscReal *E)
+{
+  PetscReal H[9];
+
+  PetscFunctionBegin;
+  (void)X;
+  RotatedGradient(x, Dminv, H);
+  *E = FCMaterialHookeEnergy(m, H, vol);
   PetscFunctionReturn(0);
 }
 
-/* sigma of the small strain in the element's rotated frame: H = R^T F - I (the gradient of
-   u_local = R^T x - X), so a rigid motion has no stress; sigma is expressed in that frame (its
+/* sigma of the small strain in the element's rotated frame, expressed in that frame (its
    invariants, the von Mises stress among them, are those of R sigma R^T) */
 static PetscErrorCode Stress_Corotational(FCMaterial m, const PetscReal x[12], const PetscReal X[12],
                                           const PetscReal Dminv[9], PetscReal sigma[9])
 {
-  PetscReal F[9], R[9], H[9];
+  PetscReal H[9];
 
   PetscFunctionBegin;
   (void)X;
-  FCMaterialDeformationGradient(x, Dminv, F);
-  FCMat3Polar(F, R);
-  FCMat3MultTranspose(R, F, H);
-  for (int i = 0; i < 3; i++) H[4 * i] -= 1.0;
+  RotatedGradient(x, Dminv, H);
   FCMaterialHooke(m, H, sigma);
   PetscFunctionReturn(0);
 }

@@ -21,24 +21,27 @@ static PetscErrorCode Element_Linear(FCMaterial m, const PetscReal x[12], const 
   PetscFunctionReturn(0);
 }
 
-/* 1/2 (x - X)^T K_e (x - X) from the strain it produces (H = F - I, constant over a P1 element):
-   vol/2 sigma(H) : H, equal to the quadratic form to round-off without forming K_e */
+/* The displacement gradient of x - X: H = F - I (constant over a P1 element) */
+static void Gradient(const PetscReal x[12], const PetscReal Dminv[9], PetscReal H[9])
+{
+  FCMaterialDeformationGradient(x, Dminv, H);
+  for (int i = 0; i < 3; i++) H[4 * i] -= 1.0;
+}
+
+/* 1/2 (x - X)^T K_e (x - X), from the strain it produces (FCMaterialHookeEnergy) */
 static PetscErrorCode Energy_Linear(FCMaterial m, const PetscReal x[12], const PetscReal X[12],
                                     const PetscReal Dminv[9], PetscReal vol, PetscReal *E)
 {
-  PetscReal H[9], sigma[9], e = 0.0;
+  PetscReal H[9];
 
   PetscFunctionBegin;
   (void)X;
-  FCMaterialDeformationGradient(x, Dminv, H);
-  for (int i = 0; i < 3; i++) H[4 * i] -= 1.0;
-  FCMaterialHooke(m, H, sigma);
-  for (int k = 0; k < 9; k++) e += sigma[k] * H[k];
-  *E = 0.5 * vol * e;
+  Gradient(x, Dminv, H);
+  *E = FCMaterialHookeEnergy(m, H, vol);
   PetscFunctionReturn(0);
 }
 
-/* sigma of the small strain of x - X: H = F - I */
+/* sigma of the small strain of x - X */
 static PetscErrorCode Stress_Linear(FCMaterial m, const PetscReal x[12], const PetscReal X[12],
                                     const PetscReal Dminv[9], PetscReal sigma[9])
 {
@@ -46,8 +49,7 @@ static PetscErrorCode Stress_Linear(FCMaterial m, const PetscReal x[12], const P
 
   PetscFunctionBegin;
   (void)X;
-  FCMaterialDeformationGradient(x, Dminv, H);
-  for (int i = 0; i < 3; i++) H[4 * i] -= 1.0;
+  Gradient(x, Dminv, H);
   FCMaterialHooke(m, H, sigma);
   PetscFunctionReturn(0);
 }

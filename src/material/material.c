@@ -42,6 +42,17 @@ void FCMaterialHooke(FCMaterial m, const PetscReal H[9], PetscReal sigma[9])
       sigma[3 * i + j] = m->mu * (H[3 * i + j] + H[3 * j + i]) + (i == j ? m->lambda * tr : 0.0);
 }
 
+/* The strain energy of a P1 element of volume vol whose displacement gradient is H (constant over
+   it): vol/2 sigma(H) : H, equal to 1/2 u^T K_e u for the nodal displacements u that produce H,
+   without forming K_e */
+PetscReal FCMaterialHookeEnergy(FCMaterial m, const PetscReal H[9], PetscReal vol)
+{
+  PetscReal sigma[9], e = 0.0;
+  FCMaterialHooke(m, H, sigma);
+  for (int k = 0; k < 9; k++) e += sigma[k] * H[k];
+  return 0.5 * vol * e;
+}
+
 /* Deformation gradient of a P1 tetrahedron: F = Ds Dm^-1, Ds the edge vectors x_a - x_0 as columns */
 void FCMaterialDeformationGradient(const PetscReal x[12], const PetscReal Dminv[9], PetscReal F[9])
 {
