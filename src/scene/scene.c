@@ -312,7 +312,8 @@ PetscErrorCode FCSceneSetUp(FCScene s)
       return ierr;
     }
   }
-  PetscCall(FCPhaseResetTimes());
+  PetscCall(FCPhaseResetTimes()); /* the phases, and the first step's wall time, count from here */
+  PetscCall(PetscTime(&s->tmark));
   s->setupcalled = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -330,10 +331,10 @@ PetscErrorCode FCSceneGetBody(FCScene s, const char name[], FCBody *body)
 /* One time step: free motion (eq. 5) -> [contacts] -> integration (eq. 2) -> output */
 PetscErrorCode FCSceneStep(FCScene s)
 {
-  PetscReal timing[FC_PHASE_NUM], wall;
+  PetscReal      timing[FC_PHASE_NUM + 1]; /* per phase, then the step's wall time */
+  PetscLogDouble now;
 
   PetscFunctionBegin;
-  if (s->tmark == 0.0) PetscCall(PetscTime(&s->tmark)); /* the first step's wall time starts here */
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyComputeFreeMotion(s->bodies[i], s->t));
   if (s->pairs.n) {
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
@@ -354,23 +355,18 @@ PetscErrorCode FCSceneStep(FCScene s)
   s->t = s->t0 + (s->step - s->step0) * s->h; /* no drift from repeated additions */
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyCheckState(s->bodies[i], s->step));
   PetscCall(FCEnergyGuardCheck(&s->guard, s->comm, s->nbodies, s->bodies, s->step, s->t, s->h));
-  { /* per phase the largest time of a rank; the step's wall time (the ranks meet here every step, so
-       the time since the last meeting, largest over the ranks) is not their sum: a rank that waits
-       for another in one phase does not add that wait to the step twice */
-    PetscReal      t[FC_PHASE_NUM + 1];
-    PetscLogDouble now;
-    PetscCall(FCPhaseGetTimes(t));
-    PetscCall(PetscTime(&now));
-    t[FC_PHASE_NUM] = (PetscReal)(now - s->tmark);
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, t, FC_PHASE_NUM + 1, MPIU_REAL, MPIU_MAX, s->comm));
-    PetscCall(PetscTime(&s->tmark));
-    PetscCall(PetscArraycpy(timing, t, FC_PHASE_NUM));
-    wall = t[FC_PHASE_NUM];
-  }
+  /* per phase the largest time of a rank; the step's wall time (the ranks meet here every step, so
+     the time since the last meeting, largest over the ranks) is not their sum: a rank that waits
+     for another in one phase does not add that wait to the step twice */
+  PetscCall(FCPhaseGetTimes(timing));
+  PetscCall(PetscTime(&now));
+  timing[FC_PHASE_NUM] = (PetscReal)(now - s->tmark);
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, timing, FC_PHASE_NUM + 1, MPIU_REAL, MPIU_MAX, s->comm));
+  PetscCall(PetscTime(&s->tmark));
   for (int p = 0; p < FC_PHASE_NUM; p++) s->phase_total[p] += timing[p];
   PetscCall(FCPhaseResetTimes());
   /* the output of this step (frame and flush) is counted in the next step's row */
-  PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, wall, s->nbodies, s->bodies));
+  PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, timing[FC_PHASE_NUM], s->nbodies, s->bodies));
   if (s->pairs.n) {
     struct _FCContactSetView v = {&s->set, &s->stats, &s->measures};
     PetscCall(FCOutputRecordContacts(s->output, &v));
