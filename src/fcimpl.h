@@ -122,9 +122,9 @@ typedef struct {
 PETSC_INTERN PetscErrorCode FCAllgatherRecords(MPI_Comm, PetscInt n, size_t size, const void *loc, PetscInt *total,
                                                void **all);
 /* src/util/mumps.c: MUMPS factorizations checked by MUMPS' own INFOG(1); out of workspace retried on
-   a new factor with ICNTL(14) doubled, 3 times (a builder's factor, a KSP's PC) */
-PETSC_INTERN PetscErrorCode FCMumpsCholeskyChecked(Mat *F, Mat A, IS schur, const char what[], const char body[],
-                                                   const char prefix[]);
+   a new factor with ICNTL(14) doubled, 3 times (a builder's factor, a KSP's; the latter with any
+   other solver checked by its PC's failure reason) */
+PETSC_INTERN PetscErrorCode FCMumpsCholeskyChecked(Mat *F, Mat A, IS schur, const char what[], const char body[]);
 PETSC_INTERN PetscErrorCode FCMumpsKSPChecked(KSP ksp, Mat A, const char what[], const char body[]);
 /* src/mesh/partmetis.c: the PetscPartitioner type "metis" (METIS k-way on the gathered cell graph) */
 #define FC_PARTITIONER_METIS "metis"

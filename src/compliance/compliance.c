@@ -178,22 +178,6 @@ PetscErrorCode FCComplianceGetFactor(FCCompliance comp, Mat *F)
   PetscFunctionReturn(0);
 }
 
-/* Numeric Cholesky factorization by MUMPS of a matrix a builder owns (the Schur builder's
-   augmented matrix, the redundant copies of A), checked: PETSc 3.18 records a MUMPS failure in the
-   factor instead of raising it, and parallel MUMPS intermittently underestimates its workspace
-   (INFOG(1) = -9, seen on 2 and 4 ranks: an unchecked failure gave an all-zero Schur complement).
-   Out of memory is retried on a new factor with ICNTL(14), the workspace margin in percent,
-   doubled, up to 3 times (src/util/mumps.c: PETSc's numeric phase returns at once, with no error
-   and nothing factored, while MUMPS' INFOG(1) still holds the last failure: the retry before this
-   did nothing and gave the intermittent "W(0,0) = 0" of the schur builder on 4 ranks). *F may be
-   replaced; schur: the Schur indices of a new factor (NULL: none). */
-PetscErrorCode FCComplianceMumpsCholesky(FCCompliance comp, Mat *F, Mat K, IS schur, const char what[])
-{
-  PetscFunctionBegin;
-  PetscCall(FCMumpsCholeskyChecked(F, K, schur, what, comp->ctx.name, ""));
-  PetscFunctionReturn(0);
-}
-
 /* S (sorted DOFs that J_b touches, the same on every rank: contacts are replicated) and J_S by
    columns of S: for S index j, the rows a of J_b with J_b(a, S_j) != 0; from all the entries of
    J_b^T (comp->jtr + lo: global DOF) */

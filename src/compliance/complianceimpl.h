@@ -50,8 +50,6 @@ PETSC_INTERN void FCComplianceAddColumn(PetscInt ncols, PetscInt ns, const Petsc
 PETSC_INTERN PetscErrorCode FCComplianceBodySolverIsMumps(FCCompliance, PetscBool *);
 /* The factor of A (the body's KSP) */
 PETSC_INTERN PetscErrorCode FCComplianceGetFactor(FCCompliance, Mat *F);
-/* Numeric Cholesky by MUMPS of a matrix a builder owns, with its failure checked (see the file) */
-PETSC_INTERN PetscErrorCode FCComplianceMumpsCholesky(FCCompliance, Mat *F, Mat K, IS schur, const char what[]);
 
 /* One MUMPS Cholesky factorization of A with a set S of DOFs ordered last (METIS nested
    dissection before them), giving C = (A^-1)_SS on rank 0 besides the solves (schurfactor.c) */

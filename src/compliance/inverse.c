@@ -184,7 +184,7 @@ static PetscErrorCode RedundantFactor(FCCompliance comp)
 
   PetscFunctionBegin;
   PetscCall(RedundantCopy(comp));
-  if (inv->Fr) PetscCall(FCComplianceMumpsCholesky(comp, &inv->Fr, inv->Ar, NULL, "the redundant copy of A"));
+  if (inv->Fr) PetscCall(FCMumpsCholeskyChecked(&inv->Fr, inv->Ar, NULL, "the redundant copy of A", comp->ctx.name));
   PetscFunctionReturn(0);
 }
 

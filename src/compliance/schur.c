@@ -50,7 +50,7 @@ static PetscErrorCode Build_Schur(FCCompliance comp, PetscInt self, const FCCont
   PetscCall(MatFactorSetSchurIS(F, is));
   PetscCall(MatFactorInfoInitialize(&info));
   PetscCall(MatCholeskyFactorSymbolic(F, K, NULL, &info));
-  PetscCall(FCComplianceMumpsCholesky(comp, &F, K, is, "the augmented matrix [[0, J], [J^T, A]]"));
+  PetscCall(FCMumpsCholeskyChecked(&F, K, is, "the augmented matrix [[0, J], [J^T, A]]", comp->ctx.name));
   PetscCall(MatFactorCreateSchurComplement(F, &S, NULL));
   if (rank == 0) {
     const PetscScalar *sa;
