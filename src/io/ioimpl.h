@@ -39,8 +39,9 @@ PETSC_INTERN PetscErrorCode FCH5AgreeClean(int ok, int err, const char what[]);
 PETSC_INTERN PetscBool FCH5Failed(void);
 PETSC_INTERN PetscBool FCH5FailedInside(void);
 
-/* Disk space (reserve.c): `bytes` beyond the end of the file, reserved by rank 0 before HDF5
-   writes (collective; failure: FCH5AgreeClean), given back after the close; the file's size */
+/* Disk space (reserve.c): `bytes` beyond HDF5's end of allocation of the open file h5 (-1: beyond
+   the file's end), allocated as part of the file by rank 0 before HDF5 writes (collective;
+   failure: FCH5AgreeClean); Release cuts the file back to its end of allocation after the close */
 PETSC_INTERN PetscErrorCode FCH5Reserve(MPI_Comm, const char file[], hid_t h5, size_t bytes, const char what[]);
 PETSC_INTERN PetscErrorCode FCH5Release(MPI_Comm, const char file[]);
 
@@ -101,7 +102,8 @@ struct _p_FCOutput {
   PetscInt  nframes, xdmfwritten;
   hid_t     complete;         /* /complete: the last step, and the frames, that a flush has put on disk */
   long long laststep;         /* the last step whose rows or frame have been written (flushed or not) */
-  size_t    lastsize, growth; /* file size after the last output step, largest growth of one (reserve.c) */
+  size_t    lastsize, growth; /* HDF5's end of allocation after the last output step, largest growth over one
+                                 (the next reservation, reserve.c) */
   /* contacts (scenes with contact pairs only) */
   PetscBool contacts;
   hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state, c_pointend, c_fworld, c_ftan;

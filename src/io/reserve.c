@@ -79,17 +79,13 @@ PetscErrorCode FCH5Release(MPI_Comm comm, const char file[])
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0 && !getenv("FECONTACT_NO_RESERVE")) {
     struct stat st;
-    if (!stat(file, &st) && S_ISREG(st.st_mode)) {
-      hid_t   f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
-      haddr_t eoa;
-      if (f >= 0) {
-        if (H5Fget_eoa(f, &eoa) >= 0 && (off_t)eoa < st.st_size && (off_t)eoa > 0) {
-          H5Fclose(f);
-          (void)!truncate(file, (off_t)eoa);
-        } else
-          H5Fclose(f);
-      }
+    haddr_t     eoa = 0;
+    hid_t       f   = stat(file, &st) || !S_ISREG(st.st_mode) ? -1 : H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f >= 0) {
+      if (H5Fget_eoa(f, &eoa) < 0) eoa = 0;
+      H5Fclose(f);
     }
+    if (eoa > 0 && (off_t)eoa < st.st_size) (void)!truncate(file, (off_t)eoa);
   }
   PetscFunctionReturn(0);
 }
