@@ -19,7 +19,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests"))
 os.chdir(ROOT)
-from fctest import start, wait_for_frames  # noqa: E402
+from fctest import complete_prefix, start, wait_for_frames  # noqa: E402
 
 ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
 ap.add_argument("--kills", type=int, default=30)
@@ -31,28 +31,10 @@ SCENE = ["-options_file", "input/grasp_rotate.opts", "-time_steps", "1000000", "
 
 
 def check(f):
-    """The complete steps S of a killed run's file; raises where something up to S does not read"""
+    """The complete steps S of a killed run's file; raises where something up to /complete does not
+    read (fctest.complete_prefix)"""
     with h5py.File(f, "r") as h:
-        S, F = (int(x) for x in h["complete"][:])
-        rows = [len(h["steps/" + k]) for k in h["steps"] if isinstance(h["steps/" + k], h5py.Dataset)]
-        rows += [len(h["bodies/%s/centroid" % b]) for b in h["bodies"]]
-        rows.append(len(h["contacts/offset"]) - 1)
-        if S > min(rows):
-            raise RuntimeError("/complete step %d but a per-step dataset has %d rows" % (S, min(rows)))
-        for k in h["steps"]:
-            if isinstance(h["steps/" + k], h5py.Dataset) and not np.isfinite(h["steps/" + k][:S]).all():
-                raise RuntimeError("steps/%s not finite up to step %d" % (k, S))
-        for b in h["bodies"]:
-            h["bodies/%s/centroid" % b][:S]
-        h["contacts/force"][:h["contacts/offset"][S]]
-        fstep = h["frames/step"][:F]
-        pos = h["bodies/object/positions"]
-        for k in range(F):
-            if not np.isfinite(pos[k]).all():
-                raise RuntimeError("frame %d (step %d) not finite" % (k, fstep[k]))
-        if list(fstep) != list(range(S + 1)):
-            raise RuntimeError("frames of steps 0..%d not all there: %s" % (S, list(fstep)))
-    return S
+        return complete_prefix(h)[0]
 
 
 random.seed(a.seed)

@@ -41,8 +41,9 @@ def start(args, np_=1):
 
 
 def wait_for_frames(f, extra, timeout=300):
-    """Wait until a started run has written a few frames to f (the file grows by ~6 kB a frame of
-    the coarse cube; it cannot be read while open), then `extra` seconds: robust to a loaded machine"""
+    """Wait until a started run has written a few frames to f (the file grows with HDF5's allocation,
+    ~6 kB a frame of the coarse cube, kept a reserved margin ahead of it: src/io/reserve.c; it cannot
+    be read while open), then `extra` seconds: robust to a loaded machine"""
     t0 = time.time()
     while not os.path.exists(f) and time.time() - t0 < timeout:
         time.sleep(0.05)
@@ -51,6 +52,41 @@ def wait_for_frames(f, extra, timeout=300):
     while os.path.getsize(f) < size0 + 20000 and time.time() - t0 < timeout:
         time.sleep(0.05)
     time.sleep(extra)
+
+
+def complete_prefix(h):
+    """What /complete says is safely on disk in an output file h (an h5py.File), read and checked as a
+    reader after a crash must (docs/output.md): (S, F) = /complete; every per-step dataset holds at
+    least S rows; the rows up to S, the contacts of those steps and the frames up to F read and are
+    finite, and the frames are those of steps 0..S; nothing beyond is read. Returns (S, F, rows: the
+    per-step datasets' lengths, frame steps); raises RuntimeError naming what fails."""
+    S, F = (int(x) for x in h["complete"][:])
+    steps = [k for k in h["steps"] if isinstance(h["steps/" + k], h5py.Dataset)]
+    rows = [len(h["steps/" + k]) for k in steps]
+    rows += [len(h["steps/timing/" + k]) for k in h["steps/timing"]]
+    rows += [len(h["bodies/%s/centroid" % b]) for b in h["bodies"]]
+    rows.append(len(h["contacts/offset"]) - 1)
+    if S > min(rows):
+        raise RuntimeError("/complete step %d, per-step datasets hold %d..%d rows" % (S, min(rows), max(rows)))
+    for k in steps:
+        if not np.isfinite(h["steps/" + k][:S]).all():
+            raise RuntimeError("steps/%s not finite up to step %d" % (k, S))
+    if not np.array_equal(h["steps/step"][:S], np.arange(1, S + 1)):
+        raise RuntimeError("steps/step is not 1..%d" % S)
+    for b in h["bodies"]:
+        h["bodies/%s/centroid" % b][:S]
+    if h["contacts/offset"][S] > len(h["contacts/force"]):
+        raise RuntimeError("contacts/offset[%d] beyond the contact records" % S)
+    h["contacts/force"][:h["contacts/offset"][S]]
+    fstep = list(h["frames/step"][:F])
+    for b in h["bodies"]:
+        pos = h["bodies/%s/positions" % b]
+        for k in range(F):
+            if not np.isfinite(pos[k]).all():
+                raise RuntimeError("frame %d (step %d) of %s not finite" % (k, fstep[k], b))
+    if fstep != list(range(S + 1)):
+        raise RuntimeError("the frames are not those of steps 0..%d: %s" % (S, fstep))
+    return S, F, rows, fstep
 
 
 def final_state(h5):

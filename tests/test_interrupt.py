@@ -13,8 +13,7 @@ import re
 import signal
 
 import h5py
-import numpy as np
-from fctest import Checker, np_from_argv, out, run, start, wait_for_frames
+from fctest import Checker, complete_prefix, np_from_argv, out, run, start, wait_for_frames
 
 NP = np_from_argv()
 c = Checker("interrupt np%d" % NP)
@@ -25,26 +24,17 @@ def consistent(f, what, killed=False):
     """A closed file: every per-step dataset has S rows, there are F frames ending at step S, and
     /complete says (S, F). After kill -9 the file is as of the last flush plus whatever of the next
     output step reached the disk (a flush cut short may have written part of its metadata, even
-    indexing a chunk beyond the end of file the superblock records): the complete steps and frames
-    are (S, F) = /complete, written after each flush; every per-step dataset must hold at least S
-    rows, and the rows up to S and the frames up to F must read, be finite, and be frames of the
-    steps 0..S (what is beyond is an interrupted write, and is not read)."""
+    indexing a chunk beyond the end of file the superblock records): what /complete names must read
+    (fctest.complete_prefix), and nothing beyond it is read."""
     h = h5py.File(f, "r")
-    rows = [len(h["steps/" + k]) for k in h["steps"] if isinstance(h["steps/" + k], h5py.Dataset)]
-    rows += [len(h["steps/timing/" + k]) for k in h["steps/timing"]]
-    rows += [len(h["bodies/%s/centroid" % b]) for b in h["bodies"]]
-    rows.append(len(h["contacts/offset"]) - 1)
-    S, F = (int(x) for x in h["complete"][:])
-    if S > min(rows) or (not killed and S != min(rows)):
-        c.check(False, "%s: /complete step %d, per-step datasets hold %d..%d rows" % (what, S, min(rows), max(rows)))
-        return S
-    fstep = h["frames/step"][:F]
-    pos = h["bodies/object/positions"]
-    ok = (S > 0 and np.array_equal(h["steps/step"][:S], np.arange(1, S + 1)) and list(fstep) == list(range(S + 1))
-          and all(np.isfinite(pos[k]).all() for k in range(F)) and np.isfinite(h["steps/energy"][:S]).all()
-          and h["contacts/offset"][S] <= len(h["contacts/force"]))
+    try:
+        S, F, rows, fstep = complete_prefix(h)
+    except RuntimeError as e:
+        c.check(False, "%s: %s" % (what, e))
+        return int(h["complete"][0])
+    ok = S > 0
     if not killed:
-        ok = ok and all(r == S for r in rows) and len(h["frames/step"]) == F and pos.shape[0] == F
+        ok = ok and all(r == S for r in rows) and len(h["frames/step"]) == F and h["bodies/object/positions"].shape[0] == F
     c.check(ok, "%s: %d complete steps, frames of steps 0..%d all there and finite%s (rows per dataset %d..%d, %d frames)" % (
         what, S, S, "" if killed else ", nothing beyond", min(rows), max(rows), F))
     return S
