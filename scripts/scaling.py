@@ -127,6 +127,14 @@ def stored(a, name, stamp, compute):
     return value
 
 
+def serial_share(pairs):
+    """Two-point Amdahl fit of (1-rank, 2-rank) times, one pair per phase: each phase's serial part
+    is 2 t(2) - t(1), clipped to [0, t(1)]; returns the serial share of the summed 1-rank times (the
+    fit then predicts t(p) = t(1) (f + (1 - f) / p))"""
+    ser = sum(min(max(0.0, 2 * t2 - t1), t1) for t1, t2 in pairs)
+    return ser / max(sum(t1 for t1, _ in pairs), 1e-30)
+
+
 def diff(h1, h2):
     body = "cube" if "cube" in h1["bodies"] else "box"
     a, b = sorted_positions(h1, body)[1], sorted_positions(h2, body)[1]
@@ -355,17 +363,10 @@ def write_doc(a, rows):
             rr = strong(sc, ct)
             if 1 not in rr or 2 not in rr:
                 continue
-            ser = par = 0.0
-            for ph in PHASES:
-                t1, t2 = rr[1][ph], rr[2][ph]
-                s_ = max(0.0, 2 * t2 - t1)
-                ser += min(s_, t1)
-                par += t1 - min(s_, t1)
-            f = ser / max(ser + par, 1e-30)  # the serial share of the phases, applied to the step's wall time
+            f = serial_share([(rr[1][ph], rr[2][ph]) for ph in PHASES])  # applied to the step's wall time
             pred = {p: rr[1]["step"] * (f + (1 - f) / p) for p in (4, 8, 16)}
             L.append("| %s | %s | %.3f | %.3f | %.0f%% | %.3f | %.3f | %.3f | %.1fx |" % (
-                sc, ct, rr[1]["step"], rr[2]["step"], 100 * ser / max(ser + par, 1e-30), pred[4], pred[8], pred[16],
-                rr[1]["step"] / pred[16]))
+                sc, ct, rr[1]["step"], rr[2]["step"], 100 * f, pred[4], pred[8], pred[16], rr[1]["step"] / pred[16]))
     L += ["", "The model behind it, phase by phase (m contacts, M = 3m rows with friction, N DOFs, p ranks, "
           "|S| <= 3 m contact DOFs):", "",
           "- **distributed, O(N/p)**: assembly, the free-motion solve, the factorization (MUMPS, nested dissection: "
