@@ -24,6 +24,14 @@ for name, opts in scenes.items():
         files.append(h5py.File(f, "r"))
     a, b = files
     c.check(b.attrs["mpi_ranks"] == NP, "%s ran on %d ranks" % (name, NP))
+    # the step's wall time on N ranks: every phase (the largest time of a rank) lies inside it, and
+    # /complete names the whole run (2e-4 s for the clock reads)
+    wall = b["steps/wall_time"][:]
+    worst = np.max([b["steps/timing/" + p][:] for p in b["steps/timing"]], axis=0)
+    c.check(wall.shape == (30,) and np.all(wall > 0) and np.all(wall >= worst - 2e-4),
+            "%s: /steps/wall_time on %d ranks holds every phase (largest shortfall %.1e s)" % (name, NP, np.max(worst - wall)))
+    c.check(list(b["complete"][:]) == [30, len(b["frames/step"])], "%s: /complete on %d ranks is %s" % (
+        name, NP, list(b["complete"][:])))
     for body in a["bodies"]:
         ra, pa = sorted_positions(a, body)
         rb, pb = sorted_positions(b, body)
