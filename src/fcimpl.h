@@ -434,11 +434,12 @@ typedef struct {
   PetscInt n;
   PetscInt (*body)[2]; /* scene body indices */
   PetscReal *mu;
-  PetscReal  distance;   /* alarm distance */
-  PetscInt   passes;     /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
-  PetscReal  pass2_drop; /* -contact_fe_pass2_drop: drop 2nd-pass vertices held by the 1st pass (< 0: off) */
-  PetscBool  continuous; /* -contact_detection continuous (default) or discrete */
-  PetscBool  edges;      /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
+  PetscReal  distance;     /* alarm distance */
+  PetscInt   passes;       /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
+  PetscReal  pass2_drop;   /* -contact_fe_pass2_drop: drop 2nd-pass vertices held by the 1st pass (< 0: off) */
+  PetscBool  continuous;   /* -contact_detection continuous (default) or discrete */
+  PetscBool  edges;        /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
+  PetscBool  shape_points; /* -contact_shape_points: a bounded shape's points against an FE surface too */
   PetscReal
       separation_speed; /* -contact_separation_speed: bodies that start inside each other part at most this fast */
   PetscReal intersection_depth;   /* a point deeper than this inside another body is an intersection */

@@ -9,6 +9,14 @@
   progress line warns on such a step, -contact_fail_on_intersection stops the run there with a
   message naming the step and the option, the output closed and holding that step.
 - Bad values of the new options are errors naming the option.
+- A bounded shape's points against the FE triangles (-contact_shape_points, default): a ball
+  smaller than the elements (r = 8 mm, slab vertices 12.5 mm apart) at 20 m/s onto the stiff thin
+  slab stays above it, the same run with the option off ends below the slab; the intersection
+  check counts the ball's points inside the slab (discrete detection, option off: step 1 ends with
+  the ball in it, no slab vertex inside the ball).
+- An FE body all of whose free DOFs are contact DOFs (the soft one-element slab under the small
+  ball: the condensed builder's Schur block grows to all of A, which MUMPS refuses) runs, and
+  gives the dense builder's trajectory.
 - Edge-edge contacts (two weights per side) in every compliance builder and both recursive
   schemes: the crossed bars give the same positions as with the dense builder.
 Usage: test_detection.py [--np N]"""
@@ -57,6 +65,42 @@ c.check(p.returncode != 0 and "step 1 " in txt and "-contact_fail_on_intersectio
 with h5py.File(f, "r") as H:
     rows, n = len(H["steps/step"]), H["steps/intersections"][:].tolist()
 c.check(rows == 1 and n == [16], "-contact_fail_on_intersection: the output is closed and holds step 1 (%d rows, intersections %s)" % (rows, n))
+
+# a ball smaller than the slab's elements: its points against the slab's triangles hold it
+SMALL = BALL[:2] + ["-time_steps", "8", "-ball_radius", "0.008", "-ball_center", "0.013,0.017,0.21", "-quiet"]
+for sp in ("1", "0"):
+    f = out("small_ball_sp%s_np%d.h5" % (sp, NP))
+    run(SMALL + ["-slab_young", "1e10", "-contact_shape_points", sp, "-output_file", f], np_=NP)
+    with h5py.File(f, "r") as H:
+        z, n = H["bodies/ball/centroid"][:, 2], H["steps/intersections"][:]
+    if sp == "1":  # the slab's top is at z = 0.02: a centre below 0.02 + r = 0.028 went into it
+        c.check(z.min() >= 0.028 - 1e-4 and not n.any(),
+                "small ball, shape points on: lowest centre %.5f m >= 0.028 - 1e-4, intersections %s" % (z.min(), n.tolist()))
+    else:
+        c.check(z[-1] < 0 and n.any(), "small ball, shape points off: through the slab (centre %.3f m), intersections %s"
+                % (z[-1], n.tolist()))
+f = out("small_ball_count_np%d.h5" % NP)
+run(SMALL[:-1] + ["-time_steps", "1", "-slab_young", "1e10", "-contact_detection", "discrete",
+                  "-contact_shape_points", "0", "-output_file", f, "-quiet"], np_=NP)
+with h5py.File(f, "r") as H:
+    z, n = H["bodies/ball/centroid"][0, 2], H["steps/intersections"][0]
+c.check(0.008 < z < 0.012 and n > 100, "discrete, shape points off: the ball ends inside the slab (centre %.4f m), "
+        "the check counts %d of its points inside (was 0: only slab vertices were tested)" % (z, n))
+# the soft slab punched by the small ball (shape points off): every free DOF a contact DOF (condensed:
+# Sigma = A; MUMPS refused it, INFOG(1) = -49)
+ref = None
+for t in ("dense", "condensed"):
+    f = out("small_ball_soft_%s_np%d.h5" % (t, NP))
+    p = run(SMALL + ["-time_steps", "4", "-contact_shape_points", "0", "-compliance_type", t, "-output_file", f], np_=NP,
+            check=False)
+    ok = p.returncode == 0
+    with h5py.File(f, "r") as H:
+        x = H["bodies/ball/centroid"][:]
+    if ref is None:
+        ref = x
+    d = np.abs(x - ref).max() if x.shape == ref.shape else np.inf
+    c.check(ok and len(x) == 4 and d <= 1e-8, "soft slab, %s builder: exit %d, 4 steps, ball %.1e m from dense's"
+            % (t, p.returncode, d))
 
 # bad values name the option
 for opt, val in [("-contact_detection", "sweep"), ("-contact_separation_speed", "0"), ("-contact_intersection_depth", "-1")]:

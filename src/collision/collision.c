@@ -172,6 +172,94 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
   PetscFunctionReturn(0);
 }
 
+/* -contact_shape_points: the FE vertices see a bounded shape only at the vertices, so a shape
+   smaller than the elements, a box's corner or a sphere's cap sinks into an FE face between them
+   (the end-of-step check counts its points inside, intersection.c). Each point of the shape's
+   picture (rank 0) finds its triangle of the FE surface as a vertex does (within the alarm
+   distance, by its motion over the step, or inside), and the contact is the FE material point
+   there (barycentric weights, side 1) against the shape's signed distance (side 2): the same
+   kind of contact as an FE vertex's, so the schemes re-linearize it with the shape's closest
+   point, which follows a turning or rolling shape (a point fixed in the shape's frame would not).
+   A point whose triangle point is an FE vertex is that vertex's own contact, and two picture
+   points landing on one triangle point make one contact. */
+static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
+                                           const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+{
+  PetscInt     n, *cand = NULL, nmade = 0;
+  FCRayGrid    grid = {{0}};
+  FCProximity *prox;
+  PetscReal   *x0, *xf, *key, *made = NULL, distance = pairs->distance, tau = FCCCDThreshold(distance);
+
+  PetscFunctionBegin;
+  PetscCall(FCBodyGetContactPoints(Sh, &n, &prox, &x0, &xf, &key));
+  if (!n) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * n, &made));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscInt  best;
+    PetscReal bestd, bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0}, y0[3], yf[3], X[3] = {0, 0, 0}, d, nrm[3], cpb[3];
+    PetscBool dup = PETSC_FALSE;
+    FCContact c;
+    FCSurfaceClosest(S, &x0[3 * i], &best, bw, bcp, &bestd);
+    if (best < 0 || bestd > distance * distance) {
+      if (pairs->continuous) SweptVertexHit(S, &x0[3 * i], &xf[3 * i], tau, cand, &best);
+      if (best < 0) { /* inside the FE body, deeper than the alarm distance: its nearest triangle */
+        if (!grid.cells) PetscCall(FCRayGridCreate(S, &grid));
+        if (!FCRayGridInside(S, &grid, &x0[3 * i])) continue;
+        NearestTriangle(S, &x0[3 * i], &best);
+      }
+      FCClosestPointTriangle(&x0[3 * i], S->tri[best].x0[0], S->tri[best].x0[1], S->tri[best].x0[2], bcp, bw);
+    }
+    if (bw[0] == 1.0 || bw[1] == 1.0 || bw[2] == 1.0) continue; /* an FE vertex: its own contact */
+    {
+      const FCSurfaceTriangle *T = &S->tri[best];
+      for (int k = 0; k < 3; k++) {
+        y0[k] = bcp[k];
+        yf[k] = bw[0] * T->xf[0][k] + bw[1] * T->xf[1][k] + bw[2] * T->xf[2][k];
+        X[k]  = bw[0] * T->X[0][k] + bw[1] * T->X[1][k] + bw[2] * T->X[2][k];
+      }
+      for (PetscInt m = 0; m < nmade && !dup; m++)
+        dup = made[3 * m] == X[0] && made[3 * m + 1] == X[1] && made[3 * m + 2] == X[2] ? PETSC_TRUE : PETSC_FALSE;
+      if (dup) continue;
+      PetscCall(FCBodyShapeDistance(Sh, FC_AT_NOW, y0, &d, nrm, cpb));
+      if (d >= distance) { /* the triangle point's own motion against the shape decides */
+        PetscBool hit = PETSC_FALSE;
+        if (pairs->continuous) PetscCall(FCCCDPointShape(Sh, y0, yf, d, tau, &hit));
+        if (!hit) continue;
+      }
+      for (int k = 0; k < 3; k++) made[3 * nmade + k] = X[k];
+      nmade++;
+      PetscCall(PetscMemzero(&c, sizeof(c)));
+      c.pair       = pair;
+      c.body[0]    = ife;
+      c.body[1]    = ish;
+      c.prox[0].nv = 3;
+      for (int a = 0; a < 3; a++) {
+        c.prox[0].gdof[a] = T->gdof[a];
+        c.prox[0].w[a]    = bw[a];
+        for (int k = 0; k < 3; k++) c.prox[0].X[a][k] = T->X[a][k];
+      }
+      for (int k = 0; k < 3; k++) {
+        c.prox[0].r[k] = X[k];
+        c.prox[1].r[k] = cpb[k];
+        c.key[k]       = X[k];
+        c.n[k]         = nrm[k];
+        c.p0[0][k]     = y0[k];
+        c.pfree[0][k]  = yf[k];
+      }
+      PetscCall(FCBodyProximityPosition(Sh, &c.prox[1], FC_AT_START, c.p0[1]));
+      PetscCall(FCBodyProximityPosition(Sh, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+      c.side2 = FC_SIDE_SHAPE;
+      c.gap0  = d;
+      c.mu    = pairs->mu[pair];
+      c.owner = rank;
+      PetscCall(FCContactSetAdd(set, &c));
+    }
+  }
+  PetscCall(PetscFree2(cand, made));
+  PetscCall(PetscFree(grid.cells));
+  PetscFunctionReturn(0);
+}
+
 static int CompareX(const void *a, const void *b)
 {
   const PetscReal *x = (const PetscReal *)a, *y = (const PetscReal *)b;
@@ -285,6 +373,13 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
       c.owner = rank;
       PetscCall(FCContactSetAdd(set, &c));
     }
+    /* -contact_shape_points (ShapePointsOnSurface) */
+    if (pairs->shape_points && FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S)) {
+      Surface *Sf;
+      PetscCall(SurfaceBuild(comm, P, pairs, &Sf));
+      PetscCall(ShapePointsOnSurface(S, P, ishp, ipts, Sf, p, pairs, rank, set));
+      PetscCall(FCSurfaceDestroy(&Sf));
+    }
   }
   PetscCall(FCContactSetGather(set, comm));
   if (pairs->passes == 2 && pairs->pass2_drop >= 0.0) PetscCall(DropPaired(pairs, set));
@@ -303,16 +398,29 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
 PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCContactSet *set)
 {
   PetscMPIInt rank;
-  PetscReal  *g; /* per contact: gap, end normal (3), d = p1 - p2 (3), p1 (3) */
+  PetscReal  *g;  /* per contact: gap, end normal (3), d = p1 - p2 (3), p1 (3) */
+  PetscReal  *xp; /* per contact: side 1's point, where it is an FE triangle point against a shape */
+  PetscBool   spread = PETSC_FALSE;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(PetscCalloc1(10 * set->n + 1, &g));
+  PetscCall(PetscCalloc2(10 * set->n + 1, &g, 3 * set->n + 1, &xp));
+  for (PetscInt k = 0; k < set->n; k++) { /* FE triangle points against a shape (-contact_shape_points): */
+    FCContact *c = &set->c[k];            /* their vertices may lie on several ranks */
+    if (c->side2 == FC_SIDE_SHAPE && FCBodyIsDeformable(bodies[c->body[0]]) && c->prox[0].nv > 1) {
+      PetscCall(FCBodyAddPartialPosition(bodies[c->body[0]], &c->prox[0], &xp[3 * k]));
+      spread = PETSC_TRUE;
+    }
+  }
+  if (spread) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, xp, 3 * set->n, MPIU_REAL, MPIU_SUM, comm));
   for (PetscInt k = 0; k < set->n; k++) {
     FCContact *c = &set->c[k];
     PetscReal  x[3], p2[3], cpb[3];
     if (c->side2 != FC_SIDE_SHAPE || c->owner != rank) continue; /* triangles below */
-    PetscCall(FCBodyProximityPosition(bodies[c->body[0]], &c->prox[0], FC_AT_NOW, x));
+    if (FCBodyIsDeformable(bodies[c->body[0]]) && c->prox[0].nv > 1)
+      for (int d = 0; d < 3; d++) x[d] = xp[3 * k + d];
+    else
+      PetscCall(FCBodyProximityPosition(bodies[c->body[0]], &c->prox[0], FC_AT_NOW, x));
     PetscCall(FCBodyShapeDistance(bodies[c->body[1]], FC_AT_NOW, x, &g[10 * k], &g[10 * k + 1], cpb));
     PetscCall(FCBodyProximityPosition(bodies[c->body[1]], &c->prox[1], FC_AT_NOW, p2));
     for (int d = 0; d < 3; d++) {
@@ -409,6 +517,6 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
       c->p_end[d] = g[10 * k + 7 + d];
     }
   }
-  PetscCall(PetscFree(g));
+  PetscCall(PetscFree2(g, xp));
   PetscFunctionReturn(0);
 }

@@ -38,6 +38,12 @@
      -contact_edge_edge 1|0   pairs of two meshed bodies: contacts between their sharp edges where the
                               edges cross (src/collision/edges.c; default 1); 0: vertices against
                               triangles only
+     -contact_shape_points 1|0  an FE body and a bounded analytic shape (sphere, box, capsule,
+                              cylinder): the shape's points (its picture's vertices) against the FE
+                              surface triangles too, besides the FE vertices against the shape: a
+                              shape smaller than the elements, a corner or a sphere's cap pressed
+                              into an FE face between its vertices (default 1; 0: the FE vertices
+                              against the shape only)
      -contact_separation_speed v  bodies that start a step inside each other are pushed apart at most
                               this fast: a contact deeper than v h at the start may stay (depth - v h)
                               deep at the end of the step (> 0, default 1 m/s; docs/hard-cases.md)
@@ -124,6 +130,7 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   s->pairs.pass2_drop         = -1.0;
   s->pairs.intersection_depth = 1e-4;
   s->pairs.edges              = PETSC_TRUE;
+  s->pairs.shape_points       = PETSC_TRUE;
   s->pairs.separation_speed   = 1.0;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
   PetscCall(
@@ -142,6 +149,9 @@ static PetscErrorCode ReadContactPairs(FCScene s)
                                  detection, sizeof(detection), NULL));
     PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_edge_edge", "Edge-edge contacts between two meshed bodies",
                             &s->pairs.edges, NULL));
+    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_shape_points",
+                            "A bounded shape's points against the triangles of an FE body too", &s->pairs.shape_points,
+                            NULL));
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_separation_speed",
                             "Largest speed at which bodies that start inside each other are pushed apart (m/s)",
                             &s->pairs.separation_speed, NULL));
