@@ -180,8 +180,15 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
    there (barycentric weights, side 1) against the shape's signed distance (side 2): the same
    kind of contact as an FE vertex's, so the schemes re-linearize it with the shape's closest
    point, which follows a turning or rolling shape (a point fixed in the shape's frame would not).
-   A point whose triangle point is an FE vertex is that vertex's own contact, and two picture
-   points landing on one triangle point make one contact. */
+   The contact is made only where the shape dips between the triangle's vertices: where its gap
+   at the point is smaller than the gaps of the vertices interpolated there by more than
+   -contact_intersection_depth (at the start of the step, for a point within the alarm distance);
+   elsewhere the vertices' own contacts hold the point to within that depth. A point whose triangle point is an FE vertex is that vertex's own contact, and two
+   picture points landing on one triangle point make one contact.
+   Off by default: several points on one triangle, and a point beside the vertices' own contacts,
+   are nearly redundant rows (W nearly singular, as with two-way FE-FE detection,
+   docs/hard-cases.md): the forces are then not unique, and on the grasp the results of 1 and 2
+   ranks, of a restart and of the two recursive schemes drift apart by 1e-9 m. */
 static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                            const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
@@ -221,6 +228,18 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
         dup = made[3 * m] == X[0] && made[3 * m + 1] == X[1] && made[3 * m + 2] == X[2] ? PETSC_TRUE : PETSC_FALSE;
       if (dup) continue;
       PetscCall(FCBodyShapeDistance(Sh, FC_AT_NOW, y0, &d, nrm, cpb));
+      { /* needed only where the shape dips between the vertices: deeper than the gap the vertices'
+           own constraints hold (interpolated) by more than the intersection depth */
+        PetscReal interp = 0.0;
+        for (int a = 0; a < 3; a++) {
+          PetscReal da, na[3], ca[3];
+          PetscCall(FCBodyShapeDistance(Sh, FC_AT_NOW, T->x0[a], &da, na, ca));
+          interp += bw[a] * da;
+        }
+        /* (a point only the motion brings to the surface keeps its contact: its dip is not
+           known at the start of the step) */
+        if (d < distance && d >= interp - PetscMax(pairs->intersection_depth, PETSC_SMALL)) continue;
+      }
       if (d >= distance) { /* the triangle point's own motion against the shape decides */
         PetscBool hit = PETSC_FALSE;
         if (pairs->continuous) PetscCall(FCCCDPointShape(Sh, y0, yf, d, tau, &hit));

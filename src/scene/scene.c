@@ -42,8 +42,8 @@
                               cylinder): the shape's points (its picture's vertices) against the FE
                               surface triangles too, besides the FE vertices against the shape: a
                               shape smaller than the elements, a corner or a sphere's cap pressed
-                              into an FE face between its vertices (default 1; 0: the FE vertices
-                              against the shape only)
+                              into an FE face between its vertices (default 0: the FE vertices
+                              against the shape only; the extra rows may make W nearly singular)
      -contact_separation_speed v  bodies that start a step inside each other are pushed apart at most
                               this fast: a contact deeper than v h at the start may stay (depth - v h)
                               deep at the end of the step (> 0, default 1 m/s; docs/hard-cases.md)
@@ -130,7 +130,7 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   s->pairs.pass2_drop         = -1.0;
   s->pairs.intersection_depth = 1e-4;
   s->pairs.edges              = PETSC_TRUE;
-  s->pairs.shape_points       = PETSC_TRUE;
+  s->pairs.shape_points       = PETSC_FALSE; /* opt-in: see ShapePointsOnSurface */
   s->pairs.separation_speed   = 1.0;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
   PetscCall(
