@@ -440,7 +440,7 @@ def ball_thin_slab(np_=1, checks=True):
     # energy: the impact is inelastic (E falls from 824 J to 2.9 J); bound: no growth beyond 1e-6 J.
     stability(label, H, o, wall, pen_tol=2e-5, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6)
     n = intersections(H)
-    c.check(n.max() == 0, "%s: no slab vertex inside the ball at the end of any step (max /steps/intersections %d)" % (label, n.max()))
+    c.check(n.max() == 0, "%s: nothing inside the other body at the end of any step: no slab vertex in the ball, no point of the ball in the slab (max /steps/intersections %d)" % (label, n.max()))
     # the ball stays on the slab: its centre never lower than r above the slab's bottom (z = 0);
     # measured lowest 0.0647 m (the slab's top at 0.02 m compressed by 5 mm at the impact)
     z = H["bodies/ball/centroid"][:, 2]

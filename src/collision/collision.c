@@ -183,12 +183,11 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
    The contact is made only where the shape dips between the triangle's vertices: where its gap
    at the point is smaller than the gaps of the vertices interpolated there by more than
    -contact_intersection_depth (at the start of the step, for a point within the alarm distance);
-   elsewhere the vertices' own contacts hold the point to within that depth. A point whose triangle point is an FE vertex is that vertex's own contact, and two
-   picture points landing on one triangle point make one contact.
-   Off by default: several points on one triangle, and a point beside the vertices' own contacts,
-   are nearly redundant rows (W nearly singular, as with two-way FE-FE detection,
-   docs/hard-cases.md): the forces are then not unique, and on the grasp the results of 1 and 2
-   ranks, of a restart and of the two recursive schemes drift apart by 1e-9 m. */
+   elsewhere the vertices' own contacts hold the point to within that depth. A point whose triangle point is an FE
+   vertex is that vertex's own contact, and two picture points landing on one triangle point make one contact. Off by
+   default: several points on one triangle, and a point beside the vertices' own contacts, are nearly redundant rows (W
+   nearly singular, as with two-way FE-FE detection, docs/hard-cases.md): the forces are then not unique, and on the
+   grasp the results of 1 and 2 ranks, of a restart and of the two recursive schemes drift apart by 1e-9 m. */
 static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                            const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
