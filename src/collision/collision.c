@@ -94,6 +94,30 @@ static void NearestTriangle(const Surface *S, const PetscReal x[3], PetscInt *be
   }
 }
 
+/* The triangle of S that a point moving x0 -> xf over the step lands on: the nearest at the start
+   within the alarm distance; else, with continuous detection, the first its motion reaches; else,
+   for a point that starts inside the body deeper than the alarm distance, its nearest (the ray
+   grid is built at the first such test); -1 if none. w, cp: the barycentric weights and the point
+   of that triangle closest to x0 at the start. */
+static PetscErrorCode LandingTriangle(Surface *S, const PetscReal x0[3], const PetscReal xf[3], PetscReal distance,
+                                      PetscBool continuous, PetscReal tau, PetscInt cand[], FCRayGrid *grid,
+                                      PetscInt *best, PetscReal w[3], PetscReal cp[3])
+{
+  PetscReal d2;
+
+  PetscFunctionBegin;
+  FCSurfaceClosest(S, x0, best, w, cp, &d2);
+  if (*best >= 0 && d2 <= distance * distance) PetscFunctionReturn(0);
+  if (continuous) SweptVertexHit(S, x0, xf, tau, cand, best);
+  if (*best < 0) {
+    if (!grid->cells) PetscCall(FCRayGridCreate(S, grid));
+    if (!FCRayGridInside(S, grid, x0)) PetscFunctionReturn(0);
+    NearestTriangle(S, x0, best);
+  }
+  FCClosestPointTriangle(x0, S->tri[*best].x0[0], S->tri[*best].x0[1], S->tri[*best].x0[2], cp, w);
+  PetscFunctionReturn(0);
+}
+
 /* Owned boundary vertices of body P (index ipts) against the surface S of body ishp: the nearest
    triangle within the alarm distance at the start of the step gives the contact; with continuous
    detection, a vertex that has none gets the first triangle its motion over the step reaches, as
@@ -117,17 +141,10 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
   tau += 2.0 * S->arc; /* the vertices of a turning mesh leave their chords: a wider threshold covers their arcs */
   for (PetscInt i = 0; i < n; i++) {
     PetscInt  best;
-    PetscReal bestd, bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
-    FCSurfaceClosest(S, &x0[3 * i], &best, bw, bcp, &bestd);
-    if (best < 0 || bestd > distance * distance) {
-      if (pairs->continuous) SweptVertexHit(S, &x0[3 * i], &xf[3 * i], tau, cand, &best);
-      if (best < 0) { /* deeper inside the other body than the alarm distance: its nearest triangle */
-        if (!grid.cells) PetscCall(FCRayGridCreate(S, &grid));
-        if (!FCRayGridInside(S, &grid, &x0[3 * i])) continue;
-        NearestTriangle(S, &x0[3 * i], &best);
-      }
-      FCClosestPointTriangle(&x0[3 * i], S->tri[best].x0[0], S->tri[best].x0[1], S->tri[best].x0[2], bcp, bw);
-    }
+    PetscReal bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
+    PetscCall(
+        LandingTriangle(S, &x0[3 * i], &xf[3 * i], distance, pairs->continuous, tau, cand, &grid, &best, bw, bcp));
+    if (best < 0) continue;
     {
       const FCSurfaceTriangle *T = &S->tri[best];
       FCContact                c;
@@ -202,19 +219,12 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
   PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * n, &made));
   for (PetscInt i = 0; i < n; i++) {
     PetscInt  best;
-    PetscReal bestd, bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0}, y0[3], yf[3], X[3] = {0, 0, 0}, d, nrm[3], cpb[3];
+    PetscReal bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0}, y0[3], yf[3], X[3] = {0, 0, 0}, d, nrm[3], cpb[3];
     PetscBool dup = PETSC_FALSE;
     FCContact c;
-    FCSurfaceClosest(S, &x0[3 * i], &best, bw, bcp, &bestd);
-    if (best < 0 || bestd > distance * distance) {
-      if (pairs->continuous) SweptVertexHit(S, &x0[3 * i], &xf[3 * i], tau, cand, &best);
-      if (best < 0) { /* inside the FE body, deeper than the alarm distance: its nearest triangle */
-        if (!grid.cells) PetscCall(FCRayGridCreate(S, &grid));
-        if (!FCRayGridInside(S, &grid, &x0[3 * i])) continue;
-        NearestTriangle(S, &x0[3 * i], &best);
-      }
-      FCClosestPointTriangle(&x0[3 * i], S->tri[best].x0[0], S->tri[best].x0[1], S->tri[best].x0[2], bcp, bw);
-    }
+    PetscCall(
+        LandingTriangle(S, &x0[3 * i], &xf[3 * i], distance, pairs->continuous, tau, cand, &grid, &best, bw, bcp));
+    if (best < 0) continue;
     if (bw[0] == 1.0 || bw[1] == 1.0 || bw[2] == 1.0) continue; /* an FE vertex: its own contact */
     {
       const FCSurfaceTriangle *T = &S->tri[best];
