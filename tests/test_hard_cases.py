@@ -645,7 +645,10 @@ else:
     compare("grasp w=6", grasp(6, 1, checks=False), grasp(6, NP))
     compare("large step h=0.05", large_step(0.05, 1, checks=False), large_step(0.05, NP))
     compare("impact 20/10 m/s", impact(1, checks=False), impact(NP))
-    compare("ball 20 m/s on 2 cm FE slab", ball_thin_slab(1, checks=False), ball_thin_slab(NP))
+    # -contact_shape_points (on in the scene) adds rows nearly redundant with the slab vertices' own:
+    # the forces are not unique, and MUMPS' parallel round-off moves the ball's end by up to 8.6e-8 m
+    # between 1 and 2 ranks (measured in the sanitized pass; 0 to 1e-8 in others), as for case 13
+    compare("ball 20 m/s on 2 cm FE slab", ball_thin_slab(1, checks=False), ball_thin_slab(NP), tol=1e-6)
     compare("FE cube 20 m/s on 1 cm plate", cube_thin_plate(1, checks=False), cube_thin_plate(NP))
     compare("crossed bars edge-edge", crossed_bars(1, checks=False), crossed_bars(NP))
     # the push-out carries the 0.1 m overlap in the right-hand sides of 88 contacts for 73 steps,
