@@ -48,10 +48,16 @@ struct _FCSchurFactor {
   Vec        bseq;
   VecScatter tohost;
   PetscBool  analysed, factored;
-  PetscBool  full; /* S holds every DOF: MUMPS takes a Schur block smaller than A only (SIZE_SCHUR < N,
-                      else INFOG(1) = -49), and Sigma = A: gathered dense and inverted, no MUMPS */
-  PetscInt nanalysis, nfactor;
+  PetscInt   nanalysis, nfactor;
 };
+
+/* S holds every DOF (a thin body all in contact): MUMPS takes only a Schur block smaller than A
+   (SIZE_SCHUR < N, else INFOG(1) = -49), and Sigma = A: gathered dense and inverted, no MUMPS.
+   ns is known on every rank once analysed. */
+static inline PetscBool Full(FCSchurFactor f)
+{
+  return f->ns >= f->N ? PETSC_TRUE : PETSC_FALSE;
+}
 
 /* MUMPS call with its error (INFOG(1) < 0) turned into a PETSc error naming the body and the phase */
 static PetscErrorCode CallMumps(FCSchurFactor f, int job, const char phase[])
@@ -300,49 +306,39 @@ static PetscErrorCode Analyse(FCSchurFactor f)
     f->id.schur_lld     = (MUMPS_INT)f->ns;
   }
   PetscCallMPI(MPI_Bcast(&f->ns, 1, MPIU_INT, 0, f->comm));
-  f->full         = f->ns >= f->N ? PETSC_TRUE : PETSC_FALSE; /* a thin body all in contact */
   f->id.ICNTL(19) = f->ns ? 1 : 0; /* Schur complement centralized on the host (lower triangle by rows) */
-  if (!f->full) PetscCall(CallMumps(f, 1, "analysis"));
+  if (!Full(f)) PetscCall(CallMumps(f, 1, "analysis"));
   PetscCall(PetscLogEventEnd(EV_ANALYSIS, 0, 0, 0, 0));
   f->analysed = PETSC_TRUE;
   f->nanalysis++;
   PetscFunctionReturn(0);
 }
 
-/* S = every DOF: Sigma = A, its upper triangle gathered on the host into the column-major array
-   (as MUMPS would return it) */
+/* S = every DOF: Sigma = A, its upper triangle (the owned rows' triples) gathered into the
+   host's column-major array, as MUMPS would return it */
+typedef struct {
+  PetscInt  i, j;
+  PetscReal v;
+} Entry;
+
 static PetscErrorCode GatherDense(FCSchurFactor f)
 {
-  PetscMPIInt *counts = NULL, *displs = NULL, nloc;
-  PetscReal   *loc, *all              = NULL;
-  PetscInt     ntot = 0;
+  Entry   *loc, *all;
+  PetscInt ntot;
 
   PetscFunctionBegin;
-  PetscCall(PetscMPIIntCast(3 * f->nnz, &nloc));
-  PetscCall(PetscMalloc1(3 * f->nnz + 1, &loc));
+  PetscCall(PetscMalloc1(f->nnz + 1, &loc));
   for (PetscInt k = 0; k < f->nnz; k++) {
-    loc[3 * k]     = (PetscReal)(f->irn[k] - 1);
-    loc[3 * k + 1] = (PetscReal)(f->jcn[k] - 1);
-    loc[3 * k + 2] = f->val[k];
+    loc[k].i = (PetscInt)f->irn[k] - 1;
+    loc[k].j = (PetscInt)f->jcn[k] - 1;
+    loc[k].v = f->val[k];
   }
-  if (!f->rank) PetscCall(PetscMalloc2(f->size, &counts, f->size + 1, &displs));
-  PetscCallMPI(MPI_Gather(&nloc, 1, MPI_INT, counts, 1, MPI_INT, 0, f->comm));
-  if (!f->rank) {
-    displs[0] = 0;
-    for (PetscMPIInt r = 0; r < f->size; r++) displs[r + 1] = displs[r] + counts[r];
-    ntot = displs[f->size];
-    PetscCall(PetscMalloc1(ntot + 1, &all));
-  }
-  PetscCallMPI(MPI_Gatherv(loc, nloc, MPIU_REAL, all, counts, displs, MPIU_REAL, 0, f->comm));
+  PetscCall(FCAllgatherRecords(f->comm, f->nnz, sizeof(Entry), loc, &ntot, (void **)&all));
   if (!f->rank) {
     PetscCall(PetscArrayzero(f->sigma, f->N * f->N));
-    for (PetscInt k = 0; k < ntot / 3; k++) {
-      PetscInt i = (PetscInt)all[3 * k], j = (PetscInt)all[3 * k + 1]; /* i <= j: the upper triangle */
-      f->sigma[i + j * f->N] += all[3 * k + 2];
-    }
-    PetscCall(PetscFree2(counts, displs));
-    PetscCall(PetscFree(all));
+    for (PetscInt k = 0; k < ntot; k++) f->sigma[all[k].i + all[k].j * f->N] += all[k].v; /* i <= j */
   }
+  PetscCall(PetscFree(all));
   PetscCall(PetscFree(loc));
   PetscFunctionReturn(0);
 }
@@ -355,20 +351,21 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
   PetscCall(Triples(f, A, PETSC_TRUE));
   if (!f->analysed) PetscCall(Analyse(f));
   PetscCall(PetscLogEventBegin(EV_NUMERIC, 0, 0, 0, 0));
-  if (f->full) PetscCall(GatherDense(f));
-  for (int attempt = 0; !f->full;
-       attempt++) { /* MUMPS underestimating its workspace: -8, -9 (then ICNTL(14) doubled) */
-    f->id.job = 2;
-    dmumps_c(&f->id);
-    if (f->id.INFOG(1) >= 0 || (f->id.INFOG(1) != -8 && f->id.INFOG(1) != -9) || attempt == 3) break;
-    f->id.ICNTL(14) = 2 * f->id.ICNTL(14) + 20;
-  }
-  PetscCheck(f->full || f->id.INFOG(1) >= 0, f->comm, PETSC_ERR_LIB,
+  if (Full(f))
+    PetscCall(GatherDense(f));
+  else
+    for (int attempt = 0;; attempt++) { /* MUMPS underestimating its workspace: -8, -9 (then ICNTL(14) doubled) */
+      f->id.job = 2;
+      dmumps_c(&f->id);
+      if (f->id.INFOG(1) >= 0 || (f->id.INFOG(1) != -8 && f->id.INFOG(1) != -9) || attempt == 3) break;
+      f->id.ICNTL(14) = 2 * f->id.ICNTL(14) + 20;
+    }
+  PetscCheck(Full(f) || f->id.INFOG(1) >= 0, f->comm, PETSC_ERR_LIB,
              "MUMPS factorization of A of body '%s' failed: INFOG(1) = %d, INFOG(2) = %d%s", f->name,
              (int)f->id.INFOG(1), (int)f->id.INFOG(2),
              f->id.INFOG(1) == -10 ? " (A is not positive definite: check the material values)" : "");
   PetscCall(PetscLogEventEnd(EV_NUMERIC, 0, 0, 0, 0));
-  if (f->full)
+  if (Full(f))
     PetscCall(PetscInfo(NULL, "body %s: every one of its %" PetscInt_FMT " DOFs in S: Sigma = A, gathered dense\n",
                         f->name, f->N));
   else
@@ -416,7 +413,7 @@ PetscErrorCode FCSchurFactorSolve(FCSchurFactor f, Vec b, Vec x)
     f->id.redrhs  = f->red;
     f->id.lredrhs = (MUMPS_INT)f->ns;
   }
-  if (f->full) { /* x = C b on the host, C = A^-1 */
+  if (Full(f)) { /* x = C b on the host, C = A^-1 */
     if (!f->rank) {
       for (PetscInt i = 0; i < f->N; i++) f->red[i] = 0.0;
       for (PetscInt j = 0; j < f->N; j++)
