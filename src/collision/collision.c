@@ -118,6 +118,19 @@ static PetscErrorCode LandingTriangle(Surface *S, const PetscReal x0[3], const P
   PetscFunctionReturn(0);
 }
 
+/* The FE material point at barycentric weights w of triangle T: its proximity map (eq. 6) and its
+   free-motion position */
+static void TrianglePoint(const FCSurfaceTriangle *T, const PetscReal w[3], FCProximity *p, PetscReal xf[3])
+{
+  p->nv = 3;
+  for (int a = 0; a < 3; a++) {
+    p->gdof[a] = T->gdof[a];
+    p->w[a]    = w[a];
+    for (int d = 0; d < 3; d++) p->X[a][d] = T->X[a][d];
+  }
+  for (int d = 0; d < 3; d++) xf[d] = w[0] * T->xf[0][d] + w[1] * T->xf[1][d] + w[2] * T->xf[2][d];
+}
+
 /* Owned boundary vertices of body P (index ipts) against the surface S of body ishp: the nearest
    triangle within the alarm distance at the start of the step gives the contact; with continuous
    detection, a vertex that has none gets the first triangle its motion over the step reaches, as
@@ -152,23 +165,17 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
       FCTriangleNormal(T->x0, nrm);
       for (int d = 0; d < 3; d++) diff[d] = x0[3 * i + d] - bcp[d];
       PetscCall(PetscMemzero(&c, sizeof(c)));
-      c.pair       = pair;
-      c.body[0]    = ipts;
-      c.body[1]    = ishp;
-      c.prox[0]    = prox[i];
-      c.prox[1].nv = 3;
-      for (int a = 0; a < 3; a++) {
-        c.prox[1].gdof[a] = T->gdof[a];
-        c.prox[1].w[a]    = bw[a];
-        for (int d = 0; d < 3; d++) c.prox[1].X[a][d] = T->X[a][d];
-      }
+      c.pair    = pair;
+      c.body[0] = ipts;
+      c.body[1] = ishp;
+      c.prox[0] = prox[i];
+      TrianglePoint(T, bw, &c.prox[1], c.pfree[1]);
       for (int d = 0; d < 3; d++) {
         c.key[d]      = key[3 * i + d];
         c.n[d]        = nrm[d];
         c.p0[0][d]    = x0[3 * i + d];
         c.pfree[0][d] = xf[3 * i + d];
         c.p0[1][d]    = bcp[d];
-        c.pfree[1][d] = bw[0] * T->xf[0][d] + bw[1] * T->xf[1][d] + bw[2] * T->xf[2][d];
       }
       if (!FCBodyIsDeformable(Sb)) { /* a rigid or kinematic mesh: the point is fixed in its body frame */
         c.side2      = FC_SIDE_RIGID_TRIANGLE;
@@ -192,19 +199,21 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
 /* -contact_shape_points: the FE vertices see a bounded shape only at the vertices, so a shape
    smaller than the elements, a box's corner or a sphere's cap sinks into an FE face between them
    (the end-of-step check counts its points inside, intersection.c). Each point of the shape's
-   picture (rank 0) finds its triangle of the FE surface as a vertex does (within the alarm
-   distance, by its motion over the step, or inside), and the contact is the FE material point
-   there (barycentric weights, side 1) against the shape's signed distance (side 2): the same
-   kind of contact as an FE vertex's, so the schemes re-linearize it with the shape's closest
-   point, which follows a turning or rolling shape (a point fixed in the shape's frame would not).
+   picture (rank 0) finds its triangle of the FE surface as a vertex does (LandingTriangle), and
+   the contact is the FE material point there (barycentric weights, side 1) against the shape's
+   signed distance (side 2): the same kind of contact as an FE vertex's, so the schemes
+   re-linearize it with the shape's closest point, which follows a turning or rolling shape (a
+   point fixed in the shape's frame would not).
    The contact is made only where the shape dips between the triangle's vertices: where its gap
    at the point is smaller than the gaps of the vertices interpolated there by more than
-   -contact_intersection_depth (at the start of the step, for a point within the alarm distance);
-   elsewhere the vertices' own contacts hold the point to within that depth. A point whose triangle point is an FE
-   vertex is that vertex's own contact, and two picture points landing on one triangle point make one contact. Off by
-   default: several points on one triangle, and a point beside the vertices' own contacts, are nearly redundant rows (W
-   nearly singular, as with two-way FE-FE detection, docs/hard-cases.md): the forces are then not unique, and on the
-   grasp the results of 1 and 2 ranks, of a restart and of the two recursive schemes drift apart by 1e-9 m. */
+   -contact_intersection_depth (at the start of the step, for a point within the alarm
+   distance); elsewhere the vertices' own contacts hold the point to within that depth. A point
+   whose triangle point is an FE vertex is that vertex's own contact, and two picture points
+   landing on one triangle point make one contact.
+   Off by default: several points on one triangle, and a point beside the vertices' own contacts,
+   are nearly redundant rows (W nearly singular, as with two-way FE-FE detection,
+   docs/hard-cases.md): the forces are then not unique, and on the grasp the results of 1 and 2
+   ranks, of a restart and of the two recursive schemes drift apart by 1e-9 m. */
 static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                            const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
@@ -218,25 +227,23 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
   if (!n) PetscFunctionReturn(0);
   PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * n, &made));
   for (PetscInt i = 0; i < n; i++) {
-    PetscInt  best;
-    PetscReal bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0}, y0[3], yf[3], X[3] = {0, 0, 0}, d, nrm[3], cpb[3];
-    PetscBool dup = PETSC_FALSE;
-    FCContact c;
+    PetscInt    best;
+    PetscReal   bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0}, yf[3], X[3] = {0, 0, 0}, d, nrm[3], cpb[3];
+    PetscBool   dup = PETSC_FALSE;
+    FCProximity tp  = {0};
+    FCContact   c;
     PetscCall(
         LandingTriangle(S, &x0[3 * i], &xf[3 * i], distance, pairs->continuous, tau, cand, &grid, &best, bw, bcp));
     if (best < 0) continue;
     if (bw[0] == 1.0 || bw[1] == 1.0 || bw[2] == 1.0) continue; /* an FE vertex: its own contact */
     {
       const FCSurfaceTriangle *T = &S->tri[best];
-      for (int k = 0; k < 3; k++) {
-        y0[k] = bcp[k];
-        yf[k] = bw[0] * T->xf[0][k] + bw[1] * T->xf[1][k] + bw[2] * T->xf[2][k];
-        X[k]  = bw[0] * T->X[0][k] + bw[1] * T->X[1][k] + bw[2] * T->X[2][k];
-      }
+      TrianglePoint(T, bw, &tp, yf); /* bcp: its start position */
+      for (int k = 0; k < 3; k++) X[k] = bw[0] * T->X[0][k] + bw[1] * T->X[1][k] + bw[2] * T->X[2][k];
       for (PetscInt m = 0; m < nmade && !dup; m++)
         dup = made[3 * m] == X[0] && made[3 * m + 1] == X[1] && made[3 * m + 2] == X[2] ? PETSC_TRUE : PETSC_FALSE;
       if (dup) continue;
-      PetscCall(FCBodyShapeDistance(Sh, FC_AT_NOW, y0, &d, nrm, cpb));
+      PetscCall(FCBodyShapeDistance(Sh, FC_AT_NOW, bcp, &d, nrm, cpb));
       { /* needed only where the shape dips between the vertices: deeper than the gap the vertices'
            own constraints hold (interpolated) by more than the intersection depth */
         PetscReal interp = 0.0;
@@ -251,27 +258,22 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
       }
       if (d >= distance) { /* the triangle point's own motion against the shape decides */
         PetscBool hit = PETSC_FALSE;
-        if (pairs->continuous) PetscCall(FCCCDPointShape(Sh, y0, yf, d, tau, &hit));
+        if (pairs->continuous) PetscCall(FCCCDPointShape(Sh, bcp, yf, d, tau, &hit));
         if (!hit) continue;
       }
       for (int k = 0; k < 3; k++) made[3 * nmade + k] = X[k];
       nmade++;
       PetscCall(PetscMemzero(&c, sizeof(c)));
-      c.pair       = pair;
-      c.body[0]    = ife;
-      c.body[1]    = ish;
-      c.prox[0].nv = 3;
-      for (int a = 0; a < 3; a++) {
-        c.prox[0].gdof[a] = T->gdof[a];
-        c.prox[0].w[a]    = bw[a];
-        for (int k = 0; k < 3; k++) c.prox[0].X[a][k] = T->X[a][k];
-      }
+      c.pair    = pair;
+      c.body[0] = ife;
+      c.body[1] = ish;
+      c.prox[0] = tp;
       for (int k = 0; k < 3; k++) {
         c.prox[0].r[k] = X[k];
         c.prox[1].r[k] = cpb[k];
         c.key[k]       = X[k];
         c.n[k]         = nrm[k];
-        c.p0[0][k]     = y0[k];
+        c.p0[0][k]     = bcp[k];
         c.pfree[0][k]  = yf[k];
       }
       PetscCall(FCBodyProximityPosition(Sh, &c.prox[1], FC_AT_START, c.p0[1]));
@@ -427,25 +429,25 @@ PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies
 {
   PetscMPIInt rank;
   PetscReal  *g;  /* per contact: gap, end normal (3), d = p1 - p2 (3), p1 (3) */
-  PetscReal  *xp; /* per contact: side 1's point, where it is an FE triangle point against a shape */
-  PetscBool   spread = PETSC_FALSE;
+  PetscReal  *xp; /* per contact: side 1's point now, where side 1 is FE and side 2 a shape */
+  PetscBool   fe = PETSC_FALSE;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(PetscCalloc2(10 * set->n + 1, &g, 3 * set->n + 1, &xp));
-  for (PetscInt k = 0; k < set->n; k++) { /* FE triangle points against a shape (-contact_shape_points): */
-    FCContact *c = &set->c[k];            /* their vertices may lie on several ranks */
-    if (c->side2 == FC_SIDE_SHAPE && FCBodyIsDeformable(bodies[c->body[0]]) && c->prox[0].nv > 1) {
+  for (PetscInt k = 0; k < set->n; k++) { /* an FE point's vertices may lie on several ranks (a triangle */
+    FCContact *c = &set->c[k];            /* point of -contact_shape_points): summed over the ranks */
+    if (c->side2 == FC_SIDE_SHAPE && FCBodyIsDeformable(bodies[c->body[0]])) {
       PetscCall(FCBodyAddPartialPosition(bodies[c->body[0]], &c->prox[0], &xp[3 * k]));
-      spread = PETSC_TRUE;
+      fe = PETSC_TRUE;
     }
   }
-  if (spread) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, xp, 3 * set->n, MPIU_REAL, MPIU_SUM, comm));
+  if (fe) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, xp, 3 * set->n, MPIU_REAL, MPIU_SUM, comm));
   for (PetscInt k = 0; k < set->n; k++) {
     FCContact *c = &set->c[k];
     PetscReal  x[3], p2[3], cpb[3];
     if (c->side2 != FC_SIDE_SHAPE || c->owner != rank) continue; /* triangles below */
-    if (FCBodyIsDeformable(bodies[c->body[0]]) && c->prox[0].nv > 1)
+    if (FCBodyIsDeformable(bodies[c->body[0]]))
       for (int d = 0; d < 3; d++) x[d] = xp[3 * k + d];
     else
       PetscCall(FCBodyProximityPosition(bodies[c->body[0]], &c->prox[0], FC_AT_NOW, x));
