@@ -16,7 +16,8 @@
    smaller than the elements, sunk into an FE slab between its vertices, has no slab vertex inside
    it. A shape that enters less deep than the gap between its surface and its picture's vertices
    is not seen (a sphere's picture has a vertex every 15 degrees of longitude and 11.25 of
-   latitude: about 1.5 % of its radius).
+   latitude, so a point of the sphere is up to about 9.4 degrees from a vertex: a gap of
+   1 - cos 9.4 deg, 1.3 % of its radius).
    Inside a closed surface: an odd number of crossings of a ray from the point (in a fixed,
    generic direction, so that it does not run along the edges of structured meshes), the
    triangles bucketed in a 2D grid across the ray; deeper than d: no triangle within d (the
