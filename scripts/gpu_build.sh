@@ -96,7 +96,7 @@ build() {
   cmake --build "$F/build-cuda" -j "$NPROC" --target fecontact
 
   # 4. the bundle: libpetsc, fecontact, the Debian libraries they need beyond glibc, the C++ runtime,
-  #    Open MPI and CUDA (which the GPU machine has), and the Table 1 meshes
+  #    Open MPI and CUDA (which the GPU machine has), and the Table 1 and cube_rest meshes
   B="$W/bundle"
   rm -rf "$B" && mkdir -p "$B/lib" "$B/bin" "$B/rtlib" "$B/meshes"
   cp "$P/arch-cuda/lib/libpetsc.so.3.18.5" "$B/lib/libpetsc.so.3.18"
@@ -108,7 +108,7 @@ build() {
     esac
   done
   strip --strip-unneeded "$B/lib/"* "$B/rtlib/"* 2>/dev/null || true
-  cp "$F"/meshes/table1_*.msh "$B/meshes/"
+  cp "$F"/meshes/table1_*.msh "$F"/meshes/cube_18.msh "$B/meshes/"
   tar cJf "$GPU/bundle.tar.xz" -C "$B" .
   ls -la "$GPU/bundle.tar.xz" "$GPU/fecontact-src.tar.gz"
   echo "gpu_build: done; on the GPU machine: bash scripts/gpu_build.sh run -options_file input/table1_18k.opts -constraint_scheme fast $CUDA_OPTS -use_gpu_aware_mpi 0"
