@@ -44,7 +44,7 @@ struct _FCSchurFactor {
   PetscInt   ns, *S;          /* Schur DOFs (sorted) of the current analysis */
   PetscInt   nsnext, *Snext;  /* requested by FCSchurFactorSetSchur */
   MUMPS_INT *perm, *list;
-  PetscReal *sigma, *red; /* Sigma from MUMPS, inverted in place into C = (A^-1)_SS; reduced rhs */
+  PetscReal *sigma, *red, *work; /* Sigma from MUMPS, inverted in place into C = (A^-1)_SS; reduced rhs; C red */
   Vec        bseq;
   VecScatter tohost;
   PetscBool  analysed, factored;
@@ -295,9 +295,9 @@ static PetscErrorCode Analyse(FCSchurFactor f)
     f->nsnext = 0;
     PetscCall(Ordering(f));
     PetscCall(PetscFree(f->list));
-    PetscCall(PetscFree2(f->sigma, f->red));
+    PetscCall(PetscFree3(f->sigma, f->red, f->work));
     PetscCall(PetscMalloc1(f->ns + 1, &f->list));
-    PetscCall(PetscMalloc2(f->ns * f->ns + 1, &f->sigma, f->ns + 1, &f->red));
+    PetscCall(PetscMalloc3(f->ns * f->ns + 1, &f->sigma, f->ns + 1, &f->red, f->ns + 1, &f->work));
     for (PetscInt i = 0; i < f->ns; i++) f->list[i] = (MUMPS_INT)(f->S[i] + 1);
     f->id.perm_in       = f->perm;
     f->id.size_schur    = (MUMPS_INT)f->ns;
@@ -395,6 +395,14 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
   PetscFunctionReturn(0);
 }
 
+/* Host: y = C x, C = (A^-1)_SS (ns x ns, symmetric, column-major; A^-1 when S is every DOF) */
+static void ApplyC(FCSchurFactor f, const PetscReal x[], PetscReal y[])
+{
+  for (PetscInt i = 0; i < f->ns; i++) y[i] = 0.0;
+  for (PetscInt j = 0; j < f->ns; j++)
+    for (PetscInt i = 0; i < f->ns; i++) y[i] += f->sigma[i + j * f->ns] * x[j];
+}
+
 /* x = A^-1 b: condensation on S, x_S = C r_S on the host, expansion */
 PetscErrorCode FCSchurFactorSolve(FCSchurFactor f, Vec b, Vec x)
 {
@@ -415,22 +423,15 @@ PetscErrorCode FCSchurFactorSolve(FCSchurFactor f, Vec b, Vec x)
   }
   if (Full(f)) { /* x = C b on the host, C = A^-1 */
     if (!f->rank) {
-      for (PetscInt i = 0; i < f->N; i++) f->red[i] = 0.0;
-      for (PetscInt j = 0; j < f->N; j++)
-        for (PetscInt i = 0; i < f->N; i++) f->red[i] += f->sigma[i + j * f->N] * rhs[j];
-      PetscCall(PetscArraycpy(rhs, f->red, f->N));
+      ApplyC(f, rhs, f->work);
+      PetscCall(PetscArraycpy(rhs, f->work, f->N));
     }
   } else if (f->ns) {
     f->id.ICNTL(26) = 1;
     PetscCall(CallMumps(f, 3, "condensation"));
     if (!f->rank) {
-      PetscReal *y;
-      PetscCall(PetscMalloc1(f->ns, &y));
-      for (PetscInt i = 0; i < f->ns; i++) y[i] = 0.0;
-      for (PetscInt j = 0; j < f->ns; j++) /* C symmetric, column-major */
-        for (PetscInt i = 0; i < f->ns; i++) y[i] += f->sigma[i + j * f->ns] * f->red[j];
-      PetscCall(PetscArraycpy(f->red, y, f->ns));
-      PetscCall(PetscFree(y));
+      ApplyC(f, f->red, f->work);
+      PetscCall(PetscArraycpy(f->red, f->work, f->ns));
     }
     f->id.ICNTL(26) = 2;
     PetscCall(CallMumps(f, 3, "expansion"));
@@ -487,7 +488,7 @@ PetscErrorCode FCSchurFactorDestroy(FCSchurFactor *sf)
   PetscCall(PetscFree(f->Snext));
   PetscCall(PetscFree(f->perm));
   PetscCall(PetscFree(f->list));
-  PetscCall(PetscFree2(f->sigma, f->red));
+  PetscCall(PetscFree3(f->sigma, f->red, f->work));
   PetscCall(VecDestroy(&f->bseq));
   PetscCall(VecScatterDestroy(&f->tohost));
   PetscCallMPI(MPI_Comm_free(&f->comm));
