@@ -142,6 +142,11 @@ def serial_share(pairs):
     return ser / max(sum(t1 for t1, _ in pairs), 1e-30)
 
 
+def phase_ratios(r1, r2):
+    """per phase, the 2-rank time over the 1-rank time ("-" for a phase under 1 ms on 1 rank)"""
+    return ["%.2f" % (r2[ph] / r1[ph]) if r1[ph] >= 1e-3 else "-" for ph in PHASES]
+
+
 def diff(h1, h2):
     body = "cube" if "cube" in h1["bodies"] else "box"
     a, b = sorted_positions(h1, body)[1], sorted_positions(h2, body)[1]
@@ -162,6 +167,8 @@ def main():
                     help="only issue 16's pair (36k, cube; 1 and 2 ranks), N times; print the ratios")
     a = ap.parse_args()
     os.makedirs(OUT, exist_ok=True)
+    if a.repeat_pair < 0:
+        ap.error("--repeat-pair N: N must be >= 1 (0: the whole sweep), got %d" % a.repeat_pair)
     if a.repeat_pair:
         return repeat_pair(a)
     figdir = os.path.join(os.path.dirname(a.markdown), "scaling")
@@ -256,16 +263,15 @@ def repeat_pair(a):
     for k in range(a.repeat_pair):
         for sc in ("36k", "cube"):
             args = scene(sc)[0] + ["-compliance_type", "condensed", "-pgs_ranks", "root"]
-            r1 = run("pair_%s_np1" % sc, args, 1, a.steps)[0]
+            r1, h1 = run("pair_%s_np1" % sc, args, 1, a.steps)
             r2, h2 = run("pair_%s_np2" % sc, args, 2, a.steps)
-            h1 = h5py.File(os.path.join(OUT, "pair_%s_np1.h5" % sc), "r")
             d = diff(h1, h2)
             if not d <= 1e-8:
                 print("| %s | %d | the 2-rank run ended %.1e (relative) from the 1-rank run: left out |" % (sc, k + 1, d))
                 continue
             ratio = r2["step"] / r1["step"]
             ratios[sc].append(ratio)
-            cells = ["%.2f" % (r2[ph] / r1[ph]) if r1[ph] >= 1e-3 else "-" for ph in PHASES]
+            cells = phase_ratios(r1, r2)
             print("| %s | %d | %.3f | %.3f | **%.2f** | %s |" % (sc, k + 1, r1["step"], r2["step"], ratio, " | ".join(cells)),
                   flush=True)
     print("\n(a phase under 1 ms on 1 rank: -)\n")
@@ -392,7 +398,7 @@ def write_doc(a, rows):
         if 1 not in rr or 2 not in rr:
             continue
         ratio = rr[2]["step"] / rr[1]["step"]
-        cells = ["%.2f" % (rr[2][ph] / rr[1][ph]) if rr[1][ph] >= 1e-3 else "-" for ph in PHASES]
+        cells = phase_ratios(rr[1], rr[2])
         L.append("| %s (%.3f s -> %.3f s) | **%.2f** | %s | %s |" % (sc, rr[1]["step"], rr[2]["step"], ratio, " | ".join(cells),
                                                                    "met" if ratio <= 0.65 else "not met"))
     L += ["", "(a phase under 1 ms on 1 rank: -)"]
