@@ -9,7 +9,7 @@ set -euo pipefail
 
 PKGS=(
   build-essential cmake pkg-config clang-format valgrind clang libclang-rt-14-dev
-  petsc-dev libmumps-dev libmetis-dev libhdf5-openmpi-dev openmpi-bin libopenmpi-dev
+  petsc-dev libmumps-dev libscalapack-openmpi-dev libmetis-dev libhdf5-openmpi-dev openmpi-bin libopenmpi-dev
   libopenblas0-pthread gmsh
   python3-petsc4py python3-h5py python3-matplotlib python3-numpy python3-siconos
 )

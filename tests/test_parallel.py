@@ -18,6 +18,9 @@ SCENES = [("default", ["-options_file", "input/default.opts", "-time_steps", "25
           ("grasp_rotate", ["-options_file", "input/grasp_rotate.opts", "-time_steps", "12"]),
           ("two_cubes", ["-options_file", "input/two_cubes.opts", "-time_steps", "20", "-contact_fe_passes", "1"]),
           ("box_on_slab", ["-options_file", "input/box_on_slab.opts", "-time_steps", "20"]),
+          # Sigma^-1 of the condensed builder by LAPACK on rank 0 instead of ScaLAPACK on the ranks
+          ("cube_drop, -compliance_condensed_inverse host", ["-options_file", "input/cube_drop.opts", "-time_steps", "25",
+                                                             "-compliance_condensed_inverse", "host"]),
           # the contact problem solved on rank 0 and broadcast instead of on every rank
           ("cube_drop, -pgs_ranks root", ["-options_file", "input/cube_drop.opts", "-time_steps", "25", "-pgs_ranks", "root"]),
           # W_H from a sequential factor on every rank, 1/3 of the contact DOFs each (uneven shares)

@@ -66,3 +66,14 @@ PETSC_INTERN PetscErrorCode FCSchurFactorGetGraph(FCSchurFactor, PetscInt *nb, c
                                                   const PetscInt **adj);
 PETSC_INTERN PetscErrorCode FCSchurFactorGetCounts(FCSchurFactor, PetscInt *nanalysis, PetscInt *nfactor);
 PETSC_INTERN PetscErrorCode FCSchurFactorDestroy(FCSchurFactor *);
+/* Before the first factorization: Sigma^-1 by ScaLAPACK over the ranks (PETSC_TRUE) or LAPACK
+   on rank 0 */
+PETSC_INTERN PetscErrorCode FCSchurFactorSetDistributedInverse(FCSchurFactor, PetscBool);
+
+/* C = Sigma^-1 of a dense SPD matrix held by rank 0 of comm: LAPACK there, or ScaLAPACK over
+   every rank of comm (spdinverse.c) */
+typedef struct _FCSPDInverse *FCSPDInverse;
+PETSC_INTERN PetscErrorCode   FCSPDInverseCreate(MPI_Comm, const char name[], PetscBool distributed, FCSPDInverse *);
+/* rank 0: a = the upper triangle of Sigma (column-major ns x ns) in, the whole C out; collective */
+PETSC_INTERN PetscErrorCode FCSPDInverseApply(FCSPDInverse, PetscInt ns, PetscReal a[]);
+PETSC_INTERN PetscErrorCode FCSPDInverseDestroy(FCSPDInverse *);

@@ -21,25 +21,35 @@
    products only.
    Options:
      -compliance_condensed_ring k   rings of surface neighbours around the contact DOFs in S (k >= 0,
-                                    default 0: S is exactly the last step's contact DOFs) */
+                                    default 0: S is exactly the last step's contact DOFs)
+     -compliance_condensed_inverse host|scalapack
+                                    where C = Sigma^-1 is formed: LAPACK on rank 0, or ScaLAPACK over
+                                    every rank of the body (the default; the same as host on 1 rank) */
 #include "complianceimpl.h"
 
 typedef struct {
   FCSchurFactor sf;
   PetscInt      ring;
-  PetscBool    *surf;   /* host: per vertex block, a non-fixed boundary vertex */
-  PetscInt      nT, *T; /* host: the DOFs of the last build's contacts */
-  PetscBool     built;  /* a build since the last factorization */
-  PetscInt      idle;   /* factorizations in a row without a build */
+  PetscInt      inverse; /* INVERSE_HOST, INVERSE_SCALAPACK */
+  PetscBool    *surf;    /* host: per vertex block, a non-fixed boundary vertex */
+  PetscInt      nT, *T;  /* host: the DOFs of the last build's contacts */
+  PetscBool     built;   /* a build since the last factorization */
+  PetscInt      idle;    /* factorizations in a row without a build */
   PetscInt      nmiss;
   PetscBool     missed; /* the last build missed: keep a ring of margin at the next factorization */
 } Condensed;
+
+enum { INVERSE_HOST, INVERSE_SCALAPACK };
+static const char *const InverseTypes[] = {"host", "scalapack"};
 
 static PetscErrorCode SetFromOptions_Condensed(FCCompliance comp, PetscOptionItems *PetscOptionsObject)
 {
   Condensed *cd = (Condensed *)comp->data;
 
   PetscFunctionBegin;
+  PetscCall(PetscOptionsEList("-compliance_condensed_inverse",
+                              "Where Sigma^-1 is formed: rank 0 (LAPACK) or every rank (ScaLAPACK)", NULL, InverseTypes,
+                              2, InverseTypes[cd->inverse], &cd->inverse, NULL));
   PetscCall(FCOptionsInt(PetscOptionsObject, "-compliance_condensed_ring",
                          "Rings of surface neighbours around contact DOFs in the Schur block", &cd->ring, NULL));
   PetscCheck(cd->ring >= 0, comp->ctx.comm, PETSC_ERR_USER_INPUT,
@@ -67,6 +77,7 @@ static PetscErrorCode SetUp_Condensed(FCCompliance comp)
   PetscCallMPI(MPI_Comm_size(comp->ctx.comm, &size));
   PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
   PetscCall(FCSchurFactorCreate(comp->ctx.A, comp->ctx.name, &cd->sf));
+  PetscCall(FCSchurFactorSetDistributedInverse(cd->sf, (PetscBool)(cd->inverse == INVERSE_SCALAPACK)));
   if (!rank) PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
   PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, 0, comp->ctx.comm));
   if (!rank) {
@@ -257,6 +268,7 @@ PetscErrorCode FCComplianceCreate_Condensed(FCCompliance comp)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&cd));
+  cd->inverse              = INVERSE_SCALAPACK;
   comp->data               = cd;
   comp->factors            = PETSC_TRUE;
   comp->ops.setfromoptions = SetFromOptions_Condensed;

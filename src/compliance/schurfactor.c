@@ -15,7 +15,8 @@
 
    Layout: A is handed to MUMPS as the upper triangles of each rank's rows (distributed input,
    ICNTL(18) = 3 on several ranks); the ordering, the Schur complement and the right-hand sides are
-   centralized on rank 0 (the host), where Sigma^-1 is formed with LAPACK. A solve is condensation
+   centralized on rank 0 (the host); Sigma^-1 is formed there with LAPACK, or over all the ranks
+   with ScaLAPACK and gathered back (spdinverse.c). A solve is condensation
    (ICNTL(26) = 1), x_S = Sigma^-1 r_S on the host, then expansion (ICNTL(26) = 2).
    The DOFs come in vertex blocks of 3 (A's block size), and S is a union of blocks. */
 #include "complianceimpl.h"
@@ -40,15 +41,17 @@ struct _FCSchurFactor {
   MUMPS_INT     *irn, *jcn;
   PetscReal     *val;
   /* host only */
-  PetscInt   nb, *xadj, *adj; /* vertex-block graph of A (without self loops) */
-  PetscInt   ns, *S;          /* Schur DOFs (sorted) of the current analysis */
-  PetscInt   nsnext, *Snext;  /* requested by FCSchurFactorSetSchur */
-  MUMPS_INT *perm, *list;
-  PetscReal *sigma, *red, *work; /* Sigma from MUMPS, inverted in place into C = (A^-1)_SS; reduced rhs; C red */
-  Vec        bseq;
-  VecScatter tohost;
-  PetscBool  analysed, factored;
-  PetscInt   nanalysis, nfactor;
+  PetscInt     nb, *xadj, *adj; /* vertex-block graph of A (without self loops) */
+  PetscInt     ns, *S;          /* Schur DOFs (sorted) of the current analysis */
+  PetscInt     nsnext, *Snext;  /* requested by FCSchurFactorSetSchur */
+  MUMPS_INT   *perm, *list;
+  PetscReal   *sigma, *red, *work; /* Sigma from MUMPS, inverted in place into C = (A^-1)_SS; reduced rhs; C red */
+  Vec          bseq;
+  VecScatter   tohost;
+  PetscBool    analysed, factored;
+  PetscBool    distinv; /* Sigma^-1 by ScaLAPACK over the ranks */
+  FCSPDInverse inv;
+  PetscInt     nanalysis, nfactor;
 };
 
 /* S holds every DOF (a thin body all in contact): MUMPS takes only a Schur block smaller than A
@@ -306,6 +309,10 @@ static PetscErrorCode Analyse(FCSchurFactor f)
     f->id.schur_lld     = (MUMPS_INT)f->ns;
   }
   PetscCallMPI(MPI_Bcast(&f->ns, 1, MPIU_INT, 0, f->comm));
+  if (!f->inv) PetscCall(FCSPDInverseCreate(f->comm, f->name, f->distinv, &f->inv));
+  /* centralized even for the ScaLAPACK inverse: MUMPS 5.5 asked for it distributed on the grid
+     (ICNTL(19) = 3) failed with INFOG(1) = -9 on input/hard/cube_thin_plate.opts (2 ranks) whatever
+     ICNTL(14); Sigma is then redistributed from the host (2 ns^2 values, milliseconds) */
   f->id.ICNTL(19) = f->ns ? 1 : 0; /* Schur complement centralized on the host (lower triangle by rows) */
   if (!Full(f)) PetscCall(CallMumps(f, 1, "analysis"));
   PetscCall(PetscLogEventEnd(EV_ANALYSIS, 0, 0, 0, 0));
@@ -373,23 +380,9 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
         NULL, "body %s: factorization with %" PetscInt_FMT " Schur DOFs: %.3g flops, %d entries in the factor\n",
         f->name, f->ns, (double)f->id.rinfog[2], (int)f->id.INFOG(29)));
   f->nfactor++;
+  /* MUMPS returns the lower triangle by rows: the upper one of the column-major array */
   PetscCall(PetscLogEventBegin(EV_INVERSE, 0, 0, 0, 0));
-  if (!f->rank && f->ns) {
-    PetscBLASInt n, info;
-    PetscInt     ns = f->ns;
-    PetscCall(PetscBLASIntCast(ns, &n));
-    /* MUMPS returns the lower triangle by rows: the upper one of the column-major array */
-    PetscCallBLAS("LAPACKpotrf", LAPACKpotrf_("U", &n, f->sigma, &n, &info));
-    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
-               "The Schur complement of A of body '%s' on its %" PetscInt_FMT " contact DOFs is not positive definite "
-               "(LAPACK potrf info %d)",
-               f->name, ns, (int)info);
-    PetscCallBLAS("LAPACKpotri", LAPACKpotri_("U", &n, f->sigma, &n, &info));
-    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK potri on the Schur complement of body '%s': %d",
-               f->name, (int)info);
-    for (PetscInt j = 0; j < ns; j++)
-      for (PetscInt i = j + 1; i < ns; i++) f->sigma[i + j * ns] = f->sigma[j + i * ns]; /* the lower from the upper */
-  }
+  PetscCall(FCSPDInverseApply(f->inv, f->ns, f->sigma));
   PetscCall(PetscLogEventEnd(EV_INVERSE, 0, 0, 0, 0));
   f->factored = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -474,6 +467,15 @@ PetscErrorCode FCSchurFactorGetCounts(FCSchurFactor f, PetscInt *nanalysis, Pets
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCSchurFactorSetDistributedInverse(FCSchurFactor f, PetscBool distributed)
+{
+  PetscFunctionBegin;
+  PetscCheck(!f->inv, f->comm, PETSC_ERR_ORDER, "The inverse of body '%s' is chosen before its first factorization",
+             f->name);
+  f->distinv = distributed;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCSchurFactorDestroy(FCSchurFactor *sf)
 {
   FCSchurFactor f = *sf;
@@ -491,6 +493,7 @@ PetscErrorCode FCSchurFactorDestroy(FCSchurFactor *sf)
   PetscCall(PetscFree3(f->sigma, f->red, f->work));
   PetscCall(VecDestroy(&f->bseq));
   PetscCall(VecScatterDestroy(&f->tohost));
+  PetscCall(FCSPDInverseDestroy(&f->inv));
   PetscCallMPI(MPI_Comm_free(&f->comm));
   PetscCall(PetscFree(f));
   *sf = NULL;
