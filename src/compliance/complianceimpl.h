@@ -54,7 +54,9 @@ PETSC_INTERN PetscErrorCode FCComplianceGetFactor(FCCompliance, Mat *F);
 /* One MUMPS Cholesky factorization of A with a set S of DOFs ordered last (METIS nested
    dissection before them), giving C = (A^-1)_SS on rank 0 besides the solves (schurfactor.c) */
 typedef struct _FCSchurFactor *FCSchurFactor;
-PETSC_INTERN PetscErrorCode    FCSchurFactorCreate(Mat A, const char name[], FCSchurFactor *);
+/* distributed_inverse: C = Sigma^-1 by ScaLAPACK over the ranks, else LAPACK on rank 0 */
+PETSC_INTERN PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], PetscBool distributed_inverse,
+                                                FCSchurFactor *);
 /* rank 0: sorted DOFs, whole vertex blocks (the other ranks' arguments are ignored); collective */
 PETSC_INTERN PetscErrorCode FCSchurFactorSetSchur(FCSchurFactor, PetscInt ns, const PetscInt S[]);
 PETSC_INTERN PetscErrorCode FCSchurFactorFactor(FCSchurFactor, Mat A);
@@ -66,9 +68,6 @@ PETSC_INTERN PetscErrorCode FCSchurFactorGetGraph(FCSchurFactor, PetscInt *nb, c
                                                   const PetscInt **adj);
 PETSC_INTERN PetscErrorCode FCSchurFactorGetCounts(FCSchurFactor, PetscInt *nanalysis, PetscInt *nfactor);
 PETSC_INTERN PetscErrorCode FCSchurFactorDestroy(FCSchurFactor *);
-/* Before the first factorization: Sigma^-1 by ScaLAPACK over the ranks (PETSC_TRUE) or LAPACK
-   on rank 0 */
-PETSC_INTERN PetscErrorCode FCSchurFactorSetDistributedInverse(FCSchurFactor, PetscBool);
 
 /* C = Sigma^-1 of a dense SPD matrix held by rank 0 of comm: LAPACK there, or ScaLAPACK over
    every rank of comm (spdinverse.c) */

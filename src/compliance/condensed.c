@@ -76,8 +76,7 @@ static PetscErrorCode SetUp_Condensed(FCCompliance comp)
              comp->ctx.name, comp->ctx.prefix, comp->ctx.prefix, comp->ctx.prefix);
   PetscCallMPI(MPI_Comm_size(comp->ctx.comm, &size));
   PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
-  PetscCall(FCSchurFactorCreate(comp->ctx.A, comp->ctx.name, &cd->sf));
-  PetscCall(FCSchurFactorSetDistributedInverse(cd->sf, (PetscBool)(cd->inverse == INVERSE_SCALAPACK)));
+  PetscCall(FCSchurFactorCreate(comp->ctx.A, comp->ctx.name, (PetscBool)(cd->inverse == INVERSE_SCALAPACK), &cd->sf));
   if (!rank) PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
   PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, 0, comp->ctx.comm));
   if (!rank) {

@@ -49,7 +49,6 @@ struct _FCSchurFactor {
   Vec          bseq;
   VecScatter   tohost;
   PetscBool    analysed, factored;
-  PetscBool    distinv; /* Sigma^-1 by ScaLAPACK over the ranks */
   FCSPDInverse inv;
   PetscInt     nanalysis, nfactor;
 };
@@ -160,7 +159,7 @@ static PetscErrorCode GatherGraph(FCSchurFactor f, Mat A)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSchurFactor *sf)
+PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], PetscBool distributed_inverse, FCSchurFactor *sf)
 {
   FCSchurFactor f;
   PetscBool     sbaij;
@@ -191,6 +190,7 @@ PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSchurFactor *sf)
   PetscCall(MatCreateVecs(A, &b, NULL));
   PetscCall(VecScatterCreateToZero(b, &f->tohost, &f->bseq));
   PetscCall(VecDestroy(&b));
+  PetscCall(FCSPDInverseCreate(f->comm, name, distributed_inverse, &f->inv));
 
   f->id.job          = -1;
   f->id.par          = 1;
@@ -309,7 +309,6 @@ static PetscErrorCode Analyse(FCSchurFactor f)
     f->id.schur_lld     = (MUMPS_INT)f->ns;
   }
   PetscCallMPI(MPI_Bcast(&f->ns, 1, MPIU_INT, 0, f->comm));
-  if (!f->inv) PetscCall(FCSPDInverseCreate(f->comm, f->name, f->distinv, &f->inv));
   /* centralized even for the ScaLAPACK inverse: MUMPS 5.5 asked for it distributed on the grid
      (ICNTL(19) = 3) failed with INFOG(1) = -9 on input/hard/cube_thin_plate.opts (2 ranks) whatever
      ICNTL(14); Sigma is then redistributed from the host (2 ns^2 values, milliseconds) */
@@ -464,15 +463,6 @@ PetscErrorCode FCSchurFactorGetCounts(FCSchurFactor f, PetscInt *nanalysis, Pets
   PetscFunctionBegin;
   if (nanalysis) *nanalysis = f->nanalysis;
   if (nfactor) *nfactor = f->nfactor;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode FCSchurFactorSetDistributedInverse(FCSchurFactor f, PetscBool distributed)
-{
-  PetscFunctionBegin;
-  PetscCheck(!f->inv, f->comm, PETSC_ERR_ORDER, "The inverse of body '%s' is chosen before its first factorization",
-             f->name);
-  f->distinv = distributed;
   PetscFunctionReturn(0);
 }
 

@@ -7,9 +7,8 @@
                 host: ns^3 flops shared, 2 ns^2 values moved.
 
    Both take Sigma's upper triangle (column-major, ns x ns, on the host) and leave the whole
-   symmetric C in the same array. The inversion is the serial part of the condensed builder's
-   factorization (issue 16, docs/scaling.md): on one rank it is one of ~5 parts of a step of the
-   36k box, and the only one that did not shrink on two. */
+   symmetric C in the same array. On rank 0 alone the inversion was a serial part of the condensed
+   builder's factorization on several ranks (issue 16; both measured in docs/scaling.md). */
 #include "complianceimpl.h"
 #include <petscblaslapack.h>
 
@@ -39,7 +38,7 @@ struct _FCSPDInverse {
   int         sys;       /* BLACS handle of comm */
   int         ctxt_all;  /* 1 x size grid */
   int         ctxt_host; /* 1 x 1 grid on the host (-1 elsewhere) */
-  int         mycol, nloc;
+  int         mycol;
   PetscInt    nalloc;
   PetscReal  *loc; /* this rank's block-cyclic columns (ns x nloc) */
 };
@@ -71,26 +70,18 @@ PetscErrorCode FCSPDInverseCreate(MPI_Comm comm, const char name[], PetscBool di
   PetscFunctionReturn(0);
 }
 
-/* This rank's block-cyclic columns of an ns x ns matrix (ns rows by nloc columns, leading
-   dimension *lld) */
-static PetscErrorCode GetLocal(FCSPDInverse v, PetscInt ns, PetscInt nloc, PetscReal **loc, PetscInt *lld)
+/* Room for this rank's block-cyclic columns of an ns x ns matrix (ns rows by nloc columns) */
+static PetscErrorCode Reserve(FCSPDInverse v, int n)
 {
-  int n, nb = FC_SPD_BLOCK, zero = 0;
+  int nb = FC_SPD_BLOCK, zero = 0, nloc, size = (int)v->size;
 
   PetscFunctionBegin;
-  PetscCall(PetscMPIIntCast(ns, &n));
-  v->nloc = numroc_(&n, &nb, &v->mycol, &zero, (int *)&v->size);
-  PetscCheck(nloc < 0 || nloc == v->nloc, PETSC_COMM_SELF, PETSC_ERR_LIB,
-             "Block-cyclic columns of the Schur complement of body '%s' on rank %d: MUMPS %" PetscInt_FMT
-             ", ScaLAPACK %d",
-             v->name, (int)v->rank, nloc, v->nloc);
-  if (v->nalloc < (PetscInt)n * v->nloc + 1) {
+  nloc = numroc_(&n, &nb, &v->mycol, &zero, &size);
+  if (v->nalloc < (PetscInt)n * nloc + 1) {
     PetscCall(PetscFree(v->loc));
-    v->nalloc = (PetscInt)n * v->nloc + 1;
+    v->nalloc = (PetscInt)n * nloc + 1;
     PetscCall(PetscMalloc1(v->nalloc, &v->loc));
   }
-  *loc = v->loc;
-  *lld = PetscMax(1, n);
   PetscFunctionReturn(0);
 }
 
@@ -114,12 +105,10 @@ PetscErrorCode FCSPDInverseApply(FCSPDInverse v, PetscInt ns, PetscReal a[])
                  v->name, (int)info);
     }
   } else {
-    int        n, nb = FC_SPD_BLOCK, zero = 0, one = 1, info = 0, dh[9], dc[9], lldc;
-    PetscInt   lld;
-    PetscReal *loc;
+    int n, nb = FC_SPD_BLOCK, zero = 0, one = 1, info = 0, dh[9], dc[9], lldc;
     PetscCall(PetscMPIIntCast(ns, &n));
-    PetscCall(GetLocal(v, ns, -1, &loc, &lld));
-    lldc = PetscMax(1, n);
+    PetscCall(Reserve(v, n));
+    lldc = n; /* one row of processes: every rank holds all n rows of its columns */
     descinit_(dc, &n, &n, &nb, &nb, &zero, &zero, &v->ctxt_all, &lldc, &info);
     PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "ScaLAPACK descinit (grid) for body '%s': %d", v->name, info);
     if (!v->rank) {
