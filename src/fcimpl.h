@@ -271,6 +271,10 @@ typedef struct {
   PetscErrorCode (*trialposition)(FCBody, const FCProximity *, PetscReal x[3]);
   /* dv += h A_b^-1 J_b^T lambda */
   PetscErrorCode (*applycorrection)(FCBody, PetscInt self, const FCContactSet *, const PetscReal lambda[]);
+  /* the contacts a proximity query at the start of a run expects, before the body's first
+     factorization: a body whose factorization depends on its contact DOFs prepares for them
+     (set by the body at contact set-up, with `expects`) */
+  PetscErrorCode (*expectcontacts)(FCBody, PetscInt self, const FCContactSet *);
 } FCBodyOps;
 enum { FC_AT_START, FC_AT_FREE, FC_AT_NOW };
 
@@ -286,6 +290,7 @@ struct _p_FCBody {
   FCBodyOps ops;
   void     *data;
   PetscBool setupcalled;
+  PetscBool expects; /* its first factorization depends on its contacts: FCBodyExpectContacts before the free motion */
   PetscReal h, gravity[3];
   /* placement and initial motion, common to every type */
   PetscReal    translate[3], rotate[4], center[3], velocity[3], angular_velocity[3];
@@ -332,6 +337,10 @@ PETSC_INTERN PetscErrorCode FCBodyAddPartialPosition(FCBody, const FCProximity *
 /* Contact response */
 PETSC_INTERN PetscErrorCode FCBodySetUpContact(FCBody); /* a body named in a contact pair, after FCBodySetUp */
 PETSC_INTERN PetscErrorCode FCBodyAddCompliance(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
+/* before the first free motion of a run: whether the body's factorization depends on its contacts,
+   and the contacts a proximity query at the start positions gives it */
+PETSC_INTERN PetscBool      FCBodyExpectsContacts(FCBody);
+PETSC_INTERN PetscErrorCode FCBodyExpectContacts(FCBody, PetscInt self, const FCContactSet *);
 PETSC_INTERN PetscErrorCode FCBodyApplyCorrection(FCBody, PetscInt self, const FCContactSet *,
                                                   const PetscReal lambda[]);
 PETSC_INTERN PetscErrorCode FCBodySaveFreeMotion(FCBody);
@@ -391,6 +400,10 @@ PETSC_INTERN PetscBool      FCComplianceUsesRotation(FCCompliance);
 PETSC_INTERN PetscErrorCode FCComplianceSetRotation(FCCompliance, const PetscReal R[9]);
 /* W (M x M, row-major, replicated) += J_b A^-1 J_b^T for the contacts touching body `self` */
 PETSC_INTERN PetscErrorCode FCComplianceAdd(FCCompliance, PetscInt self, const FCContactSet *, PetscReal W[]);
+/* a builder whose factorization depends on the contact DOFs (condensed) takes the contacts expected
+   at its next factorization: whether it does, and the contacts */
+PETSC_INTERN PetscBool      FCComplianceUsesExpectedContacts(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceExpectContacts(FCCompliance, PetscInt self, const FCContactSet *);
 /* dv += h A^-1 J_b^T lambda for the J_b of the last Add */
 PETSC_INTERN PetscErrorCode FCComplianceCorrect(FCCompliance, PetscReal h, const PetscReal lambda[], Vec dv);
 PETSC_INTERN PetscErrorCode FCComplianceDestroy(FCCompliance *);

@@ -9,7 +9,9 @@ table is proved from the PETSc log (-log_view CSV: event counts of rank 0) or th
 - gravity costs one VecAXPBYPCZ call (PETSc logs it as VecAXPBYCZ) per FE body and step only when it is on;
 - frictionless pairs give one constraint row per contact (no tangential rows), friction three;
 - W (MatMatSolve, dense builder) only for FE bodies that have contacts in the step; the default
-  builder's copies of a linear A are factored once;
+  builder factors a linear A at its first use and again when the first contacts show their DOFs,
+  or once when the body starts in contact (the start-of-run proximity query gives them); the
+  redundant builder's copies of a linear A are factored once;
 - the recursive scheme's Newton loop stops after one iteration on a plane (the frames cannot
   change), and iterates on the grasp's spheres.
 Usage: test_effects.py [--np N]"""
@@ -87,6 +89,14 @@ c.check(h5_["steps/contacts"][:].sum() == 0 and l5.get("SchurNumeric", -1) == 1 
         "contact scene, linear, default builder: %d factorization in 5 steps without contact, %d in 40 steps (%d in "
         "contact), %d by the KSP" % (l5.get("SchurNumeric", -1), l40.get("SchurNumeric", -1), touch,
                                       l40.get("MatCholFctrNum", 0)))
+# a body that starts in contact: a proximity query before the first free motion gives the default
+# builder its Schur block, so A is factored once in the first step (not plain, then again at the miss)
+rest = ["-options_file", "input/cube_rest.opts", "-cube_dm_plex_filename", "meshes/cube_coarse.msh", "-time_steps", "3"]
+rl, hl = go(rest + ["-cube_material", "linear"])
+rc, _ = go(rest)
+c.check(hl["steps/contacts"][0] > 0 and rl.get("SchurNumeric", -1) == 1 and rc.get("SchurNumeric", -1) == 3,
+        "resting from step 1 (%d contacts), default builder: %d factorization in 3 steps (linear), %d (co-rotational, "
+        "one per step)" % (hl["steps/contacts"][0], rl.get("SchurNumeric", -1), rc.get("SchurNumeric", -1)))
 # the redundant builder keeps a sequential copy of a linear A on every rank: factored with A, never again
 r5, _ = go(drop + ["-time_steps", "5", "-cube_material", "linear", "-compliance_type", "redundant"])
 r20, _ = go(drop + ["-time_steps", "20", "-cube_material", "linear", "-compliance_type", "redundant"])

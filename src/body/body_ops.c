@@ -169,6 +169,18 @@ PetscErrorCode FCBodyAddCompliance(FCBody body, PetscInt self, const FCContactSe
   PetscFunctionReturn(0);
 }
 
+PetscBool FCBodyExpectsContacts(FCBody body)
+{
+  return body->expects;
+}
+
+PetscErrorCode FCBodyExpectContacts(FCBody body, PetscInt self, const FCContactSet *set)
+{
+  PetscFunctionBegin;
+  if (body->expects && body->ops.expectcontacts) PetscCall((*body->ops.expectcontacts)(body, self, set));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCBodyApplyCorrection(FCBody body, PetscInt self, const FCContactSet *set, const PetscReal lambda[])
 {
   PetscFunctionBegin;

@@ -288,6 +288,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.setupcontact       = SetUpContact_FEM;
   body->ops.addcompliance      = AddCompliance_FEM;
   body->ops.applycorrection    = ApplyCorrection_FEM;
+  body->ops.expectcontacts     = ExpectContacts_FEM;
   body->ops.surfacetriangles   = SurfaceTriangles_FEM;
   body->ops.partialposition    = PartialPosition_FEM;
   body->ops.savefree           = SaveFree_FEM;

@@ -205,6 +205,16 @@ PetscErrorCode SetUpContact_FEM(FCBody body)
   /* A is factored at its first use (the free motion of the first step), by the KSP or, for a
      builder that owns the factor (condensed), by the builder: the KSP then never factors */
   PetscCall(FCComplianceSetUp(fem->comp));
+  body->expects = FCComplianceUsesExpectedContacts(fem->comp);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ExpectContacts_FEM(FCBody body, PetscInt self, const FCContactSet *set)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  PetscCall(FCComplianceExpectContacts(fem->comp, self, set));
   PetscFunctionReturn(0);
 }
 

@@ -102,3 +102,4 @@ PETSC_INTERN PetscErrorCode ProximityPosition_FEM(FCBody, const FCProximity *, P
 PETSC_INTERN PetscErrorCode SetUpContact_FEM(FCBody);
 PETSC_INTERN PetscErrorCode AddCompliance_FEM(FCBody, PetscInt, const FCContactSet *, PetscReal[]);
 PETSC_INTERN PetscErrorCode ApplyCorrection_FEM(FCBody, PetscInt, const FCContactSet *, const PetscReal[]);
+PETSC_INTERN PetscErrorCode ExpectContacts_FEM(FCBody, PetscInt, const FCContactSet *);

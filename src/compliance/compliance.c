@@ -289,6 +289,24 @@ static PetscErrorCode BuildJacobian(FCCompliance comp, PetscInt self, const FCCo
   PetscFunctionReturn(0);
 }
 
+PetscBool FCComplianceUsesExpectedContacts(FCCompliance comp)
+{
+  return (PetscBool)(comp->ops.expect != NULL);
+}
+
+/* The contacts of a start-of-run proximity query, before the first factorization: J_b^T of
+   them for the builder's expect, then forgotten (the step's Add builds its own) */
+PetscErrorCode FCComplianceExpectContacts(FCCompliance comp, PetscInt self, const FCContactSet *set)
+{
+  PetscFunctionBegin;
+  if (!comp->ops.expect) PetscFunctionReturn(0);
+  PetscCall(Reset(comp));
+  PetscCall(BuildJacobian(comp, self, set));
+  PetscCall((*comp->ops.expect)(comp));
+  PetscCall(Reset(comp));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCComplianceAdd(FCCompliance comp, PetscInt self, const FCContactSet *set, PetscReal W[])
 {
   PetscInt   M = set->nrows, ncols;

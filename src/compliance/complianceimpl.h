@@ -16,6 +16,9 @@ typedef struct {
   /* ... or the whole correction dv += h A^-1 J_b^T lambda from what build kept */
   PetscErrorCode (*correct)(FCCompliance, PetscReal h, const PetscReal lambda[], Vec dv);
   PetscErrorCode (*reset)(FCCompliance); /* forget the step's columns */
+  /* J_b^T (jtr, ...) holds the contacts expected at the next factorization, not a step's: a
+     builder whose factorization depends on the contact DOFs takes them (NULL: none does) */
+  PetscErrorCode (*expect)(FCCompliance);
   PetscErrorCode (*destroy)(FCCompliance);
 } FCComplianceOps;
 
