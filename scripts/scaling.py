@@ -326,6 +326,22 @@ def plot(rows, figdir):
         fig.savefig(os.path.join(figdir, "weak.png"), dpi=100)
 
 
+KEPT_BEGIN, KEPT_END = "<!-- begin kept", "<!-- end kept -->"
+
+
+def kept_block(path):
+    """The lines of the page between its kept markers (the measurements of other commands: the
+    --repeat-pair tables, bench_spdinverse), markers included, so that a regeneration keeps them"""
+    if not os.path.exists(path):
+        return []
+    lines = open(path).read().split("\n")
+    begin = next((i for i, l in enumerate(lines) if l.startswith(KEPT_BEGIN)), None)
+    end = next((i for i, l in enumerate(lines) if l.startswith(KEPT_END)), None)
+    if begin is None or end is None or end < begin:
+        return []
+    return lines[begin:end + 1] + [""]
+
+
 def write_doc(a, rows):
     import platform
 
@@ -351,9 +367,10 @@ def write_doc(a, rows):
          "with the contact DOFs S ordered last (MUMPS called directly, METIS nested dissection before S): "
          "(A^-1)_SS is the inverse of the Schur complement it leaves on rank 0, a linear body refactors only when "
          "its contacts leave S, and the same factor solves the free motion and the correction. The linear boxes "
-         "here rest in contact from step 1, where `condensed` refactors A with its first contacts ordered last "
-         "(1.35-1.75 factorizations, docs/benchmarks.md) and then builds W_H from products alone (0.01-0.05 "
-         "factorizations a step): its W_H means over %d steps are mostly that first step." % a.steps, "",
+         "here rest in contact from step 1, where `condensed` factors A once with its first contacts ordered last "
+         "(S from a proximity query at the start positions, before the first free motion) and then builds W_H from "
+         "products alone (0.01-0.05 factorizations a step): its step means over %d steps are mostly that first "
+         "step." % a.steps, "",
          "![strong scaling](scaling/strong.png)", "",
          "| kind | scene | W_H | PGS on | ranks | contacts | step (s) | set-up (s) | W_H (s) | PGS (s) | rebuild W (s) | free motion (s) | collision (s) | correction (s) | messages | reductions | RSS (MB) | vs 1 rank |",
          "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
@@ -401,8 +418,9 @@ def write_doc(a, rows):
         cells = phase_ratios(rr[1], rr[2])
         L.append("| %s (%.3f s -> %.3f s) | **%.2f** | %s | %s |" % (sc, rr[1]["step"], rr[2]["step"], ratio, " | ".join(cells),
                                                                    "met" if ratio <= 0.65 else "not met"))
-    L += ["", "(a phase under 1 ms on 1 rank: -)"]
-    L += ["", "Per phase, a two-point Amdahl fit of the 1- and 2-rank times, t(p) = t_serial + t_parallel / p with "
+    L += ["", "(a phase under 1 ms on 1 rank: -)", ""]
+    L += kept_block(a.markdown)
+    L += ["Per phase, a two-point Amdahl fit of the 1- and 2-rank times, t(p) = t_serial + t_parallel / p with "
           "t_serial = 2 t(2) - t(1) (at least 0) and t_parallel = t(1) - t_serial, predicts the step time beyond the "
           "machine (the serial share of the phases applied to the 1-rank step time). It ignores the growth of communication with p (the W Allreduce is O(m^2) words per step on every "
           "rank, MUMPS' communication grows with p), so it is an upper bound on the speed-up:", "",
