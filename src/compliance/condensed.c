@@ -9,7 +9,7 @@
    (docs/benchmarks.md, "Compliance builders"). S is chosen before the contacts of the step are
    known:
      - at the first factorization of a run, S = the DOFs of the contacts a discrete proximity
-       query at the start positions finds (the scene runs it before the first free motion and
+       query at the start positions finds (the scene runs it at set-up, before the first free motion, and
        hands it over, Expect_Condensed), with the ring of margin of a miss: a body that starts in
        contact is factored once in its first step;
      - at a factorization, S = the DOFs of the last step's contacts (and -compliance_condensed_ring

@@ -279,6 +279,27 @@ static PetscErrorCode WriteOutputStepOrClose(FCScene s)
   PetscFunctionReturn(0);
 }
 
+/* At set-up, once the start state is known (a restart's included), before the first free motion:
+   a body whose first factorization depends on its contact DOFs (the condensed builder's Schur
+   block) gets the contacts of a discrete proximity query at the start positions. A body that starts in contact is then
+   factored once in its first step, not a plain factorization and, at the first contacts, a second one with them. */
+static PetscErrorCode ExpectContacts(FCScene s)
+{
+  FCContactPairs pairs = s->pairs;
+  PetscBool      any   = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < s->nbodies; i++) any = (PetscBool)(any || FCBodyExpectsContacts(s->bodies[i]));
+  if (!any) PetscFunctionReturn(0);
+  pairs.continuous = PETSC_FALSE; /* the free motion is not known yet */
+  PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
+  PetscCall(FCCollisionDetect(s->comm, s->nbodies, s->bodies, &pairs, &s->set));
+  for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyExpectContacts(s->bodies[i], i, &s->set));
+  PetscCall(FCContactSetReset(&s->set));
+  PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCSceneSetUp(FCScene s)
 {
   PetscFunctionBegin;
@@ -309,6 +330,7 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     s->t0    = s->t;
     s->step0 = s->step;
   }
+  if (s->pairs.n) PetscCall(ExpectContacts(s));
   PetscCall(FCEnergyGuardSetUp(&s->guard, s->comm, s->nbodies, s->bodies, s->h, s->nsteps - s->step,
                                s->pairs.n ? s->pairs.separation_speed : 0.0));
   PetscCall(FCOutputCreate(s->comm, s->output_file, &s->output));
@@ -338,27 +360,6 @@ PetscErrorCode FCSceneGetBody(FCScene s, const char name[], FCBody *body)
   PetscFunctionReturn(0);
 }
 
-/* Before the first free motion of a run: a body whose first factorization depends on its contact
-   DOFs (the condensed builder's Schur block) gets the contacts of a discrete proximity query at
-   the start positions. A body that starts in contact is then factored once in its first step,
-   not a plain factorization and, at the first contacts, a second one with them. */
-static PetscErrorCode ExpectContacts(FCScene s)
-{
-  FCContactPairs pairs = s->pairs;
-  PetscBool      any   = PETSC_FALSE;
-
-  PetscFunctionBegin;
-  for (PetscInt i = 0; i < s->nbodies; i++) any = (PetscBool)(any || FCBodyExpectsContacts(s->bodies[i]));
-  if (!any) PetscFunctionReturn(0);
-  pairs.continuous = PETSC_FALSE; /* the free motion is not known yet */
-  PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
-  PetscCall(FCCollisionDetect(s->comm, s->nbodies, s->bodies, &pairs, &s->set));
-  for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyExpectContacts(s->bodies[i], i, &s->set));
-  PetscCall(FCContactSetReset(&s->set));
-  PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
-  PetscFunctionReturn(0);
-}
-
 /* One time step: free motion (eq. 5) -> [contacts] -> integration (eq. 2) -> output */
 PetscErrorCode FCSceneStep(FCScene s)
 {
@@ -366,7 +367,6 @@ PetscErrorCode FCSceneStep(FCScene s)
   PetscLogDouble now;
 
   PetscFunctionBegin;
-  if (s->step == s->step0 && s->pairs.n) PetscCall(ExpectContacts(s));
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyComputeFreeMotion(s->bodies[i], s->t));
   if (s->pairs.n) {
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
