@@ -375,9 +375,10 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
     PetscCall(PetscInfo(NULL, "body %s: every one of its %" PetscInt_FMT " DOFs in S: Sigma = A, gathered dense\n",
                         f->name, f->N));
   else
-    PetscCall(PetscInfo(
-        NULL, "body %s: factorization with %" PetscInt_FMT " Schur DOFs: %.3g flops, %d entries in the factor\n",
-        f->name, f->ns, (double)f->id.rinfog[2], (int)f->id.INFOG(29)));
+    PetscCall(PetscInfo(NULL,
+                        "body %s: factorization with %" PetscInt_FMT
+                        " Schur DOFs: %.3g flops (%.3g on this rank), %d entries in the factor\n",
+                        f->name, f->ns, (double)f->id.rinfog[2], (double)f->id.rinfo[2], (int)f->id.INFOG(29)));
   f->nfactor++;
   /* MUMPS returns the lower triangle by rows: the upper one of the column-major array */
   PetscCall(PetscLogEventBegin(EV_INVERSE, 0, 0, 0, 0));
