@@ -165,10 +165,15 @@ def main():
     ap.add_argument("--markdown", default=os.path.join(ROOT, "docs", "scaling.md"))
     ap.add_argument("--repeat-pair", type=int, default=0, metavar="N",
                     help="only issue 16's pair (36k, cube; 1 and 2 ranks), N times; print the ratios")
+    ap.add_argument("--versus", default="", metavar="OPTS",
+                    help="with --repeat-pair: each repeat also runs the pair with these options added (after the "
+                    "defaults' pair), so that both variants' ratios come from one run")
     a = ap.parse_args()
     os.makedirs(OUT, exist_ok=True)
     if a.repeat_pair < 0:
         ap.error("--repeat-pair N: N must be >= 1 (0: the whole sweep), got %d" % a.repeat_pair)
+    if a.versus and not a.repeat_pair:
+        ap.error("--versus goes with --repeat-pair N")
     if a.repeat_pair:
         return repeat_pair(a)
     figdir = os.path.join(os.path.dirname(a.markdown), "scaling")
@@ -250,35 +255,45 @@ def main():
 
 
 def repeat_pair(a):
-    """--repeat-pair: issue 16's 2-rank / 1-rank ratios, N repeats, printed as markdown"""
+    """--repeat-pair: issue 16's 2-rank / 1-rank ratios, N repeats, printed as markdown; --versus OPTS: each
+    repeat runs the pair with the defaults, then with OPTS added"""
     import platform
-    ratios = {sc: [] for sc in ("36k", "cube")}
-    print("`scripts/scaling.py --repeat-pair %d --steps %d` on %s (%s, %d cores): the 2-rank / 1-rank ratio of the "
+    import shlex
+    variants = [("defaults", [])] + ([(a.versus, shlex.split(a.versus))] if a.versus else [])
+    ratios = {(sc, v): [] for sc in ("36k", "cube") for v, _ in variants}
+    print("`scripts/scaling.py --repeat-pair %d --steps %d%s` on %s (%s, %d cores): the 2-rank / 1-rank ratio of the "
           "step (mean of `/steps/wall_time`) and of each phase (means of `/steps/timing`), default builder "
-          "(`condensed`), `-pgs_ranks root`; each repeat runs 1 rank, then 2.\n"
-          % (a.repeat_pair, a.steps, time.strftime("%Y-%m-%d"), platform.machine(), os.cpu_count()))
-    print("| scene | repeat | step 1 rank (s) | 2 ranks (s) | step | " + " | ".join(ph.replace("_", " ") for ph in PHASES)
-          + " |")
-    print("|---|---:|---:|---:|---:|" + "---:|" * len(PHASES))
+          "(`condensed`), `-pgs_ranks root`; each repeat runs 1 rank, then 2%s.\n"
+          % (a.repeat_pair, a.steps, " --versus '%s'" % a.versus if a.versus else "", time.strftime("%Y-%m-%d"),
+             platform.machine(), os.cpu_count(),
+             ", with the defaults, then with `%s`" % a.versus if a.versus else ""))
+    vcol = "options | " if a.versus else ""
+    print("| scene | " + vcol + "repeat | step 1 rank (s) | 2 ranks (s) | step | "
+          + " | ".join(ph.replace("_", " ") for ph in PHASES) + " |")
+    print("|---|" + ("---|" if a.versus else "") + "---:|---:|---:|---:|" + "---:|" * len(PHASES))
     for k in range(a.repeat_pair):
         for sc in ("36k", "cube"):
-            args = scene(sc)[0] + ["-compliance_type", "condensed", "-pgs_ranks", "root"]
-            r1, h1 = run("pair_%s_np1" % sc, args, 1, a.steps)
-            r2, h2 = run("pair_%s_np2" % sc, args, 2, a.steps)
-            d = diff(h1, h2)
-            if not d <= 1e-8:
-                print("| %s | %d | the 2-rank run ended %.1e (relative) from the 1-rank run: left out |" % (sc, k + 1, d))
-                continue
-            ratio = r2["step"] / r1["step"]
-            ratios[sc].append(ratio)
-            cells = phase_ratios(r1, r2)
-            print("| %s | %d | %.3f | %.3f | **%.2f** | %s |" % (sc, k + 1, r1["step"], r2["step"], ratio, " | ".join(cells)),
-                  flush=True)
+            for i, (v, extra) in enumerate(variants):
+                args = scene(sc)[0] + ["-compliance_type", "condensed", "-pgs_ranks", "root"] + extra
+                r1, h1 = run("pair%d_%s_np1" % (i, sc), args, 1, a.steps)
+                r2, h2 = run("pair%d_%s_np2" % (i, sc), args, 2, a.steps)
+                vc = ("`%s` | " % v) if a.versus else ""
+                d = diff(h1, h2)
+                if not d <= 1e-8:
+                    print("| %s | %s%d | the 2-rank run ended %.1e (relative) from the 1-rank run: left out |"
+                          % (sc, vc, k + 1, d))
+                    continue
+                ratio = r2["step"] / r1["step"]
+                ratios[(sc, v)].append(ratio)
+                cells = phase_ratios(r1, r2)
+                print("| %s | %s%d | %.3f | %.3f | **%.2f** | %s |"
+                      % (sc, vc, k + 1, r1["step"], r2["step"], ratio, " | ".join(cells)), flush=True)
     print("\n(a phase under 1 ms on 1 rank: -)\n")
-    for sc, v in ratios.items():
-        if v:
-            print("- %s: step ratio %s; min %.2f, median %.2f, max %.2f; %d of %d at most 0.65" % (
-                sc, ", ".join("%.2f" % x for x in v), min(v), float(np.median(v)), max(v), sum(x <= 0.65 for x in v), len(v)))
+    for (sc, v), x in ratios.items():
+        if x:
+            print("- %s%s: step ratio %s; min %.2f, median %.2f, max %.2f; %d of %d at most 0.65" % (
+                sc, " (%s)" % v if a.versus else "", ", ".join("%.2f" % y for y in x), min(x), float(np.median(x)),
+                max(x), sum(y <= 0.65 for y in x), len(x)))
 
 
 def plot(rows, figdir):
