@@ -2,7 +2,8 @@
 give the same contact forces and positions (1e-10 relative) on an FE cube dropped on a plane (the
 same W to round-off drives the same solver path; condensed also does the free motion and the
 correction with its own Schur-ordered factor, and misses its first contact); on more than one rank
-sparse is refused with a clear error. Every builder handles contacts whose DOFs are all fixed (a
+sparse is refused with a clear error. condensed_balance: condensed with the top of its nested
+dissection bisected in balance of the vertices next to S (-compliance_condensed_balance 1). Every builder handles contacts whose DOFs are all fixed (a
 box on a slab whose top face is held: W_b = 0, the box rests on the fixed face). The co-rotational grasp (A refactored every step) checks that W_H follows A with every
 builder, the redundant copies of A included. precomputed is exact for a linear material (1e-10) and, rotation-warped, close to
 dense for a co-rotational one. Usage: test_compliance.py [--np N]"""
@@ -27,7 +28,8 @@ def result(ctype, extra=()):
 
 
 a = result("dense")
-others = (["sparse"] if NP == 1 else []) + ["schur", "inverse", "inverse8", "redundant", "condensed", "condensed2"] + (
+others = (["sparse"] if NP == 1 else []) + ["schur", "inverse", "inverse8", "redundant", "condensed", "condensed2",
+                                               "condensed_balance"] + (
     ["redundant1"] if NP > 1 else [])
 for ctype in others:
     # redundant1: one copy of A, distributed over all ranks (-compliance_redundant_groups 1);
@@ -38,6 +40,8 @@ for ctype in others:
         b = result("inverse", ("-compliance_inverse_block", "8"))
     elif ctype == "condensed2":  # two rings of surface neighbours in the Schur block
         b = result("condensed", ("-compliance_condensed_ring", "2"))
+    elif ctype == "condensed_balance":  # the top of the dissection bisected in balance of the vertices next to S
+        b = result("condensed", ("-compliance_condensed_balance", "1"))
     else:
         b = result(ctype)
     same = np.array_equal(a["contacts/offset"][:], b["contacts/offset"][:])
@@ -164,4 +168,8 @@ p = run(base + ["-compliance_type", "magic", "-output_file", out("comp_bad.h5")]
 c.check(p.returncode != 0 and "Unknown compliance type 'magic'" in p.stderr + p.stdout, "unknown compliance type: clear error")
 p = run(base + ["-compliance_type", "condensed", "-compliance_condensed_ring", "-1", "-output_file", out("comp_bad.h5")], check=False)
 c.check(p.returncode != 0 and "-compliance_condensed_ring must be >= 0" in p.stderr + p.stdout, "negative ring: clear error")
+p = run(base + ["-compliance_type", "condensed", "-compliance_condensed_balance", "9", "-output_file", out("comp_bad.h5")],
+        check=False)
+c.check(p.returncode != 0 and "-compliance_condensed_balance must be an integer in [0, 8]" in p.stderr + p.stdout,
+        "balance out of range: clear error")
 c.done()

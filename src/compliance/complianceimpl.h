@@ -57,9 +57,10 @@ PETSC_INTERN PetscErrorCode FCComplianceGetFactor(FCCompliance, Mat *F);
 /* One MUMPS Cholesky factorization of A with a set S of DOFs ordered last (METIS nested
    dissection before them), giving C = (A^-1)_SS on rank 0 besides the solves (schurfactor.c) */
 typedef struct _FCSchurFactor *FCSchurFactor;
-/* distributed_inverse: C = Sigma^-1 by ScaLAPACK over the ranks, else LAPACK on rank 0 */
+/* distributed_inverse: C = Sigma^-1 by ScaLAPACK over the ranks, else LAPACK on rank 0;
+   balance: top levels of the nested dissection bisected in balance of the vertices next to S */
 PETSC_INTERN PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], PetscBool distributed_inverse,
-                                                FCSchurFactor *);
+                                                PetscInt balance, FCSchurFactor *);
 /* rank 0: sorted DOFs, whole vertex blocks (the other ranks' arguments are ignored); collective */
 PETSC_INTERN PetscErrorCode FCSchurFactorSetSchur(FCSchurFactor, PetscInt ns, const PetscInt S[]);
 PETSC_INTERN PetscErrorCode FCSchurFactorFactor(FCSchurFactor, Mat A);

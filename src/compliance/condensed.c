@@ -28,13 +28,21 @@
                                     default 0: S is exactly the last step's contact DOFs)
      -compliance_condensed_inverse host|scalapack
                                     where C = Sigma^-1 is formed: LAPACK on rank 0, or ScaLAPACK over
-                                    every rank of the body (the default; the same as host on 1 rank) */
+                                    every rank of the body (the default; the same as host on 1 rank)
+     -compliance_condensed_balance k
+                                    k top levels of the nested dissection of the interior are
+                                    bisections balanced in the vertex count and in the count of
+                                    vertices next to S at once (default 0: METIS_NodeND alone), so
+                                    that MUMPS' two top subtrees, on different ranks, share the
+                                    fronts that S widens (schurfactor.c, Dissect; measured in
+                                    docs/scaling.md: a more even flop split, not a faster step) */
 #include "complianceimpl.h"
 
 typedef struct {
   FCSchurFactor sf;
   PetscInt      ring;
   PetscInt      inverse; /* INVERSE_HOST, INVERSE_SCALAPACK */
+  PetscInt      balance; /* -compliance_condensed_balance */
   PetscBool    *surf;    /* host: per vertex block, a non-fixed boundary vertex */
   PetscInt      nT, *T;  /* host: the DOFs of the last build's contacts */
   PetscBool     built;   /* a build since the last factorization */
@@ -58,6 +66,9 @@ static PetscErrorCode SetFromOptions_Condensed(FCCompliance comp, PetscOptionIte
                          "Rings of surface neighbours around contact DOFs in the Schur block", &cd->ring, NULL));
   PetscCheck(cd->ring >= 0, comp->ctx.comm, PETSC_ERR_USER_INPUT,
              "Option -compliance_condensed_ring must be >= 0, got %" PetscInt_FMT, cd->ring);
+  PetscCall(FCOptionsIntRange(PetscOptionsObject, "-compliance_condensed_balance",
+                              "Top levels of the nested dissection balanced in the vertices next to the Schur block", 0,
+                              8, &cd->balance, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -80,7 +91,8 @@ static PetscErrorCode SetUp_Condensed(FCCompliance comp)
              comp->ctx.name, comp->ctx.prefix, comp->ctx.prefix, comp->ctx.prefix);
   PetscCallMPI(MPI_Comm_size(comp->ctx.comm, &size));
   PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
-  PetscCall(FCSchurFactorCreate(comp->ctx.A, comp->ctx.name, (PetscBool)(cd->inverse == INVERSE_SCALAPACK), &cd->sf));
+  PetscCall(FCSchurFactorCreate(comp->ctx.A, comp->ctx.name, (PetscBool)(cd->inverse == INVERSE_SCALAPACK), cd->balance,
+                                &cd->sf));
   if (!rank) PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
   PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, 0, comp->ctx.comm));
   if (!rank) {
