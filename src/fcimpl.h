@@ -172,6 +172,7 @@ typedef struct {
   PetscReal wnn;   /* normal diagonal entry of the step's W (m/N): scales the end measures  */
   PetscReal n_end[3], d_end[3]; /* end of the step: normal on the real geometry, d = p1 - p2 (world)  */
   PetscReal p_end[3];           /* end of the step: the side-1 proximity point (world)                */
+  PetscBool dormant;            /* a redundant contact kept out of the solve unless the solution violates it */
 } FCContact;
 /* FC_SIDE_FE_EDGE: an edge-edge contact between two FE bodies (prox[0] and prox[1] each an edge,
    nv = 2; the normal is the cross product of the two edges). An FE edge against an edge of a
@@ -181,6 +182,7 @@ enum { FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE, FC_SIDE_FE_ED
 typedef struct {
   PetscInt   n, max, nrows;
   FCContact *c;
+  PetscReal  dormant_depth; /* the depth at which a dormant contact wakes (FCCollisionDetect) */
 } FCContactSet;
 PETSC_INTERN PetscErrorCode FCContactSetAdd(FCContactSet *, const FCContact *);
 PETSC_INTERN PetscErrorCode FCContactSetGather(FCContactSet *, MPI_Comm);
@@ -447,12 +449,15 @@ typedef struct {
   PetscInt n;
   PetscInt (*body)[2]; /* scene body indices */
   PetscReal *mu;
-  PetscReal  distance;     /* alarm distance */
-  PetscInt   passes;       /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
-  PetscReal  pass2_drop;   /* -contact_fe_pass2_drop: drop 2nd-pass vertices held by the 1st pass (< 0: off) */
-  PetscBool  continuous;   /* -contact_detection continuous (default) or discrete */
-  PetscBool  edges;        /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
-  PetscBool  shape_points; /* -contact_shape_points: a bounded shape's points against an FE surface too */
+  PetscReal  distance;      /* alarm distance */
+  PetscInt   passes;        /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
+  PetscReal  pass2_drop;    /* -contact_fe_pass2_drop: drop 2nd-pass vertices held by the 1st pass (< 0: off) */
+  PetscReal  pass2_dormant; /* -contact_fe_pass2_dormant: such contacts dormant instead (< 0: off) */
+  PetscReal  dormant_depth; /* -contact_dormant_depth: a dormant contact wakes when left deeper than this (m) */
+  PetscBool  facing;        /* -contact_facing: a vertex lands only on triangles that face its own surface */
+  PetscBool  continuous;    /* -contact_detection continuous (default) or discrete */
+  PetscBool  edges;         /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
+  PetscBool  shape_points;  /* -contact_shape_points: a bounded shape's points against an FE surface too */
   PetscReal
       separation_speed; /* -contact_separation_speed: bodies that start inside each other part at most this fast */
   PetscReal intersection_depth;   /* a point deeper than this inside another body is an intersection */
@@ -503,6 +508,10 @@ PETSC_INTERN void FCContactPreviousForce(const FCContactSet *previous, const FCC
 PETSC_INTERN void FCContactSetWarmStart(const FCContactSet *set, const FCContactSet *previous, PetscReal lambda[]);
 /* c->force of every contact from lambda (rows in the contact frames) */
 PETSC_INTERN void FCContactSetStoreForces(FCContactSet *, const PetscReal lambda[]);
+/* The set's dormant contacts as a mask for FCContactProblemSetDormant (NULL when none), and back:
+   the contacts the solver woke stay awake for the rest of the step */
+PETSC_INTERN PetscErrorCode FCContactSetDormantMask(const FCContactSet *, PetscBool **mask, PetscReal *depth);
+PETSC_INTERN PetscErrorCode FCContactSetDormantRestore(FCContactSet *, PetscBool **mask);
 /* Tangents completing a normal: the frame C_i = [n t1 t2] */
 PETSC_INTERN void FCContactFrame(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3]);
 

@@ -95,18 +95,19 @@ static void NearestTriangle(const Surface *S, const PetscReal x[3], PetscInt *be
 }
 
 /* The triangle of S that a point moving x0 -> xf over the step lands on: the nearest at the start
-   within the alarm distance; else, with continuous detection, the first its motion reaches; else,
+   within the alarm distance (with nv, the normal of the point's own surface, the nearest among the
+   triangles that face it: -contact_facing); else, with continuous detection, the first its motion reaches; else,
    for a point that starts inside the body deeper than the alarm distance, its nearest (the ray
    grid is built at the first such test); -1 if none. w, cp: the barycentric weights and the point
    of that triangle closest to x0 at the start. */
-static PetscErrorCode LandingTriangle(Surface *S, const PetscReal x0[3], const PetscReal xf[3], PetscReal distance,
-                                      PetscBool continuous, PetscReal tau, PetscInt cand[], FCRayGrid *grid,
-                                      PetscInt *best, PetscReal w[3], PetscReal cp[3])
+static PetscErrorCode LandingTriangle(Surface *S, const PetscReal x0[3], const PetscReal xf[3], const PetscReal nv[3],
+                                      PetscReal distance, PetscBool continuous, PetscReal tau, PetscInt cand[],
+                                      FCRayGrid *grid, PetscInt *best, PetscReal w[3], PetscReal cp[3])
 {
   PetscReal d2;
 
   PetscFunctionBegin;
-  FCSurfaceClosest(S, x0, best, w, cp, &d2);
+  FCSurfaceClosestFacing(S, x0, nv, best, w, cp, &d2);
   if (*best >= 0 && d2 <= distance * distance) PetscFunctionReturn(0);
   if (continuous) SweptVertexHit(S, x0, xf, tau, cand, best);
   if (*best < 0) {
@@ -139,9 +140,62 @@ static void TrianglePoint(const FCSurfaceTriangle *T, const PetscReal w[3], FCPr
    fast it is pushed out). Either way the contact carries the triangle's outward normal at the
    start, the start-of-step gap along it and the barycentric weights of the closest point at the
    start as the proximity map (eq. 6). */
+typedef struct {
+  PetscReal X[3], n[3];
+} VertexNormal;
+
+static int CompareVN(const void *a, const void *b)
+{
+  const PetscReal *x = ((const VertexNormal *)a)->X, *y = ((const VertexNormal *)b)->X;
+  for (int i = 0; i < 3; i++)
+    if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
+  return 0;
+}
+
+/* The outward normals of a surface's vertices at the start of the step (sums of the normals of
+   their triangles weighted by area), sorted by reference position */
+static PetscErrorCode VertexNormals(const Surface *S, PetscInt *nvn, VertexNormal **vn)
+{
+  VertexNormal *all;
+  PetscInt      m = 0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(3 * S->n + 1, &all));
+  for (PetscInt t = 0; t < S->n; t++) {
+    const FCSurfaceTriangle *T = &S->tri[t];
+    PetscReal                e1[3], e2[3], c[3];
+    for (int d = 0; d < 3; d++) {
+      e1[d] = T->x0[1][d] - T->x0[0][d];
+      e2[d] = T->x0[2][d] - T->x0[0][d];
+    }
+    c[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    c[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    c[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    for (int a = 0; a < 3; a++)
+      for (int d = 0; d < 3; d++) {
+        all[3 * t + a].X[d] = T->X[a][d];
+        all[3 * t + a].n[d] = c[d];
+      }
+  }
+  if (S->n) qsort(all, 3 * S->n, sizeof(VertexNormal), CompareVN);
+  for (PetscInt k = 0; k < 3 * S->n; k++) {
+    if (m && !CompareVN(&all[m - 1], &all[k]))
+      for (int d = 0; d < 3; d++) all[m - 1].n[d] += all[k].n[d];
+    else
+      all[m++] = all[k];
+  }
+  for (PetscInt k = 0; k < m; k++) {
+    PetscReal l = PetscSqrtReal(FCDot(all[k].n, all[k].n));
+    for (int d = 0; d < 3; d++) all[k].n[d] = l > 0.0 ? all[k].n[d] / l : 0.0;
+  }
+  *nvn = m;
+  *vn  = all;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp, Surface *S,
-                                             PetscInt pair, const FCContactPairs *pairs, PetscMPIInt rank,
-                                             FCContactSet *set)
+                                             PetscInt nvn, const VertexNormal *vn, PetscInt pair,
+                                             const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
   PetscInt     n, *cand = NULL;
   FCRayGrid    grid = {{0}};
@@ -153,10 +207,16 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
   if (pairs->continuous) PetscCall(PetscMalloc1(S->n + 1, &cand));
   tau += 2.0 * S->arc; /* the vertices of a turning mesh leave their chords: a wider threshold covers their arcs */
   for (PetscInt i = 0; i < n; i++) {
-    PetscInt  best;
-    PetscReal bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
-    PetscCall(
-        LandingTriangle(S, &x0[3 * i], &xf[3 * i], distance, pairs->continuous, tau, cand, &grid, &best, bw, bcp));
+    PetscInt            best;
+    PetscReal           bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
+    const VertexNormal *own = NULL;
+    if (vn && prox[i].nv == 1) {
+      VertexNormal key1;
+      for (int d = 0; d < 3; d++) key1.X[d] = prox[i].X[0][d];
+      own = (const VertexNormal *)bsearch(&key1, vn, nvn, sizeof(VertexNormal), CompareVN);
+    }
+    PetscCall(LandingTriangle(S, &x0[3 * i], &xf[3 * i], own ? own->n : NULL, distance, pairs->continuous, tau, cand,
+                              &grid, &best, bw, bcp));
     if (best < 0) continue;
     {
       const FCSurfaceTriangle *T = &S->tri[best];
@@ -232,8 +292,8 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
     PetscBool   dup = PETSC_FALSE;
     FCProximity tp  = {0};
     FCContact   c;
-    PetscCall(
-        LandingTriangle(S, &x0[3 * i], &xf[3 * i], distance, pairs->continuous, tau, cand, &grid, &best, bw, bcp));
+    PetscCall(LandingTriangle(S, &x0[3 * i], &xf[3 * i], NULL, distance, pairs->continuous, tau, cand, &grid, &best, bw,
+                              bcp));
     if (best < 0) continue;
     if (bw[0] == 1.0 || bw[1] == 1.0 || bw[2] == 1.0) continue; /* an FE vertex: its own contact */
     {
@@ -298,15 +358,21 @@ static int CompareX(const void *a, const void *b)
   return 0;
 }
 
-/* -contact_fe_pass2_drop w: in every FE-FE or FE-mesh pair detected both ways, drop the contacts
-   of the second pass (a vertex of the pair's second body against the first's surface) whose vertex
-   has a barycentric weight > w in some first-pass contact (a vertex of the first body against a
-   triangle of the second): that vertex is already held by the first pass, and the two constraints
-   are nearly redundant (W ill-conditioned, docs/hard-cases.md). Vertices are matched by their
-   reference position. Runs on the gathered set, the same on every rank, so it keeps the order. */
-static PetscErrorCode DropPaired(const FCContactPairs *pairs, FCContactSet *set)
+/* The second-pass contacts held by the first pass: in every FE-FE or FE-mesh pair detected both
+   ways, a contact of the second pass (a vertex of the pair's second body against the first's
+   surface) whose vertex has a barycentric weight > w in some first-pass contact (a vertex of the
+   first body against a triangle of the second) is held by that first-pass contact, and the two
+   constraints are nearly redundant (W ill-conditioned: PGS stalls, docs/hard-cases.md).
+     -contact_fe_pass2_dormant w (the default, w = 0): the held contact is dormant: the contact
+       solver keeps it out of its sweeps and wakes it only where the solution without it leaves
+       its vertex deeper than -contact_dormant_depth inside (pgs.c, SolveLazy);
+     -contact_fe_pass2_drop w: the held contact is dropped (takes precedence).
+   Vertices are matched by their reference position. Runs on the gathered set, the same on every
+   rank, so it keeps the order. */
+static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *set)
 {
-  PetscReal *held;
+  PetscReal *held, w = pairs->pass2_drop >= 0.0 ? pairs->pass2_drop : pairs->pass2_dormant;
+  PetscBool  drop_held = pairs->pass2_drop >= 0.0 ? PETSC_TRUE : PETSC_FALSE;
   PetscInt   nheld = 0, kept = 0;
 
   PetscFunctionBegin;
@@ -315,18 +381,20 @@ static PetscErrorCode DropPaired(const FCContactPairs *pairs, FCContactSet *set)
     const FCContact *c = &set->c[k];
     if (c->side2 != FC_SIDE_FE_TRIANGLE || c->body[0] != pairs->body[c->pair][0]) continue;
     for (int a = 0; a < 3; a++)
-      if (c->prox[1].w[a] > pairs->pass2_drop) {
+      if (c->prox[1].w[a] > w) {
         for (int d = 0; d < 3; d++) held[3 * nheld + d] = c->prox[1].X[a][d];
         nheld++;
       }
   }
   if (nheld > 1) qsort(held, nheld, 3 * sizeof(PetscReal), CompareX);
   for (PetscInt k = 0; k < set->n; k++) {
-    const FCContact *c    = &set->c[k];
-    PetscBool        drop = PETSC_FALSE;
+    const FCContact *c      = &set->c[k];
+    PetscBool        isheld = PETSC_FALSE;
     if (c->side2 == FC_SIDE_FE_TRIANGLE && c->body[0] == pairs->body[c->pair][1] && c->prox[0].nv == 1 && nheld)
-      drop = bsearch(c->prox[0].X[0], held, nheld, 3 * sizeof(PetscReal), CompareX) ? PETSC_TRUE : PETSC_FALSE;
-    if (!drop) set->c[kept++] = *c;
+      isheld = bsearch(c->prox[0].X[0], held, nheld, 3 * sizeof(PetscReal), CompareX) ? PETSC_TRUE : PETSC_FALSE;
+    if (isheld && drop_held) continue;
+    set->c[k].dormant = isheld;
+    set->c[kept++]    = set->c[k];
   }
   set->n = kept;
   PetscCall(PetscFree(held));
@@ -350,12 +418,22 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     if (FCBodyHasSurfaceTriangles(bodies[pairs->body[p][0]]) && FCBodyHasSurfaceTriangles(bodies[pairs->body[p][1]])) {
       /* the vertices of each body against the other's surface, or with -contact_fe_passes 1 only
          the first body's vertices against the second's surface */
+      Surface      *Sf[2]  = {NULL, NULL};
+      VertexNormal *vn[2]  = {NULL, NULL};
+      PetscInt      nvn[2] = {0, 0};
+      for (int side = 0; side < 2; side++) {
+        if (side == 0 && pairs->passes == 1 && !pairs->facing) continue; /* no vertex lands on it */
+        PetscCall(SurfaceBuild(comm, bodies[pairs->body[p][side]], pairs, &Sf[side]));
+        if (pairs->facing) PetscCall(VertexNormals(Sf[side], &nvn[side], &vn[side]));
+      }
       for (int side = 0; side < pairs->passes; side++) {
-        Surface *S;
         PetscInt a = pairs->body[p][side], b2 = pairs->body[p][1 - side];
-        PetscCall(SurfaceBuild(comm, bodies[b2], pairs, &S));
-        PetscCall(VerticesAgainstSurface(bodies[a], bodies[b2], a, b2, S, p, pairs, rank, set));
-        PetscCall(FCSurfaceDestroy(&S));
+        PetscCall(VerticesAgainstSurface(bodies[a], bodies[b2], a, b2, Sf[1 - side], nvn[side], vn[side], p, pairs,
+                                         rank, set));
+      }
+      for (int side = 0; side < 2; side++) {
+        if (Sf[side]) PetscCall(FCSurfaceDestroy(&Sf[side]));
+        PetscCall(PetscFree(vn[side]));
       }
       { /* the sharp edges: the FE body's against the other's (the first body's if both are FE) */
         PetscInt a = pairs->body[p][0], b2 = pairs->body[p][1];
@@ -412,7 +490,9 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     }
   }
   PetscCall(FCContactSetGather(set, comm));
-  if (pairs->passes == 2 && pairs->pass2_drop >= 0.0) PetscCall(DropPaired(pairs, set));
+  set->dormant_depth = pairs->dormant_depth;
+  if (pairs->passes == 2 && (pairs->pass2_drop >= 0.0 || pairs->pass2_dormant >= 0.0))
+    PetscCall(HeldSecondPass(pairs, set));
   /* The start-inside rule: a contact that starts d deep is not asked to close in one step (an
      impulse of d / h, the energy burst of bodies placed inside each other) but by at most
      -contact_separation_speed v per step: the step may leave max(0, d - v h) of it (q_n += slack,

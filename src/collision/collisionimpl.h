@@ -61,9 +61,11 @@ PETSC_INTERN PetscErrorCode FCSurfaceSharpEdgeEnds(PetscInt ntri, const FCSurfac
    5.1.5); the unit normal of a triangle (x[0], x[1], x[2]), counter-clockwise = outward; the
    closest points of segments (p0, p1) and (q0, q1): p0 + s (p1 - p0), q0 + t (q1 - q0), with
    the squared distance (Ericson, 5.1.9) */
-PETSC_INTERN void      FCClosestPointTriangle(const PetscReal p[3], const PetscReal a[3], const PetscReal b[3],
-                                              const PetscReal c[3], PetscReal cp[3], PetscReal w[3]);
-PETSC_INTERN void      FCTriangleNormal(const PetscReal x[3][3], PetscReal n[3]);
+PETSC_INTERN void FCClosestPointTriangle(const PetscReal p[3], const PetscReal a[3], const PetscReal b[3],
+                                         const PetscReal c[3], PetscReal cp[3], PetscReal w[3]);
+PETSC_INTERN void FCTriangleNormal(const PetscReal x[3][3], PetscReal n[3]);
+PETSC_INTERN void FCSurfaceClosestFacing(const FCSurface *, const PetscReal x[3], const PetscReal nv[3], PetscInt *tri,
+                                         PetscReal w[3], PetscReal cp[3], PetscReal *d2);
 PETSC_INTERN PetscReal FCClosestSegmentSegment(const PetscReal p0[3], const PetscReal p1[3], const PetscReal q0[3],
                                                const PetscReal q1[3], PetscReal *s, PetscReal *t);
 /* Whether the ray x + s dir, s > 0, crosses triangle (a, b, c) (Moeller-Trumbore) */

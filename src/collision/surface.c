@@ -180,6 +180,14 @@ PetscErrorCode FCSurfaceDestroy(FCSurface **S)
 void FCSurfaceClosest(const FCSurface *S, const PetscReal x[3], PetscInt *best, PetscReal bw[3], PetscReal bcp[3],
                       PetscReal *bestd)
 {
+  FCSurfaceClosestFacing(S, x, NULL, best, bw, bcp, bestd);
+}
+
+/* FCSurfaceClosest among the triangles that face the normal nv of the point's own surface
+   (n_T . nv <= 0); nv NULL: all */
+void FCSurfaceClosestFacing(const FCSurface *S, const PetscReal x[3], const PetscReal nv[3], PetscInt *best,
+                            PetscReal bw[3], PetscReal bcp[3], PetscReal *bestd)
+{
   PetscInt b, e;
   *best  = -1;
   *bestd = PETSC_MAX_REAL;
@@ -187,6 +195,11 @@ void FCSurfaceClosest(const FCSurface *S, const PetscReal x[3], PetscInt *best, 
   for (PetscInt k = b; k < e; k++) {
     const FCSurfaceTriangle *T = &S->tri[S->cells[k].tri];
     PetscReal                cp[3], w[3], d2 = 0.0;
+    if (nv) {
+      PetscReal nt[3];
+      FCTriangleNormal(T->x0, nt);
+      if (nt[0] * nv[0] + nt[1] * nv[1] + nt[2] * nv[2] > 0.0) continue;
+    }
     FCClosestPointTriangle(x, T->x0[0], T->x0[1], T->x0[2], cp, w);
     for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
     if (d2 < *bestd) {

@@ -15,6 +15,8 @@ struct _p_FCContactProblem {
   PetscBool        symmetric; /* W = W^T to round-off: its rows serve as its columns (dense: assumed) */
   FCContactProblem transpose; /* a non-symmetric block-sparse W: W^T by blocks (its rows are W's columns) */
   PetscReal        qnorm;     /* ||q||, the residual's normalization */
+  PetscBool       *dormant;   /* borrowed (FCContactProblemSetDormant): contacts the sweeps skip, r_i = 0 */
+  PetscReal        wake;      /* a dormant contact wakes when its normal gap u_n < -wake */
 };
 
 /* The relative natural-map residual of r given u = W r + q (no product with W) */

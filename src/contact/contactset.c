@@ -60,8 +60,9 @@ PetscErrorCode FCContactSetCopy(const FCContactSet *from, FCContactSet *to)
     PetscCall(PetscMalloc1(to->max, &to->c));
   }
   if (from->n) PetscCall(PetscArraycpy(to->c, from->c, from->n));
-  to->n     = from->n;
-  to->nrows = from->nrows;
+  to->n             = from->n;
+  to->nrows         = from->nrows;
+  to->dormant_depth = from->dormant_depth;
   PetscFunctionReturn(0);
 }
 
@@ -166,4 +167,27 @@ void FCContactSetStoreForces(FCContactSet *set, const PetscReal lambda[])
     FCContact *c = &set->c[k];
     for (PetscInt a = 0; a < 3; a++) c->force[a] = a < c->dim ? lambda[c->row + a] : 0.0;
   }
+}
+
+PetscErrorCode FCContactSetDormantMask(const FCContactSet *set, PetscBool **mask, PetscReal *depth)
+{
+  PetscBool any = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  *mask  = NULL;
+  *depth = set->dormant_depth;
+  for (PetscInt k = 0; k < set->n; k++) any = any || set->c[k].dormant;
+  if (!any) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(set->n, mask));
+  for (PetscInt k = 0; k < set->n; k++) (*mask)[k] = set->c[k].dormant;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCContactSetDormantRestore(FCContactSet *set, PetscBool **mask)
+{
+  PetscFunctionBegin;
+  if (!*mask) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < set->n; k++) set->c[k].dormant = (*mask)[k];
+  PetscCall(PetscFree(*mask));
+  PetscFunctionReturn(0);
 }

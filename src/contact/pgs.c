@@ -153,6 +153,10 @@ PetscErrorCode FCContactLocalUpdate(FCContactProblem p, PetscInt i, const PetscR
 
   PetscFunctionBegin;
   *changed = PETSC_FALSE;
+  if (p->dormant && p->dormant[i]) {
+    for (PetscInt a = 0; a < d; a++) delta[a] = 0.0;
+    PetscFunctionReturn(0);
+  }
   FCContactProblemDiagonalBlock(p, i, Wi);
   for (PetscInt a = 0; a < d; a++) {
     qi[a] = ui[a];
@@ -195,6 +199,9 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
 }
 
 static PetscErrorCode SolveHere(FCContactSolver, FCContactProblem, PetscReal[]);
+static PetscErrorCode SolveSplit(FCContactSolver, FCContactProblem, PetscReal[]);
+static PetscErrorCode SolveLazy(FCContactSolver, FCContactProblem, PetscReal[],
+                                PetscErrorCode (*)(FCContactSolver, FCContactProblem, PetscReal[]));
 
 /* -pgs_dump_problem: rank 0 writes p; its failure (e.g. contacts with and without friction) stops every rank */
 static PetscErrorCode Dump(FCContactSolver s, FCContactProblem p)
@@ -228,20 +235,19 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   if (s->dump[0] && !s->dump_unconverged && !s->dumped && p->n >= s->dump_rows) PetscCall(Dump(s, p));
-  if (s->split && size > 1 && p->Wd && !s->update) {
-    PetscCall(FCContactSolveSplit(s->comm, p, s->tol, s->max_it, s->omega, s->proximal, s->split_damping, r, &s->sweeps,
-                                  &s->residual));
-    s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
-  } else if (!s->root || size == 1 || s->update) /* the update after each sweep is collective */
-    PetscCall(SolveHere(s, p, r));
+  if (s->split && size > 1 && p->Wd && !s->update)
+    PetscCall(SolveLazy(s, p, r, SolveSplit));
+  else if (!s->root || size == 1 || s->update) /* the update after each sweep is collective */
+    PetscCall(SolveLazy(s, p, r, SolveHere));
   else {
     PetscReal info[3];
-    if (!rank) PetscCall(SolveHere(s, p, r));
+    if (!rank) PetscCall(SolveLazy(s, p, r, SolveHere));
     info[0] = (PetscReal)s->sweeps;
     info[1] = s->residual;
     info[2] = (PetscReal)s->converged;
     PetscCallMPI(MPI_Bcast(info, 3, MPIU_REAL, 0, s->comm));
     PetscCallMPI(MPI_Bcast(r, (PetscMPIInt)p->n, MPIU_REAL, 0, s->comm));
+    if (p->dormant) PetscCallMPI(MPI_Bcast(p->dormant, (PetscMPIInt)p->nc, MPIU_BOOL, 0, s->comm)); /* the woken */
     s->sweeps    = (PetscInt)info[0];
     s->residual  = info[1];
     s->converged = info[2] != 0.0 ? PETSC_TRUE : PETSC_FALSE;
@@ -356,6 +362,74 @@ static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal
   if (s->nncg) PetscCall(PetscFree6(rold, uold, dir, wdir, rsweep, usweep));
   PetscCall(PetscFree(u));
   s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* -pgs_ranks split: every rank sweeps its own block (pgs_split.c) */
+static PetscErrorCode SolveSplit(FCContactSolver s, FCContactProblem p, PetscReal r[])
+{
+  PetscFunctionBegin;
+  PetscCall(FCContactSolveSplit(s->comm, p, s->tol, s->max_it, s->omega, s->proximal, s->split_damping, r, &s->sweeps,
+                                &s->residual));
+  s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* Dormant contacts (FCContactProblemSetDormant): nearly redundant constraints, such as the second
+   pass of two-way FE-FE detection where the first pass already holds the vertex. Together with
+   the constraints they duplicate they make W nearly singular, on which the sweeps crawl
+   (docs/hard-cases.md, "stiffness contrast"); alone, the awake ones converge. So: the sweeps solve
+   the awake contacts to the tolerance, with r_i = 0 on the dormant ones; a dormant contact whose
+   normal gap u_n (u = W r + q, lengths) is then below -depth wakes, and the sweeps go on from
+   there; it ends when none wakes. The residual is the awake contacts'; every dormant one carries
+   no force and is left at most depth inside. The decisions depend only on the replicated problem,
+   so every rank that runs this makes the same (split: all ranks, collectively). */
+static PetscErrorCode SolveLazy(FCContactSolver s, FCContactProblem p, PetscReal r[],
+                                PetscErrorCode (*inner)(FCContactSolver, FCContactProblem, PetscReal[]))
+{
+  PetscInt   total = 0, max_it = s->max_it, nwoke = 0, rounds = 0, nleft = 0;
+  PetscReal *u, deepest = 0.0;
+  PetscBool *dormant = p->dormant;
+
+  PetscFunctionBegin;
+  if (!dormant) {
+    PetscCall((*inner)(s, p, r));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt i = 0; i < p->nc; i++)
+    if (dormant[i])
+      for (PetscInt a = 0; a < p->dim[i]; a++) r[p->off[i] + a] = 0.0;
+  PetscCall(PetscMalloc1(p->n + 1, &u));
+  for (;;) {
+    PetscInt woke = 0;
+    s->max_it     = max_it - total;
+    PetscCall((*inner)(s, p, r));
+    total += s->sweeps;
+    rounds++;
+    PetscCall(FCContactProblemVelocity(p, r, u));
+    deepest = 0.0;
+    nleft   = 0;
+    for (PetscInt i = 0; i < p->nc; i++) {
+      if (!dormant[i]) continue;
+      if (u[p->off[i]] < -p->wake) {
+        dormant[i] = PETSC_FALSE;
+        woke++;
+      } else {
+        nleft++;
+        deepest = PetscMin(deepest, u[p->off[i]]);
+      }
+    }
+    nwoke += woke;
+    if (!woke || total >= max_it) break;
+  }
+  PetscCall(PetscFree(u));
+  s->max_it    = max_it;
+  s->sweeps    = total;
+  s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscInfo(NULL,
+                      "dormant contacts: %" PetscInt_FMT " woke in %" PetscInt_FMT " rounds, %" PetscInt_FMT
+                      " left dormant (deepest normal gap %g m), %" PetscInt_FMT " sweeps, residual %g\n",
+                      nwoke, rounds, nleft, (double)deepest, total, (double)s->residual));
   PetscFunctionReturn(0);
 }
 

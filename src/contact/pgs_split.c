@@ -41,8 +41,9 @@ static PetscErrorCode Residual(MPI_Comm comm, FCContactProblem p, PetscInt c0, P
   PetscReal sum = 0.0;
 
   PetscFunctionBegin;
-  for (PetscInt i = c0; i < c1; i++)
-    sum += FCContactNaturalMapError2(p->dim[i], p->mu[i], &r[p->off[i]], &ub[p->off[i] - lo]);
+  for (PetscInt i = c0; i < c1; i++) /* the awake contacts (a dormant one is checked by SolveLazy, pgs.c) */
+    if (!p->dormant || !p->dormant[i])
+      sum += FCContactNaturalMapError2(p->dim[i], p->mu[i], &r[p->off[i]], &ub[p->off[i] - lo]);
   PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, &sum, 1, MPIU_REAL, MPIU_SUM, comm));
   *residual = PetscSqrtReal(sum) / PetscMax(p->qnorm, PETSC_MACHINE_EPSILON);
   PetscFunctionReturn(0);

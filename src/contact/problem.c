@@ -287,7 +287,8 @@ PetscReal FCContactProblemResidualFromVelocity(FCContactProblem p, const PetscRe
 {
   PetscReal sum = 0.0;
   for (PetscInt i = 0; i < p->nc; i++)
-    sum += FCContactNaturalMapError2(p->dim[i], p->mu[i], &r[p->off[i]], &u[p->off[i]]);
+    if (!p->dormant || !p->dormant[i])
+      sum += FCContactNaturalMapError2(p->dim[i], p->mu[i], &r[p->off[i]], &u[p->off[i]]);
   return PetscSqrtReal(sum) / PetscMax(p->qnorm, PETSC_MACHINE_EPSILON);
 }
 
@@ -302,6 +303,20 @@ PetscErrorCode FCContactProblemResidual(FCContactProblem p, const PetscReal r[],
   PetscCall(PetscFree(u));
   if (abs) *abs = rr * PetscMax(p->qnorm, PETSC_MACHINE_EPSILON);
   if (rel) *rel = rr;
+  PetscFunctionReturn(0);
+}
+
+/* Dormant contacts (mask[i], borrowed: the caller keeps it alive and reads back the contacts the
+   solver woke): nearly redundant constraints that the solver adds only where the solution without
+   them leaves their normal gap below -depth (pgs.c, SolveLazy). u is a displacement here (q holds
+   the gaps), so depth is a length. */
+PetscErrorCode FCContactProblemSetDormant(FCContactProblem p, PetscBool mask[], PetscReal depth)
+{
+  PetscFunctionBegin;
+  PetscCheck(depth >= 0.0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+             "The wake depth of dormant contacts must be >= 0, got %g", (double)depth);
+  p->dormant = mask;
+  p->wake    = depth;
   PetscFunctionReturn(0);
 }
 

@@ -23,14 +23,27 @@
                               one constraint row per contact; default 0)
      -contact_distance d      alarm distance: points closer than d are contacts (>= 0, default 0.01 m)
      -contact_fe_passes 1|2   pairs of two meshed bodies: 2 = the vertices of each against the other's
-                              surface (nothing crosses either surface, but the two constraint sets are
-                              nearly redundant and PGS may stall, docs/hard-cases.md); 1 = the first
-                              body's vertices against the second's surface only (default 2)
-     -contact_fe_pass2_drop w  with 2 passes: drop a second-pass contact (a vertex of the second body
-                              against the first's surface) whose vertex has a barycentric weight > w
-                              in a first-pass contact of the same pair: that vertex is already held by
-                              the first pass, and its own contact is the nearly redundant one
-                              (0 <= w < 1; default -1: keep every contact; docs/hard-cases.md)
+                              surface (nothing crosses either surface; the contacts the two passes
+                              duplicate are made dormant, below); 1 = the first body's vertices against
+                              the second's surface only (default 2)
+     -contact_fe_pass2_dormant w  with 2 passes: a second-pass contact (a vertex of the second body
+                              against the first's surface) whose vertex has a barycentric weight > w in
+                              a first-pass contact of the same pair is held by the first pass, and the
+                              two constraints are nearly redundant (W nearly singular: the sweeps
+                              stall, docs/hard-cases.md): it is dormant, out of the contact solver's
+                              sweeps unless the solution without it leaves its vertex deeper than
+                              -contact_dormant_depth inside (src/contact/pgs.c, SolveLazy)
+                              (w < 1; default 0; < 0: every contact solved)
+     -contact_dormant_depth d  that depth (>= 0, default 1e-5 m: a tenth of the end-of-step
+                              intersection check's -contact_intersection_depth)
+     -contact_fe_pass2_drop w  as -contact_fe_pass2_dormant, but the held contact is dropped (takes
+                              precedence; w < 1, default -1: off; lets a vertex in where the first pass
+                              does not hold it, docs/hard-cases.md)
+     -contact_facing 1|0      a vertex of a meshed body lands only on a triangle that faces its own
+                              surface (triangle normal . vertex normal <= 0; default 1): where two
+                              bodies' side faces are flush, a rim vertex is otherwise nearest to the
+                              other body's side face, and the two passes then make pairs of opposed
+                              constraints on the same motion (docs/hard-cases.md)
      -contact_detection continuous|discrete   continuous (default): a point whose motion over the step
                               (start to free-motion end) reaches the other side is a contact too, with
                               its start-of-step gap and normal, so nothing passes through a thin body
@@ -128,6 +141,9 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   s->pairs.distance           = 0.01;
   s->pairs.passes             = 2;
   s->pairs.pass2_drop         = -1.0;
+  s->pairs.pass2_dormant      = 0.0;
+  s->pairs.dormant_depth      = 1e-5;
+  s->pairs.facing             = PETSC_TRUE;
   s->pairs.intersection_depth = 1e-4;
   s->pairs.edges              = PETSC_TRUE;
   s->pairs.shape_points       = PETSC_FALSE; /* opt-in: see ShapePointsOnSurface */
@@ -143,6 +159,16 @@ static PetscErrorCode ReadContactPairs(FCScene s)
                             "With 2 passes: drop a second-pass contact whose vertex has a weight > w in a first-pass "
                             "contact of the pair (< 0: keep all)",
                             &s->pairs.pass2_drop, NULL));
+    PetscCall(
+        FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_dormant",
+                      "With 2 passes: a second-pass contact whose vertex has a weight > w in a first-pass contact "
+                      "is dormant, solved only where the solution without it leaves the vertex inside (< 0: off)",
+                      &s->pairs.pass2_dormant, NULL));
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_dormant_depth",
+                            "Depth inside the other body at which a dormant contact wakes (m)", &s->pairs.dormant_depth,
+                            NULL));
+    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_facing",
+                            "A vertex lands only on triangles that face its own surface", &s->pairs.facing, NULL));
     PetscCall(FCOptionsRealList(PetscOptionsObject, "-contact_mu", "Friction coefficient: one value, or one per pair",
                                 FC_MAX_BODIES, mu, &nmu, &setmu));
     PetscCall(PetscOptionsString("-contact_detection", "Contact detection: continuous or discrete", NULL, detection,
@@ -187,6 +213,14 @@ static PetscErrorCode ReadContactPairs(FCScene s)
              "Option -contact_fe_pass2_drop must be a finite number < 1 (a barycentric weight; < 0 keeps every "
              "contact), got %g",
              (double)s->pairs.pass2_drop);
+  PetscCheck(s->pairs.pass2_dormant < 1.0 && PetscIsNormalReal(s->pairs.pass2_dormant + 2.0), s->comm,
+             PETSC_ERR_USER_INPUT,
+             "Option -contact_fe_pass2_dormant must be a finite number < 1 (a barycentric weight; < 0: none dormant), "
+             "got %g",
+             (double)s->pairs.pass2_dormant);
+  PetscCheck(s->pairs.dormant_depth >= 0.0 && PetscIsNormalReal(s->pairs.dormant_depth + 1.0), s->comm,
+             PETSC_ERR_USER_INPUT, "Option -contact_dormant_depth must be a finite length >= 0, got %g",
+             (double)s->pairs.dormant_depth);
   PetscCheck(s->pairs.distance >= 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_distance must be >= 0, got %g",
              (double)s->pairs.distance);
   s->pairs.n = np;
