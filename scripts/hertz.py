@@ -106,6 +106,8 @@ def measure(h5path, P, frame=-1):
         steps = H["steps"]
         m = dict(F=F, contacts=int(steps["contacts"][-1]), residual=float(steps["residual"][-1]),
                  intersections=int(steps["intersections"][:].max()),
+                 sweeps=int(steps["pgs_iterations"][:].max()),
+                 unconverged=int((steps["residual"][:] > 1.0001e-8).sum()),  # above -pgs_tol (the default)
                  kinetic=float(H["bodies/ball/energy"][-1, 0]),
                  vertices=X.shape[0] + H["bodies/block/positions"].shape[1])
     c = P["centre"]
@@ -158,12 +160,14 @@ def main():
                              (level, g, m["F"], m["d"], " ".join("%.5f" % v for v in m["d_depth"].values()),
                               100 * m["error"], wall))
     print("| mesh | lc_min near the contact (m) | vertices (sphere + block) | g (m/s^2) | contacts | F (N) "
-          "| centre drop (m) | w(R) (m) | d (m) | d/R | F_Hertz(d) (N) | F / F_Hertz - 1 | wall (s) |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+          "| centre drop (m) | w(R) (m) | d (m) | d/R | F_Hertz(d) (N) | F / F_Hertz - 1 | max sweeps "
+          "| steps above pgs_tol | max intersections | wall (s) |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for m in rows:
-        print("| %d | %g | %d | %g | %d | %.1f | %.5f | %.5f | %.5f | %.2f %% | %.1f | %+.2f %% | %.1f |" %
+        print("| %d | %g | %d | %g | %d | %.1f | %.5f | %.5f | %.5f | %.2f %% | %.1f | %+.2f %% | %d | %d | %d | %.1f |" %
               (m["level"], LC_MIN[m["level"]], m["vertices"], m["g"], m["contacts"], m["F"], m["drop"], m["w"],
-               m["d"], 100 * m["d"] / P["R"], m["F_hertz"], 100 * m["error"], m["wall"]))
+               m["d"], 100 * m["d"] / P["R"], m["F_hertz"], 100 * m["error"], m["sweeps"], m["unconverged"],
+               m["intersections"], m["wall"]))
     if plot:
         import matplotlib
         matplotlib.use("Agg")

@@ -132,14 +132,6 @@ static void TrianglePoint(const FCSurfaceTriangle *T, const PetscReal w[3], FCPr
   for (int d = 0; d < 3; d++) xf[d] = w[0] * T->xf[0][d] + w[1] * T->xf[1][d] + w[2] * T->xf[2][d];
 }
 
-/* Owned boundary vertices of body P (index ipts) against the surface S of body ishp: the nearest
-   triangle within the alarm distance at the start of the step gives the contact; with continuous
-   detection, a vertex that has none gets the first triangle its motion over the step reaches, as
-   a speculative contact; a vertex that starts inside the other body, deeper than the alarm
-   distance, gets its nearest triangle (the start-inside rule of FCCollisionDetect then bounds how
-   fast it is pushed out). Either way the contact carries the triangle's outward normal at the
-   start, the start-of-step gap along it and the barycentric weights of the closest point at the
-   start as the proximity map (eq. 6). */
 typedef struct {
   PetscReal X[3], n[3];
 } VertexNormal;
@@ -193,6 +185,15 @@ static PetscErrorCode VertexNormals(const Surface *S, PetscInt *nvn, VertexNorma
   PetscFunctionReturn(0);
 }
 
+/* Owned boundary vertices of body P (index ipts) against the surface S of body ishp: the nearest
+   triangle within the alarm distance at the start of the step gives the contact; with continuous
+   detection, a vertex that has none gets the first triangle its motion over the step reaches, as
+   a speculative contact; a vertex that starts inside the other body, deeper than the alarm
+   distance, gets its nearest triangle (the start-inside rule of FCCollisionDetect then bounds how
+   fast it is pushed out). Either way the contact carries the triangle's outward normal at the
+   start, the start-of-step gap along it and the barycentric weights of the closest point at the
+   start as the proximity map (eq. 6). With vn (-contact_facing), a vertex lands only on triangles
+   that face its own surface's normal there. */
 static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp, Surface *S,
                                              PetscInt nvn, const VertexNormal *vn, PetscInt pair,
                                              const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
