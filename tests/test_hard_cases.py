@@ -675,8 +675,12 @@ else:
     # 2-rank runs 6.4e-8 and 9.4e-8 m (condensed), 2.1e-8 and 5.2e-8 m (redundant), up to 2.0e-7 m
     # in earlier runs; 2-rank runs differ among themselves by as much. Bound 1e-6 m (1e-6 of the
     # 1 m bodies), 5x the largest seen
-    # two-way FE-FE with dormant second-pass contacts: the woken set and the forces, the same on N ranks
-    compare("stiffness 1e9/1e3 two-way", stiffness_run(1), stiffness_run(NP))
+    # two-way FE-FE with dormant second-pass contacts, N ranks against 1. The landing (step 10) on
+    # the very soft cube amplifies MUMPS' parallel round-off, which is not the same from run to run:
+    # measured, final centroids of 2-rank runs against 1 rank either 2-4e-11 m or 2.5e-7 m (5 runs:
+    # one at 2.5e-7; one-way detection, as before issue 15, 3 of 6 runs), the same contacts and
+    # sweeps at every step. Bound 1e-6 m (1e-6 of the 1 m cubes), 4x the largest seen
+    compare("stiffness 1e9/1e3 two-way", stiffness_run(1), stiffness_run(NP), tol=1e-6)
     compare("FE cubes start 0.1 m inside", start_inside(1, checks=False), start_inside(NP), tol=1e-6)
     compare("stack started 1.5 cm inside", stack_overlap(1, checks=False), stack_overlap(NP))
     compare("orbit 100 rad/s over a ball", orbit(1, checks=False), orbit(NP))
