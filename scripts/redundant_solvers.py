@@ -2,7 +2,8 @@
 """Two-way FE-FE detection, the stall of issue 15: which solvers converge on its contact problem?
 
 Dumps the first contact problem the solver does not converge on in the stiffness-contrast hard
-case detected both ways (input/hard/stiffness_contrast.opts -contact_fe_passes 2, the step of
+case detected both ways as before issue 15's fix (input/hard/stiffness_contrast.opts -contact_fe_passes 2
+-contact_fe_pass2_dormant -1 -contact_facing 0, the step of
 docs/hard-cases.md), then solves it with:
 - ours (build/fclib_solve): as dumped; frictionless (mu = 0); mu = 1; the contacts in reversed and
   in random order (NNCG on, the default, and off);
@@ -94,6 +95,9 @@ def main():
         prob = os.path.join(tmp, "p.hdf5")
         subprocess.run([os.path.join(BUILD, "fecontact"), "-options_file", "input/hard/stiffness_contrast.opts",
                         "-contact_fe_passes", "2", "-time_steps", "12", "-pgs_dump_problem", prob,
+                        # every contact of both passes, the nearest triangle whatever its side: the
+                        # detection of before issue 15's fix, on which PGS stalls (docs/hard-cases.md)
+                        "-contact_fe_pass2_dormant", "-1", "-contact_facing", "0",
                         "-pgs_dump_unconverged", "-output_file", os.path.join(tmp, "sc.h5"), "-quiet"],
                        cwd=ROOT, env=ENV, check=True, capture_output=True)
         W, q, mu = load(prob)
