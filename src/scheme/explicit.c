@@ -34,14 +34,7 @@ static PetscErrorCode Solve_Explicit(FCScheme scheme, FCContactSet *set, const F
   PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
   PetscCall(FCContactProblemCreateDense(set->n, dims, mu, W, q, &prob));
   FCContactSetWarmStart(set, previous, lambda);
-  {
-    PetscBool *dormant;
-    PetscReal  depth;
-    PetscCall(FCContactSetDormantMask(set, &dormant, &depth));
-    if (dormant) PetscCall(FCContactProblemSetDormant(prob, dormant, depth));
-    PetscCall(FCContactSolverSolve(scheme->solver, prob, lambda));
-    PetscCall(FCContactSetDormantRestore(set, &dormant));
-  }
+  PetscCall(FCSchemeContactSolve(scheme, set, prob, lambda));
   PetscCall(FCContactSolverGetConvergence(scheme->solver, &st->sweeps, &st->residual, &conv));
   PetscCall(FCContactProblemDestroy(&prob));
   PetscCall(FCPhaseEnd(FC_PHASE_CONTACT_SOLVE));

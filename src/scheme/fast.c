@@ -272,14 +272,7 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
     PetscCall(MatDenseGetArrayRead(fs.Wk, &w)); /* symmetric: column-major = row-major */
     PetscCall(FCContactProblemCreateDense(nc, dims, mu, w, fs.q, &prob));
     FCContactSetNormalCompliance(set, w);
-    {
-      PetscBool *dormant;
-      PetscReal  depth;
-      PetscCall(FCContactSetDormantMask(set, &dormant, &depth));
-      if (dormant) PetscCall(FCContactProblemSetDormant(prob, dormant, depth));
-      PetscCall(FCContactSolverSolve(scheme->solver, prob, lambda));
-      PetscCall(FCContactSetDormantRestore(set, &dormant));
-    }
+    PetscCall(FCSchemeContactSolve(scheme, set, prob, lambda));
     PetscCall(FCContactSolverGetConvergence(scheme->solver, &sweeps, &st->residual, &conv));
     PetscCall(FCContactProblemDestroy(&prob));
     PetscCall(MatDenseRestoreArrayRead(fs.Wk, &w));

@@ -177,6 +177,19 @@ PetscErrorCode FCSchemeCompliance(FCScheme scheme, const FCContactSet *set, Pets
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCSchemeContactSolve(FCScheme scheme, FCContactSet *set, FCContactProblem prob, PetscReal lambda[])
+{
+  PetscBool *dormant;
+  PetscReal  depth;
+
+  PetscFunctionBegin;
+  PetscCall(FCContactSetDormantMask(set, &dormant, &depth));
+  if (dormant) PetscCall(FCContactProblemSetDormant(prob, dormant, depth));
+  PetscCall(FCContactSolverSolve(scheme->solver, prob, lambda));
+  PetscCall(FCContactSetDormantRestore(set, &dormant));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCSchemeCorrect(FCScheme scheme, const FCContactSet *set, const PetscReal lambda[])
 {
   PetscFunctionBegin;

@@ -32,6 +32,9 @@ struct _p_FCScheme {
 /* W = h^2 sum_b J_b A_b^-1 J_b^T of a contact set in its frames (identity frames give W_H),
    checked to be a compliance (scheme.c) */
 PETSC_INTERN PetscErrorCode FCSchemeCompliance(FCScheme, const FCContactSet *, PetscReal W[]);
+/* The contact solver on prob (the set's linearization), with the set's dormant contacts; the ones
+   the solver wakes stay awake in the set for the rest of the step */
+PETSC_INTERN PetscErrorCode FCSchemeContactSolve(FCScheme, FCContactSet *, FCContactProblem, PetscReal lambda[]);
 /* dv_b += h A_b^-1 J_b^T lambda for every body (the J_b of the last FCSchemeCompliance) */
 PETSC_INTERN PetscErrorCode FCSchemeCorrect(FCScheme, const FCContactSet *, const PetscReal lambda[]);
 

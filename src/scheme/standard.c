@@ -43,14 +43,7 @@ static PetscErrorCode Solve_Standard(FCScheme scheme, FCContactSet *set, const F
     FCContactSetNormalCompliance(set, W);
     PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
     PetscCall(FCContactProblemCreateDense(nc, dims, mu, W, q, &prob));
-    {
-      PetscBool *dormant;
-      PetscReal  depth;
-      PetscCall(FCContactSetDormantMask(set, &dormant, &depth));
-      if (dormant) PetscCall(FCContactProblemSetDormant(prob, dormant, depth));
-      PetscCall(FCContactSolverSolve(scheme->solver, prob, lambda));
-      PetscCall(FCContactSetDormantRestore(set, &dormant));
-    }
+    PetscCall(FCSchemeContactSolve(scheme, set, prob, lambda));
     PetscCall(FCContactSolverGetConvergence(scheme->solver, &sweeps, &st->residual, &conv));
     PetscCall(FCContactProblemDestroy(&prob));
     st->sweeps += sweeps;
