@@ -132,46 +132,44 @@ static void TrianglePoint(const FCSurfaceTriangle *T, const PetscReal w[3], FCPr
   for (int d = 0; d < 3; d++) xf[d] = w[0] * T->xf[0][d] + w[1] * T->xf[1][d] + w[2] * T->xf[2][d];
 }
 
-typedef struct {
-  PetscReal X[3], n[3];
-} VertexNormal;
-
-static int CompareVN(const void *a, const void *b)
+static int CompareX(const void *a, const void *b)
 {
-  const PetscReal *x = ((const VertexNormal *)a)->X, *y = ((const VertexNormal *)b)->X;
+  const PetscReal *x = (const PetscReal *)a, *y = (const PetscReal *)b;
   for (int i = 0; i < 3; i++)
     if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
   return 0;
 }
 
-/* The outward normals of a surface's vertices at the start of the step (sums of the normals of
-   their triangles weighted by area), sorted by reference position */
-static PetscErrorCode VertexNormals(const Surface *S, PetscInt *nvn, VertexNormal **vn)
+/* A vertex's outward normal, keyed by its reference position (X first: CompareX orders them) */
+typedef struct {
+  PetscReal X[3], n[3];
+} VertexNormal;
+
+/* The outward normals of the vertices of a surface's ntri triangles at the start of the step
+   (sums of their triangles' normals weighted by area), sorted by reference position */
+static PetscErrorCode VertexNormals(PetscInt ntri, const FCSurfaceTriangle tri[], PetscInt *nvn, VertexNormal **vn)
 {
   VertexNormal *all;
   PetscInt      m = 0;
 
   PetscFunctionBegin;
-  PetscCall(PetscMalloc1(3 * S->n + 1, &all));
-  for (PetscInt t = 0; t < S->n; t++) {
-    const FCSurfaceTriangle *T = &S->tri[t];
-    PetscReal                e1[3], e2[3], c[3];
+  PetscCall(PetscMalloc1(3 * ntri + 1, &all));
+  for (PetscInt t = 0; t < ntri; t++) {
+    PetscReal e1[3], e2[3], c[3];
     for (int d = 0; d < 3; d++) {
-      e1[d] = T->x0[1][d] - T->x0[0][d];
-      e2[d] = T->x0[2][d] - T->x0[0][d];
+      e1[d] = tri[t].x0[1][d] - tri[t].x0[0][d];
+      e2[d] = tri[t].x0[2][d] - tri[t].x0[0][d];
     }
-    c[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    c[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    c[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    FCCross(e1, e2, c); /* twice the area times the unit normal */
     for (int a = 0; a < 3; a++)
       for (int d = 0; d < 3; d++) {
-        all[3 * t + a].X[d] = T->X[a][d];
+        all[3 * t + a].X[d] = tri[t].X[a][d];
         all[3 * t + a].n[d] = c[d];
       }
   }
-  if (S->n) qsort(all, 3 * S->n, sizeof(VertexNormal), CompareVN);
-  for (PetscInt k = 0; k < 3 * S->n; k++) {
-    if (m && !CompareVN(&all[m - 1], &all[k]))
+  if (ntri) qsort(all, 3 * ntri, sizeof(VertexNormal), CompareX);
+  for (PetscInt k = 0; k < 3 * ntri; k++) {
+    if (m && !CompareX(&all[m - 1], &all[k]))
       for (int d = 0; d < 3; d++) all[m - 1].n[d] += all[k].n[d];
     else
       all[m++] = all[k];
@@ -214,7 +212,7 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
     if (vn && prox[i].nv == 1) {
       VertexNormal key1;
       for (int d = 0; d < 3; d++) key1.X[d] = prox[i].X[0][d];
-      own = (const VertexNormal *)bsearch(&key1, vn, nvn, sizeof(VertexNormal), CompareVN);
+      own = (const VertexNormal *)bsearch(&key1, vn, nvn, sizeof(VertexNormal), CompareX);
     }
     PetscCall(LandingTriangle(S, &x0[3 * i], &xf[3 * i], own ? own->n : NULL, distance, pairs->continuous, tau, cand,
                               &grid, &best, bw, bcp));
@@ -351,14 +349,6 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
   PetscFunctionReturn(0);
 }
 
-static int CompareX(const void *a, const void *b)
-{
-  const PetscReal *x = (const PetscReal *)a, *y = (const PetscReal *)b;
-  for (int i = 0; i < 3; i++)
-    if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
-  return 0;
-}
-
 /* The second-pass contacts held by the first pass: in every FE-FE or FE-mesh pair detected both
    ways, a contact of the second pass (a vertex of the pair's second body against the first's
    surface) whose vertex has a barycentric weight > w in some first-pass contact (a vertex of the
@@ -423,9 +413,18 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
       VertexNormal *vn[2]  = {NULL, NULL};
       PetscInt      nvn[2] = {0, 0};
       for (int side = 0; side < 2; side++) {
-        if (side == 0 && pairs->passes == 1 && !pairs->facing) continue; /* no vertex lands on it */
-        PetscCall(SurfaceBuild(comm, bodies[pairs->body[p][side]], pairs, &Sf[side]));
-        if (pairs->facing) PetscCall(VertexNormals(Sf[side], &nvn[side], &vn[side]));
+        FCBody b = bodies[pairs->body[p][side]];
+        if (side == 1 || pairs->passes == 2) { /* a surface some vertex lands on */
+          PetscCall(SurfaceBuild(comm, b, pairs, &Sf[side]));
+          if (pairs->facing && FCBodyIsDeformable(b))
+            PetscCall(VertexNormals(Sf[side]->n, Sf[side]->tri, &nvn[side], &vn[side]));
+        } else if (pairs->facing && FCBodyIsDeformable(b)) { /* one pass: only the normals of its vertices */
+          PetscInt           ntri;
+          FCSurfaceTriangle *tri;
+          PetscCall(FCSurfaceGather(comm, b, &ntri, &tri));
+          PetscCall(VertexNormals(ntri, tri, &nvn[side], &vn[side]));
+          PetscCall(PetscFree(tri));
+        }
       }
       for (int side = 0; side < pairs->passes; side++) {
         PetscInt a = pairs->body[p][side], b2 = pairs->body[p][1 - side];
