@@ -149,15 +149,15 @@ PETSC_EXTERN PetscErrorCode FCSceneDestroy(FCScene *);
    --------------------------------------------------------------------------------------- */
 typedef struct _p_FCContactProblem *FCContactProblem;
 /* Dense W: n x n, row-major, symmetric, used in place (no copy): it must outlive the problem */
-/* mask[i]: contact i is dormant, a nearly redundant constraint the solver adds only where the
-   solution without it leaves its normal gap below -depth (borrowed: kept alive by the caller,
-   updated by FCContactSolverSolve with the contacts it woke) */
-PETSC_EXTERN PetscErrorCode FCContactProblemSetDormant(FCContactProblem, PetscBool mask[], PetscReal depth);
 PETSC_EXTERN PetscErrorCode FCContactProblemCreateDense(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
                                                         const PetscReal W[], const PetscReal q[], FCContactProblem *);
 PETSC_EXTERN PetscErrorCode FCContactProblemCreateCSR(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
                                                       const PetscInt rowptr[], const PetscInt col[],
                                                       const PetscReal val[], const PetscReal q[], FCContactProblem *);
+/* mask[i]: contact i is dormant, a nearly redundant constraint the solver adds only where the
+   solution without it leaves its normal gap below -depth (borrowed: kept alive by the caller,
+   updated by FCContactSolverSolve with the contacts it woke) */
+PETSC_EXTERN PetscErrorCode FCContactProblemSetDormant(FCContactProblem, PetscBool mask[], PetscReal depth);
 PETSC_EXTERN PetscErrorCode FCContactProblemLoadFCLIB(const char path[], FCContactProblem *);
 PETSC_EXTERN PetscErrorCode FCContactProblemWriteFCLIB(FCContactProblem, const char path[]);
 /* W as a dense n x n row-major array (to be freed with PetscFree; the caller then makes a dense
