@@ -273,7 +273,7 @@ static PetscErrorCode Induced(const idx_t xadj[], const idx_t adj[], idx_t n, co
   PetscFunctionReturn(0);
 }
 
-/* Appends to order[*no] the n vertices vtx[] of the interior graph in a fill-reducing order:
+/* Appends to order[*no] the n vertices vtx[] (NULL: all) of the interior graph in a fill-reducing order:
    METIS_NodeND, or with levels > 0 (-compliance_condensed_balance) the top levels of the
    dissection are ours, each a bisection balanced in two constraints at once, the vertex count and
    the count of vertices next to S (touch), with the boundary of the larger side as separator,
@@ -282,15 +282,16 @@ static PetscErrorCode Induced(const idx_t xadj[], const idx_t adj[], idx_t n, co
    and MUMPS, which maps the two halves to different ranks, gives one rank 60-65 % of the flops
    (-info prints the split). Balanced, the split is closer to even, but the step was not faster
    (docs/scaling.md), so it is not the default. */
+#define V(i) (vtx ? vtx[i] : (i))
 static PetscErrorCode Dissect(FCSchurFactor f, const idx_t xadj[], const idx_t adj[], const idx_t touch[], idx_t n,
                               const idx_t vtx[], PetscInt levels, idx_t loc[], idx_t order[], idx_t *no)
 {
-  idx_t *sx, *sa, ntouch = 0;
+  idx_t *sx = (idx_t *)xadj, *sa = (idx_t *)adj, ntouch = 0; /* vtx NULL: the whole graph, not copied */
 
   PetscFunctionBegin;
   if (!n) PetscFunctionReturn(0);
-  for (idx_t i = 0; i < n; i++) ntouch += touch[vtx[i]];
-  PetscCall(Induced(xadj, adj, n, vtx, loc, &sx, &sa));
+  for (idx_t i = 0; i < n; i++) ntouch += touch[V(i)];
+  if (vtx) PetscCall(Induced(xadj, adj, n, vtx, loc, &sx, &sa));
   if (levels > 0 && n > 64 && ntouch > 8) { /* METIS needs weight in both constraints */
     idx_t ncon = 2, nparts = 2, cut, *w, *part, *sub, nsub[3] = {0, 0, 0}, big, n1 = 0;
     idx_t opts[METIS_NOPTIONS];
@@ -298,7 +299,7 @@ static PetscErrorCode Dissect(FCSchurFactor f, const idx_t xadj[], const idx_t a
     PetscCall(PetscMalloc3(2 * n, &w, n, &part, n, &sub));
     for (idx_t i = 0; i < n; i++) {
       w[2 * i]     = 1;
-      w[2 * i + 1] = touch[vtx[i]];
+      w[2 * i + 1] = touch[V(i)];
     }
     METIS_SetDefaultOptions(opts);
     opts[METIS_OPTION_NUMBERING] = 0;
@@ -317,7 +318,7 @@ static PetscErrorCode Dissect(FCSchurFactor f, const idx_t xadj[], const idx_t a
     for (int p = 0; p < 3; p++) {
       idx_t m = 0;
       for (idx_t i = 0; i < n; i++)
-        if (part[i] == p) sub[m++] = vtx[i];
+        if (part[i] == p) sub[m++] = V(i);
       nsub[p] = m;
       if (p < 2)
         PetscCall(Dissect(f, xadj, adj, touch, m, sub, levels - 1, loc, order, no));
@@ -336,26 +337,28 @@ static PetscErrorCode Dissect(FCSchurFactor f, const idx_t xadj[], const idx_t a
     err                          = METIS_NodeND(&n, sx, sa, NULL, opts, perm, iperm);
     PetscCheck(err == METIS_OK, PETSC_COMM_SELF, PETSC_ERR_LIB, "METIS_NodeND on A of body '%s' failed (%d)", f->name,
                err);
-    for (idx_t i = 0; i < n; i++) order[(*no)++] = vtx[perm[i]];
+    for (idx_t i = 0; i < n; i++) order[(*no)++] = V(perm[i]);
     PetscCall(PetscFree2(perm, iperm));
   } else
-    for (idx_t i = 0; i < n; i++) order[(*no)++] = vtx[i];
-  PetscCall(PetscFree2(sx, sa));
+    for (idx_t i = 0; i < n; i++) order[(*no)++] = V(i);
+  if (vtx) PetscCall(PetscFree2(sx, sa));
   PetscFunctionReturn(0);
 }
+
+#undef V
 
 /* Host: perm_in = nested dissection of the vertex graph without S (Dissect), then S in its order */
 static PetscErrorCode Ordering(FCSchurFactor f)
 {
   PetscInt *inS, ni = 0, m = 0;
-  idx_t    *xadj, *adj, *touch, *vtx, *loc, *order, no = 0;
+  idx_t    *xadj, *adj, *touch, *loc, *order, no = 0;
 
   PetscFunctionBegin;
   PetscCall(PetscCalloc1(f->nb + 1, &inS));
   for (PetscInt i = 0; i < f->ns; i += 3) inS[f->S[i] / 3] = 1;
   for (PetscInt b = 0; b < f->nb; b++) inS[b] = inS[b] ? -1 : ni++; /* interior index, or -1 */
   PetscCall(PetscMalloc3(ni + 1, &xadj, f->xadj[f->nb] + 1, &adj, ni + 1, &touch));
-  PetscCall(PetscMalloc3(ni + 1, &vtx, ni + 1, &loc, ni + 1, &order));
+  PetscCall(PetscMalloc2(ni + 1, &loc, ni + 1, &order));
   xadj[0] = 0;
   for (PetscInt b = 0; b < f->nb; b++) {
     if (inS[b] < 0) continue;
@@ -367,11 +370,8 @@ static PetscErrorCode Ordering(FCSchurFactor f)
         touch[inS[b]] = 1;
     xadj[inS[b] + 1] = (idx_t)m;
   }
-  for (PetscInt i = 0; i < ni; i++) {
-    vtx[i] = (idx_t)i;
-    loc[i] = -1;
-  }
-  PetscCall(Dissect(f, xadj, adj, touch, (idx_t)ni, vtx, f->balance, loc, order, &no));
+  for (PetscInt i = 0; i < ni; i++) loc[i] = -1;
+  PetscCall(Dissect(f, xadj, adj, touch, (idx_t)ni, NULL, f->balance, loc, order, &no));
   PetscCheck(no == (idx_t)ni, PETSC_COMM_SELF, PETSC_ERR_PLIB, "the ordering of body '%s' lost vertices", f->name);
   PetscCall(PetscFree(f->perm));
   PetscCall(PetscMalloc1(f->N + 1, &f->perm));
@@ -381,7 +381,7 @@ static PetscErrorCode Ordering(FCSchurFactor f)
       for (int d = 0; d < 3; d++) f->perm[3 * b + d] = (MUMPS_INT)(3 * loc[inS[b]] + d + 1);
   for (PetscInt i = 0; i < f->ns; i++) f->perm[f->S[i]] = (MUMPS_INT)(3 * ni + i + 1);
   PetscCall(PetscFree3(xadj, adj, touch));
-  PetscCall(PetscFree3(vtx, loc, order));
+  PetscCall(PetscFree2(loc, order));
   PetscCall(PetscFree(inS));
   PetscFunctionReturn(0);
 }
