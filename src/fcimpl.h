@@ -82,6 +82,7 @@ struct _p_FCShape {
   char      type[FC_MAX_NAME];
   PetscReal radius, half_extents[3], length, normal[3];
   PetscBool bounded; /* a plane is not: it has no mass and can only be kinematic */
+  PetscBool smooth;  /* no edges or corners (sphere, capsule): -contact_shape_points' kind of contact */
   void     *data;    /* shape-specific (the mesh of a mesh shape)               */
   PetscErrorCode (*setfromoptions)(PetscOptionItems *, FCShape, const char bodyname[]);
   PetscErrorCode (*setup)(FCShape, MPI_Comm, const char prefix[], const char bodyname[]);
@@ -309,6 +310,7 @@ PETSC_INTERN PetscBool FCBodyIsDeformable(FCBody);        /* FE: vertex DOFs, a 
 PETSC_INTERN PetscBool FCBodyIsPrescribed(FCBody);        /* kinematic: given motion, takes no force  */
 PETSC_INTERN PetscBool FCBodyHasShape(FCBody);            /* a signed distance (rigid, kinematic)     */
 PETSC_INTERN PetscBool FCBodyHasBoundedShape(FCBody);     /* ... of a closed shape (not a plane)      */
+PETSC_INTERN PetscBool FCBodyHasSmoothShape(FCBody);      /* ... without edges (sphere, capsule)      */
 PETSC_INTERN PetscBool FCBodyHasSurfaceTriangles(FCBody); /* FE bodies and mesh shapes           */
 PETSC_INTERN PetscReal FCBodyGetMass(FCBody);             /* after set-up; 0 for kinematic bodies */
 /* Restart state: `cols` values per visual vertex (pervertex, distributed like the visual) or one

@@ -9,11 +9,13 @@
   progress line warns on such a step, -contact_fail_on_intersection stops the run there with a
   message naming the step and the option, the output closed and holding that step.
 - Bad values of the new options are errors naming the option.
-- A bounded shape's points against the FE triangles (-contact_shape_points, on in the scene): a ball
+- A bounded shape's points against the FE triangles (-contact_shape_points, the default): a ball
   smaller than the elements (r = 8 mm, slab vertices 12.5 mm apart) at 20 m/s onto the stiff thin
   slab stays above it, the same run with the option off ends below the slab; the intersection
   check counts the ball's points inside the slab (discrete detection, option off: step 1 ends with
-  the ball in it, no slab vertex inside the ball).
+  the ball in it, no slab vertex inside the ball). A rigid box turning on an FE slab
+  (input/box_on_slab.opts): its corners, against the slab's triangles, never end a step inside it;
+  with the option off they do.
 - An FE body all of whose free DOFs are contact DOFs (the soft one-element slab under the small
   ball: the condensed builder's Schur block grows to all of A, which MUMPS refuses) runs, and
   gives the dense builder's trajectory.
@@ -30,7 +32,7 @@ BALL = ["-options_file", "input/hard/ball_thin_slab.opts", "-time_steps", "12"]
 CUBE = ["-options_file", "input/hard/cube_thin_plate.opts", "-time_steps", "5"]
 
 # continuous detection: no pass-through at any speed or phase of the crossing within a step
-# The count sees the ball's points too (-contact_shape_points, in the scene): at 40 m/s (v h = 0.4 m,
+# The count sees the ball's points too (-contact_shape_points, the default): at 40 m/s (v h = 0.4 m,
 # 20 slab thicknesses a step) the impact step from z = 0.3021 leaves one of them between 1e-4 and
 # 2e-4 m inside the slab (measured: 1 point at the default depth 1e-4, none at 2e-4), so those runs
 # count from 2e-4 m
@@ -85,6 +87,19 @@ for sp in ("1", "0"):
     else:
         c.check(z[-1] < 0 and n.any(), "small ball, shape points off: through the slab (centre %.3f m), intersections %s"
                 % (z[-1], n.tolist()))
+# a box's corners (its picture's points, against the slab's triangles): the slab's vertices alone
+# let them sink between those (measured: up to 4 corners inside in steps 19-23 and 32-40, 2.3-2.5 mm
+# deep at step 40)
+for sp in ("1", "0"):
+    f = out("box_corners_sp%s_np%d.h5" % (sp, NP))
+    run(["-options_file", "input/box_on_slab.opts", "-time_steps", "40", "-contact_shape_points", sp, "-output_file", f,
+         "-quiet"], np_=NP)
+    with h5py.File(f, "r") as H:
+        n, res = H["steps/intersections"][:], H["steps/residual"][:].max()
+    if sp == "1":
+        c.check(not n.any() and res <= 1e-8, "box on slab, shape points on: intersections (max) %d, residual %.1e" % (n.max(), res))
+    else:
+        c.check(n.max() == 4, "box on slab, shape points off: its 4 bottom corners end inside the slab (%d)" % n.max())
 f = out("small_ball_count_np%d.h5" % NP)
 run(SMALL[:-1] + ["-time_steps", "1", "-slab_young", "1e10", "-contact_detection", "discrete",
                   "-contact_shape_points", "0", "-output_file", f, "-quiet"], np_=NP)

@@ -659,7 +659,7 @@ else:
     compare("grasp w=6", grasp(6, 1, checks=False), grasp(6, NP))
     compare("large step h=0.05", large_step(0.05, 1, checks=False), large_step(0.05, NP))
     compare("impact 20/10 m/s", impact(1, checks=False), impact(NP))
-    # -contact_shape_points (on in the scene) adds rows nearly redundant with the slab vertices' own:
+    # -contact_shape_points (the default) adds rows nearly redundant with the slab vertices' own:
     # the forces are not unique, and MUMPS' parallel round-off moves the ball's end by up to 8.6e-8 m
     # between 1 and 2 ranks (measured in the sanitized pass; 3.3e-15 m in a normal one), as for case 13
     compare("ball 20 m/s on 2 cm FE slab", ball_thin_slab(1, checks=False), ball_thin_slab(NP), tol=1e-6)

@@ -24,6 +24,11 @@ PetscBool FCBodyHasBoundedShape(FCBody body)
   return body->shape && body->shape->bounded ? PETSC_TRUE : PETSC_FALSE;
 }
 
+PetscBool FCBodyHasSmoothShape(FCBody body)
+{
+  return body->shape && body->shape->smooth ? PETSC_TRUE : PETSC_FALSE;
+}
+
 PetscBool FCBodyHasSurfaceTriangles(FCBody body)
 {
   return body->ops.surfacetriangles ? PETSC_TRUE : PETSC_FALSE;

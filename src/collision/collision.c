@@ -255,25 +255,29 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
   PetscFunctionReturn(0);
 }
 
-/* -contact_shape_points: the FE vertices see a bounded shape only at the vertices, so a shape
-   smaller than the elements, a box's corner or a sphere's cap sinks into an FE face between them
-   (the end-of-step check counts its points inside, intersection.c). Each point of the shape's
-   picture (rank 0) finds its triangle of the FE surface as a vertex does (LandingTriangle), and
-   the contact is the FE material point there (barycentric weights, side 1) against the shape's
-   signed distance (side 2): the same kind of contact as an FE vertex's, so the schemes
-   re-linearize it with the shape's closest point, which follows a turning or rolling shape (a
-   point fixed in the shape's frame would not).
-   The contact is made only where the shape dips between the triangle's vertices: where its gap
+/* -contact_shape_points (default on): the FE vertices see a bounded shape only at the vertices,
+   so a shape smaller than the elements, a box's corner or a sphere's cap sinks into an FE face
+   between them (the end-of-step check counts its points inside, intersection.c). The points of
+   the shape's picture (rank 0) are then contacts too, in one of two forms:
+   - a smooth shape (sphere, capsule; SmoothShapeOnSurface): each picture point finds its triangle
+     of the FE surface as a vertex does (LandingTriangle), and the contact is the FE material point
+     there (barycentric weights, side 1) against the shape's signed distance (side 2): the kind of
+     contact an FE vertex has, so the schemes re-linearize it with the shape's closest point, which
+     follows a turning or rolling shape (the fingers of the grasp slide 5 cm a step over the cube:
+     a point fixed in the shape's frame would leave its triangle);
+   - a shape with corners and edges (box, cylinder; ShapePointsOnSurface): the picture point,
+     fixed in the shape's frame, against its landing triangle, as a rigid mesh's vertex. (The
+     shape's distance at the FE point is degenerate at a corner: the FE point above a box corner
+     sunk into the face is on the box's edge, at distance 0.)
+   The first kind is made only where the shape dips between the triangle's vertices: where its gap
    at the point is smaller than the gaps of the vertices interpolated there by more than
    -contact_intersection_depth (at the start of the step, for a point within the alarm
    distance); elsewhere the vertices' own contacts hold the point to within that depth. A point
    whose triangle point is an FE vertex is that vertex's own contact, and two picture points
-   landing on one triangle point make one contact.
-   Off by default: several points on one triangle, and a point beside the vertices' own contacts,
-   are nearly redundant rows (W nearly singular, as with two-way FE-FE detection,
-   docs/hard-cases.md): the forces are then not unique, and on the grasp a restart on 2 ranks
-   ends 2.5e-9 (relative) from the uninterrupted run, with forces 29 % apart (test_restart). */
-static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
+   landing on one triangle point make one contact. Near the vertices' own contacts these rows are
+   nearly redundant (W nearly singular, the forces not unique): results stay reproducible because
+   the contacts are sorted by keys that do not depend on round-off (below). */
+static PetscErrorCode SmoothShapeOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                            const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
   PetscInt     n, *cand = NULL, nmade = 0;
@@ -298,7 +302,12 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
     {
       const FCSurfaceTriangle *T = &S->tri[best];
       TrianglePoint(T, bw, &tp, yf); /* bcp: its start position */
-      for (int k = 0; k < 3; k++) X[k] = bw[0] * T->X[0][k] + bw[1] * T->X[1][k] + bw[2] * T->X[2][k];
+      /* the key sorts the contacts (FCContactSetGather): from the first vertex, so that on a face
+         with a constant reference coordinate (x = 0.5 on a cube) that coordinate is exact, not 0.5
+         give or take an ulp that reorders the contacts with the round-off of the weights (and with
+         it the sweeps: a restarted run then left the uninterrupted one at the solver's tolerance) */
+      for (int k = 0; k < 3; k++)
+        X[k] = T->X[0][k] + bw[1] * (T->X[1][k] - T->X[0][k]) + bw[2] * (T->X[2][k] - T->X[0][k]);
       for (PetscInt m = 0; m < nmade && !dup; m++)
         dup = made[3 * m] == X[0] && made[3 * m + 1] == X[1] && made[3 * m + 2] == X[2] ? PETSC_TRUE : PETSC_FALSE;
       if (dup) continue;
@@ -346,6 +355,22 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
   }
   PetscCall(PetscFree2(cand, made));
   PetscCall(PetscFree(grid.cells));
+  PetscFunctionReturn(0);
+}
+
+/* -contact_shape_points, a shape with corners and edges: its picture points against the FE
+   triangles as a rigid mesh's vertices (VerticesAgainstSurface). The contacts are dormant (pgs.c, SolveLazy): where the
+   vertices' own contacts already hold the shape, the point's row is nearly a combination of theirs (W nearly singular,
+   the forces not unique); the solver takes it up only where the solution leaves the point deeper inside than
+   -contact_dormant_depth. */
+static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
+                                           const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+{
+  PetscInt first = set->n;
+
+  PetscFunctionBegin;
+  PetscCall(VerticesAgainstSurface(Sh, F, ish, ife, S, 0, NULL, pair, pairs, rank, set));
+  for (PetscInt k = first; k < set->n; k++) set->c[k].dormant = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -481,11 +506,14 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
       c.owner = rank;
       PetscCall(FCContactSetAdd(set, &c));
     }
-    /* -contact_shape_points (ShapePointsOnSurface) */
+    /* -contact_shape_points (SmoothShapeOnSurface, ShapePointsOnSurface) */
     if (pairs->shape_points && FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S)) {
       Surface *Sf;
       PetscCall(SurfaceBuild(comm, P, pairs, &Sf));
-      PetscCall(ShapePointsOnSurface(S, P, ishp, ipts, Sf, p, pairs, rank, set));
+      if (FCBodyHasSmoothShape(S))
+        PetscCall(SmoothShapeOnSurface(S, P, ishp, ipts, Sf, p, pairs, rank, set));
+      else
+        PetscCall(ShapePointsOnSurface(S, P, ishp, ipts, Sf, p, pairs, rank, set));
       PetscCall(FCSurfaceDestroy(&Sf));
     }
   }

@@ -141,7 +141,8 @@ static PetscErrorCode AddEdgeContact(FCBody Bb, PetscInt ia, PetscInt ib, const 
     }
   }
   for (int i = 0; i < 3; i++) {
-    c.key[i]      = ws[0] * a->X[0][i] + ws[1] * a->X[1][i];
+    c.key[i] =
+        a->X[0][i] + ws[1] * (a->X[1][i] - a->X[0][i]); /* exact on an axis-aligned edge (SmoothShapeOnSurface) */
     c.n[i]        = n[i];
     c.p0[0][i]    = ws[0] * a->x0[0][i] + ws[1] * a->x0[1][i];
     c.pfree[0][i] = ws[0] * a->xf[0][i] + ws[1] * a->xf[1][i];

@@ -35,7 +35,8 @@
                               -contact_dormant_depth inside (src/contact/pgs.c, SolveLazy)
                               (w < 1; default 0; < 0: every contact solved)
      -contact_dormant_depth d  that depth (>= 0, default 1e-5 m: a tenth of the end-of-step
-                              intersection check's -contact_intersection_depth)
+                              intersection check's -contact_intersection_depth); also for the dormant
+                              corner contacts of -contact_shape_points
      -contact_fe_pass2_drop w  as -contact_fe_pass2_dormant, but the held contact is dropped (takes
                               precedence; w < 1, default -1: off; lets a vertex in where the first pass
                               does not hold it, docs/hard-cases.md)
@@ -55,8 +56,9 @@
                               cylinder): the shape's points (its picture's vertices) against the FE
                               surface triangles too, besides the FE vertices against the shape: a
                               shape smaller than the elements, a corner or a sphere's cap pressed
-                              into an FE face between its vertices (default 0: the FE vertices
-                              against the shape only; the extra rows may make W nearly singular)
+                              into an FE face between its vertices (default 1; src/collision/
+                              collision.c, SmoothShapeOnSurface and ShapePointsOnSurface); 0: the FE
+                              vertices against the shape only
      -contact_separation_speed v  bodies that start a step inside each other are pushed apart at most
                               this fast: a contact deeper than v h at the start may stay (depth - v h)
                               deep at the end of the step (> 0, default 1 m/s; docs/hard-cases.md)
@@ -146,7 +148,7 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   s->pairs.facing             = PETSC_TRUE;
   s->pairs.intersection_depth = 1e-4;
   s->pairs.edges              = PETSC_TRUE;
-  s->pairs.shape_points       = PETSC_FALSE; /* opt-in: see ShapePointsOnSurface */
+  s->pairs.shape_points       = PETSC_TRUE;
   s->pairs.separation_speed   = 1.0;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
   PetscCall(

@@ -58,5 +58,6 @@ PetscErrorCode FCShapeCreate_Capsule(FCShape s)
   s->massproperties = MassProperties_Capsule;
   s->tessellate     = Tessellate_Capsule;
   s->distance       = Distance_Capsule;
+  s->smooth         = PETSC_TRUE;
   PetscFunctionReturn(0);
 }

@@ -48,5 +48,6 @@ PetscErrorCode FCShapeCreate_Sphere(FCShape s)
   s->massproperties = MassProperties_Sphere;
   s->tessellate     = Tessellate_Sphere;
   s->distance       = Distance_Sphere;
+  s->smooth         = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
