@@ -6,7 +6,9 @@ fc3d_compute_error with that norm), computed here (numpy) on each solver's r. Si
 on their own measure, which is not always that one (on the two-way FE-FE problem of
 scripts/redundant_solvers.py it is the same error over ||r||): it is the column "Siconos' own".
 Siconos' fc3d_compute_error evaluated on our solution is an independent check (3D problems).
-Usage: scripts/bench_contact_solver.py [--tol 1e-8] [--max-it 100000] [--markdown FILE] [--json FILE]"""
+Usage: scripts/bench_contact_solver.py [--tol 1e-8] [--max-it 100000] [--markdown FILE] [--json FILE]
+--markdown FILE replaces the block between FILE's "<!-- begin/end bench_contact_solver.py -->" markers
+(docs/contact-solver.md: the section "Against Siconos NSGS") and keeps the rest of the page."""
 import argparse
 import glob
 import json
@@ -93,6 +95,25 @@ def siconos_error_of(problem, r, tol):
     return err
 
 
+BEGIN, END = "<!-- begin bench_contact_solver.py -->", "<!-- end bench_contact_solver.py -->"
+
+
+def write_block(path, block):
+    """Writes the measured block between the page's markers and leaves the rest of the page (the
+    hand-written sections) as it is; a new page gets a title and the block"""
+    if not os.path.exists(path):
+        text = "# Contact solver: our PGS against Siconos NSGS\n\n%s\n%s%s\n" % (BEGIN, block, END)
+    else:
+        with open(path) as f:
+            text = f.read()
+        i, j = text.find(BEGIN), text.find(END)
+        if i < 0 or j < i:
+            sys.exit("%s has no '%s' ... '%s' block to replace: add the markers where the table goes" % (path, BEGIN, END))
+        text = text[:i + len(BEGIN)] + "\n" + block + text[j:]
+    with open(path, "w") as f:
+        f.write(text)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--tol", type=float, default=1e-8)
@@ -132,16 +153,17 @@ def main():
             json.dump(results, f, indent=1)
     if a.markdown:
         import platform
-        with open(a.markdown, "w") as f:
-            f.write("# Contact solver: our PGS against Siconos NSGS\n\n")
-            f.write("Command: `scripts/bench_contact_solver.py --tol %g --max-it %d --markdown %s`\n\n" % (a.tol, a.max_it, a.markdown))
-            f.write("Machine: %s, %d cores. Siconos %s (Debian python3-siconos), fc3d_nsgs / fc2d_nsgs with default local solvers; "
-                    "ours: `build/fclib_solve` (projected Gauss-Seidel with the exact local solve of src/contact/local.c). "
-                    "Both residuals: natural-map error sqrt(sum ||e_i||^2) / ||q||, computed on each solver's r; "
-                    "'Siconos' own' is the residual Siconos stops on (its dparam[1]); the column 'Siconos error of our r' is "
-                    "Siconos' own fc3d_compute_error evaluated on our solution (3D only). One run, same machine.\n\n"
-                    % (platform.node(), os.cpu_count(), "4.4"))
-            f.write(hdr + "\n|" + "---|" * 13 + "\n" + "\n".join(rows) + "\n")
+        block = ("Command: `scripts/bench_contact_solver.py --tol %g --max-it %d --markdown %s`\n\n" % (a.tol, a.max_it, a.markdown)
+                 + "Machine: %s, %d cores, %s. Siconos %s (Debian python3-siconos), fc3d_nsgs / fc2d_nsgs with default "
+                 "local solvers; ours: `build/fclib_solve` (projected Gauss-Seidel with the exact local solve of "
+                 "src/contact/local.c, NNCG acceleration, the default). Both residuals: natural-map error "
+                 "sqrt(sum ||e_i||^2) / ||q||, computed on each solver's r; 'Siconos' own' is the residual Siconos stops on "
+                 "(its dparam[1]); the column 'Siconos error of our r' is Siconos' own fc3d_compute_error evaluated on our "
+                 "solution (3D only). Times are each solver's wall time of the whole solve (set-up included), so the time per "
+                 "sweep of a problem solved in one or two sweeps is mostly set-up. One run, same machine.\n\n"
+                 % (platform.node(), os.cpu_count(), time.strftime("%Y-%m-%d"), "4.4")
+                 + hdr + "\n|" + "---|" * 13 + "\n" + "\n".join(rows) + "\n")
+        write_block(a.markdown, block)
         print("wrote", a.markdown)
 
 
