@@ -88,7 +88,7 @@ for sp in ("1", "0"):
         c.check(z[-1] < 0 and n.any(), "small ball, shape points off: through the slab (centre %.3f m), intersections %s"
                 % (z[-1], n.tolist()))
 # a box's corners (its picture's points, against the slab's triangles): the slab's vertices alone
-# let them sink between those (measured: up to 4 corners inside in steps 19-23 and 32-40, 2.3-2.5 mm
+# let them sink between those (measured: up to 4 corners inside in steps 18-23 and 31-40, 2.3-2.5 mm
 # deep at step 40)
 for sp in ("1", "0"):
     f = out("box_corners_sp%s_np%d.h5" % (sp, NP))
