@@ -28,7 +28,9 @@ extern void pdpotrf_(const char *uplo, const int *n, double *a, const int *ia, c
 extern void pdpotri_(const char *uplo, const int *n, double *a, const int *ia, const int *ja, const int *desca,
                      int *info);
 
+#ifndef FC_SPD_BLOCK
 #define FC_SPD_BLOCK 64 /* ScaLAPACK block size (rows and columns) */
+#endif
 
 struct _FCSPDInverse {
   MPI_Comm    comm;
