@@ -100,9 +100,10 @@ static void NearestTriangle(const Surface *S, const PetscReal x[3], PetscInt *be
    for a point that starts inside the body deeper than the alarm distance, its nearest (the ray
    grid is built at the first such test); -1 if none. w, cp: the barycentric weights and the point
    of that triangle closest to x0 at the start. */
-static PetscErrorCode LandingTriangle(Surface *S, const PetscReal x0[3], const PetscReal xf[3], const PetscReal nv[3],
-                                      PetscReal distance, PetscBool continuous, PetscReal tau, PetscInt cand[],
-                                      FCRayGrid *grid, PetscInt *best, PetscReal w[3], PetscReal cp[3])
+PetscErrorCode FCCollisionLandingTriangle(Surface *S, const PetscReal x0[3], const PetscReal xf[3],
+                                          const PetscReal nv[3], PetscReal distance, PetscBool continuous,
+                                          PetscReal tau, PetscInt cand[], FCRayGrid *grid, PetscInt *best,
+                                          PetscReal w[3], PetscReal cp[3])
 {
   PetscReal d2;
 
@@ -121,7 +122,7 @@ static PetscErrorCode LandingTriangle(Surface *S, const PetscReal x0[3], const P
 
 /* The FE material point at barycentric weights w of triangle T: its proximity map (eq. 6) and its
    free-motion position */
-static void TrianglePoint(const FCSurfaceTriangle *T, const PetscReal w[3], FCProximity *p, PetscReal xf[3])
+void FCCollisionTrianglePoint(const FCSurfaceTriangle *T, const PetscReal w[3], FCProximity *p, PetscReal xf[3])
 {
   p->nv = 3;
   for (int a = 0; a < 3; a++) {
@@ -140,17 +141,12 @@ static int CompareX(const void *a, const void *b)
   return 0;
 }
 
-/* A vertex's outward normal, keyed by its reference position (X first: CompareX orders them) */
-typedef struct {
-  PetscReal X[3], n[3];
-} VertexNormal;
-
 /* The outward normals of the vertices of a surface's ntri triangles at the start of the step
    (sums of their triangles' normals weighted by area), sorted by reference position */
-static PetscErrorCode VertexNormals(PetscInt ntri, const FCSurfaceTriangle tri[], PetscInt *nvn, VertexNormal **vn)
+static PetscErrorCode VertexNormals(PetscInt ntri, const FCSurfaceTriangle tri[], PetscInt *nvn, FCVertexNormal **vn)
 {
-  VertexNormal *all;
-  PetscInt      m = 0;
+  FCVertexNormal *all;
+  PetscInt        m = 0;
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(3 * ntri + 1, &all));
@@ -167,7 +163,7 @@ static PetscErrorCode VertexNormals(PetscInt ntri, const FCSurfaceTriangle tri[]
         all[3 * t + a].n[d] = c[d];
       }
   }
-  if (ntri) qsort(all, 3 * ntri, sizeof(VertexNormal), CompareX);
+  if (ntri) qsort(all, 3 * ntri, sizeof(FCVertexNormal), CompareX);
   for (PetscInt k = 0; k < 3 * ntri; k++) {
     if (m && !CompareX(&all[m - 1], &all[k]))
       for (int d = 0; d < 3; d++) all[m - 1].n[d] += all[k].n[d];
@@ -192,9 +188,9 @@ static PetscErrorCode VertexNormals(PetscInt ntri, const FCSurfaceTriangle tri[]
    start, the start-of-step gap along it and the barycentric weights of the closest point at the
    start as the proximity map (eq. 6). With vn (-contact_facing), a vertex lands only on triangles
    that face its own surface's normal there. */
-static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp, Surface *S,
-                                             PetscInt nvn, const VertexNormal *vn, PetscInt pair,
-                                             const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp, Surface *S,
+                                                 PetscInt nvn, const FCVertexNormal *vn, PetscInt pair,
+                                                 const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
   PetscInt     n, *cand = NULL;
   FCRayGrid    grid = {{0}};
@@ -206,16 +202,16 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
   if (pairs->continuous) PetscCall(PetscMalloc1(S->n + 1, &cand));
   tau += 2.0 * S->arc; /* the vertices of a turning mesh leave their chords: a wider threshold covers their arcs */
   for (PetscInt i = 0; i < n; i++) {
-    PetscInt            best;
-    PetscReal           bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
-    const VertexNormal *own = NULL;
+    PetscInt              best;
+    PetscReal             bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0};
+    const FCVertexNormal *own = NULL;
     if (vn && prox[i].nv == 1) {
-      VertexNormal key1;
+      FCVertexNormal key1;
       for (int d = 0; d < 3; d++) key1.X[d] = prox[i].X[0][d];
-      own = (const VertexNormal *)bsearch(&key1, vn, nvn, sizeof(VertexNormal), CompareX);
+      own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), CompareX);
     }
-    PetscCall(LandingTriangle(S, &x0[3 * i], &xf[3 * i], own ? own->n : NULL, distance, pairs->continuous, tau, cand,
-                              &grid, &best, bw, bcp));
+    PetscCall(FCCollisionLandingTriangle(S, &x0[3 * i], &xf[3 * i], own ? own->n : NULL, distance, pairs->continuous,
+                                         tau, cand, &grid, &best, bw, bcp));
     if (best < 0) continue;
     {
       const FCSurfaceTriangle *T = &S->tri[best];
@@ -228,7 +224,7 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
       c.body[0] = ipts;
       c.body[1] = ishp;
       c.prox[0] = prox[i];
-      TrianglePoint(T, bw, &c.prox[1], c.pfree[1]);
+      FCCollisionTrianglePoint(T, bw, &c.prox[1], c.pfree[1]);
       for (int d = 0; d < 3; d++) {
         c.key[d]      = key[3 * i + d];
         c.n[d]        = nrm[d];
@@ -252,125 +248,6 @@ static PetscErrorCode VerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts,
   }
   PetscCall(PetscFree(cand));
   PetscCall(PetscFree(grid.cells));
-  PetscFunctionReturn(0);
-}
-
-/* -contact_shape_points (default on): the FE vertices see a bounded shape only at the vertices,
-   so a shape smaller than the elements, a box's corner or a sphere's cap sinks into an FE face
-   between them (the end-of-step check counts its points inside, intersection.c). The points of
-   the shape's picture (rank 0) are then contacts too, in one of two forms:
-   - a smooth shape (sphere, capsule; SmoothShapeOnSurface): each picture point finds its triangle
-     of the FE surface as a vertex does (LandingTriangle), and the contact is the FE material point
-     there (barycentric weights, side 1) against the shape's signed distance (side 2): the kind of
-     contact an FE vertex has, so the schemes re-linearize it with the shape's closest point, which
-     follows a turning or rolling shape (the fingers of the grasp slide 5 cm a step over the cube:
-     a point fixed in the shape's frame would leave its triangle);
-   - a shape with corners and edges (box, cylinder; ShapePointsOnSurface): the picture point,
-     fixed in the shape's frame, against its landing triangle, as a rigid mesh's vertex. (The
-     shape's distance at the FE point is degenerate at a corner: the FE point above a box corner
-     sunk into the face is on the box's edge, at distance 0.)
-   The first kind is made only where the shape dips between the triangle's vertices: where its gap
-   at the point is smaller than the gaps of the vertices interpolated there by more than
-   -contact_intersection_depth (at the start of the step, for a point within the alarm
-   distance); elsewhere the vertices' own contacts hold the point to within that depth. A point
-   whose triangle point is an FE vertex is that vertex's own contact, and two picture points
-   landing on one triangle point make one contact. Near the vertices' own contacts these rows are
-   nearly redundant (W nearly singular, the forces not unique): results stay reproducible because
-   the contacts are sorted by keys that do not depend on round-off (below). */
-static PetscErrorCode SmoothShapeOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
-                                           const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
-{
-  PetscInt     n, *cand = NULL, nmade = 0;
-  FCRayGrid    grid = {{0}};
-  FCProximity *prox;
-  PetscReal   *x0, *xf, *key, *made = NULL, distance = pairs->distance, tau = FCCCDThreshold(distance);
-
-  PetscFunctionBegin;
-  PetscCall(FCBodyGetContactPoints(Sh, &n, &prox, &x0, &xf, &key));
-  if (!n) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * n, &made));
-  for (PetscInt i = 0; i < n; i++) {
-    PetscInt    best;
-    PetscReal   bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0}, yf[3], X[3] = {0, 0, 0}, d, nrm[3], cpb[3];
-    PetscBool   dup = PETSC_FALSE;
-    FCProximity tp  = {0};
-    FCContact   c;
-    PetscCall(LandingTriangle(S, &x0[3 * i], &xf[3 * i], NULL, distance, pairs->continuous, tau, cand, &grid, &best, bw,
-                              bcp));
-    if (best < 0) continue;
-    if (bw[0] == 1.0 || bw[1] == 1.0 || bw[2] == 1.0) continue; /* an FE vertex: its own contact */
-    {
-      const FCSurfaceTriangle *T = &S->tri[best];
-      TrianglePoint(T, bw, &tp, yf); /* bcp: its start position */
-      /* the key sorts the contacts (FCContactSetGather): from the first vertex, so that on a face
-         with a constant reference coordinate (x = 0.5 on a cube) that coordinate is exact, not 0.5
-         give or take an ulp that reorders the contacts with the round-off of the weights (and with
-         it the sweeps: a restarted run then left the uninterrupted one at the solver's tolerance) */
-      for (int k = 0; k < 3; k++)
-        X[k] = T->X[0][k] + bw[1] * (T->X[1][k] - T->X[0][k]) + bw[2] * (T->X[2][k] - T->X[0][k]);
-      for (PetscInt m = 0; m < nmade && !dup; m++)
-        dup = made[3 * m] == X[0] && made[3 * m + 1] == X[1] && made[3 * m + 2] == X[2] ? PETSC_TRUE : PETSC_FALSE;
-      if (dup) continue;
-      PetscCall(FCBodyShapeDistance(Sh, FC_AT_NOW, bcp, &d, nrm, cpb));
-      { /* needed only where the shape dips between the vertices: deeper than the gap the vertices'
-           own constraints hold (interpolated) by more than the intersection depth */
-        PetscReal interp = 0.0;
-        for (int a = 0; a < 3; a++) {
-          PetscReal da, na[3], ca[3];
-          PetscCall(FCBodyShapeDistance(Sh, FC_AT_NOW, T->x0[a], &da, na, ca));
-          interp += bw[a] * da;
-        }
-        /* (a point only the motion brings to the surface keeps its contact: its dip is not
-           known at the start of the step) */
-        if (d < distance && d >= interp - PetscMax(pairs->intersection_depth, PETSC_SMALL)) continue;
-      }
-      if (d >= distance) { /* the triangle point's own motion against the shape decides */
-        PetscBool hit = PETSC_FALSE;
-        if (pairs->continuous) PetscCall(FCCCDPointShape(Sh, bcp, yf, d, tau, &hit));
-        if (!hit) continue;
-      }
-      for (int k = 0; k < 3; k++) made[3 * nmade + k] = X[k];
-      nmade++;
-      PetscCall(PetscMemzero(&c, sizeof(c)));
-      c.pair    = pair;
-      c.body[0] = ife;
-      c.body[1] = ish;
-      c.prox[0] = tp;
-      for (int k = 0; k < 3; k++) {
-        c.prox[0].r[k] = X[k];
-        c.prox[1].r[k] = cpb[k];
-        c.key[k]       = X[k];
-        c.n[k]         = nrm[k];
-        c.p0[0][k]     = bcp[k];
-        c.pfree[0][k]  = yf[k];
-      }
-      PetscCall(FCBodyProximityPosition(Sh, &c.prox[1], FC_AT_START, c.p0[1]));
-      PetscCall(FCBodyProximityPosition(Sh, &c.prox[1], FC_AT_FREE, c.pfree[1]));
-      c.side2 = FC_SIDE_SHAPE;
-      c.gap0  = d;
-      c.mu    = pairs->mu[pair];
-      c.owner = rank;
-      PetscCall(FCContactSetAdd(set, &c));
-    }
-  }
-  PetscCall(PetscFree2(cand, made));
-  PetscCall(PetscFree(grid.cells));
-  PetscFunctionReturn(0);
-}
-
-/* -contact_shape_points, a shape with corners and edges: its picture points against the FE
-   triangles as a rigid mesh's vertices (VerticesAgainstSurface). The contacts are dormant (pgs.c, SolveLazy): where the
-   vertices' own contacts already hold the shape, the point's row is nearly a combination of theirs (W nearly singular,
-   the forces not unique); the solver takes it up only where the solution leaves the point deeper inside than
-   -contact_dormant_depth. */
-static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
-                                           const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
-{
-  PetscInt first = set->n;
-
-  PetscFunctionBegin;
-  PetscCall(VerticesAgainstSurface(Sh, F, ish, ife, S, 0, NULL, pair, pairs, rank, set));
-  for (PetscInt k = first; k < set->n; k++) set->c[k].dormant = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -434,9 +311,9 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     if (FCBodyHasSurfaceTriangles(bodies[pairs->body[p][0]]) && FCBodyHasSurfaceTriangles(bodies[pairs->body[p][1]])) {
       /* the vertices of each body against the other's surface, or with -contact_fe_passes 1 only
          the first body's vertices against the second's surface */
-      Surface      *Sf[2]  = {NULL, NULL};
-      VertexNormal *vn[2]  = {NULL, NULL};
-      PetscInt      nvn[2] = {0, 0};
+      Surface        *Sf[2]  = {NULL, NULL};
+      FCVertexNormal *vn[2]  = {NULL, NULL};
+      PetscInt        nvn[2] = {0, 0};
       for (int side = 0; side < 2; side++) {
         FCBody b = bodies[pairs->body[p][side]];
         if (side == 1 || pairs->passes == 2) { /* a surface some vertex lands on */
@@ -453,8 +330,8 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
       }
       for (int side = 0; side < pairs->passes; side++) {
         PetscInt a = pairs->body[p][side], b2 = pairs->body[p][1 - side];
-        PetscCall(VerticesAgainstSurface(bodies[a], bodies[b2], a, b2, Sf[1 - side], nvn[side], vn[side], p, pairs,
-                                         rank, set));
+        PetscCall(FCCollisionVerticesAgainstSurface(bodies[a], bodies[b2], a, b2, Sf[1 - side], nvn[side], vn[side], p,
+                                                    pairs, rank, set));
       }
       for (int side = 0; side < 2; side++) {
         if (Sf[side]) PetscCall(FCSurfaceDestroy(&Sf[side]));
@@ -506,14 +383,11 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
       c.owner = rank;
       PetscCall(FCContactSetAdd(set, &c));
     }
-    /* -contact_shape_points (SmoothShapeOnSurface, ShapePointsOnSurface) */
+    /* -contact_shape_points (shapepoints.c) */
     if (pairs->shape_points && FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S)) {
       Surface *Sf;
       PetscCall(SurfaceBuild(comm, P, pairs, &Sf));
-      if (FCBodyHasSmoothShape(S))
-        PetscCall(SmoothShapeOnSurface(S, P, ishp, ipts, Sf, p, pairs, rank, set));
-      else
-        PetscCall(ShapePointsOnSurface(S, P, ishp, ipts, Sf, p, pairs, rank, set));
+      PetscCall(FCCollisionShapePoints(S, P, ishp, ipts, Sf, p, pairs, rank, set));
       PetscCall(FCSurfaceDestroy(&Sf));
     }
   }

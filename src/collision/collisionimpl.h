@@ -48,6 +48,30 @@ typedef struct {
 PETSC_INTERN PetscErrorCode FCRayGridCreate(const FCSurface *, FCRayGrid *);
 PETSC_INTERN PetscBool      FCRayGridInside(const FCSurface *, const FCRayGrid *, const PetscReal x[3]);
 
+/* collision.c, what the vertex contacts share with the shape points (shapepoints.c): the triangle
+   of S a point moving x0 -> xf lands on (nv: the normal of the point's own surface, for
+   -contact_facing; *best -1 if none; w, cp: weights and closest point at the start); the FE
+   material point at weights w of a triangle; the points of body P against the surface S of body
+   Sb (vn: the vertex normals of P's surface, or NULL) */
+typedef struct {
+  PetscReal X[3], n[3]; /* a vertex's reference position (the sort key) and outward normal */
+} FCVertexNormal;
+PETSC_INTERN PetscErrorCode FCCollisionLandingTriangle(Surface *, const PetscReal x0[3], const PetscReal xf[3],
+                                                       const PetscReal nv[3], PetscReal distance, PetscBool continuous,
+                                                       PetscReal tau, PetscInt cand[], FCRayGrid *, PetscInt *best,
+                                                       PetscReal w[3], PetscReal cp[3]);
+PETSC_INTERN void           FCCollisionTrianglePoint(const FCSurfaceTriangle *, const PetscReal w[3], FCProximity *,
+                                                     PetscReal xf[3]);
+PETSC_INTERN PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp,
+                                                              Surface *S, PetscInt nvn, const FCVertexNormal *vn,
+                                                              PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
+                                                              FCContactSet *);
+/* shapepoints.c: the points of bounded shape Sh (body ish) against the surface S of FE body F
+   (body ife), -contact_shape_points */
+PETSC_INTERN PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S,
+                                                   PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
+                                                   FCContactSet *);
+
 /* edges.c: the edge-edge contacts of the sharp edges of A (FE) against those of B (FE or mesh) */
 PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt pair,
                                                 const FCContactPairs *, FCContactSet *);
@@ -68,6 +92,9 @@ PETSC_INTERN void FCSurfaceClosestFacing(const FCSurface *, const PetscReal x[3]
                                          PetscReal w[3], PetscReal cp[3], PetscReal *d2);
 PETSC_INTERN PetscReal FCClosestSegmentSegment(const PetscReal p0[3], const PetscReal p1[3], const PetscReal q0[3],
                                                const PetscReal q1[3], PetscReal *s, PetscReal *t);
+/* The point at barycentric weights w of nv (2, 3) reference positions, exact where they share a
+   coordinate: a contact's sort key */
+PETSC_INTERN void FCReferencePoint(PetscInt nv, const PetscReal Xv[][3], const PetscReal w[], PetscReal X[3]);
 /* Whether the ray x + s dir, s > 0, crosses triangle (a, b, c) (Moeller-Trumbore) */
 PETSC_INTERN PetscBool FCRayHitsTriangle(const PetscReal x[3], const PetscReal dir[3], const PetscReal a[3],
                                          const PetscReal b[3], const PetscReal c[3]);

@@ -140,9 +140,8 @@ static PetscErrorCode AddEdgeContact(FCBody Bb, PetscInt ia, PetscInt ib, const 
       c.prox[1].X[j][i] = b->X[j][i];
     }
   }
+  FCReferencePoint(2, a->X, ws, c.key); /* the key: free of the weights' round-off */
   for (int i = 0; i < 3; i++) {
-    c.key[i] =
-        a->X[0][i] + ws[1] * (a->X[1][i] - a->X[0][i]); /* exact on an axis-aligned edge (SmoothShapeOnSurface) */
     c.n[i]        = n[i];
     c.p0[0][i]    = ws[0] * a->x0[0][i] + ws[1] * a->x0[1][i];
     c.pfree[0][i] = ws[0] * a->xf[0][i] + ws[1] * a->xf[1][i];

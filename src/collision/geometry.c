@@ -137,3 +137,16 @@ PetscBool FCRayHitsTriangle(const PetscReal x[3], const PetscReal dir[3], const 
   s = FCDot(e2, qv) / det;
   return s > 0.0 ? PETSC_TRUE : PETSC_FALSE;
 }
+
+/* X = X_0 + sum_{a >= 1} w_a (X_a - X_0): the point at weights w of nv reference positions, the
+   key that sorts a contact on a triangle or an edge (FCContactSetGather). From the first vertex,
+   a coordinate the vertices share (x = 0.5 on a cube's face) is exact, not 0.5 give or take an ulp
+   that would reorder the contacts with the round-off of the weights, and with them the sweeps: a
+   restarted run then left the uninterrupted one at the solver's tolerance */
+void FCReferencePoint(PetscInt nv, const PetscReal Xv[][3], const PetscReal w[], PetscReal X[3])
+{
+  for (int k = 0; k < 3; k++) {
+    X[k] = Xv[0][k];
+    for (PetscInt a = 1; a < nv; a++) X[k] += w[a] * (Xv[a][k] - Xv[0][k]);
+  }
+}
