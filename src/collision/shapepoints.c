@@ -99,11 +99,11 @@ static PetscErrorCode SmoothShapeOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
   PetscFunctionReturn(0);
 }
 
-/* -contact_shape_points, a shape with corners and edges: its picture points against the FE
-   triangles as a rigid mesh's vertices (FCCollisionVerticesAgainstSurface). The contacts are dormant (pgs.c,
-   SolveLazy): where the vertices' own contacts already hold the shape, the point's row is nearly a combination of
-   theirs (W nearly singular, the forces not unique); the solver takes it up only where the solution leaves the point
-   deeper inside than -contact_dormant_depth. */
+/* The second form (a box, a cylinder): the picture points against the FE triangles as a rigid
+   mesh's vertices (FCCollisionVerticesAgainstSurface), dormant (pgs.c, SolveLazy): where the
+   vertices' own contacts already hold the shape, a point's row is nearly a combination of theirs
+   (W nearly singular, the forces not unique); the solver takes it up only where the solution
+   leaves the point deeper inside than -contact_dormant_depth */
 static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                            const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
