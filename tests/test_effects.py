@@ -97,6 +97,11 @@ rc, _ = go(rest)
 c.check(hl["steps/contacts"][0] > 0 and rl.get("SchurNumeric", -1) == 1 and rc.get("SchurNumeric", -1) == 3,
         "resting from step 1 (%d contacts), default builder: %d factorization in 3 steps (linear), %d (co-rotational, "
         "one per step)" % (hl["steps/contacts"][0], rl.get("SchurNumeric", -1), rc.get("SchurNumeric", -1)))
+# the co-rotational one keeps its first Schur block (the start contacts, no ring of margin: it
+# refactors anyway) through steps 2 and 3, whose contacts are the same: one analysis
+c.check(rc.get("SchurAnalysis", -1) == 1,
+        "resting from step 1, co-rotational: %d analysis in 3 steps (the first Schur block is the contacts')" % (
+            rc.get("SchurAnalysis", -1)))
 # the redundant builder keeps a sequential copy of a linear A on every rank: factored with A, never again
 r5, _ = go(drop + ["-time_steps", "5", "-cube_material", "linear", "-compliance_type", "redundant"])
 r20, _ = go(drop + ["-time_steps", "20", "-cube_material", "linear", "-compliance_type", "redundant"])
