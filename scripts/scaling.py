@@ -75,12 +75,28 @@ def scene(name):
     return ["-options_file", "input/table1_36k.opts", "-box_dm_plex_filename", big_mesh()], 148800
 
 
+def timed(path):
+    """/usr/bin/time in front of every rank, appending each rank's peak RSS to `path` (one short
+    line per rank, O_APPEND: the lines cannot interleave as the ranks' stderr did, which once left
+    a run's RSS empty)"""
+    if os.path.exists(path):
+        os.remove(path)
+    return ["/usr/bin/time", "-a", "-o", path, "-f", "maxrss_kb %M"]
+
+
+def peak_rss(path):
+    """The ranks' peak RSS (MB) from the file that timed() named"""
+    with open(path) as f:
+        return [int(x) / 1024.0 for x in re.findall(r"maxrss_kb (\d+)", f.read())]
+
+
 def run(tag, args, np_, steps):
     f = os.path.join(OUT, tag + ".h5")
     log = os.path.join(OUT, tag + ".csv")
     cmd = [EXE] + args + ["-time_steps", str(steps), "-output_every", str(steps), "-constraint_scheme", "fast",
                           "-newton_max_it", "5", "-quiet", "-output_file", f, "-log_view", ":%s:ascii_csv" % log]
-    cmd = ["/usr/bin/time", "-f", "maxrss_kb %M"] + cmd  # on every rank
+    rssf = os.path.join(OUT, tag + ".rss")
+    cmd = timed(rssf) + cmd  # on every rank
     if np_ > 1:
         cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
     t0 = time.time()
@@ -90,7 +106,7 @@ def run(tag, args, np_, steps):
         sys.stderr.write(p.stdout + p.stderr)
         why = [l for l in (p.stdout + p.stderr).splitlines() if "error:" in l][:1]
         raise RuntimeError("exit %d, %s" % (p.returncode, why[0].strip() if why else "no message"))
-    rss = max([int(x) / 1024.0 for x in re.findall(r"maxrss_kb (\d+)", p.stdout + p.stderr)] or [float("nan")])
+    rss = max(peak_rss(rssf) or [float("nan")])
     h = h5py.File(f, "r")
     s = h["steps"]
     per = {ph: float(s["timing/" + ph][:].mean()) for ph in PHASES}
@@ -110,16 +126,15 @@ def run(tag, args, np_, steps):
 
 def memory(mesh, np_):
     """Peak resident memory of every rank (MB) loading the 149k box and taking one step"""
-    cmd = ["mpirun", "-n", str(np_), "--oversubscribe", "/usr/bin/time", "-f", "maxrss_kb %M", EXE,
+    rssf = os.path.join(OUT, "mem.rss")
+    cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + timed(rssf) + [EXE,
            "-options_file", "input/table1_36k.opts", "-box_dm_plex_filename", mesh,
            "-time_steps", "1", "-quiet", "-output_file", os.path.join(OUT, "mem.h5")]
     p = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True)
     if p.returncode:
         sys.stderr.write(p.stdout + p.stderr)
         raise RuntimeError("failed: " + " ".join(cmd))
-    # (searched anywhere in a line: the ranks' outputs interleave, and a line once came back glued
-    # to another one, which left the figures of a run empty)
-    return sorted(int(x) / 1024.0 for x in re.findall(r"maxrss_kb (\d+)", p.stdout + p.stderr))
+    return sorted(peak_rss(rssf))
 
 
 def stored(a, name, stamp, compute):
