@@ -130,6 +130,9 @@ PETSC_INTERN PetscErrorCode FCMumpsKSPChecked(KSP ksp, Mat A, const char what[],
 /* src/mesh/partmetis.c: the PetscPartitioner type "metis" (METIS k-way on the gathered cell graph) */
 #define FC_PARTITIONER_METIS "metis"
 PETSC_INTERN PetscErrorCode FCPartitionerRegisterMetis(void);
+/* -blas_gemv_forward: dgemm with one column as dgemv (src/util/blas.c) */
+PETSC_INTERN PetscErrorCode FCBLASSetFromOptions(void);
+PETSC_INTERN PetscErrorCode FCBLASView(void); /* -info: how many products it computed so */
 /* The largest accepted magnitude of a mesh coordinate (m): a cell's volume, the cube of its size,
    stays finite with room to spare */
 #define FC_MESH_MAX_COORDINATE 1e100

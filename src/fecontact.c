@@ -1,5 +1,6 @@
 /* Package registration: type registries (bodies, materials, shapes, compliance builders, schemes), the
-   METIS mesh partitioner (a PetscPartitioner type) and log events. */
+   METIS mesh partitioner (a PetscPartitioner type), log events, and the BLAS option
+   (-blas_gemv_forward, src/util/blas.c). */
 #include "fcimpl.h"
 
 static PetscBool initialized = PETSC_FALSE;
@@ -20,6 +21,7 @@ PetscErrorCode FCInitializePackage(void)
   PetscCall(FCSchemeRegisterAll());
   PetscCall(FCComplianceRegisterAll());
   PetscCall(FCPartitionerRegisterMetis());
+  PetscCall(FCBLASSetFromOptions());
   PetscCall(PetscRegisterFinalize(FCFinalizePackage));
   PetscFunctionReturn(0);
 }
@@ -27,6 +29,7 @@ PetscErrorCode FCInitializePackage(void)
 PetscErrorCode FCFinalizePackage(void)
 {
   PetscFunctionBegin;
+  PetscCall(FCBLASView());
   PetscCall(PetscFunctionListDestroy(&FCBodyList));
   PetscCall(PetscFunctionListDestroy(&FCMaterialList));
   PetscCall(PetscFunctionListDestroy(&FCShapeList));

@@ -6,7 +6,11 @@ sparse is refused with a clear error. condensed_balance: condensed with the top 
 dissection bisected in balance of the vertices next to S (-compliance_condensed_balance 1). Every builder handles contacts whose DOFs are all fixed (a
 box on a slab whose top face is held: W_b = 0, the box rests on the fixed face). The co-rotational grasp (A refactored every step) checks that W_H follows A with every
 builder, the redundant copies of A included. precomputed is exact for a linear material (1e-10) and, rotation-warped, close to
-dense for a co-rotational one. Usage: test_compliance.py [--np N]"""
+dense for a co-rotational one. -blas_gemv_forward (dgemm with one column as dgemv, src/util/blas.c)
+is reached by MUMPS' solves on every rank and leaves the motion as it was (1e-12). Usage:
+test_compliance.py [--np N]"""
+import re
+
 import numpy as np
 import h5py
 from fctest import run, out, Checker, np_from_argv, sorted_positions
@@ -161,6 +165,20 @@ for label, box in [("all fixed", "-3,-3,-0.01,3,3,3"), ("half fixed", "-3,-3,-0.
         same = fa.shape == fb.shape and fa.size > 0
         err = np.abs(fa - fb).max() / np.abs(fa).max() if same else np.inf
         c.check(err < 1e-10, "contact DOFs %s, %s vs dense: forces rel. diff %.2e < 1e-10" % (label, ctype, err))
+# dgemm with one column computed as dgemv (src/util/blas.c): MUMPS' solves reach it (products
+# counted by -info), and the motion is that of the BLAS library's dgemm to round-off
+rest = ["-options_file", "input/cube_rest.opts", "-cube_dm_plex_filename", "meshes/cube_coarse.msh", "-time_steps", "3",
+        "-quiet", "-info", ":sys"]
+fwd = {}
+for on in (1, 0):
+    f = out("comp_gemv%d_np%d.h5" % (on, NP))
+    p = run(rest + ["-blas_gemv_forward", str(on), "-output_file", f], np_=NP)
+    n = [int(x) for x in re.findall(r"dgemm with one column computed as dgemv: (\d+) products", p.stdout + p.stderr)]
+    fwd[on] = (n, sorted_positions(h5py.File(f, "r"), "cube")[-1])
+d = np.abs(fwd[1][1] - fwd[0][1]).max() / np.abs(fwd[0][1]).max()
+c.check(len(fwd[1][0]) == NP and min(fwd[1][0]) > 0 and fwd[0][0] == [0] * NP and d < 1e-12,
+        "-blas_gemv_forward: %s one-column products as dgemv per rank (0 when off: %s); positions on vs off %.1e < 1e-12" % (
+            fwd[1][0], fwd[0][0], d))
 if NP > 1:
     p = run(base + ["-compliance_type", "sparse", "-output_file", out("comp_sparse_np%d.h5" % NP)], np_=NP, check=False)
     c.check(p.returncode != 0 and "one MPI rank only" in p.stderr + p.stdout, "sparse on %d ranks: clear error, exit %d" % (NP, p.returncode))
