@@ -489,11 +489,15 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
 }
 
 /* Host: y = C x, C = (A^-1)_SS (ns x ns, symmetric, column-major; A^-1 when S is every DOF) */
-static void ApplyC(FCSchurFactor f, const PetscReal x[], PetscReal y[])
+static PetscErrorCode ApplyC(FCSchurFactor f, const PetscReal x[], PetscReal y[])
 {
-  for (PetscInt i = 0; i < f->ns; i++) y[i] = 0.0;
-  for (PetscInt j = 0; j < f->ns; j++)
-    for (PetscInt i = 0; i < f->ns; i++) y[i] += f->sigma[i + j * f->ns] * x[j];
+  PetscBLASInt n, one = 1;
+  PetscReal    alpha = 1.0, beta = 0.0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscBLASIntCast(f->ns, &n));
+  if (n) PetscCallBLAS("BLASgemv", BLASgemv_("N", &n, &n, &alpha, f->sigma, &n, x, &one, &beta, y, &one));
+  PetscFunctionReturn(0);
 }
 
 /* x = A^-1 b: condensation on S, x_S = C r_S on the host, expansion */
@@ -516,14 +520,14 @@ PetscErrorCode FCSchurFactorSolve(FCSchurFactor f, Vec b, Vec x)
   }
   if (Full(f)) { /* x = C b on the host, C = A^-1 */
     if (!f->rank) {
-      ApplyC(f, rhs, f->work);
+      PetscCall(ApplyC(f, rhs, f->work));
       PetscCall(PetscArraycpy(rhs, f->work, f->N));
     }
   } else if (f->ns) {
     f->id.ICNTL(26) = 1;
     PetscCall(CallMumps(f, 3, "condensation"));
     if (!f->rank) {
-      ApplyC(f, f->red, f->work);
+      PetscCall(ApplyC(f, f->red, f->work));
       PetscCall(PetscArraycpy(f->red, f->work, f->ns));
     }
     f->id.ICNTL(26) = 2;
