@@ -85,6 +85,8 @@ cases = [
     ("pass-2 drop weight 1", ["-options_file", "input/two_cubes.opts", "-contact_fe_pass2_drop", "1", "-quiet"], "-contact_fe_pass2_drop"),
     ("pass-2 drop weight nan", ["-options_file", "input/two_cubes.opts", "-contact_fe_pass2_drop", "nan", "-quiet"], "-contact_fe_pass2_drop"),
     ("contact mu negative", ["-options_file", "input/cube_drop.opts", "-contact_mu", "-0.3", "-quiet"], "-contact_mu"),
+    ("BLAS forward not a boolean", ["-options_file", "input/cube_drop.opts", "-blas_gemv_forward", "maybe", "-quiet"],
+     "-blas_gemv_forward takes no value or one of"),
     ("restart file missing", opts(restart="nonexistent.h5"), "Cannot open the restart file"),
     ("contact matrices over the memory limit", ["-options_file", "input/cube_drop.opts", "-contact_memory_limit", "1e3", "-quiet"],
      "-contact_memory_limit"),

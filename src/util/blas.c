@@ -51,7 +51,10 @@ void dgemm_(const char *ta, const char *tb, const int *m, const int *n, const in
 PetscErrorCode FCBLASSetFromOptions(void)
 {
   PetscFunctionBegin;
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-blas_gemv_forward", &forward, NULL));
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "BLAS", NULL);
+  PetscCall(FCOptionsBool(PetscOptionsObject, "-blas_gemv_forward", "Compute dgemm with one column as dgemv", &forward,
+                          NULL));
+  PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
 
