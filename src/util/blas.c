@@ -4,10 +4,10 @@
    OpenBLAS 0.3.21 (Debian 12) packs both operands of every dgemm into its block buffers, a product
    with one column too; OpenBLAS forwards such products to gemv itself only from 0.3.27
    (GEMM_GEMV_FORWARD). MUMPS' solve with one right-hand side calls dgemm with n = 1 on every
-   front (dmumps_solve_node_fwd / _bwd), so on a linear body in steady contact, whose step is two
-   such solves and the contact phases, the packing (dgemm_oncopy, dgemm_otcopy) took about a
-   quarter of the step (docs/benchmarks.md, "One-column products"). Every other product goes to
-   the next dgemm_ in the link order (the BLAS library), found by dlsym(RTLD_NEXT).
+   front (dmumps_solve_node_fwd / _bwd): in a 40-step run of the 36k box the packing
+   (dgemm_oncopy, dgemm_otcopy) took 26 % of the time (docs/benchmarks.md, "One-column
+   products"). Every other product goes to the next dgemm_ in the link order (the BLAS library),
+   found by dlsym(RTLD_NEXT).
 
    Option (read at package initialization, src/fecontact.c):
      -blas_gemv_forward <bool>   compute dgemm with one column as dgemv (default true; false: every
@@ -23,9 +23,10 @@ typedef void (*GemmFn)(const char *, const char *, const int *, const int *, con
 extern void dgemv_(const char *, const int *, const int *, const double *, const double *, const int *, const double *,
                    const int *, const double *, double *, const int *, size_t);
 
-static PetscBool      forward = PETSC_TRUE;
-static GemmFn         next_dgemm;
-static PetscLogDouble nforwarded; /* products computed as dgemv, for -info at the end */
+static PetscBool          forward = PETSC_TRUE;
+static GemmFn             next_dgemm;
+static unsigned long long nforwarded; /* products computed as dgemv, for -info at the end (a count
+                                          only: not atomic, should a threaded caller race on it) */
 
 /* C = alpha op(A) op(B) + beta C, op(A) m x k, op(B) k x n (Fortran BLAS, with gfortran's hidden
    lengths of the two character arguments) */
@@ -44,7 +45,10 @@ void dgemm_(const char *ta, const char *tb, const int *m, const int *n, const in
     return;
   }
   if (!next_dgemm) next_dgemm = (GemmFn)dlsym(RTLD_NEXT, "dgemm_");
-  if (!next_dgemm) abort(); /* no BLAS after this one: the link is broken, nothing to compute with */
+  if (!next_dgemm) { /* no BLAS after this one: the link is broken, nothing to compute with */
+    fprintf(stderr, "fecontact: error: no BLAS library dgemm_ after src/util/blas.c's (dlsym: %s)\n", dlerror());
+    abort();
+  }
   next_dgemm(ta, tb, m, n, k, alpha, A, lda, B, ldb, beta, C, ldc, lta, ltb);
 }
 
@@ -61,7 +65,7 @@ PetscErrorCode FCBLASSetFromOptions(void)
 PetscErrorCode FCBLASView(void)
 {
   PetscFunctionBegin;
-  PetscCall(PetscInfo(NULL, "dgemm with one column computed as dgemv: %.0f products (-blas_gemv_forward %s)\n",
-                      (double)nforwarded, forward ? "true" : "false"));
+  PetscCall(PetscInfo(NULL, "dgemm with one column computed as dgemv: %llu products (-blas_gemv_forward %s)\n",
+                      nforwarded, forward ? "true" : "false"));
   PetscFunctionReturn(0);
 }
