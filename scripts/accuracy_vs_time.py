@@ -20,6 +20,7 @@ step) and docs/accuracy.md (the tables and the recommended settings for a few ac
 --quick runs a reduced sweep (for a smoke test; its figures are not the ones in the doc)."""
 import argparse
 import csv
+import math
 import os
 import platform
 import subprocess
@@ -332,7 +333,7 @@ def write_csv(rows, path):
     # --reuse measures earlier files: their wall time (nan here) is the earlier run's
     walls = {(r["scene"], r["group"], r["label"]): r["wall"] for r in old}
     old = [r for r in old if r["scene"] not in scenes]
-    rows = [dict(r, wall=walls.get((r["scene"], r["group"], r["label"]), r["wall"])) if r["wall"] != r["wall"] else r
+    rows = [dict(r, wall=walls.get((r["scene"], r["group"], r["label"]), r["wall"])) if math.isnan(r["wall"]) else r
             for r in rows]
     with open(path, "w", newline="") as fcsv:
         w = csv.DictWriter(fcsv, fieldnames=FIELDS)

@@ -61,9 +61,9 @@ for name, args, *np_only in SCENES:
         c.check(same and e <= 1e-6, "%s: same loaded contacts every step (%d in all; %d force-free ones differ), last forces "
                 "rel. diff %.1e <= 1e-6" % (name, int(na.sum()), extra, e))
     if d > 1e-8 or ("contacts" in a and not same):
-        # where the runs part: the step-by-step record of both (two_cubes once failed here in CI:
-        # its alarm distance sat on the gap of step 9, so MUMPS' round-off decided whether 68
-        # force-free contacts were listed; input/two_cubes.opts now keeps clear of that tie)
+        # where the runs part: the step-by-step record of both (two_cubes once failed here in CI,
+        # not reproduced since; most likely the tie that made test_fe_fe flaky: its alarm distance
+        # sat on the gap of step 9, which input/two_cubes.opts now keeps clear of)
         for k in ("contacts", "pgs_iterations", "residual", "intersections", "max_penetration"):
             if k in a["steps"] and k in b["steps"]:
                 print("  /steps/%s  1 rank: %s\n  /steps/%s %d ranks: %s" % (k, a["steps/" + k][:].tolist(), k, NP, b["steps/" + k][:].tolist()))

@@ -57,8 +57,7 @@
                               surface triangles too, besides the FE vertices against the shape: a
                               shape smaller than the elements, a corner or a sphere's cap pressed
                               into an FE face between its vertices (default 1; src/collision/
-                              shapepoints.c); 0: the FE
-                              vertices against the shape only
+                              shapepoints.c); 0: the FE vertices against the shape only
      -contact_separation_speed v  bodies that start a step inside each other are pushed apart at most
                               this fast: a contact deeper than v h at the start may stay (depth - v h)
                               deep at the end of the step (> 0, default 1 m/s; docs/hard-cases.md)
