@@ -11,6 +11,9 @@ solver on 1 rank, on bare problems run by tools/fclib_solve -dense.
   them within 5000 sweeps (docs/contact-solver.md lists which); checked is that the solver
   never claims a convergence it does not have: converged, it meets both residuals and the
   velocities; not converged, it says so and its residual is above 1e-8 by numpy too.
+- -pgs_ranks auto (the default; here from 1 row on, -pgs_split_min_rows 1) converges on every one
+  of those problems: the split sweeps where they converge, else rank 0 goes on from their iterate
+  after -pgs_split_max_it sweeps (the stacks).
 - A whole scene with -pgs_ranks split on N ranks ends where the replicated run does (1e-8).
 Usage: test_contact_split.py --np N"""
 import os
@@ -72,6 +75,14 @@ for path in problems:
     else:
         c.check(e > 1e-8, "%s (%d contacts): split not converged after %d sweeps, and says so: residual %.1e, "
                 "numpy %.1e > 1e-8" % (name, len(mu), sn, resn, e))
+    # -pgs_ranks auto (the default) on any size: split sweeps, then rank 0 from there where they stall
+    sa, resa, ra, ua = solve(path, NP, ["-pgs_ranks", "auto", "-pgs_split_min_rows", "1", "-pgs_split_max_it", "200"])
+    ea = B.natural_map_error(W, q, mu, ra, d)
+    c.check(resa <= 1e-8 and ea <= 1e-8,
+            "%s: -pgs_ranks auto on %d ranks converges wherever the replicated solver does (%s): %d sweeps, residual "
+            "%.1e, numpy %.1e <= 1e-8" % (name, NP, "split alone converged" if ok and sn <= 200 else "rank 0 took over after 200 split sweeps", sa, resa, ea))
+    if ok and sn <= 200:
+        c.check(sa == sn, "%s: auto on %d ranks sweeps as split does when split converges (%d, %d)" % (name, NP, sa, sn))
     tested += 1
     converged += ok
 c.check(tested >= 3, "%d problems compared (at least 3), %d converged with split" % (tested, converged))
@@ -83,6 +94,6 @@ run(args + ["-output_file", f1], np_=NP)
 run(args + ["-pgs_ranks", "split", "-output_file", fn], np_=NP)
 a, b = h5py.File(f1, "r"), h5py.File(fn, "r")
 dx = np.abs(final_state(a) - final_state(b)).max() / np.abs(final_state(a)).max()
-c.check(dx <= 1e-8, "cube_drop on %d ranks: -pgs_ranks split vs all, final state rel. diff %.1e <= 1e-8" % (NP, dx))
+c.check(dx <= 1e-8, "cube_drop on %d ranks: -pgs_ranks split vs the default (root at this size), final state rel. diff %.1e <= 1e-8" % (NP, dx))
 c.check(b["steps/residual"][:].max() <= 1e-8, "cube_drop split: every step converged (max residual %.1e)" % b["steps/residual"][:].max())
 c.done()

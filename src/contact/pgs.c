@@ -40,7 +40,10 @@ struct _p_FCContactSolver {
   PetscInt                max_it, sweeps;
   PetscBool               converged, nncg, root;    /* root: rank 0 solves and broadcasts (-pgs_ranks root) */
   PetscBool               split;                    /* -pgs_ranks split: each rank sweeps its own block */
+  PetscBool               automatic;                /* -pgs_ranks auto: split from -pgs_split_min_rows, else root */
   PetscReal               split_damping;            /* -pgs_split_damping */
+  PetscInt                split_min_rows;           /* -pgs_split_min_rows (auto) */
+  PetscInt                split_max_it;             /* -pgs_split_max_it (auto): then root from there */
   char                    dump[PETSC_MAX_PATH_LEN]; /* -pgs_dump_problem */
   PetscInt                dump_rows;
   PetscBool               dumped, dump_unconverged; /* -pgs_dump_unconverged: the first unconverged problem */
@@ -52,14 +55,17 @@ PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
 {
   PetscFunctionBegin;
   PetscCall(PetscNew(solver));
-  (*solver)->comm          = comm;
-  (*solver)->tol           = 1e-8;
-  (*solver)->max_it        = 1000;
-  (*solver)->omega         = 1.0;
-  (*solver)->nncg          = PETSC_TRUE;
-  (*solver)->root          = PETSC_TRUE; /* -pgs_ranks root: docs/scaling.md */
-  (*solver)->dump_rows     = 1;
-  (*solver)->split_damping = 0.8;
+  (*solver)->comm           = comm;
+  (*solver)->tol            = 1e-8;
+  (*solver)->max_it         = 1000;
+  (*solver)->omega          = 1.0;
+  (*solver)->nncg           = PETSC_TRUE;
+  (*solver)->root           = PETSC_TRUE; /* -pgs_ranks auto: docs/contact-solver.md */
+  (*solver)->automatic      = PETSC_TRUE;
+  (*solver)->dump_rows      = 1;
+  (*solver)->split_damping  = 0.8;
+  (*solver)->split_min_rows = 500;
+  (*solver)->split_max_it   = 200;
   PetscFunctionReturn(0);
 }
 
@@ -80,17 +86,27 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
     s->nncg = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
   {
-    const char *where[] = {"all", "root", "split"};
-    PetscInt    a       = s->root ? 1 : (s->split ? 2 : 0);
-    PetscCall(PetscOptionsEList("-pgs_ranks", "Where the contact solver runs: every rank, rank 0, or split by blocks",
-                                NULL, where, 3, where[a], &a, NULL));
-    s->root  = a == 1 ? PETSC_TRUE : PETSC_FALSE;
-    s->split = a == 2 ? PETSC_TRUE : PETSC_FALSE;
+    const char *where[] = {"auto", "all", "root", "split"};
+    PetscInt    a       = s->automatic ? 0 : (s->root ? 2 : (s->split ? 3 : 1));
+    PetscCall(PetscOptionsEList("-pgs_ranks",
+                                "Where the contact solver runs: by size, every rank, rank 0, or split by blocks", NULL,
+                                where, 4, where[a], &a, NULL));
+    s->automatic = a == 0 ? PETSC_TRUE : PETSC_FALSE;
+    s->root      = a == 2 ? PETSC_TRUE : PETSC_FALSE;
+    s->split     = a == 3 ? PETSC_TRUE : PETSC_FALSE;
   }
-  if (s->split)
+  if (s->split || s->automatic)
     PetscCall(FCOptionsReal(PetscOptionsObject, "-pgs_split_damping",
-                            "With -pgs_ranks split: the fraction of each block's step taken (0, 1]", &s->split_damping,
-                            NULL));
+                            "With -pgs_ranks split or auto: the fraction of each block's step taken (0, 1]",
+                            &s->split_damping, NULL));
+  if (s->automatic) {
+    PetscCall(FCOptionsInt(PetscOptionsObject, "-pgs_split_min_rows",
+                           "With -pgs_ranks auto: split the sweeps from this many rows on, below solve on rank 0",
+                           &s->split_min_rows, NULL));
+    PetscCall(FCOptionsInt(PetscOptionsObject, "-pgs_split_max_it",
+                           "With -pgs_ranks auto: split sweeps before rank 0 takes over an unconverged solve",
+                           &s->split_max_it, NULL));
+  }
   PetscCall(PetscOptionsString("-pgs_dump_problem", "Write a contact problem to this FCLIB file", NULL, s->dump,
                                s->dump, sizeof(s->dump), NULL));
   if (s->dump[0]) {
@@ -123,6 +139,10 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
              "Option -pgs_split_damping must lie in (0, 1], got %g", (double)s->split_damping);
   PetscCheck(s->max_it >= 1, s->comm, PETSC_ERR_USER_INPUT, "Option -pgs_max_it must be >= 1, got %" PetscInt_FMT,
              s->max_it);
+  PetscCheck(s->split_min_rows >= 1, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -pgs_split_min_rows must be >= 1, got %" PetscInt_FMT, s->split_min_rows);
+  PetscCheck(s->split_max_it >= 1, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -pgs_split_max_it must be >= 1, got %" PetscInt_FMT, s->split_max_it);
   PetscFunctionReturn(0);
 }
 
@@ -200,6 +220,7 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
 
 static PetscErrorCode SolveHere(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveSplit(FCContactSolver, FCContactProblem, PetscReal[]);
+static PetscErrorCode SolveSplitThenRoot(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveLazy(FCContactSolver, FCContactProblem, PetscReal[],
                                 PetscErrorCode (*)(FCContactSolver, FCContactProblem, PetscReal[]));
 
@@ -235,9 +256,9 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   if (s->dump[0] && !s->dump_unconverged && !s->dumped && p->n >= s->dump_rows) PetscCall(Dump(s, p));
-  if (s->split && size > 1 && p->Wd && !s->update)
-    PetscCall(SolveLazy(s, p, r, SolveSplit));
-  else if (!s->root || size == 1 || s->update) /* the update after each sweep is collective */
+  if (size > 1 && p->Wd && !s->update && (s->split || (s->automatic && p->n >= s->split_min_rows))) {
+    PetscCall(SolveLazy(s, p, r, s->split ? SolveSplit : SolveSplitThenRoot));
+  } else if ((!s->root && !s->automatic) || size == 1 || s->update) /* the update after each sweep is collective */
     PetscCall(SolveLazy(s, p, r, SolveHere));
   else {
     PetscReal info[3];
@@ -372,6 +393,41 @@ static PetscErrorCode SolveSplit(FCContactSolver s, FCContactProblem p, PetscRea
   PetscCall(FCContactSolveSplit(s->comm, p, s->tol, s->max_it, s->omega, s->proximal, s->split_damping, r, &s->sweeps,
                                 &s->residual));
   s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* -pgs_ranks auto on a large problem: at most -pgs_split_max_it split sweeps, which converge on FE
+   contact zones in about as many sweeps as the replicated solver (docs/contact-solver.md); where
+   they do not (the Jacobi coupling between blocks: multibody stacks), rank 0 goes on from the split
+   iterate with the replicated sweeps and broadcasts the forces. Collective. */
+static PetscErrorCode SolveSplitThenRoot(FCContactSolver s, FCContactProblem p, PetscReal r[])
+{
+  PetscInt    max_it = s->max_it, split_sweeps;
+  PetscMPIInt rank;
+  PetscReal   info[2], split_residual;
+
+  PetscFunctionBegin;
+  PetscCall(FCContactSolveSplit(s->comm, p, s->tol, PetscMin(max_it, s->split_max_it), s->omega, s->proximal,
+                                s->split_damping, r, &s->sweeps, &s->residual));
+  s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
+  if (s->converged || s->sweeps >= max_it) PetscFunctionReturn(0);
+  split_sweeps   = s->sweeps;
+  split_residual = s->residual;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  s->max_it = max_it - split_sweeps;
+  if (!rank) PetscCall(SolveHere(s, p, r));
+  s->max_it = max_it;
+  info[0]   = (PetscReal)s->sweeps;
+  info[1]   = s->residual;
+  PetscCallMPI(MPI_Bcast(info, 2, MPIU_REAL, 0, s->comm));
+  PetscCallMPI(MPI_Bcast(r, (PetscMPIInt)p->n, MPIU_REAL, 0, s->comm));
+  s->sweeps    = split_sweeps + (PetscInt)info[0];
+  s->residual  = info[1];
+  s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscInfo(NULL,
+                      "split sweeps: residual %g after %" PetscInt_FMT
+                      " (-pgs_split_max_it); rank 0 went on: %" PetscInt_FMT " sweeps in all, residual %g\n",
+                      (double)split_residual, split_sweeps, s->sweeps, (double)s->residual));
   PetscFunctionReturn(0);
 }
 

@@ -33,6 +33,27 @@ static PetscErrorCode BlockVelocity(FCContactProblem p, PetscInt lo, PetscInt hi
   PetscFunctionReturn(0);
 }
 
+/* u_b += W_b,other dr: the off-block columns of the block's rows, [0, lo) and [hi, n), as two BLAS
+   gemv on W^T (row-major W seen column-major). A hand loop here was a chain of dependent adds
+   (no reassociation without -ffast-math): 2.5x the time of the block's share of W streamed. */
+static PetscErrorCode AddOffBlock(FCContactProblem p, PetscInt lo, PetscInt hi, const PetscReal dr[], PetscReal ub[])
+{
+  PetscBLASInt n, nb, m0, m1, one = 1;
+  PetscReal    alpha = 1.0, beta = 1.0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscBLASIntCast(p->n, &n));
+  PetscCall(PetscBLASIntCast(hi - lo, &nb));
+  PetscCall(PetscBLASIntCast(lo, &m0));
+  PetscCall(PetscBLASIntCast(p->n - hi, &m1));
+  if (nb && m0)
+    PetscCallBLAS("BLASgemv", BLASgemv_("T", &m0, &nb, &alpha, p->Wd + lo * p->n, &n, dr, &one, &beta, ub, &one));
+  if (nb && m1)
+    PetscCallBLAS("BLASgemv",
+                  BLASgemv_("T", &m1, &nb, &alpha, p->Wd + lo * p->n + hi, &n, dr + hi, &one, &beta, ub, &one));
+  PetscFunctionReturn(0);
+}
+
 /* The natural-map residual / ||q|| of the whole problem: this block's contacts [c0, c1), summed
    over the blocks (every rank gets the same value, so all stop at the same sweep) */
 static PetscErrorCode Residual(MPI_Comm comm, FCContactProblem p, PetscInt c0, PetscInt c1, PetscInt lo,
@@ -116,14 +137,8 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
     if (*sweeps % FC_SPLIT_EXACT == 0)
       PetscCall(BlockVelocity(p, lo, hi, r, ub));
     else {
-      for (PetscInt j = 0; j < n; j++) rprev[j] = (j >= lo && j < hi) ? 0.0 : r[j] - rprev[j];
-      for (PetscInt k = lo; k < hi; k++) {
-        const PetscReal *w   = p->Wd + k * n;
-        PetscReal        acc = 0.0;
-        for (PetscInt j = 0; j < lo; j++) acc += w[j] * rprev[j];
-        for (PetscInt j = hi; j < n; j++) acc += w[j] * rprev[j];
-        ub[k - lo] += acc;
-      }
+      for (PetscInt j = 0; j < n; j++) rprev[j] = r[j] - rprev[j];
+      PetscCall(AddOffBlock(p, lo, hi, rprev, ub));
     }
     PetscCall(Residual(comm, p, c0, c1, lo, r, ub, residual));
     if (*residual <= tol && *sweeps % FC_SPLIT_EXACT) { /* converged on the carried u: confirm on the exact one */

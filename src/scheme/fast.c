@@ -119,13 +119,57 @@ typedef struct {
   Vec           F, dvec, lam; /* world forces, W_H F, forces in the frames */
   PetscReal    *dfree, *d0, *q, *qold, *d;
   PetscInt      rebuilds; /* W_k rebuilt inside the contact solver (-fast_update sweep) */
+  PetscBool     host;     /* W_H dense and C AIJ on the host: W_k by CongruenceHost */
 } FastStep;
 
-/* W_k = C_k W_H C_k^T for the frames of the contact set: U = C W_H (AIJ x dense), W_k = C U^T */
+/* W_k = C_k W_H C_k^T on the host, block by block: C_k is block diagonal (contact I's d_I frame
+   rows act on its 3 columns), so W_k[I,J] = F_I W_H[I,J] F_J^T for the 3 x 3 blocks of W_H. One
+   pass over W_H (read) and W_k (written), both column-major; the two general products below
+   (MatMatMult, then a transpose) stream a dense matrix of this size five times. */
+static PetscErrorCode CongruenceHost(FastStep *fs)
+{
+  const FCContactSet *set = fs->set;
+  const PetscScalar  *wh;
+  PetscScalar        *wk;
+  PetscInt            n3 = fs->n3, M = fs->M;
+
+  PetscFunctionBegin;
+  if (!fs->Wk) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, M, M, NULL, &fs->Wk));
+  PetscCall(MatDenseGetArrayRead(fs->WHm, &wh));
+  PetscCall(MatDenseGetArrayWrite(fs->Wk, &wk));
+  for (PetscInt kj = 0; kj < fs->nc; kj++) {
+    const FCContact *cj     = &set->c[kj];
+    const PetscReal *fj[3]  = {cj->n, cj->t1, cj->t2};
+    const PetscReal *col[3] = {wh + (3 * kj) * n3, wh + (3 * kj + 1) * n3, wh + (3 * kj + 2) * n3};
+    PetscScalar     *out[3];
+    for (PetscInt b = 0; b < cj->dim; b++) out[b] = wk + (cj->row + b) * M;
+    for (PetscInt ki = 0; ki < fs->nc; ki++) {
+      const FCContact *ci    = &set->c[ki];
+      const PetscReal *fi[3] = {ci->n, ci->t1, ci->t2};
+      PetscReal        p[3][3]; /* p[b][i] = (W_H[ki,kj] F_kj^T)_ib */
+      for (PetscInt b = 0; b < cj->dim; b++)
+        for (int i = 0; i < 3; i++)
+          p[b][i] = col[0][3 * ki + i] * fj[b][0] + col[1][3 * ki + i] * fj[b][1] + col[2][3 * ki + i] * fj[b][2];
+      for (PetscInt b = 0; b < cj->dim; b++)
+        for (PetscInt a = 0; a < ci->dim; a++)
+          out[b][ci->row + a] = fi[a][0] * p[b][0] + fi[a][1] * p[b][1] + fi[a][2] * p[b][2];
+    }
+  }
+  PetscCall(MatDenseRestoreArrayWrite(fs->Wk, &wk));
+  PetscCall(MatDenseRestoreArrayRead(fs->WHm, &wh));
+  PetscFunctionReturn(0);
+}
+
+/* W_k = C_k W_H C_k^T for the frames of the contact set: blockwise on the host (the default types),
+   else U = C W_H (AIJ x dense), W_k = C U^T, on the types of -wh_mat_type and -frames_mat_type */
 static PetscErrorCode RebuildW(FastStep *fs)
 {
   PetscFunctionBegin;
   PetscCall(AssembleFrames(fs->set, fs->C));
+  if (fs->host) {
+    PetscCall(CongruenceHost(fs));
+    PetscFunctionReturn(0);
+  }
   PetscCall(MatMatMult(fs->C, fs->WHm, fs->U ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &fs->U));
   PetscCall(MatTranspose(fs->U, fs->Ut ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &fs->Ut));
   PetscCall(MatMatMult(fs->C, fs->Ut, fs->Wk ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &fs->Wk));
@@ -211,6 +255,12 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
   fs.nc     = nc;
   fs.n3     = n3;
   fs.M      = M;
+  {
+    PetscBool dense, aij;
+    PetscCall(PetscStrcmp(fast->wh_mat_type, MATSEQDENSE, &dense));
+    PetscCall(PetscStrcmp(fast->frames_mat_type, MATSEQAIJ, &aij));
+    fs.host = (PetscBool)(dense && aij);
+  }
   /* W_H once per step: the bodies' builders on the contacts in identity frames */
   PetscCall(FCContactSetCopy(set, &fs.H));
   for (PetscInt k = 0; k < nc; k++) {
