@@ -236,6 +236,49 @@ void FCComplianceAddColumn(PetscInt ncols, PetscInt ns, const PetscInt cptr[], c
   }
 }
 
+/* Row a of W_b = J_T C J_T^T is (J_T C)(a, :) J_T^T: the row q = (J_T C)(a, :) combines the columns
+   of C (C symmetric: a column is a row) that row a of J_T touches, 1 to 9 of them, one pass of nt
+   each; then W_b(a, b) = sum over row b of J_T of q at its columns. J_T by rows comes from its
+   columns by one transposition. Per row, 2 passes of nt and ncols over data that stays in cache,
+   where FCComplianceAddColumn cleared and scattered into a work vector of ncols for every column
+   of C (on the 36k box, 1440 contact rows: 14 ms of the 20 ms compliance phase a step) */
+PetscErrorCode FCComplianceAddCongruence(PetscInt ncols, PetscInt nt, const PetscInt cptr[], const PetscInt crow[],
+                                         const PetscReal cval[], const PetscInt pos[], PetscInt ldc,
+                                         const PetscReal C[], PetscReal Wb[])
+{
+  PetscInt  *rptr, *rcol, *fill, nnz = cptr[nt];
+  PetscReal *rval, *q;
+
+  PetscFunctionBegin;
+  PetscCall(PetscCalloc3(ncols + 1, &rptr, nnz + 1, &rcol, ncols + 1, &fill));
+  PetscCall(PetscMalloc2(nnz + 1, &rval, nt + 1, &q));
+  for (PetscInt k = 0; k < nnz; k++) rptr[crow[k] + 1]++;
+  for (PetscInt a = 0; a < ncols; a++) rptr[a + 1] += rptr[a];
+  for (PetscInt i = 0; i < nt; i++) /* J_T by rows: the T index of each entry, and its value */
+    for (PetscInt k = cptr[i]; k < cptr[i + 1]; k++) {
+      PetscInt at = rptr[crow[k]] + fill[crow[k]]++;
+      rcol[at]    = i;
+      rval[at]    = cval[k];
+    }
+  for (PetscInt a = 0; a < ncols; a++) {
+    PetscReal *w = Wb + a * ncols;
+    if (rptr[a] == rptr[a + 1]) continue;
+    for (PetscInt i = 0; i < nt; i++) q[i] = 0.0;
+    for (PetscInt k = rptr[a]; k < rptr[a + 1]; k++) { /* q += J_T(a, t) C(:, t) */
+      const PetscReal *c = C + pos[rcol[k]] * ldc, v = rval[k];
+      for (PetscInt i = 0; i < nt; i++) q[i] += v * c[pos[i]];
+    }
+    for (PetscInt b = 0; b < ncols; b++) { /* W_b(a, b) += q . J_T(b, :) */
+      PetscReal sum = 0.0;
+      for (PetscInt k = rptr[b]; k < rptr[b + 1]; k++) sum += rval[k] * q[rcol[k]];
+      w[b] += sum;
+    }
+  }
+  PetscCall(PetscFree3(rptr, rcol, fill));
+  PetscCall(PetscFree2(rval, q));
+  PetscFunctionReturn(0);
+}
+
 /* Forgets the step's contact columns */
 static PetscErrorCode Reset(FCCompliance comp)
 {

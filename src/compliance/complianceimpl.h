@@ -49,6 +49,13 @@ PETSC_INTERN PetscErrorCode FCComplianceContactDofs(FCCompliance, PetscInt *ns, 
 PETSC_INTERN void FCComplianceAddColumn(PetscInt ncols, PetscInt ns, const PetscInt cptr[], const PetscInt crow[],
                                         const PetscReal cval[], PetscInt j, const PetscScalar Ccol[], PetscReal T[],
                                         PetscReal Wb[]);
+/* W_b += J_T C J_T^T for a dense C given whole: C(pos[i], pos[k]) is the entry of the contact DOFs
+   T[i], T[k] in an ldc x ldc symmetric column-major array (J_T by columns as FCComplianceContactDofs
+   returns it, nt of them); row by row of W_b, without the column loop's scattered writes */
+PETSC_INTERN PetscErrorCode FCComplianceAddCongruence(PetscInt ncols, PetscInt nt, const PetscInt cptr[],
+                                                      const PetscInt crow[], const PetscReal cval[],
+                                                      const PetscInt pos[], PetscInt ldc, const PetscReal C[],
+                                                      PetscReal Wb[]);
 /* Whether the body's KSP is preonly + Cholesky by MUMPS (the default) */
 PETSC_INTERN PetscErrorCode FCComplianceBodySolverIsMumps(FCCompliance, PetscBool *);
 /* The factor of A (the body's KSP) */
