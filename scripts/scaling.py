@@ -471,7 +471,7 @@ def write_doc(a, rows):
           "O(N^2) flops for a 3D mesh, with a parallel efficiency below 1), the correction (one solve, or the product "
           "with the kept A^-1 J^T columns for `dense`), the collision detection of each rank's own surface vertices;",
           "- **W_H, by builder**: `condensed` costs the Schur-ordered factorization when the contacts leave S (a "
-          "linear body in steady contact: never) and a dense inversion of |S| with it (ScaLAPACK over the ranks since issue 16, `-compliance_condensed_inverse`), then products on rank 0 "
+          "linear body in steady contact: never) and a dense inversion of |S| with it (on rank 0: ScaLAPACK over the ranks, `-compliance_condensed_inverse scalapack`, was not faster here), then products on rank 0 "
           "that do not shrink with p; `redundant` splits the |S| columns of (A^-1)_SS over the ranks, each computed from a "
           "sequential factor: its time falls like 1/p (the table shows the 1 to 2 rank ratio), until the sum of the "
           "partial W_b (an Allreduce of (3m)^2 numbers) dominates. `dense` solves all columns with the distributed "

@@ -18,11 +18,11 @@ SCENES = [("default", ["-options_file", "input/default.opts", "-time_steps", "25
           ("grasp_rotate", ["-options_file", "input/grasp_rotate.opts", "-time_steps", "12"]),
           ("two_cubes", ["-options_file", "input/two_cubes.opts", "-time_steps", "20", "-contact_fe_passes", "1"]),
           ("box_on_slab", ["-options_file", "input/box_on_slab.opts", "-time_steps", "20"]),
-          # Sigma^-1 of the condensed builder by LAPACK on rank 0 instead of ScaLAPACK on the ranks
-          ("cube_drop, -compliance_condensed_inverse host", ["-options_file", "input/cube_drop.opts", "-time_steps", "25",
-                                                             "-compliance_condensed_inverse", "host"]),
-          # the contact problem solved on rank 0 and broadcast instead of on every rank
-          ("cube_drop, -pgs_ranks root", ["-options_file", "input/cube_drop.opts", "-time_steps", "25", "-pgs_ranks", "root"]),
+          # Sigma^-1 of the condensed builder by ScaLAPACK on the ranks instead of LAPACK on rank 0
+          ("cube_drop, -compliance_condensed_inverse scalapack", ["-options_file", "input/cube_drop.opts", "-time_steps",
+                                                                  "25", "-compliance_condensed_inverse", "scalapack"]),
+          # the contact problem solved on every rank instead of on rank 0 (auto, at this size) and broadcast
+          ("cube_drop, -pgs_ranks all", ["-options_file", "input/cube_drop.opts", "-time_steps", "25", "-pgs_ranks", "all"]),
           # W_H from a sequential factor on every rank, 1/3 of the contact DOFs each (uneven shares)
           ("grasp_rotate, -compliance_type redundant", ["-options_file", "input/grasp_rotate.opts", "-time_steps", "12",
                                                         "-constraint_scheme", "fast", "-compliance_type", "redundant"]),

@@ -30,8 +30,10 @@
      -compliance_condensed_ring k   rings of surface neighbours around the contact DOFs in S (k >= 0,
                                     default 0: S is exactly the last step's contact DOFs)
      -compliance_condensed_inverse host|scalapack
-                                    where C = Sigma^-1 is formed: LAPACK on rank 0, or ScaLAPACK over
-                                    every rank of the body (the default; the same as host on 1 rank)
+                                    where C = Sigma^-1 is formed: LAPACK on rank 0 (the default), or
+                                    ScaLAPACK over every rank of the body (the same on 1 rank; not
+                                    faster on 2 ranks at 600-4800 rows, and 1.3x host in the run:
+                                    docs/scaling.md)
      -compliance_condensed_balance k
                                     k top levels of the nested dissection of the interior are
                                     bisections balanced in the vertex count and in the count of
@@ -374,7 +376,7 @@ PetscErrorCode FCComplianceCreate_Condensed(FCCompliance comp)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&cd));
-  cd->inverse              = INVERSE_SCALAPACK;
+  cd->inverse              = INVERSE_HOST; /* docs/scaling.md, "The inversion of the Schur complement" */
   comp->data               = cd;
   comp->factors            = PETSC_TRUE;
   comp->ops.setfromoptions = SetFromOptions_Condensed;

@@ -7,8 +7,9 @@
                 host: ns^3 flops shared, 2 ns^2 values moved.
 
    Both take Sigma's upper triangle (column-major, ns x ns, on the host) and leave the whole
-   symmetric C in the same array. On rank 0 alone the inversion was a serial part of the condensed
-   builder's factorization on several ranks (issue 16; both measured in docs/scaling.md). */
+   symmetric C in the same array. host is the default (-compliance_condensed_inverse): on this
+   VM's 2 ranks scalapack was no faster from 600 to 4800 rows, and slower in the solver (issue
+   16; both measured in docs/scaling.md). */
 #include "complianceimpl.h"
 #include <petscblaslapack.h>
 
