@@ -10,7 +10,8 @@ MUMPS Schur complement centralized on rank 0; inverse: MUMPS' selected entries o
 distributed factor; redundant: the same from a sequential factor on every rank, 1/p of the columns
 each; condensed, the default: (A^-1)_SS from the body's own factorization with the contact DOFs
 last), their peak memory per rank, and where the contact solver runs
-(-pgs_ranks all: replicated; root: rank 0 and a broadcast).
+(-pgs_ranks auto, the default: split over the ranks from 900 rows, which every scene here has;
+root: rank 0 and a broadcast; all: replicated on every rank).
 
 Per-phase times per step come from the HDF5 rows /steps/timing/<phase> (max over ranks, set-up
 excluded); the set-up (load, distribution, first assembly and factorization) from the wall time
@@ -219,31 +220,31 @@ def main():
         return h
 
     # strong scaling, and the W_H builders, on the 36k scene; the contact solver where it runs by
-    # default (root: on rank 0, the others wait for its broadcast)
+    # default (auto: split over the ranks at these sizes)
     for ctype in BUILDERS:
         ref = None
         for np_ in ranks + check:
-            h = rec("strong", "36k", ctype, "root", np_, ref)
+            h = rec("strong", "36k", ctype, "auto", np_, ref)
             ref = h if ref is None else ref
     # the co-rotational cube (issue 16's second scene)
     ref = None
     for np_ in ranks + check:
-        h = rec("strong", "cube", "condensed", "root", np_, ref)
+        h = rec("strong", "cube", "condensed", "auto", np_, ref)
         ref = h if ref is None else ref
-    # where the contact solver runs: replicated on every rank (-pgs_ranks all)
+    # where the contact solver runs: on rank 0, the others waiting for its broadcast (-pgs_ranks root)
     for sc in ("36k", "cube"):
         for np_ in ranks[1:]:
-            rec("solver", sc, "condensed", "all", np_)
+            rec("solver", sc, "condensed", "root", np_)
     # the 149k scene (not dense: J^T and A^-1 J^T would be 2 x 149k x 4800 doubles, 11 GB)
     for ctype in BUILDERS[1:]:
         ref = None
         for np_ in ranks:
-            h = rec("strong", "150k", ctype, "root", np_, ref)
+            h = rec("strong", "150k", ctype, "auto", np_, ref)
             ref = h if ref is None else ref
     # weak scaling: ~18k DOFs per rank
-    rec("weak", "18k", "condensed", "root", 1)
+    rec("weak", "18k", "condensed", "auto", 1)
     for np_ in ranks[1:]:
-        rec("weak", "36k" if np_ == 2 else "150k", "condensed", "root", np_)
+        rec("weak", "36k" if np_ == 2 else "150k", "condensed", "auto", np_)
 
     # memory: a gmsh file is read whole on rank 0; PETSc's HDF5 format in slices on every rank
     msh = big_mesh()
@@ -278,7 +279,8 @@ def repeat_pair(a):
     ratios = {(sc, v): [] for sc in ("36k", "cube") for v, _ in variants}
     print("`scripts/scaling.py --repeat-pair %d --steps %d%s` on %s (%s, %d cores): the 2-rank / 1-rank ratio of the "
           "step (mean of `/steps/wall_time`) and of each phase (means of `/steps/timing`), default builder "
-          "(`condensed`), `-pgs_ranks root`; each repeat runs 1 rank, then 2%s.\n"
+          "(`condensed`), the default contact solver placement (`-pgs_ranks auto`: split over the ranks at these "
+          "sizes); each repeat runs 1 rank, then 2%s.\n"
           % (a.repeat_pair, a.steps, " --versus '%s'" % a.versus if a.versus else "", time.strftime("%Y-%m-%d"),
              platform.machine(), os.cpu_count(),
              ", with the defaults, then with `%s`" % a.versus if a.versus else ""))
@@ -289,7 +291,7 @@ def repeat_pair(a):
     for k in range(a.repeat_pair):
         for sc in ("36k", "cube"):
             for i, (v, extra) in enumerate(variants):
-                args = scene(sc)[0] + ["-compliance_type", "condensed", "-pgs_ranks", "root"] + extra
+                args = scene(sc)[0] + ["-compliance_type", "condensed", "-pgs_ranks", "auto"] + extra
                 r1, h1 = run("pair%d_%s_np1" % (i, sc), args, 1, a.steps)
                 r2, h2 = run("pair%d_%s_np2" % (i, sc), args, 2, a.steps)
                 vc = ("`%s` | " % v) if a.versus else ""
@@ -437,7 +439,7 @@ def write_doc(a, rows):
     L += ["", "### Two ranks against one (issue 16: at most 0.65x)", "",
           "The 2-rank time over the 1-rank time of the same run of this script, per phase and for the whole step "
           "(wall time), for the two scenes of issue 16 with the default builder (`condensed`) and contact solver "
-          "placement (`-pgs_ranks root`):", "",
+          "placement (`-pgs_ranks auto`: split over the ranks at these sizes):", "",
           "| scene | step | " + " | ".join(ph.replace("_", " ") for ph in PHASES) + " | target 0.65x |",
           "|---|---:|" + "---:|" * len(PHASES) + "---|"]
     for sc in ("36k", "cube"):
@@ -477,9 +479,10 @@ def write_doc(a, rows):
           "partial W_b (an Allreduce of (3m)^2 numbers) dominates. `dense` solves all columns with the distributed "
           "factor, whose solve phase does not speed up on these sizes; `schur` and `inverse` gather the dense part "
           "on rank 0, so they are serial in effect;",
-          "- **replicated, does not shrink with p**: the contact solver (O(sweeps (3m)^2) a Newton iteration, "
-          "`-pgs_ranks all` on every rank or `root` on rank 0 and a broadcast of 3m numbers: the `solver` row shows "
-          "the difference), the W_k rebuild (O(M 3m 3) a Newton iteration), the frame and proximity updates (O(m)), "
+          "- **split**: the contact solver (O(sweeps (3m)^2) a Newton iteration), by default (`-pgs_ranks auto`) "
+          "over the ranks from 900 rows, each rank sweeping its block of contacts (O(sweeps 3m (3m/p))), with "
+          "`root` on rank 0 and a broadcast of 3m numbers (the `solver` rows);",
+          "- **replicated, does not shrink with p**: the W_k rebuild (O(M 3m 3) a Newton iteration), the frame and proximity updates (O(m)), "
           "and the gathered contact surfaces (O(surface) per rank);",
           "- **memory**: W_H, U, U^T and W_k are 8 ((3m)^2 + 2 M 3m + M^2) bytes on every rank (-contact_memory_limit "
           "stops a step that would exceed it); `redundant` adds a sequential factor of A on every rank (its fill "
@@ -490,10 +493,11 @@ def write_doc(a, rows):
           "Allreduce of the partial W_b ((3m)^2 numbers: 184 MB at 1600 contacts) stays small against W_H / p; "
           "`-compliance_redundant_groups k` keeps k copies instead of p when memory is short.", "",
           "So with `redundant` the W_H phase scales until the replicated contact phases set the floor: with m fixed, "
-          "the step time tends to t_serial (mostly PGS); with m growing like the surface (N^(2/3)), the replicated "
-          "O(m^2) work grows like N^(4/3) per rank while the distributed work shrinks like N/p, and the contact "
-          "solver dominates at scale. `-pgs_ranks split` shares the sweeps over the ranks (each rank its own block of "
-          "contacts, damped Jacobi between blocks: src/contact/pgs_split.c); its sweeps and times against the "
+          "the step time tends to t_serial (the W_k rebuild, the W_H assembly); with m growing like the surface "
+          "(N^(2/3)), the replicated O(m^2) work grows like N^(4/3) per rank while the distributed work shrinks like "
+          "N/p, and it dominates at scale. The contact solver's sweeps are split over the ranks by default "
+          "(`-pgs_ranks auto`: each rank its own block of contacts, damped Jacobi between blocks, rank 0 going on "
+          "alone where the split sweeps stall: src/contact/pgs_split.c, pgs.c); their sweeps and times against the "
           "replicated solver on 1, 2 and 4 ranks, up to the 149k box's 1600 contacts, are in "
           "[docs/contact-solver.md](contact-solver.md#split-over-the-ranks) (`scripts/bench_split.py`). The mesh "
           "partitioners (ptscotch, metis, simple) are compared in [docs/partitioners.md](partitioners.md).", "",

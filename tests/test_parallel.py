@@ -21,6 +21,9 @@ SCENES = [("default", ["-options_file", "input/default.opts", "-time_steps", "25
           # Sigma^-1 of the condensed builder by ScaLAPACK on the ranks instead of LAPACK on rank 0
           ("cube_drop, -compliance_condensed_inverse scalapack", ["-options_file", "input/cube_drop.opts", "-time_steps",
                                                                   "25", "-compliance_condensed_inverse", "scalapack"]),
+          # Sigma^-1 from the host's Cholesky factor and each rank's block of columns of its inverse
+          ("cube_drop, -compliance_condensed_inverse columns", ["-options_file", "input/cube_drop.opts", "-time_steps",
+                                                                "25", "-compliance_condensed_inverse", "columns"]),
           # the contact problem solved on every rank instead of on rank 0 (auto, at this size) and broadcast
           ("cube_drop, -pgs_ranks all", ["-options_file", "input/cube_drop.opts", "-time_steps", "25", "-pgs_ranks", "all"]),
           # W_H from a sequential factor on every rank, 1/3 of the contact DOFs each (uneven shares)

@@ -61,13 +61,16 @@ PETSC_INTERN PetscErrorCode FCComplianceBodySolverIsMumps(FCCompliance, PetscBoo
 /* The factor of A (the body's KSP) */
 PETSC_INTERN PetscErrorCode FCComplianceGetFactor(FCCompliance, Mat *F);
 
+/* Where C = Sigma^-1 is formed (spdinverse.c; -compliance_condensed_inverse) */
+typedef enum { FC_SPD_INVERSE_HOST, FC_SPD_INVERSE_SCALAPACK, FC_SPD_INVERSE_COLUMNS } FCSPDInverseType;
+
 /* One MUMPS Cholesky factorization of A with a set S of DOFs ordered last (METIS nested
    dissection before them), giving C = (A^-1)_SS on rank 0 besides the solves (schurfactor.c) */
 typedef struct _FCSchurFactor *FCSchurFactor;
 /* distributed_inverse: C = Sigma^-1 by ScaLAPACK over the ranks, else LAPACK on rank 0;
    balance: top levels of the nested dissection bisected in balance of the vertices next to S */
-PETSC_INTERN PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], PetscBool distributed_inverse,
-                                                PetscInt balance, FCSchurFactor *);
+PETSC_INTERN PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSPDInverseType inverse, PetscInt balance,
+                                                FCSchurFactor *);
 /* rank 0: sorted DOFs, whole vertex blocks (the other ranks' arguments are ignored); collective */
 PETSC_INTERN PetscErrorCode FCSchurFactorSetSchur(FCSchurFactor, PetscInt ns, const PetscInt S[]);
 PETSC_INTERN PetscErrorCode FCSchurFactorFactor(FCSchurFactor, Mat A);
@@ -83,7 +86,7 @@ PETSC_INTERN PetscErrorCode FCSchurFactorDestroy(FCSchurFactor *);
 /* C = Sigma^-1 of a dense SPD matrix held by rank 0 of comm: LAPACK there, or ScaLAPACK over
    every rank of comm (spdinverse.c) */
 typedef struct _FCSPDInverse *FCSPDInverse;
-PETSC_INTERN PetscErrorCode   FCSPDInverseCreate(MPI_Comm, const char name[], PetscBool distributed, FCSPDInverse *);
+PETSC_INTERN PetscErrorCode   FCSPDInverseCreate(MPI_Comm, const char name[], FCSPDInverseType, FCSPDInverse *);
 /* rank 0: a = the upper triangle of Sigma (column-major ns x ns) in, the whole C out; collective */
 PETSC_INTERN PetscErrorCode FCSPDInverseApply(FCSPDInverse, PetscInt ns, PetscReal a[]);
 PETSC_INTERN PetscErrorCode FCSPDInverseDestroy(FCSPDInverse *);

@@ -29,10 +29,11 @@
    Options:
      -compliance_condensed_ring k   rings of surface neighbours around the contact DOFs in S (k >= 0,
                                     default 0: S is exactly the last step's contact DOFs)
-     -compliance_condensed_inverse host|scalapack
-                                    where C = Sigma^-1 is formed: LAPACK on rank 0 (the default), or
-                                    ScaLAPACK over every rank of the body (the same on 1 rank; not
-                                    faster on 2 ranks at 600-4800 rows, and 1.3x host in the run:
+     -compliance_condensed_inverse host|scalapack|columns
+                                    where C = Sigma^-1 is formed: LAPACK on rank 0 (host, the
+                                    default), ScaLAPACK over every rank of the body, or the host's
+                                    Cholesky factor and each rank's block of columns of its inverse
+                                    (columns). All the same on 1 rank (spdinverse.c; measured in
                                     docs/scaling.md)
      -compliance_condensed_balance k
                                     k top levels of the nested dissection of the interior are
@@ -46,7 +47,7 @@
 typedef struct {
   FCSchurFactor sf;
   PetscInt      ring;
-  PetscInt      inverse; /* INVERSE_HOST, INVERSE_SCALAPACK */
+  PetscInt      inverse; /* FCSPDInverseType */
   PetscInt      balance; /* -compliance_condensed_balance */
   PetscBool    *surf;    /* host: per vertex block, a non-fixed boundary vertex */
   PetscInt      nT, *T;  /* host: the DOFs of the last build's contacts */
@@ -62,8 +63,7 @@ typedef struct {
 
 static PetscLogEvent EV_PRODUCTS; /* "CondensedWb": W_b = J_T C J_T^T computed (not reused) */
 
-enum { INVERSE_HOST, INVERSE_SCALAPACK };
-static const char *const InverseTypes[] = {"host", "scalapack"};
+static const char *const InverseTypes[] = {"host", "scalapack", "columns"}; /* FCSPDInverseType's order */
 
 static PetscErrorCode SetFromOptions_Condensed(FCCompliance comp, PetscOptionItems *PetscOptionsObject)
 {
@@ -71,8 +71,9 @@ static PetscErrorCode SetFromOptions_Condensed(FCCompliance comp, PetscOptionIte
 
   PetscFunctionBegin;
   PetscCall(PetscOptionsEList("-compliance_condensed_inverse",
-                              "Where Sigma^-1 is formed: rank 0 (LAPACK) or every rank (ScaLAPACK)", NULL, InverseTypes,
-                              2, InverseTypes[cd->inverse], &cd->inverse, NULL));
+                              "Where Sigma^-1 is formed: rank 0 (LAPACK), every rank (ScaLAPACK), or the host's "
+                              "Cholesky factor and the ranks' blocks of columns of its inverse",
+                              NULL, InverseTypes, 3, InverseTypes[cd->inverse], &cd->inverse, NULL));
   PetscCall(FCOptionsInt(PetscOptionsObject, "-compliance_condensed_ring",
                          "Rings of surface neighbours around contact DOFs in the Schur block", &cd->ring, NULL));
   PetscCheck(cd->ring >= 0, comp->ctx.comm, PETSC_ERR_USER_INPUT,
@@ -103,8 +104,7 @@ static PetscErrorCode SetUp_Condensed(FCCompliance comp)
   PetscCallMPI(MPI_Comm_size(comp->ctx.comm, &size));
   PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
   if (!EV_PRODUCTS) PetscCall(PetscLogEventRegister("CondensedWb", FC_CLASSID, &EV_PRODUCTS));
-  PetscCall(FCSchurFactorCreate(comp->ctx.A, comp->ctx.name, (PetscBool)(cd->inverse == INVERSE_SCALAPACK), cd->balance,
-                                &cd->sf));
+  PetscCall(FCSchurFactorCreate(comp->ctx.A, comp->ctx.name, (FCSPDInverseType)cd->inverse, cd->balance, &cd->sf));
   if (!rank) PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
   PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, 0, comp->ctx.comm));
   if (!rank) {
@@ -376,7 +376,7 @@ PetscErrorCode FCComplianceCreate_Condensed(FCCompliance comp)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&cd));
-  cd->inverse              = INVERSE_HOST; /* docs/scaling.md, "The inversion of the Schur complement" */
+  cd->inverse              = FC_SPD_INVERSE_HOST; /* docs/scaling.md, "The inversion of the Schur complement" */
   comp->data               = cd;
   comp->factors            = PETSC_TRUE;
   comp->ops.setfromoptions = SetFromOptions_Condensed;

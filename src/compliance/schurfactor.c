@@ -160,7 +160,7 @@ static PetscErrorCode GatherGraph(FCSchurFactor f, Mat A)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], PetscBool distributed_inverse, PetscInt balance,
+PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSPDInverseType inverse, PetscInt balance,
                                    FCSchurFactor *sf)
 {
   FCSchurFactor f;
@@ -193,7 +193,7 @@ PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], PetscBool distribut
   PetscCall(MatCreateVecs(A, &b, NULL));
   PetscCall(VecScatterCreateToZero(b, &f->tohost, &f->bseq));
   PetscCall(VecDestroy(&b));
-  PetscCall(FCSPDInverseCreate(f->comm, name, distributed_inverse, &f->inv));
+  PetscCall(FCSPDInverseCreate(f->comm, name, inverse, &f->inv));
 
   f->id.job          = -1;
   f->id.par          = 1;

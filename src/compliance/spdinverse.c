@@ -4,12 +4,20 @@
      host       LAPACK potrf + potri on the host alone, the other ranks idle; or
      scalapack  the host's array redistributed block-cyclically over a 1 x p BLACS grid of all
                 the ranks (pdgemr2d), ScaLAPACK pdpotrf + pdpotri there, C gathered back to the
-                host: ns^3 flops shared, 2 ns^2 values moved.
+                host: ns^3 flops shared, 2 ns^2 values moved; or
+     columns    the Cholesky factor on the host (Sigma = U^T U, ns^3/3 flops), broadcast; each rank
+                forms a block of columns J of X = U^-1 and its share X(:, J) X(:, J)^T of
+                C = X X^T; the shares are summed on the host (MPI_Reduce): the 2 ns^3/3 flops of
+                potri split over the ranks, 2 ns^2 values moved. The blocks are balanced by the
+                cost of a column of X, which grows like j^2 (the block of the last columns is the
+                narrowest).
 
    Both take Sigma's upper triangle (column-major, ns x ns, on the host) and leave the whole
    symmetric C in the same array. host is the default (-compliance_condensed_inverse): on this
-   VM's 2 ranks scalapack was no faster from 600 to 4800 rows, and slower in the solver (issue
-   16; both measured in docs/scaling.md). */
+   VM's 2 ranks scalapack was no faster from 600 to 4800 rows; columns was 0.76-0.87x of host
+   from 1400 rows in bench_spdinverse, slower at 972, and no faster in the solver at 1692 (the
+   36k box: rank 1 comes late from its share of MUMPS' factorization) (issue 16; measured in
+   docs/scaling.md). */
 #include "complianceimpl.h"
 #include <petscblaslapack.h>
 
@@ -26,6 +34,10 @@ extern void Cpdgemr2d(int m, int n, double *a, int ia, int ja, int *desca, doubl
                       int gcontext);
 extern void pdpotrf_(const char *uplo, const int *n, double *a, const int *ia, const int *ja, const int *desca,
                      int *info);
+extern void dtrtri_(const char *uplo, const char *diag, const int *n, double *a, const int *lda, int *info);
+extern void dlauum_(const char *uplo, const int *n, double *a, const int *lda, int *info);
+extern void dtrmm_(const char *side, const char *uplo, const char *transa, const char *diag, const int *m, const int *n,
+                   const double *alpha, const double *a, const int *lda, double *b, const int *ldb);
 extern void pdpotri_(const char *uplo, const int *n, double *a, const int *ia, const int *ja, const int *desca,
                      int *info);
 
@@ -37,16 +49,17 @@ struct _FCSPDInverse {
   MPI_Comm    comm;
   PetscMPIInt rank, size;
   char        name[FC_MAX_NAME];
-  PetscBool   distributed;
-  int         sys;       /* BLACS handle of comm */
-  int         ctxt_all;  /* 1 x size grid */
-  int         ctxt_host; /* 1 x 1 grid on the host (-1 elsewhere) */
+  PetscBool   distributed; /* scalapack */
+  PetscBool   columns;     /* columns */
+  int         sys;         /* BLACS handle of comm */
+  int         ctxt_all;    /* 1 x size grid */
+  int         ctxt_host;   /* 1 x 1 grid on the host (-1 elsewhere) */
   int         mycol;
   PetscInt    nalloc;
   PetscReal  *loc; /* this rank's block-cyclic columns (ns x nloc) */
 };
 
-PetscErrorCode FCSPDInverseCreate(MPI_Comm comm, const char name[], PetscBool distributed, FCSPDInverse *inv)
+PetscErrorCode FCSPDInverseCreate(MPI_Comm comm, const char name[], FCSPDInverseType type, FCSPDInverse *inv)
 {
   FCSPDInverse v;
 
@@ -56,7 +69,8 @@ PetscErrorCode FCSPDInverseCreate(MPI_Comm comm, const char name[], PetscBool di
   PetscCallMPI(MPI_Comm_rank(comm, &v->rank));
   PetscCallMPI(MPI_Comm_size(comm, &v->size));
   PetscCall(PetscStrncpy(v->name, name, sizeof(v->name)));
-  v->distributed = (PetscBool)(distributed && v->size > 1);
+  v->distributed = (PetscBool)(type == FC_SPD_INVERSE_SCALAPACK && v->size > 1);
+  v->columns     = (PetscBool)(type == FC_SPD_INVERSE_COLUMNS && v->size > 1);
   if (v->distributed) {
     int nprow, npcol, myrow;
     v->sys      = Csys2blacs_handle(comm);
@@ -88,13 +102,95 @@ static PetscErrorCode Reserve(FCSPDInverse v, int n)
   PetscFunctionReturn(0);
 }
 
+/* First column of each rank's block (cut[0 .. size]): the cost of the columns up to j grows like
+   j^3, so cut[r] = n (r / size)^(1/3) */
+static void ColumnCuts(int n, PetscMPIInt size, int cut[])
+{
+  for (PetscMPIInt r = 0; r <= size; r++) cut[r] = (int)PetscFloorReal(n * PetscCbrtReal((PetscReal)r / size) + 0.5);
+  cut[0]    = 0;
+  cut[size] = n;
+}
+
+/* columns: U (upper, n x n, lda n) on every rank; this rank adds X(:, J) X(:, J)^T to c (upper
+   triangle, n x n, zero on entry) for its columns J = [j0, j1) of X = U^-1:
+     X(J, J)  = U(J, J)^-1                       (trtri)
+     X(0:j0, J) = -U(0:j0, 0:j0)^-1 U(0:j0, J) X(J, J)   (trmm, trsm)
+   and the product in three parts, the diagonal block by lauum */
+static PetscErrorCode ColumnsShare(FCSPDInverse v, int n, const PetscReal u[], int j0, int j1, PetscReal c[])
+{
+  int        m = j1 - j0, info = 0;
+  PetscReal *xjj, *b = NULL, one = 1.0, mone = -1.0;
+
+  PetscFunctionBegin;
+  if (!m) PetscFunctionReturn(0);
+  PetscCall(PetscCalloc1((size_t)m * m, &xjj));
+  for (int j = 0; j < m; j++)
+    for (int i = 0; i <= j; i++) xjj[i + j * m] = u[(j0 + i) + (j0 + j) * (size_t)n];
+  dtrtri_("U", "N", &m, xjj, &m, &info);
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK trtri on the Cholesky factor of body '%s': %d", v->name,
+             info);
+  if (j0) {
+    PetscBLASInt bj0, bm;
+    PetscCall(PetscMalloc1((size_t)j0 * m, &b));
+    for (int j = 0; j < m; j++) PetscCall(PetscArraycpy(b + (size_t)j * j0, u + (size_t)(j0 + j) * n, j0));
+    dtrmm_("R", "U", "N", "N", &j0, &m, &mone, xjj, &m, b, &j0); /* -U(0:j0, J) X(J, J) */
+    PetscCall(PetscBLASIntCast(j0, &bj0));
+    PetscCall(PetscBLASIntCast(m, &bm));
+    { /* b = U(0:j0, 0:j0)^-1 b: X(0:j0, J) */
+      PetscBLASInt bn = (PetscBLASInt)n;
+      PetscCallBLAS("BLAStrsm", BLAStrsm_("L", "U", "N", "N", &bj0, &bm, &one, u, &bn, b, &bj0));
+      /* c(0:j0, 0:j0) += b b^T; c(0:j0, J) += b X(J, J)^T (X(J, J) upper, its lower part zero) */
+      PetscCallBLAS("BLASsyrk", BLASsyrk_("U", "N", &bj0, &bm, &one, b, &bj0, &one, c, &bn));
+      PetscCallBLAS("BLASgemm",
+                    BLASgemm_("N", "T", &bj0, &bm, &bm, &one, b, &bj0, xjj, &bm, &one, c + (size_t)j0 * n, &bn));
+    }
+    PetscCall(PetscFree(b));
+  }
+  dlauum_("U", &m, xjj, &m, &info); /* X(J, J) X(J, J)^T, upper */
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK lauum on the Schur complement of body '%s': %d",
+             v->name, info);
+  for (int j = 0; j < m; j++)
+    for (int i = 0; i <= j; i++) c[(j0 + i) + (size_t)(j0 + j) * n] += xjj[i + j * m];
+  PetscCall(PetscFree(xjj));
+  PetscFunctionReturn(0);
+}
+
 /* The host's a (ns x ns, column-major, upper triangle of Sigma) becomes C = Sigma^-1 (whole).
    Collective. */
 PetscErrorCode FCSPDInverseApply(FCSPDInverse v, PetscInt ns, PetscReal a[])
 {
   PetscFunctionBegin;
   if (!ns) PetscFunctionReturn(0);
-  if (!v->distributed) {
+  if (v->columns) {
+    int        n, info = 0, *cut;
+    PetscReal *u, *c;
+    PetscCall(PetscMPIIntCast(ns, &n));
+    PetscCall(PetscMalloc1(v->size + 1, &cut));
+    PetscCall(PetscCalloc1((size_t)n * n, &c));
+    u = a;
+    if (v->rank) PetscCall(PetscMalloc1((size_t)n * n, &u));
+    if (!v->rank) {
+      PetscBLASInt bn, binfo;
+      PetscCall(PetscBLASIntCast(ns, &bn));
+      PetscCallBLAS("LAPACKpotrf", LAPACKpotrf_("U", &bn, a, &bn, &binfo));
+      info = (int)binfo;
+    }
+    PetscCallMPI(MPI_Bcast(&info, 1, MPI_INT, 0, v->comm)); /* one verdict */
+    PetscCheck(info == 0, v->comm, PETSC_ERR_CONV_FAILED,
+               "The Schur complement of A of body '%s' on its %d contact DOFs is not positive definite (LAPACK "
+               "potrf info %d)",
+               v->name, n, info);
+    PetscCallMPI(MPI_Bcast(u, n * n, MPIU_REAL, 0, v->comm));
+    ColumnCuts(n, v->size, cut);
+    PetscCall(ColumnsShare(v, n, u, cut[v->rank], cut[v->rank + 1], c));
+    PetscCallMPI(MPI_Reduce(v->rank ? c : MPI_IN_PLACE, c, n * n, MPIU_REAL, MPIU_SUM, 0, v->comm));
+    if (!v->rank)
+      PetscCall(PetscArraycpy(a, c, (size_t)n * n));
+    else
+      PetscCall(PetscFree(u));
+    PetscCall(PetscFree(c));
+    PetscCall(PetscFree(cut));
+  } else if (!v->distributed) {
     if (!v->rank) {
       PetscBLASInt n, info;
       PetscCall(PetscBLASIntCast(ns, &n));
@@ -133,9 +229,11 @@ PetscErrorCode FCSPDInverseApply(FCSPDInverse v, PetscInt ns, PetscReal a[])
                info);
     Cpdgemr2d(n, n, v->loc, 1, 1, dc, a, 1, 1, dh, v->ctxt_all);
   }
-  if (!v->rank) /* the lower triangle from the upper */
-    for (PetscInt j = 0; j < ns; j++)
-      for (PetscInt i = j + 1; i < ns; i++) a[i + j * ns] = a[j + i * ns];
+  if (!v->rank) /* the lower triangle from the upper, by tiles (a column read across rows strides ns) */
+    for (PetscInt j0 = 0; j0 < ns; j0 += 32)
+      for (PetscInt i0 = j0; i0 < ns; i0 += 32)
+        for (PetscInt j = j0; j < PetscMin(j0 + 32, ns); j++)
+          for (PetscInt i = PetscMax(i0, j + 1); i < PetscMin(i0 + 32, ns); i++) a[i + j * ns] = a[j + i * ns];
   PetscFunctionReturn(0);
 }
 
