@@ -13,7 +13,7 @@ solver on 1 rank, on bare problems run by tools/fclib_solve -dense.
   velocities; not converged, it says so and its residual is above 1e-8 by numpy too.
 - -pgs_ranks auto (the default; here from 1 row on, -pgs_split_min_rows 1) converges on every one
   of those problems: the split sweeps where they converge, else rank 0 goes on from their iterate
-  after -pgs_split_max_it sweeps (the stacks).
+  once they would not converge within -pgs_split_max_it sweeps (the stacks).
 - A whole scene with -pgs_ranks split on N ranks ends where the replicated run does (1e-8).
 Usage: test_contact_split.py --np N"""
 import os
@@ -80,7 +80,7 @@ for path in problems:
     ea = B.natural_map_error(W, q, mu, ra, d)
     c.check(resa <= 1e-8 and ea <= 1e-8,
             "%s: -pgs_ranks auto on %d ranks converges wherever the replicated solver does (%s): %d sweeps, residual "
-            "%.1e, numpy %.1e <= 1e-8" % (name, NP, "split alone converged" if ok and sn <= 200 else "rank 0 took over after 200 split sweeps", sa, resa, ea))
+            "%.1e, numpy %.1e <= 1e-8" % (name, NP, "split alone converged" if ok and sn <= 200 else "rank 0 took over from the split sweeps", sa, resa, ea))
     if ok and sn <= 200:
         c.check(sa == sn, "%s: auto on %d ranks sweeps as split does when split converges (%d, %d)" % (name, NP, sa, sn))
     tested += 1

@@ -47,7 +47,9 @@ PETSC_INTERN void FCContactProjectCone(PetscInt d, PetscReal mu, const PetscReal
 PETSC_INTERN PetscReal FCContactNaturalMapError2(PetscInt dim, PetscReal mu, const PetscReal r[], const PetscReal u[]);
 
 /* pgs_split.c: the sweeps split over the ranks of comm (-pgs_ranks split), dense W only; r in:
-   the warm start (the same on every rank), out: the forces (the same on every rank) */
+   the warm start (the same on every rank), out: the forces (the same on every rank). With
+   giveup, the sweeps stop early, unconverged, once their rate of convergence says they would not
+   reach tol within max_it (-pgs_ranks auto then goes on on rank 0) */
 PETSC_INTERN PetscErrorCode FCContactSolveSplit(MPI_Comm, FCContactProblem, PetscReal tol, PetscInt max_it,
-                                                PetscReal omega, PetscReal proximal, PetscReal damping, PetscReal r[],
-                                                PetscInt *sweeps, PetscReal *residual);
+                                                PetscReal omega, PetscReal proximal, PetscReal damping,
+                                                PetscBool giveup, PetscReal r[], PetscInt *sweeps, PetscReal *residual);

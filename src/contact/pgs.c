@@ -17,25 +17,22 @@
                            or the ranks split the sweeps, each its own block of contacts, damped
                            Jacobi between blocks (split: pgs_split.c; dense W, without NNCG). auto
                            (default): split from -pgs_split_min_rows rows on (default 900), and rank 0 goes
-                           on from the split iterate after -pgs_split_max_it split sweeps (default
-                           200) that did not converge (stacks: the Jacobi coupling stalls); smaller
+                           on from the split iterate when the split sweeps do not converge within
+                           -pgs_split_max_it (default 200; judged from their rate every 16 sweeps:
+                           stacks, where the Jacobi coupling stalls, hard problems); smaller
                            problems as root: their 1-rank and p-rank runs then agree to round-off
                            (split solutions differ within the tolerance: on the impact hard case,
                            711 rows, the ball rose 1.1e-8 m after landing on 2 ranks, which
-                           tests/test_hard_cases.py bounds by 1e-9 m). A solver with a per-sweep update (the fast scheme's
-                           -fast_update sweep, collective) runs on every rank; a sparse W is never
-                           split. Measured in docs/contact-solver.md ("Split over the ranks").
-     -pgs_split_damping t  with split or auto: each block takes t times its step, in (0, 1] (default
-                           0.8, measured on the 149k box and the cube: docs/contact-solver.md)
-     -pgs_acceleration none|nncg   nonsmooth nonlinear conjugate gradient on top of the sweeps
-                           (Silcowitz, Niebe, Erleben 2010): after a sweep with step g = r_k+1 - r_k,
-                           r += beta p, p = beta p + g, beta = |g|^2 / |g_prev|^2, restart when
-                           beta > 1; the iterate is projected on the cones, and a step that does not lower the residual
-                           is undone (back to the sweep's iterate, restart) (default nncg: 2-5x fewer
-                           sweeps on the FCLIB problems, docs/contact-solver.md)
-     -pgs_dump_problem f.hdf5   write the first contact problem with at least -pgs_dump_rows rows
-                           (default 1) in the FCLIB layout, for tools/bench_pgs, tools/fclib_solve or
-                           Siconos (rank 0; contacts with friction and without cannot be mixed); with
+                           tests/test_hard_cases.py bounds by 1e-9 m). A solver with a per-sweep update (the fast
+   scheme's -fast_update sweep, collective) runs on every rank; a sparse W is never split. Measured in
+   docs/contact-solver.md ("Split over the ranks"). -pgs_split_damping t  with split or auto: each block takes t times
+   its step, in (0, 1] (default 0.8, measured on the 149k box and the cube: docs/contact-solver.md) -pgs_acceleration
+   none|nncg   nonsmooth nonlinear conjugate gradient on top of the sweeps (Silcowitz, Niebe, Erleben 2010): after a
+   sweep with step g = r_k+1 - r_k, r += beta p, p = beta p + g, beta = |g|^2 / |g_prev|^2, restart when beta > 1; the
+   iterate is projected on the cones, and a step that does not lower the residual is undone (back to the sweep's
+   iterate, restart) (default nncg: 2-5x fewer sweeps on the FCLIB problems, docs/contact-solver.md) -pgs_dump_problem
+   f.hdf5   write the first contact problem with at least -pgs_dump_rows rows (default 1) in the FCLIB layout, for
+   tools/bench_pgs, tools/fclib_solve or Siconos (rank 0; contacts with friction and without cannot be mixed); with
                            -pgs_dump_unconverged, the first such problem the solver does not converge on
                            (the last linearization of the step), for a bug report */
 #include "contactimpl.h"
@@ -396,16 +393,19 @@ static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal
 static PetscErrorCode SolveSplit(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscFunctionBegin;
-  PetscCall(FCContactSolveSplit(s->comm, p, s->tol, s->max_it, s->omega, s->proximal, s->split_damping, r, &s->sweeps,
-                                &s->residual));
+  PetscCall(FCContactSolveSplit(s->comm, p, s->tol, s->max_it, s->omega, s->proximal, s->split_damping, PETSC_FALSE, r,
+                                &s->sweeps, &s->residual));
   s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
 /* -pgs_ranks auto on a large problem: at most -pgs_split_max_it split sweeps, which converge on FE
    contact zones in about as many sweeps as the replicated solver (docs/contact-solver.md); where
-   they do not (the Jacobi coupling between blocks: multibody stacks), rank 0 goes on from the split
-   iterate with the replicated sweeps and broadcasts the forces. Collective. */
+   they do not (the Jacobi coupling between blocks: multibody stacks; a hard FE problem that needs
+   hundreds of sweeps), rank 0 goes on from the split iterate with the replicated sweeps and
+   broadcasts the forces. The split sweeps stop as soon as their rate says they would not converge
+   within -pgs_split_max_it (pgs_split.c), so such a problem pays a few dozen of them, not all.
+   Collective. */
 static PetscErrorCode SolveSplitThenRoot(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscInt    max_it = s->max_it, split_sweeps;
@@ -414,7 +414,7 @@ static PetscErrorCode SolveSplitThenRoot(FCContactSolver s, FCContactProblem p, 
 
   PetscFunctionBegin;
   PetscCall(FCContactSolveSplit(s->comm, p, s->tol, PetscMin(max_it, s->split_max_it), s->omega, s->proximal,
-                                s->split_damping, r, &s->sweeps, &s->residual));
+                                s->split_damping, PETSC_TRUE, r, &s->sweeps, &s->residual));
   s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
   if (s->converged || s->sweeps >= max_it) PetscFunctionReturn(0);
   split_sweeps   = s->sweeps;
@@ -432,7 +432,8 @@ static PetscErrorCode SolveSplitThenRoot(FCContactSolver s, FCContactProblem p, 
   s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscInfo(NULL,
                       "split sweeps: residual %g after %" PetscInt_FMT
-                      " (-pgs_split_max_it); rank 0 went on: %" PetscInt_FMT " sweeps in all, residual %g\n",
+                      " (not converging within -pgs_split_max_it); rank 0 went on: %" PetscInt_FMT
+                      " sweeps in all, residual %g\n",
                       (double)split_residual, split_sweeps, s->sweeps, (double)s->residual));
   PetscFunctionReturn(0);
 }

@@ -71,12 +71,12 @@ static PetscErrorCode Residual(MPI_Comm comm, FCContactProblem p, PetscInt c0, P
 }
 
 PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal tol, PetscInt max_it, PetscReal omega,
-                                   PetscReal proximal, PetscReal damping, PetscReal r[], PetscInt *sweeps,
-                                   PetscReal *residual)
+                                   PetscReal proximal, PetscReal damping, PetscBool giveup, PetscReal r[],
+                                   PetscInt *sweeps, PetscReal *residual)
 {
   PetscMPIInt size, rank, *counts, *displs;
   PetscInt   *cfirst, c0, c1, lo, hi, nb, n = p->n;
-  PetscReal  *ub, *rprev, *ustart;
+  PetscReal  *ub, *rprev, *ustart, checkpoint = 0.0; /* giveup: the exact residual FC_SPLIT_EXACT sweeps ago */
 
   PetscFunctionBegin;
   PetscCheck(p->Wd, comm, PETSC_ERR_SUP, "Option -pgs_ranks split needs a dense W (the schemes' problems)");
@@ -134,9 +134,20 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
     /* Jacobi between blocks: every block's new forces to every rank, and their effect on u_b */
     PetscCallMPI(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, r, counts, displs, MPIU_REAL, comm));
     (*sweeps)++;
-    if (*sweeps % FC_SPLIT_EXACT == 0)
+    if (*sweeps % FC_SPLIT_EXACT == 0) {
       PetscCall(BlockVelocity(p, lo, hi, r, ub));
-    else {
+      if (giveup) { /* from the exact residuals FC_SPLIT_EXACT sweeps apart: the sweeps still needed */
+        PetscReal now, rate;
+        PetscCall(Residual(comm, p, c0, c1, lo, r, ub, &now));
+        rate = checkpoint > 0.0 ? now / checkpoint : 0.0;
+        if (checkpoint > 0.0 && now > tol &&
+            (rate >= 1.0 || *sweeps + FC_SPLIT_EXACT * PetscLogReal(tol / now) / PetscLogReal(rate) > max_it)) {
+          *residual = now;
+          break;
+        }
+        checkpoint = now;
+      }
+    } else {
       for (PetscInt j = 0; j < n; j++) rprev[j] = r[j] - rprev[j];
       PetscCall(AddOffBlock(p, lo, hi, rprev, ub));
     }
