@@ -665,19 +665,22 @@ else:
     compare("ball 20 m/s on 2 cm FE slab", ball_thin_slab(1, checks=False), ball_thin_slab(NP), tol=1e-6)
     compare("FE cube 20 m/s on 1 cm plate", cube_thin_plate(1, checks=False), cube_thin_plate(NP))
     compare("crossed bars edge-edge", crossed_bars(1, checks=False), crossed_bars(NP))
-    # the push-out carries the 0.1 m overlap in the right-hand sides of 88 contacts for 73 steps,
-    # with contacts switching on and off: it amplifies round-off, and MUMPS' parallel factorization
-    # is not bitwise reproducible from run to run. Measured, final centroids against 1 rank: two
-    # 2-rank runs 6.4e-8 and 9.4e-8 m (condensed), 2.1e-8 and 5.2e-8 m (redundant), up to 2.0e-7 m
-    # in earlier runs; 2-rank runs differ among themselves by as much. Bound 1e-6 m (1e-6 of the
-    # 1 m bodies), 5x the largest seen
     # two-way FE-FE with dormant second-pass contacts, N ranks against 1. The landing (step 10) on
     # the very soft cube amplifies MUMPS' parallel round-off, which is not the same from run to run:
     # measured, final centroids of 2-rank runs against 1 rank either 2-4e-11 m or 2.5e-7 m (5 runs:
     # one at 2.5e-7; one-way detection, as before issue 15, 3 of 6 runs), the same contacts and
     # sweeps at every step. Bound 1e-6 m (1e-6 of the 1 m cubes), 4x the largest seen
     compare("stiffness 1e9/1e3 two-way", stiffness_contrast(1, checks=False), stiffness_contrast(NP, checks=False), tol=1e-6)
-    compare("FE cubes start 0.1 m inside", start_inside(1, checks=False), start_inside(NP), tol=1e-6)
+    # the push-out carries the 0.1 m overlap in the right-hand sides of 88 contacts for 73 steps,
+    # with contacts switching on and off: it amplifies round-off, and MUMPS' parallel factorization
+    # is not bitwise reproducible from run to run. Measured, final centroids against 1 rank: two
+    # 2-rank runs 6.4e-8 and 9.4e-8 m (condensed), 2.1e-8 and 5.2e-8 m (redundant), up to 2.0e-7 m
+    # in earlier runs; 2-rank runs differ among themselves by as much. The outcomes are discrete
+    # (a contact decision that goes one way or the other): 2026-11-24, 16 2-rank runs of the binary
+    # of stop 27 (387144b) gave 1e-15 to 6.1e-8 m in 13 and 2.1e-6 m in 3, and 16 of this stop's
+    # binary 2.1e-6 m in 1, as did one CI run of it, which failed the old bound (1e-6 m, set from
+    # fewer runs). Bound 1e-5 m (1e-5 of the 1 m bodies), 5x the largest seen
+    compare("FE cubes start 0.1 m inside", start_inside(1, checks=False), start_inside(NP), tol=1e-5)
     compare("stack started 1.5 cm inside", stack_overlap(1, checks=False), stack_overlap(NP))
     compare("orbit 100 rad/s over a ball", orbit(1, checks=False), orbit(NP))
 
