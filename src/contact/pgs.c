@@ -20,7 +20,7 @@
                            on from the split iterate when the split sweeps do not converge within
                            -pgs_split_max_it (default 200; judged from their rate every 16 sweeps:
                            stacks, where the Jacobi coupling stalls, hard problems); smaller
-                           problems as root: their 1-rank and p-rank runs then agree to round-off
+                           problems as root, whose forces are the 1-rank solver's to round-off
                            (split solutions differ within the tolerance: on the impact hard case,
                            711 rows, the ball rose 1.1e-8 m after landing on 2 ranks, which
                            tests/test_hard_cases.py bounds by 1e-9 m). A solver with a per-sweep update (the fast
