@@ -12,38 +12,52 @@
                            s = rho tr(W_ii)/d_i. A fixed point is a solution of the original problem,
                            and the local problems stay well-posed when W_ii is (nearly) singular or
                            contacts are redundant (>= 0, default 0)
-     -pgs_ranks auto|all|root|split   on several ranks: every rank solves the replicated problem
-                           (all, no communication), rank 0 does and broadcasts the forces (root),
-                           or the ranks split the sweeps, each its own block of contacts, damped
-                           Jacobi between blocks (split: pgs_split.c; dense W, without NNCG). auto
-                           (default): split from -pgs_split_min_rows rows on (default 900), and rank 0 goes
-                           on from the split iterate when the split sweeps do not converge within
-                           -pgs_split_max_it (default 200; judged from their rate every 16 sweeps:
-                           stacks, where the Jacobi coupling stalls, hard problems); smaller
-                           problems as root, whose forces are the 1-rank solver's to round-off
-                           (split solutions differ within the tolerance: on the impact hard case,
-                           711 rows, the ball rose 1.1e-8 m after landing on 2 ranks, which
-                           tests/test_hard_cases.py bounds by 1e-9 m). A solver with a per-sweep update (the fast
-   scheme's -fast_update sweep, collective) runs on every rank; a sparse W is never split. Measured in
-   docs/contact-solver.md ("Split over the ranks"). -pgs_split_damping t  with split or auto: each block takes t times
-   its step, in (0, 1] (default 0.8, measured on the 149k box and the cube: docs/contact-solver.md) -pgs_acceleration
-   none|nncg   nonsmooth nonlinear conjugate gradient on top of the sweeps (Silcowitz, Niebe, Erleben 2010): after a
-   sweep with step g = r_k+1 - r_k, r += beta p, p = beta p + g, beta = |g|^2 / |g_prev|^2, restart when beta > 1; the
-   iterate is projected on the cones, and a step that does not lower the residual is undone (back to the sweep's
-   iterate, restart) (default nncg: 2-5x fewer sweeps on the FCLIB problems, docs/contact-solver.md) -pgs_dump_problem
-   f.hdf5   write the first contact problem with at least -pgs_dump_rows rows (default 1) in the FCLIB layout, for
-   tools/bench_pgs, tools/fclib_solve or Siconos (rank 0; contacts with friction and without cannot be mixed); with
-                           -pgs_dump_unconverged, the first such problem the solver does not converge on
-                           (the last linearization of the step), for a bug report */
+     -pgs_ranks auto|all|root|split
+                           on several ranks: every rank solves the replicated problem (all, no
+                           communication), rank 0 does and broadcasts the forces (root), or the
+                           ranks split the sweeps, each its own block of contacts, damped Jacobi
+                           between blocks (split: pgs_split.c; dense W, without NNCG). auto
+                           (default): split from -pgs_split_min_rows rows on, and rank 0 goes on
+                           from the split iterate when the split sweeps will not converge within
+                           -pgs_split_max_it (judged from their rate every 16 sweeps: stacks, where
+                           the Jacobi coupling stalls, and hard problems); smaller problems as
+                           root, whose forces are the 1-rank solver's to round-off (a split
+                           solution differs within the tolerance: on the impact hard case, 711
+                           rows, the ball rose 1.1e-8 m after landing on 2 ranks, which
+                           tests/test_hard_cases.py bounds by 1e-9 m). A solver with a per-sweep
+                           update (the fast scheme's -fast_update sweep, collective) runs on every
+                           rank; a sparse W is never split. Measured in docs/contact-solver.md
+                           ("Split over the ranks")
+     -pgs_split_min_rows n with auto: the smallest problem split (>= 1, default 900)
+     -pgs_split_max_it n   with auto: the split sweeps before rank 0 takes over (>= 1, default 200)
+     -pgs_split_damping t  with split or auto: each block takes t times its step, in (0, 1]
+                           (default 0.8, measured on the 149k box and the cube:
+                           docs/contact-solver.md)
+     -pgs_acceleration none|nncg
+                           nonsmooth nonlinear conjugate gradient on top of the sweeps (Silcowitz,
+                           Niebe, Erleben 2010): after a sweep with step g = r_k+1 - r_k,
+                           r += beta p, p = beta p + g, beta = |g|^2 / |g_prev|^2, restart when
+                           beta > 1; the iterate is projected on the cones, and a step that does
+                           not lower the residual is undone (back to the sweep's iterate, restart)
+                           (default nncg: 2-5x fewer sweeps on the FCLIB problems,
+                           docs/contact-solver.md)
+     -pgs_dump_problem f.hdf5
+                           write the first contact problem with at least -pgs_dump_rows rows
+                           (default 1) in the FCLIB layout, for tools/bench_pgs, tools/fclib_solve
+                           or Siconos (rank 0; contacts with friction and without cannot be mixed);
+                           with -pgs_dump_unconverged, the first such problem the solver does not
+                           converge on (the last linearization of the step), for a bug report */
 #include "contactimpl.h"
+
+typedef enum { PGS_AUTO, PGS_ALL, PGS_ROOT, PGS_SPLIT } PGSPlacement; /* -pgs_ranks, in this order */
+static const char *const PGSPlacements[] = {"auto", "all", "root", "split"};
 
 struct _p_FCContactSolver {
   MPI_Comm                comm;
   PetscReal               tol, residual, omega, proximal;
   PetscInt                max_it, sweeps;
-  PetscBool               converged, nncg, root;    /* root: rank 0 solves and broadcasts (-pgs_ranks root) */
-  PetscBool               split;                    /* -pgs_ranks split: each rank sweeps its own block */
-  PetscBool               automatic;                /* -pgs_ranks auto: split from -pgs_split_min_rows, else root */
+  PetscBool               converged, nncg;
+  PetscInt                placement;                /* PGSPlacement (-pgs_ranks) */
   PetscReal               split_damping;            /* -pgs_split_damping */
   PetscInt                split_min_rows;           /* -pgs_split_min_rows (auto) */
   PetscInt                split_max_it;             /* -pgs_split_max_it (auto): then root from there */
@@ -63,8 +77,7 @@ PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
   (*solver)->max_it         = 1000;
   (*solver)->omega          = 1.0;
   (*solver)->nncg           = PETSC_TRUE;
-  (*solver)->root           = PETSC_TRUE; /* -pgs_ranks auto: docs/contact-solver.md */
-  (*solver)->automatic      = PETSC_TRUE;
+  (*solver)->placement      = PGS_AUTO; /* docs/contact-solver.md */
   (*solver)->dump_rows      = 1;
   (*solver)->split_damping  = 0.8;
   (*solver)->split_min_rows = 900;
@@ -88,21 +101,14 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
     PetscCall(PetscOptionsEList("-pgs_acceleration", "Acceleration of the sweeps", NULL, acc, 2, acc[a], &a, NULL));
     s->nncg = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
-  {
-    const char *where[] = {"auto", "all", "root", "split"};
-    PetscInt    a       = s->automatic ? 0 : (s->root ? 2 : (s->split ? 3 : 1));
-    PetscCall(PetscOptionsEList("-pgs_ranks",
-                                "Where the contact solver runs: by size, every rank, rank 0, or split by blocks", NULL,
-                                where, 4, where[a], &a, NULL));
-    s->automatic = a == 0 ? PETSC_TRUE : PETSC_FALSE;
-    s->root      = a == 2 ? PETSC_TRUE : PETSC_FALSE;
-    s->split     = a == 3 ? PETSC_TRUE : PETSC_FALSE;
-  }
-  if (s->split || s->automatic)
+  PetscCall(PetscOptionsEList("-pgs_ranks",
+                              "Where the contact solver runs: by size, every rank, rank 0, or split by blocks", NULL,
+                              PGSPlacements, 4, PGSPlacements[s->placement], &s->placement, NULL));
+  if (s->placement == PGS_SPLIT || s->placement == PGS_AUTO)
     PetscCall(FCOptionsReal(PetscOptionsObject, "-pgs_split_damping",
                             "With -pgs_ranks split or auto: the fraction of each block's step taken (0, 1]",
                             &s->split_damping, NULL));
-  if (s->automatic) {
+  if (s->placement == PGS_AUTO) {
     PetscCall(FCOptionsInt(PetscOptionsObject, "-pgs_split_min_rows",
                            "With -pgs_ranks auto: split the sweeps from this many rows on, below solve on rank 0",
                            &s->split_min_rows, NULL));
@@ -224,6 +230,7 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
 static PetscErrorCode SolveHere(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveSplit(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveSplitThenRoot(FCContactSolver, FCContactProblem, PetscReal[]);
+static PetscErrorCode SolveLazyHere(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveLazy(FCContactSolver, FCContactProblem, PetscReal[],
                                 PetscErrorCode (*)(FCContactSolver, FCContactProblem, PetscReal[]));
 
@@ -249,33 +256,55 @@ static PetscErrorCode Dump(FCContactSolver s, FCContactProblem p)
   PetscFunctionReturn(0);
 }
 
-/* The problem is replicated: every rank solves it (-pgs_ranks all, no communication), or rank 0
-   does and broadcasts the forces (-pgs_ranks root: the others wait) */
+/* Rank 0 runs inner, the others wait for its forces, sweeps, residual and woken dormant contacts */
+static PetscErrorCode OnRoot(FCContactSolver s, FCContactProblem p, PetscReal r[],
+                             PetscErrorCode (*inner)(FCContactSolver, FCContactProblem, PetscReal[]))
+{
+  PetscMPIInt rank;
+  PetscReal   info[3];
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  if (!rank) PetscCall((*inner)(s, p, r));
+  info[0] = (PetscReal)s->sweeps;
+  info[1] = s->residual;
+  info[2] = (PetscReal)s->converged;
+  PetscCallMPI(MPI_Bcast(info, 3, MPIU_REAL, 0, s->comm));
+  PetscCallMPI(MPI_Bcast(r, (PetscMPIInt)p->n, MPIU_REAL, 0, s->comm));
+  if (p->dormant) PetscCallMPI(MPI_Bcast(p->dormant, (PetscMPIInt)p->nc, MPIU_BOOL, 0, s->comm)); /* the woken */
+  s->sweeps    = (PetscInt)info[0];
+  s->residual  = info[1];
+  s->converged = info[2] != 0.0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SolveLazyHere(FCContactSolver s, FCContactProblem p, PetscReal r[])
+{
+  PetscFunctionBegin;
+  PetscCall(SolveLazy(s, p, r, SolveHere));
+  PetscFunctionReturn(0);
+}
+
+/* Where the replicated problem is solved (-pgs_ranks): split over the ranks (split; auto from
+   -pgs_split_min_rows rows), on every rank (all; on 1 rank; with a per-sweep update, which is
+   collective), or on rank 0, which broadcasts the forces (root; auto below that size) */
 PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
-  PetscMPIInt size, rank;
+  PetscMPIInt size;
+  PetscBool   splittable;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
-  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
   if (s->dump[0] && !s->dump_unconverged && !s->dumped && p->n >= s->dump_rows) PetscCall(Dump(s, p));
-  if (size > 1 && p->Wd && !s->update && (s->split || (s->automatic && p->n >= s->split_min_rows))) {
-    PetscCall(SolveLazy(s, p, r, s->split ? SolveSplit : SolveSplitThenRoot));
-  } else if ((!s->root && !s->automatic) || size == 1 || s->update) /* the update after each sweep is collective */
+  splittable = (PetscBool)(size > 1 && p->Wd && !s->update);
+  if (splittable && s->placement == PGS_SPLIT)
+    PetscCall(SolveLazy(s, p, r, SolveSplit));
+  else if (splittable && s->placement == PGS_AUTO && p->n >= s->split_min_rows)
+    PetscCall(SolveLazy(s, p, r, SolveSplitThenRoot));
+  else if (s->placement == PGS_ALL || size == 1 || s->update)
     PetscCall(SolveLazy(s, p, r, SolveHere));
-  else {
-    PetscReal info[3];
-    if (!rank) PetscCall(SolveLazy(s, p, r, SolveHere));
-    info[0] = (PetscReal)s->sweeps;
-    info[1] = s->residual;
-    info[2] = (PetscReal)s->converged;
-    PetscCallMPI(MPI_Bcast(info, 3, MPIU_REAL, 0, s->comm));
-    PetscCallMPI(MPI_Bcast(r, (PetscMPIInt)p->n, MPIU_REAL, 0, s->comm));
-    if (p->dormant) PetscCallMPI(MPI_Bcast(p->dormant, (PetscMPIInt)p->nc, MPIU_BOOL, 0, s->comm)); /* the woken */
-    s->sweeps    = (PetscInt)info[0];
-    s->residual  = info[1];
-    s->converged = info[2] != 0.0 ? PETSC_TRUE : PETSC_FALSE;
-  }
+  else
+    PetscCall(OnRoot(s, p, r, SolveLazyHere));
   if (s->dump[0] && s->dump_unconverged && !s->dumped && !s->converged && p->n >= s->dump_rows) PetscCall(Dump(s, p));
   PetscFunctionReturn(0);
 }
@@ -408,9 +437,8 @@ static PetscErrorCode SolveSplit(FCContactSolver s, FCContactProblem p, PetscRea
    Collective. */
 static PetscErrorCode SolveSplitThenRoot(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
-  PetscInt    max_it = s->max_it, split_sweeps;
-  PetscMPIInt rank;
-  PetscReal   info[2], split_residual;
+  PetscInt  max_it = s->max_it, split_sweeps;
+  PetscReal split_residual;
 
   PetscFunctionBegin;
   PetscCall(FCContactSolveSplit(s->comm, p, s->tol, PetscMin(max_it, s->split_max_it), s->omega, s->proximal,
@@ -419,17 +447,10 @@ static PetscErrorCode SolveSplitThenRoot(FCContactSolver s, FCContactProblem p, 
   if (s->converged || s->sweeps >= max_it) PetscFunctionReturn(0);
   split_sweeps   = s->sweeps;
   split_residual = s->residual;
-  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
-  s->max_it = max_it - split_sweeps;
-  if (!rank) PetscCall(SolveHere(s, p, r));
+  s->max_it      = max_it - split_sweeps;
+  PetscCall(OnRoot(s, p, r, SolveHere));
   s->max_it = max_it;
-  info[0]   = (PetscReal)s->sweeps;
-  info[1]   = s->residual;
-  PetscCallMPI(MPI_Bcast(info, 2, MPIU_REAL, 0, s->comm));
-  PetscCallMPI(MPI_Bcast(r, (PetscMPIInt)p->n, MPIU_REAL, 0, s->comm));
-  s->sweeps    = split_sweeps + (PetscInt)info[0];
-  s->residual  = info[1];
-  s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
+  s->sweeps += split_sweeps;
   PetscCall(PetscInfo(NULL,
                       "split sweeps: residual %g after %" PetscInt_FMT
                       " (not converging within -pgs_split_max_it); rank 0 went on: %" PetscInt_FMT
