@@ -56,7 +56,7 @@ typedef struct {
   PetscInt      nmiss;
   PetscBool     missed; /* the last build missed: keep a ring of margin at the next factorization */
   /* the last W_b, reused while neither the factor nor J_T changed (every rank holds it) */
-  PetscInt   wb_ncols, wb_nfactor, *wb_cptr, *wb_crow, *wb_T, wb_nT;
+  PetscInt   wb_ncols, wb_nfactor, *wb_cptr, *wb_crow;
   PetscReal *wb, *wb_cval;
   PetscInt   nreuse;
 } Condensed;
@@ -193,8 +193,8 @@ static PetscErrorCode Factor_Condensed(FCCompliance comp)
   PetscFunctionReturn(0);
 }
 
-/* Keeps W_b (every rank) and, on the host, what it was built from: J_T by columns (taken) and T
-   with the factor's count; elsewhere cptr, crow, cval are NULL */
+/* Keeps W_b (every rank) and, on the host, what it was built from: J_T by columns (taken) and the
+   factor's count (T is cd->T); elsewhere cptr, crow, cval are NULL */
 static PetscErrorCode KeepWb(Condensed *cd, PetscInt ncols, const PetscReal Wb[], PetscInt *cptr, PetscInt *crow,
                              PetscReal *cval)
 {
@@ -208,16 +208,10 @@ static PetscErrorCode KeepWb(Condensed *cd, PetscInt ncols, const PetscReal Wb[]
   PetscCall(PetscFree(cd->wb_cptr));
   PetscCall(PetscFree(cd->wb_crow));
   PetscCall(PetscFree(cd->wb_cval));
-  PetscCall(PetscFree(cd->wb_T));
   cd->wb_cptr = cptr;
   cd->wb_crow = crow;
   cd->wb_cval = cval;
-  if (cptr) { /* the host */
-    cd->wb_nT = cd->nT;
-    PetscCall(PetscMalloc1(cd->nT + 1, &cd->wb_T));
-    PetscCall(PetscArraycpy(cd->wb_T, cd->T, cd->nT));
-    PetscCall(FCSchurFactorGetCounts(cd->sf, NULL, &cd->wb_nfactor));
-  }
+  if (cptr) PetscCall(FCSchurFactorGetCounts(cd->sf, NULL, &cd->wb_nfactor)); /* the host */
   PetscFunctionReturn(0);
 }
 
@@ -230,45 +224,41 @@ static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FC
   PetscInt    ncols = comp->ncols, *cptr = NULL, *crow = NULL;
   PetscReal  *cval = NULL;
   PetscMPIInt rank;
-  PetscBool   miss = PETSC_FALSE;
+  PetscBool   flag[2] = {PETSC_FALSE, PETSC_FALSE}; /* a contact DOF outside S; the last W_b still holds */
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
   if (!rank) { /* T: the DOFs the contacts touch, and J_T by columns (every rank holds every entry of J_b) */
-    PetscInt        ns;
+    PetscInt        ns, nT, *T, nf;
     const PetscInt *S;
-    PetscCall(PetscFree(cd->T));
-    PetscCall(FCComplianceContactDofs(comp, &cd->nT, &cd->T, &cptr, &crow, &cval));
+    PetscCall(FCComplianceContactDofs(comp, &nT, &T, &cptr, &crow, &cval));
     PetscCall(FCSchurFactorGetInverse(cd->sf, &ns, &S, NULL));
-    for (PetscInt i = 0, at; i < cd->nT && !miss; i++) {
-      PetscCall(PetscFindInt(cd->T[i], ns, S, &at));
-      miss = (PetscBool)(at < 0);
+    for (PetscInt i = 0, at; i < nT && !flag[0]; i++) {
+      PetscCall(PetscFindInt(T[i], ns, S, &at));
+      flag[0] = (PetscBool)(at < 0);
     }
+    /* the same factor and the same J_T as the last build (whose T is still cd->T): the same W_b */
+    PetscCall(FCSchurFactorGetCounts(cd->sf, NULL, &nf));
+    flag[1] = (PetscBool)(!flag[0] && cd->wb && nf == cd->wb_nfactor && ncols == cd->wb_ncols && nT == cd->nT);
+    if (flag[1]) PetscCall(PetscArraycmp(T, cd->T, nT, &flag[1]));
+    if (flag[1]) PetscCall(PetscArraycmp(cptr, cd->wb_cptr, nT + 1, &flag[1]));
+    if (flag[1]) PetscCall(PetscArraycmp(crow, cd->wb_crow, cptr[nT], &flag[1]));
+    if (flag[1]) PetscCall(PetscArraycmp(cval, cd->wb_cval, cptr[nT], &flag[1]));
+    PetscCall(PetscFree(cd->T));
+    cd->nT = nT;
+    cd->T  = T;
   }
-  PetscCallMPI(MPI_Bcast(&miss, 1, MPIU_BOOL, 0, comp->ctx.comm));
-  if (!miss) { /* the same factor and the same J_T as the last build: the same W_b */
-    PetscBool same = PETSC_FALSE;
-    if (!rank) {
-      PetscInt nf, nnz = cptr[cd->nT];
-      PetscCall(FCSchurFactorGetCounts(cd->sf, NULL, &nf));
-      same = (PetscBool)(cd->wb && nf == cd->wb_nfactor && ncols == cd->wb_ncols && cd->nT == cd->wb_nT);
-      if (same) PetscCall(PetscArraycmp(cd->T, cd->wb_T, cd->nT, &same));
-      if (same) PetscCall(PetscArraycmp(cptr, cd->wb_cptr, cd->nT + 1, &same));
-      if (same) PetscCall(PetscArraycmp(crow, cd->wb_crow, nnz, &same));
-      if (same) PetscCall(PetscArraycmp(cval, cd->wb_cval, nnz, &same));
-    }
-    PetscCallMPI(MPI_Bcast(&same, 1, MPIU_BOOL, 0, comp->ctx.comm));
-    if (same) {
-      PetscCall(PetscArraycpy(Wb, cd->wb, ncols * ncols));
-      PetscCall(PetscFree(cptr));
-      PetscCall(PetscFree(crow));
-      PetscCall(PetscFree(cval));
-      cd->built = PETSC_TRUE;
-      cd->nreuse++;
-      PetscFunctionReturn(0);
-    }
+  PetscCallMPI(MPI_Bcast(flag, 2, MPIU_BOOL, 0, comp->ctx.comm));
+  if (flag[1]) {
+    PetscCall(PetscArraycpy(Wb, cd->wb, ncols * ncols));
+    PetscCall(PetscFree(cptr));
+    PetscCall(PetscFree(crow));
+    PetscCall(PetscFree(cval));
+    cd->built = PETSC_TRUE;
+    cd->nreuse++;
+    PetscFunctionReturn(0);
   }
-  if (miss) {    /* A is the matrix of the current factor: factor it again with the larger S */
+  if (flag[0]) { /* A is the matrix of the current factor: factor it again with the larger S */
     if (!rank) { /* S, the new DOFs and a ring around them */
       PetscInt        ns, nw, *want, nnew = 0, *fresh;
       const PetscInt *S;
@@ -363,7 +353,6 @@ static PetscErrorCode Destroy_Condensed(FCCompliance comp)
   PetscCall(PetscFree(cd->wb_cptr));
   PetscCall(PetscFree(cd->wb_crow));
   PetscCall(PetscFree(cd->wb_cval));
-  PetscCall(PetscFree(cd->wb_T));
   PetscCall(PetscFree(cd->surf));
   PetscCall(PetscFree(cd->T));
   PetscCall(PetscFree(comp->data));
