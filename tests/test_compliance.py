@@ -3,7 +3,9 @@ give the same contact forces and positions (1e-10 relative) on an FE cube droppe
 same W to round-off drives the same solver path; condensed also does the free motion and the
 correction with its own Schur-ordered factor, and misses its first contact); on more than one rank
 sparse is refused with a clear error. condensed_balance: condensed with the top of its nested
-dissection bisected in balance of the vertices next to S (-compliance_condensed_balance 1). Every builder handles contacts whose DOFs are all fixed (a
+dissection bisected in balance of the vertices next to S (-compliance_condensed_balance 1); on
+several ranks condensed with Sigma^-1 by ScaLAPACK or by the ranks' blocks of columns
+(-compliance_condensed_inverse scalapack, columns). Every builder handles contacts whose DOFs are all fixed (a
 box on a slab whose top face is held: W_b = 0, the box rests on the fixed face). The co-rotational grasp (A refactored every step) checks that W_H follows A with every
 builder, the redundant copies of A included. precomputed is exact for a linear material (1e-10) and, rotation-warped, close to
 dense for a co-rotational one. -blas_gemv_forward (dgemm with one column as dgemv, src/util/blas.c)
@@ -34,7 +36,7 @@ def result(ctype, extra=()):
 a = result("dense")
 others = (["sparse"] if NP == 1 else []) + ["schur", "inverse", "inverse8", "redundant", "condensed", "condensed2",
                                                "condensed_balance"] + (
-    ["redundant1"] if NP > 1 else [])
+    ["redundant1", "condensed_scalapack", "condensed_columns"] if NP > 1 else [])
 for ctype in others:
     # redundant1: one copy of A, distributed over all ranks (-compliance_redundant_groups 1);
     # inverse8: MUMPS computing the entries of A^-1 8 columns at a time instead of 256
@@ -46,6 +48,8 @@ for ctype in others:
         b = result("condensed", ("-compliance_condensed_ring", "2"))
     elif ctype == "condensed_balance":  # the top of the dissection bisected in balance of the vertices next to S
         b = result("condensed", ("-compliance_condensed_balance", "1"))
+    elif ctype in ("condensed_scalapack", "condensed_columns"):  # Sigma^-1 over the ranks, not on rank 0 alone
+        b = result("condensed", ("-compliance_condensed_inverse", ctype.split("_")[1]))
     else:
         b = result(ctype)
     same = np.array_equal(a["contacts/offset"][:], b["contacts/offset"][:])
