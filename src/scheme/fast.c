@@ -26,6 +26,7 @@
 typedef struct {
   char      wh_mat_type[FC_MAX_NAME], frames_mat_type[FC_MAX_NAME], vec_type[FC_MAX_NAME];
   PetscBool sweep_update; /* -fast_update sweep */
+  PetscBool host;         /* W_H seqdense and C seqaij (the default types): W_k by CongruenceHost */
 } Fast;
 
 /* A matrix (ismat) or vector type given by an option is known to this PETSc build: a CUDA type in
@@ -77,6 +78,12 @@ static PetscErrorCode SetFromOptions_Fast(FCScheme scheme, PetscOptionItems *Pet
   PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->wh_mat_type, "-wh_mat_type"));
   PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->frames_mat_type, "-frames_mat_type"));
   PetscCall(CheckType(scheme->comm, PETSC_FALSE, fast->vec_type, "-contact_vec_type"));
+  {
+    PetscBool dense, aij;
+    PetscCall(PetscStrcmp(fast->wh_mat_type, MATSEQDENSE, &dense));
+    PetscCall(PetscStrcmp(fast->frames_mat_type, MATSEQAIJ, &aij));
+    fast->host = (PetscBool)(dense && aij);
+  }
   PetscFunctionReturn(0);
 }
 
@@ -255,12 +262,7 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
   fs.nc     = nc;
   fs.n3     = n3;
   fs.M      = M;
-  {
-    PetscBool dense, aij;
-    PetscCall(PetscStrcmp(fast->wh_mat_type, MATSEQDENSE, &dense));
-    PetscCall(PetscStrcmp(fast->frames_mat_type, MATSEQAIJ, &aij));
-    fs.host = (PetscBool)(dense && aij);
-  }
+  fs.host   = fast->host;
   /* W_H once per step: the bodies' builders on the contacts in identity frames */
   PetscCall(FCContactSetCopy(set, &fs.H));
   for (PetscInt k = 0; k < nc; k++) {
@@ -385,6 +387,7 @@ PetscErrorCode FCSchemeCreate_Fast(FCScheme scheme)
   PetscCall(PetscStrncpy(fast->wh_mat_type, MATSEQDENSE, sizeof(fast->wh_mat_type)));
   PetscCall(PetscStrncpy(fast->frames_mat_type, MATSEQAIJ, sizeof(fast->frames_mat_type)));
   PetscCall(PetscStrncpy(fast->vec_type, VECSEQ, sizeof(fast->vec_type)));
+  fast->host                 = PETSC_TRUE; /* the default types above */
   scheme->data               = fast;
   scheme->ops.setfromoptions = SetFromOptions_Fast;
   scheme->ops.memory         = Memory_Fast;
