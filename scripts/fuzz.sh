@@ -55,8 +55,10 @@ seed_mesh() { # $1: corpus directory
 }
 
 # A crash input is replayed alone for its stack. One whose stack reaches PETSc's gmsh reader
-# (DMPlexCreateGmsh...) with only PETSc (or libc, or ASan's interceptors) above it is PETSc 3.18's
-# own reader failing on a malformed file: kept, not counted against fecontact (see
+# (DMPlexCreateGmsh...) with no frame of fecontact's own code above it (a frame whose source file,
+# " $ROOT/...c:line", is in this repository; PETSc's, libc's and the interceptors' frames have
+# none, and libc's name glibc's sources when libc6-dbg is installed) is PETSc 3.18's own reader
+# failing or looping on a malformed file: kept, not counted against fecontact (see
 # docs/reliability.md). One that does not crash again alone is listed as unreproducible: it
 # depended on an earlier input of the same process (PETSc, not instrumented, can corrupt memory
 # silently; fecontact's own errors are instrumented and reproduce). Any other one is a finding in
@@ -66,11 +68,11 @@ classify() { # $1: target binary, $2: crash input; prints "petsc-gmsh <frame>" o
   local report frames n top
   report="$(TMPDIR="$dir/tmp" timeout 300 "$1" -rss_limit_mb=4096 -timeout=60 -runs=1 "$2" 2>&1 || true)"
   printf '%s\n' "$report" >"$2.txt"
-  # the stack without the sanitizer's, libFuzzer's and libc's own frames
-  frames="$(grep -E '^ +#[0-9]+ ' <<<"$report" | grep -vE "$RUNTIME" || true)"
+  # the first stack without the sanitizer's, libFuzzer's and libc's own frames
+  frames="$(awk '/^ +#[0-9]+ /{s=1; print; next} s{exit}' <<<"$report" | grep -vE "$RUNTIME" || true)"
   top="$(head -n 1 <<<"$frames" | sed -E 's/^ +#[0-9]+ 0x[0-9a-f]+ (in )?//; s/ \(BuildId.*//')"
-  n="$(grep -n 'Gmsh' <<<"$frames" | head -n 1 | cut -d: -f1)"
-  if [ -n "$n" ] && ! head -n $((n - 1)) <<<"$frames" | grep -qv 'libpetsc'; then
+  n="$(grep -n 'Gmsh.*libpetsc' <<<"$frames" | head -n 1 | cut -d: -f1)"
+  if [ -n "$n" ] && ! head -n $((n - 1)) <<<"$frames" | grep -qF " $ROOT/"; then
     echo "petsc-gmsh ${top:-?}"
   elif [ -z "$frames" ]; then
     echo "unreproducible"

@@ -79,6 +79,9 @@ cases = [
     # PETSc 3.18's gmsh reader faults on these (docs/reliability.md): a clear error, exit 1
     ("mesh that crashes PETSc's reader", opts(cube_dm_plex_filename="tools/fuzz/petsc-gmsh-crashes/v22_node_tag_0.msh"), "malformed"),
     ("binary mesh, 2 bytes changed", opts(cube_dm_plex_filename="tools/fuzz/petsc-gmsh-crashes/v41bin_cube_coarse_2bytes.msh"), "malformed"),
+    # ... and loops forever on this one (an unterminated $Comments): refused before PETSc reads it
+    ("mesh with $Comments not ended", opts(cube_dm_plex_filename="tools/fuzz/petsc-gmsh-crashes/v22_comments_unterminated.msh"),
+     "$Comments section has no $EndComments"),
     ("contact pair, unknown body", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cube:floor", "-quiet"], "unknown body 'floor'"),
     ("contact pair with itself", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cube:cube", "-quiet"], "with itself"),
     ("contact pair, malformed", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cubeground", "-quiet"], "body1:body2"),

@@ -42,12 +42,35 @@ static void ReaderGuard(PetscBool on, const char fname[], const char prefix[], c
     for (int i = 0; i < 3; i++) sigaction(reader_signals[i], &reader_saved[i], NULL);
 }
 
+/* PETSc 3.18's gmsh reader loops forever, at the end of the file, on a $Comments section that
+   has no $EndComments (its GmshReadSection; tools/fuzz/petsc-gmsh-crashes/v22_comments_unterminated.msh):
+   1 when the file has a "$Comments" with no "$EndComments" after it. One pass over the bytes; '$'
+   starts both words and occurs nowhere else in them, so a mismatch restarts at '$' or at 0. */
+static int UnterminatedComments(FILE *fp)
+{
+  static const char open[] = "$Comments", close[] = "$EndComments";
+  char              buf[1 << 16];
+  size_t            n, io = 0, ic = 0;
+  int               inside = 0;
+
+  while ((n = fread(buf, 1, sizeof(buf), fp)) > 0) {
+    for (size_t k = 0; k < n; k++) {
+      const char c = buf[k];
+      io           = c == open[io] ? io + 1 : (c == '$');
+      ic           = c == close[ic] ? ic + 1 : (c == '$');
+      if (io == sizeof(open) - 1) inside = 1, io = 0;
+      if (ic == sizeof(close) - 1) inside = 0, ic = 0;
+    }
+  }
+  return inside;
+}
+
 PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodyname[], FCMesh *mesh)
 {
   char               fname[PETSC_MAX_PATH_LEN];
   PetscBool          set;
   PetscMPIInt        rank;
-  PetscInt           dim, readable = 1, bad = 0, nc;
+  PetscInt           dim, readable = 1, comments = 0, bad = 0, nc;
   PetscBool          distribute = PETSC_TRUE;
   Vec                coords;
   PetscSection       csec;
@@ -63,11 +86,23 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
     struct stat st;
     FILE       *fp = NULL;
     if (stat(fname, &st) || !S_ISREG(st.st_mode) || !(fp = fopen(fname, "rb"))) readable = 0;
-    if (fp) fclose(fp);
+    if (fp) {
+      comments = UnterminatedComments(fp);
+      fclose(fp);
+    }
   }
-  PetscCallMPI(MPI_Bcast(&readable, 1, MPIU_INT, 0, comm));
+  {
+    PetscInt flags[2] = {readable, comments};
+    PetscCallMPI(MPI_Bcast(flags, 2, MPIU_INT, 0, comm));
+    readable = flags[0];
+    comments = flags[1];
+  }
   PetscCheck(readable, comm, PETSC_ERR_USER_INPUT,
              "Cannot open mesh file '%s' given by -%sdm_plex_filename for body '%s'", fname, prefix, bodyname);
+  PetscCheck(!comments, comm, PETSC_ERR_USER_INPUT,
+             "Cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': a $Comments section has no $EndComments "
+             "(the file is truncated or malformed; PETSc's gmsh reader would not return on it)",
+             fname, prefix, bodyname);
   { /* an input: no output may overwrite it (src/util/inputs.c) */
     char what[256];
     PetscCall(PetscSNPrintf(what, sizeof(what), "mesh of body '%s' (-%sdm_plex_filename)", bodyname, prefix));
