@@ -252,6 +252,9 @@ typedef struct {
   PetscErrorCode (*proximityposition)(FCBody, const FCProximity *, PetscInt when, PetscReal x[3]);
   /* W += J_b A_b^-1 J_b^T for the contacts touching this body (W: nrows x nrows, replicated) */
   PetscErrorCode (*addcompliance)(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
+  /* optional: builds that W_b for the next addcompliance and tells whether it is the last one, on
+     the same rows of W (NULL: a body that adds something is never known to be unchanged) */
+  PetscErrorCode (*buildcompliance)(FCBody, PetscInt self, const FCContactSet *, PetscBool *same);
   /* signed distance of a world point to this body's shape now: outward normal (world) and the
      closest point (body frame) */
   PetscErrorCode (*shapedistance)(FCBody, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cpb[3]);
@@ -344,6 +347,9 @@ PETSC_INTERN PetscErrorCode FCBodyAddPartialPosition(FCBody, const FCProximity *
 /* Contact response */
 PETSC_INTERN PetscErrorCode FCBodySetUpContact(FCBody); /* a body named in a contact pair, after FCBodySetUp */
 PETSC_INTERN PetscErrorCode FCBodyAddCompliance(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
+/* before FCBodyAddCompliance with the same set: whether the body's part of W is the one it added
+   last (on the same rows): a W summed from the bodies' last parts still holds when every one is */
+PETSC_INTERN PetscErrorCode FCBodyBuildCompliance(FCBody, PetscInt self, const FCContactSet *, PetscBool *same);
 /* before the first free motion of a run: whether the body's factorization depends on its contacts,
    and the contacts a proximity query at the start positions gives it */
 PETSC_INTERN PetscBool      FCBodyExpectsContacts(FCBody);
@@ -405,7 +411,11 @@ PETSC_INTERN PetscErrorCode FCComplianceSolve(FCCompliance, Vec b, Vec x);
 /* a builder that warps a reference compliance needs the body's best-fit rotation before each Add */
 PETSC_INTERN PetscBool      FCComplianceUsesRotation(FCCompliance);
 PETSC_INTERN PetscErrorCode FCComplianceSetRotation(FCCompliance, const PetscReal R[9]);
-/* W (M x M, row-major, replicated) += J_b A^-1 J_b^T for the contacts touching body `self` */
+/* W_b = J_b A^-1 J_b^T for the contacts touching body `self`, kept for the next Add; same: it is the
+   last build's W_b on the same rows of W (a sum of the last builds still holds) */
+PETSC_INTERN PetscErrorCode FCComplianceBuild(FCCompliance, PetscInt self, const FCContactSet *, PetscBool *same);
+/* W (M x M, row-major, replicated) += J_b A^-1 J_b^T for the contacts touching body `self` (the
+   W_b of a Build just before with the same set, else built here) */
 PETSC_INTERN PetscErrorCode FCComplianceAdd(FCCompliance, PetscInt self, const FCContactSet *, PetscReal W[]);
 /* a builder whose factorization depends on the contact DOFs (condensed) takes the contacts expected
    at its next factorization: whether it does, and the contacts */

@@ -13,7 +13,8 @@ table is proved from the PETSc log (-log_view CSV: event counts of rank 0) or th
   or once when the body starts in contact (the start-of-run proximity query gives them); the
   redundant builder's copies of a linear A are factored once;
 - the default builder computes W_b = J_T C J_T^T only when the factor or the contacts' Jacobian
-  changed (a linear body resting on a plane: once);
+  changed (a linear body resting on a plane: once), and the fast scheme sums W_H and forms W_k only
+  when a body's part or the frames changed (the same motion as forming them every time);
 - the recursive scheme's Newton loop stops after one iteration on a plane (the frames cannot
   change), and iterates on the grasp's spheres.
 Usage: test_effects.py [--np N]"""
@@ -117,6 +118,29 @@ c.check(changed <= rl.get("CondensedWb", -1) < (nc > 0).sum() and rc.get("Conden
         "resting from step 1, default builder: W_b computed %d time(s) in %d steps with contacts %s (linear: from %d, "
         "at least one reuse), %d (co-rotational); linear centroids as the inverse builder's to %.1e <= 1e-10" % (
             rl.get("CondensedWb", -1), (nc > 0).sum(), list(nc), changed, rc.get("CondensedWb", -1), dx))
+# the fast scheme keeps W_H from step to step while every body's part is the last one, and W_k while
+# W_H and the frames are (src/scheme/fast.c): on the linear cube resting on the plane both are
+# formed where W_b is (ComplianceSum and CongruenceWk events, once per change of the contact set),
+# and the motion is that of the general path, which forms both every time (-frames_mat_type aij:
+# not the host's default types), to 1e-10
+fast = rest + ["-cube_material", "linear", "-constraint_scheme", "fast", "-newton_max_it", "5"]
+rk, hk = go(fast)
+rg, hg = go(fast + ["-frames_mat_type", "aij"])
+dx = np.abs(hk["bodies/cube/centroid"][:] - hg["bodies/cube/centroid"][:]).max() / np.abs(hg["bodies/cube/centroid"][:]).max()
+nk = hk["steps/contacts"][:]
+c.check(rk.get("ComplianceSum", -1) == rk.get("CongruenceWk", -1) == rk.get("CondensedWb", -2) == 1 + int((nk[1:] != nk[:-1]).sum())
+        and rg.get("ComplianceSum", -1) == (nk > 0).sum() and rg.get("CongruenceWk", 0) == 0 and dx <= 1e-10,
+        "fast scheme, linear cube resting, contacts %s: W_H summed %d times, W_k formed %d times, W_b computed %d times "
+        "(the general path: W_H %d times); centroids as the general path's to %.1e <= 1e-10" % (
+            list(nk), rk.get("ComplianceSum", -1), rk.get("CongruenceWk", -1), rk.get("CondensedWb", -1),
+            rg.get("ComplianceSum", -1), dx))
+# where the frames follow the contacts (spheres grasping a cube), W_k is formed at every Newton iteration
+rw, hw = go(["-options_file", "input/grasp_rotate.opts", "-time_steps", "6"])
+rv, hv = go(["-options_file", "input/grasp_rotate.opts", "-time_steps", "6", "-frames_mat_type", "aij"])
+dx = np.abs(hw["bodies/object/centroid"][:] - hv["bodies/object/centroid"][:]).max() / np.abs(hv["bodies/object/centroid"][:]).max()
+c.check(rw.get("CongruenceWk", -1) == rw.get("NewtonIteration", -2) > 6 and dx <= 1e-10,
+        "fast scheme on the grasp: W_k formed %d times in %d Newton iterations (frames change); centroid as the "
+        "general path's to %.1e <= 1e-10" % (rw.get("CongruenceWk", -1), rw.get("NewtonIteration", -1), dx))
 # the redundant builder keeps a sequential copy of a linear A on every rank: factored with A, never again
 r5, _ = go(drop + ["-time_steps", "5", "-cube_material", "linear", "-compliance_type", "redundant"])
 r20, _ = go(drop + ["-time_steps", "20", "-cube_material", "linear", "-compliance_type", "redundant"])

@@ -174,6 +174,20 @@ PetscErrorCode FCBodyAddCompliance(FCBody body, PetscInt self, const FCContactSe
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCBodyBuildCompliance(FCBody body, PetscInt self, const FCContactSet *set, PetscBool *same)
+{
+  PetscFunctionBegin;
+  if (body->ops.buildcompliance)
+    PetscCall((*body->ops.buildcompliance)(body, self, set, same));
+  else { /* unchanged only when it adds nothing: no compliance, or no contact on it */
+    *same = PETSC_TRUE;
+    if (body->ops.addcompliance)
+      for (PetscInt k = 0; k < set->n && *same; k++)
+        *same = (PetscBool)(set->c[k].body[0] != self && set->c[k].body[1] != self);
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscBool FCBodyExpectsContacts(FCBody body)
 {
   return body->expects;

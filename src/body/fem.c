@@ -287,6 +287,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.proximityposition  = ProximityPosition_FEM;
   body->ops.setupcontact       = SetUpContact_FEM;
   body->ops.addcompliance      = AddCompliance_FEM;
+  body->ops.buildcompliance    = BuildCompliance_FEM;
   body->ops.applycorrection    = ApplyCorrection_FEM;
   body->ops.expectcontacts     = ExpectContacts_FEM;
   body->ops.surfacetriangles   = SurfaceTriangles_FEM;

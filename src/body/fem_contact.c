@@ -252,19 +252,40 @@ static PetscErrorCode BestFitRotation(FCBody body, PetscReal R[9])
   PetscFunctionReturn(0);
 }
 
+/* The builders that warp a reference compliance get the best-fit rotation of u at the start of the step */
+static PetscErrorCode SetRotation(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  PetscCheck(fem->comp, body->comm, PETSC_ERR_PLIB, "Body '%s' has contacts but is in no contact pair", body->name);
+  if (FCComplianceUsesRotation(fem->comp) && !fem->Rcurrent) {
+    PetscReal R[9];
+    PetscCall(BestFitRotation(body, R));
+    PetscCall(FCComplianceSetRotation(fem->comp, R));
+    fem->Rcurrent = PETSC_TRUE;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* W_b = J_b A_b^-1 J_b^T for the next AddCompliance, and whether it is the last one */
+PetscErrorCode BuildCompliance_FEM(FCBody body, PetscInt self, const FCContactSet *set, PetscBool *same)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  PetscCall(SetRotation(body));
+  PetscCall(FCComplianceBuild(fem->comp, self, set, same));
+  PetscFunctionReturn(0);
+}
+
 /* W += J_b A_b^-1 J_b^T (eq. 17; FCSchemeCompliance scales the sum by h^2) */
 PetscErrorCode AddCompliance_FEM(FCBody body, PetscInt self, const FCContactSet *set, PetscReal W[])
 {
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
-  PetscCheck(fem->comp, body->comm, PETSC_ERR_PLIB, "Body '%s' has contacts but is in no contact pair", body->name);
-  if (FCComplianceUsesRotation(fem->comp) && !fem->Rcurrent) { /* u is that of the start of the step */
-    PetscReal R[9];
-    PetscCall(BestFitRotation(body, R));
-    PetscCall(FCComplianceSetRotation(fem->comp, R));
-    fem->Rcurrent = PETSC_TRUE;
-  }
+  PetscCall(SetRotation(body));
   PetscCall(FCComplianceAdd(fem->comp, self, set, W));
   PetscFunctionReturn(0);
 }

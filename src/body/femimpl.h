@@ -101,5 +101,6 @@ PETSC_INTERN PetscErrorCode RestoreFree_FEM(FCBody);
 PETSC_INTERN PetscErrorCode ProximityPosition_FEM(FCBody, const FCProximity *, PetscInt, PetscReal[3]);
 PETSC_INTERN PetscErrorCode SetUpContact_FEM(FCBody);
 PETSC_INTERN PetscErrorCode AddCompliance_FEM(FCBody, PetscInt, const FCContactSet *, PetscReal[]);
+PETSC_INTERN PetscErrorCode BuildCompliance_FEM(FCBody, PetscInt, const FCContactSet *, PetscBool *);
 PETSC_INTERN PetscErrorCode ApplyCorrection_FEM(FCBody, PetscInt, const FCContactSet *, const PetscReal[]);
 PETSC_INTERN PetscErrorCode ExpectContacts_FEM(FCBody, PetscInt, const FCContactSet *);

@@ -287,6 +287,7 @@ static PetscErrorCode Reset(FCCompliance comp)
   PetscCall(PetscFree(comp->cols));
   PetscCall(PetscFree3(comp->jtr, comp->jtc, comp->jtv));
   comp->ncols = comp->njt = comp->nje = 0;
+  comp->pending                       = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -354,23 +355,55 @@ PetscErrorCode FCComplianceExpectContacts(FCCompliance comp, PetscInt self, cons
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCComplianceAdd(FCCompliance comp, PetscInt self, const FCContactSet *set, PetscReal W[])
+PetscErrorCode FCComplianceBuild(FCCompliance comp, PetscInt self, const FCContactSet *set, PetscBool *same)
 {
-  PetscInt   M = set->nrows, ncols;
-  PetscReal *Wb;
+  PetscInt  ncols0 = comp->ncols, *cols0 = comp->cols, ncols;
+  PetscBool eq = PETSC_TRUE;
 
   PetscFunctionBegin;
   PetscCheck(comp->setupcalled, comp->ctx.comm, PETSC_ERR_ORDER, "Compliance builder of body '%s' not set up",
              comp->ctx.name);
+  comp->cols = NULL; /* the last build's rows of W, compared below */
   PetscCall(Reset(comp));
   PetscCall(BuildJacobian(comp, self, set));
-  ncols = comp->ncols;
-  if (!ncols) PetscFunctionReturn(0);
-  PetscCall(PetscCalloc1(ncols * ncols, &Wb));
-  PetscCall((*comp->ops.build)(comp, self, set, Wb));
-  for (PetscInt i = 0; i < ncols; i++)
-    for (PetscInt j = 0; j < ncols; j++) W[comp->cols[i] * M + comp->cols[j]] += Wb[i * ncols + j];
-  PetscCall(PetscFree(Wb));
+  ncols      = comp->ncols;
+  comp->kept = PETSC_FALSE;
+  if (ncols != comp->wb_n) {
+    PetscCall(PetscFree(comp->Wb));
+    PetscCall(PetscMalloc1(ncols * ncols + 1, &comp->Wb));
+    comp->wb_n     = ncols;
+    comp->wb_valid = PETSC_FALSE;
+  }
+  if (ncols) {
+    if (!comp->keepswb || !comp->wb_valid) PetscCall(PetscArrayzero(comp->Wb, ncols * ncols));
+    PetscCall((*comp->ops.build)(comp, self, set, comp->Wb));
+    comp->wb_valid = PETSC_TRUE;
+  }
+  comp->pending = PETSC_TRUE;
+  if (ncols == ncols0 && ncols) PetscCall(PetscArraycmp(comp->cols, cols0, ncols, &eq));
+  *same = (PetscBool)(ncols == ncols0 && (!ncols || (comp->kept && eq)));
+  PetscCall(PetscFree(cols0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCComplianceAdd(FCCompliance comp, PetscInt self, const FCContactSet *set, PetscReal W[])
+{
+  PetscInt         M = set->nrows, ncols;
+  const PetscReal *Wb;
+
+  PetscFunctionBegin;
+  if (!comp->pending) {
+    PetscBool same;
+    PetscCall(FCComplianceBuild(comp, self, set, &same));
+  }
+  comp->pending = PETSC_FALSE;
+  ncols         = comp->ncols;
+  Wb            = comp->Wb;
+  for (PetscInt i = 0; i < ncols; i++) {
+    PetscReal       *w = W + comp->cols[i] * M;
+    const PetscReal *b = Wb + i * ncols;
+    for (PetscInt j = 0; j < ncols; j++) w[comp->cols[j]] += b[j];
+  }
   PetscFunctionReturn(0);
 }
 
@@ -407,6 +440,7 @@ PetscErrorCode FCComplianceDestroy(FCCompliance *comp)
   PetscFunctionBegin;
   if (!*comp) PetscFunctionReturn(0);
   PetscCall(Reset(*comp));
+  PetscCall(PetscFree((*comp)->Wb));
   if ((*comp)->ops.destroy) PetscCall((*(*comp)->ops.destroy)(*comp));
   PetscCall(VecDestroy(&(*comp)->rhs));
   PetscCall(VecDestroy(&(*comp)->work));

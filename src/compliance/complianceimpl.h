@@ -9,7 +9,9 @@ typedef struct {
   PetscErrorCode (*setfromoptions)(FCCompliance, PetscOptionItems *);
   PetscErrorCode (*setup)(FCCompliance);  /* at set-up, A at the reference state       */
   PetscErrorCode (*factor)(FCCompliance); /* A was factored again                       */
-  /* Wb (ncols x ncols, row-major, zeroed, to be complete on every rank) = J_b A^-1 J_b^T */
+  /* Wb (ncols x ncols, row-major, to be complete on every rank) = J_b A^-1 J_b^T. Wb is zeroed,
+     unless the builder sets `keepswb`: then it holds the last build's W_b when comp->wb_valid,
+     and a builder that knows it still holds leaves it and sets comp->kept */
   PetscErrorCode (*build)(FCCompliance, PetscInt self, const FCContactSet *, PetscReal Wb[]);
   /* x = A^-1 b for the correction (default: a solve with the body's factor) ... */
   PetscErrorCode (*solve)(FCCompliance, Vec b, Vec x);
@@ -31,7 +33,14 @@ struct _p_FCCompliance {
   PetscBool           factors; /* the builder factors A itself: the body's only factor (FCComplianceFactorsA) */
   PetscReal           R[9];    /* the body's best-fit rotation (builders that set `rotation`) */
   /* J_b^T of the last Add, by entries: the first njt on owned DOFs, nje in all */
-  PetscInt   ncols, *cols; /* columns, and the row of W of each                   */
+  PetscInt ncols, *cols; /* columns, and the row of W of each                   */
+  /* W_b of the last build (FCComplianceBuild), added to W by FCComplianceAdd */
+  PetscReal *Wb;
+  PetscInt   wb_n;     /* its ncols */
+  PetscBool  wb_valid; /* it holds a complete W_b */
+  PetscBool  keepswb;  /* the builder may keep it (ops.build) */
+  PetscBool  kept;     /* the last build kept it: the W_b of the build before */
+  PetscBool  pending;  /* built and not yet added */
   PetscInt   njt, nje;
   PetscInt  *jtr, *jtc; /* row (global DOF - first owned DOF), column            */
   PetscReal *jtv;

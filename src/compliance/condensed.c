@@ -55,9 +55,10 @@ typedef struct {
   PetscInt      idle;    /* factorizations in a row without a build */
   PetscInt      nmiss;
   PetscBool     missed; /* the last build missed: keep a ring of margin at the next factorization */
-  /* the last W_b, reused while neither the factor nor J_T changed (every rank holds it) */
-  PetscInt   wb_ncols, wb_nfactor, *wb_cptr, *wb_crow;
-  PetscReal *wb, *wb_cval;
+  /* what the last W_b (comp->Wb, every rank) was built from, reused while neither changed: the
+     factor's count and J_T by columns (host) */
+  PetscInt   wb_nfactor, *wb_cptr, *wb_crow;
+  PetscReal *wb_cval;
   PetscInt   nreuse;
 } Condensed;
 
@@ -193,18 +194,11 @@ static PetscErrorCode Factor_Condensed(FCCompliance comp)
   PetscFunctionReturn(0);
 }
 
-/* Keeps W_b (every rank) and, on the host, what it was built from: J_T by columns (taken) and the
-   factor's count (T is cd->T); elsewhere cptr, crow, cval are NULL */
-static PetscErrorCode KeepWb(Condensed *cd, PetscInt ncols, const PetscReal Wb[], PetscInt *cptr, PetscInt *crow,
-                             PetscReal *cval)
+/* Keeps, on the host, what W_b was built from: J_T by columns (taken) and the factor's count (T is
+   cd->T); elsewhere cptr, crow, cval are NULL */
+static PetscErrorCode KeepWb(Condensed *cd, PetscInt *cptr, PetscInt *crow, PetscReal *cval)
 {
   PetscFunctionBegin;
-  if (ncols != cd->wb_ncols || !cd->wb) {
-    PetscCall(PetscFree(cd->wb));
-    PetscCall(PetscMalloc1(ncols * ncols + 1, &cd->wb));
-  }
-  cd->wb_ncols = ncols;
-  PetscCall(PetscArraycpy(cd->wb, Wb, ncols * ncols));
   PetscCall(PetscFree(cd->wb_cptr));
   PetscCall(PetscFree(cd->wb_crow));
   PetscCall(PetscFree(cd->wb_cval));
@@ -239,7 +233,7 @@ static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FC
     }
     /* the same factor and the same J_T as the last build (whose T is still cd->T): the same W_b */
     PetscCall(FCSchurFactorGetCounts(cd->sf, NULL, &nf));
-    flag[1] = (PetscBool)(!flag[0] && cd->wb && nf == cd->wb_nfactor && ncols == cd->wb_ncols && nT == cd->nT);
+    flag[1] = (PetscBool)(!flag[0] && comp->wb_valid && cd->wb_cptr && nf == cd->wb_nfactor && nT == cd->nT);
     if (flag[1]) PetscCall(PetscArraycmp(T, cd->T, nT, &flag[1]));
     if (flag[1]) PetscCall(PetscArraycmp(cptr, cd->wb_cptr, nT + 1, &flag[1]));
     if (flag[1]) PetscCall(PetscArraycmp(crow, cd->wb_crow, cptr[nT], &flag[1]));
@@ -249,8 +243,8 @@ static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FC
     cd->T  = T;
   }
   PetscCallMPI(MPI_Bcast(flag, 2, MPIU_BOOL, 0, comp->ctx.comm));
-  if (flag[1]) {
-    PetscCall(PetscArraycpy(Wb, cd->wb, ncols * ncols));
+  if (flag[1]) { /* Wb holds it (comp->keepswb) */
+    comp->kept = PETSC_TRUE;
     PetscCall(PetscFree(cptr));
     PetscCall(PetscFree(crow));
     PetscCall(PetscFree(cval));
@@ -287,6 +281,7 @@ static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FC
     const PetscInt  *S;
     const PetscReal *C;
     PetscCall(FCSchurFactorGetInverse(cd->sf, &ns, &S, &C));
+    PetscCall(PetscArrayzero(Wb, ncols * ncols)); /* it may hold the last W_b */
     PetscCall(PetscMalloc1(cd->nT + 1, &pos));
     for (PetscInt i = 0; i < cd->nT; i++) PetscCall(PetscFindInt(cd->T[i], ns, S, &pos[i])); /* T within S */
     PetscCall(FCComplianceAddCongruence(ncols, cd->nT, cptr, crow, cval, pos, ns, C, Wb));
@@ -294,7 +289,7 @@ static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FC
   }
   PetscCallMPI(MPI_Bcast(Wb, (PetscMPIInt)(ncols * ncols), MPIU_REAL, 0, comp->ctx.comm));
   PetscCall(PetscLogEventEnd(EV_PRODUCTS, 0, 0, 0, 0));
-  PetscCall(KeepWb(cd, ncols, Wb, cptr, crow, cval)); /* takes cptr, crow, cval (the host's) */
+  PetscCall(KeepWb(cd, cptr, crow, cval)); /* takes cptr, crow, cval (the host's) */
   PetscFunctionReturn(0);
 }
 
@@ -349,7 +344,6 @@ static PetscErrorCode Destroy_Condensed(FCCompliance comp)
                         comp->ctx.name, na, nf, cd->nmiss, cd->nreuse));
   }
   PetscCall(FCSchurFactorDestroy(&cd->sf));
-  PetscCall(PetscFree(cd->wb));
   PetscCall(PetscFree(cd->wb_cptr));
   PetscCall(PetscFree(cd->wb_crow));
   PetscCall(PetscFree(cd->wb_cval));
@@ -368,6 +362,7 @@ PetscErrorCode FCComplianceCreate_Condensed(FCCompliance comp)
   cd->inverse              = FC_SPD_INVERSE_HOST; /* docs/scaling.md, "The inversion of the Schur complement" */
   comp->data               = cd;
   comp->factors            = PETSC_TRUE;
+  comp->keepswb            = PETSC_TRUE; /* Build_Condensed keeps W_b while it holds */
   comp->ops.setfromoptions = SetFromOptions_Condensed;
   comp->ops.setup          = SetUp_Condensed;
   comp->ops.factor         = Factor_Condensed;

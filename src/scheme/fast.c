@@ -27,7 +27,20 @@ typedef struct {
   char      wh_mat_type[FC_MAX_NAME], frames_mat_type[FC_MAX_NAME], vec_type[FC_MAX_NAME];
   PetscBool sweep_update; /* -fast_update sweep */
   PetscBool host;         /* W_H seqdense and C seqaij (the default types): W_k by CongruenceHost */
+  /* W_H and W_k kept from step to step, and what they were built from: W_H is built again only when
+     a body's part changed (FCSchemeCompliance), W_k only when W_H or the frames did (on the host) */
+  Mat        WH, Wk;
+  PetscInt   wh_n3;    /* W_H's size: 3 x the contacts */
+  PetscReal  wh_h;     /* the time step it was scaled with */
+  PetscBool  wh_valid; /* it holds the last build, complete and checked */
+  PetscInt   wh_state; /* counts the builds of W_H that changed it */
+  PetscInt   wk_state; /* the W_H state W_k was formed from (-1: none) */
+  PetscInt   wk_nc;    /* the frames W_k was formed with: per contact its row, dim and n, t1, t2 */
+  PetscInt  *wk_rows;
+  PetscReal *wk_frames;
 } Fast;
+
+static PetscLogEvent EV_WK; /* "CongruenceWk": W_k formed on the host (not kept) */
 
 /* A matrix (ismat) or vector type given by an option is known to this PETSc build: a CUDA type in
    a host build is an input error at set-up, not at the first contact */
@@ -167,14 +180,57 @@ static PetscErrorCode CongruenceHost(FastStep *fs)
   PetscFunctionReturn(0);
 }
 
-/* W_k = C_k W_H C_k^T for the frames of the contact set: blockwise on the host (the default types),
-   else U = C W_H (AIJ x dense), W_k = C U^T, on the types of -wh_mat_type and -frames_mat_type */
+/* Whether W_k was formed from the current W_H with the frames of the set (the host's kept W_k);
+   else records them for the W_k about to be formed */
+static PetscErrorCode SameFrames(Fast *fast, const FCContactSet *set, PetscBool *same)
+{
+  PetscInt nc = set->n;
+
+  PetscFunctionBegin;
+  *same = (PetscBool)(fast->wk_state == fast->wh_state && fast->wk_nc == nc);
+  for (PetscInt k = 0; k < nc && *same; k++) {
+    const FCContact *c = &set->c[k];
+    *same              = (PetscBool)(fast->wk_rows[2 * k] == c->row && fast->wk_rows[2 * k + 1] == c->dim);
+    for (int i = 0; i < 3 && *same; i++)
+      *same = (PetscBool)(fast->wk_frames[9 * k + i] == c->n[i] && fast->wk_frames[9 * k + 3 + i] == c->t1[i] &&
+                          fast->wk_frames[9 * k + 6 + i] == c->t2[i]);
+  }
+  if (*same) PetscFunctionReturn(0);
+  if (fast->wk_nc != nc) {
+    PetscCall(PetscFree2(fast->wk_rows, fast->wk_frames));
+    PetscCall(PetscMalloc2(2 * nc + 1, &fast->wk_rows, 9 * nc + 1, &fast->wk_frames));
+    fast->wk_nc = nc;
+  }
+  for (PetscInt k = 0; k < nc; k++) {
+    const FCContact *c       = &set->c[k];
+    fast->wk_rows[2 * k]     = c->row;
+    fast->wk_rows[2 * k + 1] = c->dim;
+    for (int i = 0; i < 3; i++) {
+      fast->wk_frames[9 * k + i]     = c->n[i];
+      fast->wk_frames[9 * k + 3 + i] = c->t1[i];
+      fast->wk_frames[9 * k + 6 + i] = c->t2[i];
+    }
+  }
+  fast->wk_state = fast->wh_state;
+  PetscFunctionReturn(0);
+}
+
+/* W_k = C_k W_H C_k^T for the frames of the contact set: blockwise on the host (the default types;
+   not at all when neither W_H nor the frames changed since the last one, as for a linear body on a
+   kinematic plane: the frames stay those of the plane), else U = C W_H (AIJ x dense), W_k = C U^T,
+   on the types of -wh_mat_type and -frames_mat_type */
 static PetscErrorCode RebuildW(FastStep *fs)
 {
   PetscFunctionBegin;
   PetscCall(AssembleFrames(fs->set, fs->C));
   if (fs->host) {
+    Fast     *fast = (Fast *)fs->scheme->data;
+    PetscBool same;
+    PetscCall(SameFrames(fast, fs->set, &same));
+    if (same && fs->Wk) PetscFunctionReturn(0);
+    PetscCall(PetscLogEventBegin(EV_WK, 0, 0, 0, 0));
     PetscCall(CongruenceHost(fs));
+    PetscCall(PetscLogEventEnd(EV_WK, 0, 0, 0, 0));
     PetscFunctionReturn(0);
   }
   PetscCall(MatMatMult(fs->C, fs->WHm, fs->U ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &fs->U));
@@ -273,15 +329,39 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
     c->row                        = 3 * k;
   }
   fs.H.nrows = n3;
-  PetscCall(MatCreate(PETSC_COMM_SELF, &fs.WHm));
-  PetscCall(MatSetSizes(fs.WHm, n3, n3, n3, n3));
-  PetscCall(MatSetType(fs.WHm, fast->wh_mat_type));
-  PetscCall(MatSetUp(fs.WHm));
-  PetscCall(MatDenseGetArrayWrite(fs.WHm, &WH)); /* symmetric: row/column-major alike */
-  PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
-  PetscCall(FCSchemeCompliance(scheme, &fs.H, WH));
-  PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
-  PetscCall(MatDenseRestoreArrayWrite(fs.WHm, &WH));
+  if (!fast->WH || fast->wh_n3 != n3) {
+    PetscCall(MatDestroy(&fast->WH));
+    PetscCall(MatDestroy(&fast->Wk));
+    PetscCall(MatCreate(PETSC_COMM_SELF, &fast->WH));
+    PetscCall(MatSetSizes(fast->WH, n3, n3, n3, n3));
+    PetscCall(MatSetType(fast->WH, fast->wh_mat_type));
+    PetscCall(MatSetUp(fast->WH));
+    fast->wh_n3    = n3;
+    fast->wh_valid = PETSC_FALSE;
+  }
+  fs.WHm = fast->WH;
+  if (fast->Wk) { /* M x M: the rows of the frames (3 per contact with friction, else 1) */
+    PetscInt m;
+    PetscCall(MatGetSize(fast->Wk, &m, NULL));
+    if (m != M) {
+      PetscCall(MatDestroy(&fast->Wk));
+      fast->wk_state = -1;
+    }
+  }
+  if (fast->host) fs.Wk = fast->Wk; /* formed again by RebuildW when W_H or the frames changed */
+  {                                 /* W_H: kept when every body's part is the last one (on the host) */
+    PetscReal h    = scheme->nbodies ? scheme->bodies[0]->h : 0.0;
+    PetscBool kept = (PetscBool)(fast->host && fast->wh_valid && fast->wh_h == h);
+    fast->wh_valid = PETSC_FALSE;
+    PetscCall(MatDenseGetArrayWrite(fs.WHm, &WH)); /* symmetric: row/column-major alike */
+    PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
+    PetscCall(FCSchemeCompliance(scheme, &fs.H, WH, &kept));
+    PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
+    PetscCall(MatDenseRestoreArrayWrite(fs.WHm, &WH));
+    fast->wh_valid = PETSC_TRUE;
+    fast->wh_h     = h;
+    if (!kept) fast->wh_state++;
+  }
 
   PetscCall(PetscMalloc6(n3, &fs.dfree, n3, &fs.d0, M, &fs.q, M, &fs.qold, nc, &mu, nc, &dims));
   PetscCall(PetscMalloc2(M, &lambda, n3, &fs.d));
@@ -360,8 +440,10 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
   PetscCall(MatDestroy(&fs.C));
   PetscCall(MatDestroy(&fs.U));
   PetscCall(MatDestroy(&fs.Ut));
-  PetscCall(MatDestroy(&fs.Wk));
-  PetscCall(MatDestroy(&fs.WHm));
+  if (fast->host)
+    fast->Wk = fs.Wk; /* kept with W_H */
+  else
+    PetscCall(MatDestroy(&fs.Wk));
   PetscCall(VecDestroy(&fs.F));
   PetscCall(VecDestroy(&fs.dvec));
   PetscCall(VecDestroy(&fs.lam));
@@ -373,7 +455,12 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
 
 static PetscErrorCode Destroy_Fast(FCScheme scheme)
 {
+  Fast *fast = (Fast *)scheme->data;
+
   PetscFunctionBegin;
+  PetscCall(MatDestroy(&fast->WH));
+  PetscCall(MatDestroy(&fast->Wk));
+  PetscCall(PetscFree2(fast->wk_rows, fast->wk_frames));
   PetscCall(PetscFree(scheme->data));
   PetscFunctionReturn(0);
 }
@@ -383,11 +470,13 @@ PetscErrorCode FCSchemeCreate_Fast(FCScheme scheme)
   Fast *fast;
 
   PetscFunctionBegin;
+  if (!EV_WK) PetscCall(PetscLogEventRegister("CongruenceWk", FC_CLASSID, &EV_WK));
   PetscCall(PetscNew(&fast));
   PetscCall(PetscStrncpy(fast->wh_mat_type, MATSEQDENSE, sizeof(fast->wh_mat_type)));
   PetscCall(PetscStrncpy(fast->frames_mat_type, MATSEQAIJ, sizeof(fast->frames_mat_type)));
   PetscCall(PetscStrncpy(fast->vec_type, VECSEQ, sizeof(fast->vec_type)));
   fast->host                 = PETSC_TRUE; /* the default types above */
+  fast->wk_state             = -1;
   scheme->data               = fast;
   scheme->ops.setfromoptions = SetFromOptions_Fast;
   scheme->ops.memory         = Memory_Fast;
