@@ -285,9 +285,10 @@ def repeat_pair(a):
              platform.machine(), os.cpu_count(),
              ", with the defaults, then with `%s`" % a.versus if a.versus else ""))
     vcol = "options | " if a.versus else ""
-    print("| scene | " + vcol + "repeat | step 1 rank (s) | 2 ranks (s) | step | "
+    print("| scene | " + vcol + "repeat | step 1 rank (s) | 2 ranks (s) | step | step 1 | steps 2.. | "
           + " | ".join(ph.replace("_", " ") for ph in PHASES) + " |")
-    print("|---|" + ("---|" if a.versus else "") + "---:|---:|---:|---:|" + "---:|" * len(PHASES))
+    print("|---|" + ("---|" if a.versus else "") + "---:|---:|---:|---:|---:|---:|" + "---:|" * len(PHASES))
+    later = {key: [] for key in ratios}
     for k in range(a.repeat_pair):
         for sc in ("36k", "cube"):
             for i, (v, extra) in enumerate(variants):
@@ -303,14 +304,22 @@ def repeat_pair(a):
                 ratio = r2["step"] / r1["step"]
                 ratios[(sc, v)].append(ratio)
                 cells = phase_ratios(r1, r2)
-                print("| %s | %s%d | %.3f | %.3f | **%.2f** | %s |"
-                      % (sc, vc, k + 1, r1["step"], r2["step"], ratio, " | ".join(cells)), flush=True)
+                # step 1 holds the run's first factorization (of a linear body, its only one)
+                w1, w2 = h1["steps/wall_time"][:], h2["steps/wall_time"][:]
+                first = w2[0] / w1[0]
+                rest = w2[1:].mean() / w1[1:].mean() if len(w1) > 1 else float("nan")
+                later[(sc, v)].append(rest)
+                print("| %s | %s%d | %.3f | %.3f | **%.2f** | %.2f | %.2f | %s |"
+                      % (sc, vc, k + 1, r1["step"], r2["step"], ratio, first, rest, " | ".join(cells)), flush=True)
     print("\n(a phase under 1 ms on 1 rank: -)\n")
     for (sc, v), x in ratios.items():
         if x:
             print("- %s%s: step ratio %s; min %.2f, median %.2f, max %.2f; %d of %d at most 0.65" % (
                 sc, " (%s)" % v if a.versus else "", ", ".join("%.2f" % y for y in x), min(x), float(np.median(x)),
                 max(x), sum(y <= 0.65 for y in x), len(x)))
+            y = later[(sc, v)]
+            print("  steps 2..%d alone: %s; median %.2f; %d of %d at most 0.65" % (
+                a.steps, ", ".join("%.2f" % z for z in y), float(np.median(y)), sum(z <= 0.65 for z in y), len(y)))
 
 
 def plot(rows, figdir):
