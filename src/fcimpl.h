@@ -253,7 +253,8 @@ typedef struct {
   /* W += J_b A_b^-1 J_b^T for the contacts touching this body (W: nrows x nrows, replicated) */
   PetscErrorCode (*addcompliance)(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
   /* optional: builds that W_b for the next addcompliance and tells whether it is the last one, on
-     the same rows of W (NULL: a body that adds something is never known to be unchanged) */
+     the same rows of W (NULL: a body that adds something is never known to be unchanged; one that
+     has it is always called before addcompliance, by FCSchemeCompliance) */
   PetscErrorCode (*buildcompliance)(FCBody, PetscInt self, const FCContactSet *, PetscBool *same);
   /* signed distance of a world point to this body's shape now: outward normal (world) and the
      closest point (body frame) */
@@ -414,8 +415,8 @@ PETSC_INTERN PetscErrorCode FCComplianceSetRotation(FCCompliance, const PetscRea
 /* W_b = J_b A^-1 J_b^T for the contacts touching body `self`, kept for the next Add; same: it is the
    last build's W_b on the same rows of W (a sum of the last builds still holds) */
 PETSC_INTERN PetscErrorCode FCComplianceBuild(FCCompliance, PetscInt self, const FCContactSet *, PetscBool *same);
-/* W (M x M, row-major, replicated) += J_b A^-1 J_b^T for the contacts touching body `self` (the
-   W_b of a Build just before with the same set, else built here) */
+/* W (M x M, row-major, replicated) += J_b A^-1 J_b^T for the contacts touching body `self`: the W_b
+   of the Build just before, with the same set */
 PETSC_INTERN PetscErrorCode FCComplianceAdd(FCCompliance, PetscInt self, const FCContactSet *, PetscReal W[]);
 /* a builder whose factorization depends on the contact DOFs (condensed) takes the contacts expected
    at its next factorization: whether it does, and the contacts */

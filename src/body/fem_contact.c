@@ -279,13 +279,12 @@ PetscErrorCode BuildCompliance_FEM(FCBody body, PetscInt self, const FCContactSe
   PetscFunctionReturn(0);
 }
 
-/* W += J_b A_b^-1 J_b^T (eq. 17; FCSchemeCompliance scales the sum by h^2) */
+/* W += J_b A_b^-1 J_b^T (eq. 17; FCSchemeCompliance scales the sum by h^2), the W_b of BuildCompliance_FEM */
 PetscErrorCode AddCompliance_FEM(FCBody body, PetscInt self, const FCContactSet *set, PetscReal W[])
 {
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
-  PetscCall(SetRotation(body));
   PetscCall(FCComplianceAdd(fem->comp, self, set, W));
   PetscFunctionReturn(0);
 }

@@ -392,10 +392,9 @@ PetscErrorCode FCComplianceAdd(FCCompliance comp, PetscInt self, const FCContact
   const PetscReal *Wb;
 
   PetscFunctionBegin;
-  if (!comp->pending) {
-    PetscBool same;
-    PetscCall(FCComplianceBuild(comp, self, set, &same));
-  }
+  PetscCheck(comp->pending, comp->ctx.comm, PETSC_ERR_ORDER,
+             "Compliance builder of body '%s': FCComplianceAdd without FCComplianceBuild on the same contacts",
+             comp->ctx.name);
   comp->pending = PETSC_FALSE;
   ncols         = comp->ncols;
   Wb            = comp->Wb;

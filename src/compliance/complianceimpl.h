@@ -40,7 +40,7 @@ struct _p_FCCompliance {
   PetscBool  wb_valid; /* it holds a complete W_b */
   PetscBool  keepswb;  /* the builder may keep it (ops.build) */
   PetscBool  kept;     /* the last build kept it: the W_b of the build before */
-  PetscBool  pending;  /* built and not yet added */
+  PetscBool  pending;  /* built and not yet added (an Add needs a Build first) */
   PetscInt   njt, nje;
   PetscInt  *jtr, *jtc; /* row (global DOF - first owned DOF), column            */
   PetscReal *jtv;
