@@ -30,8 +30,7 @@ typedef struct {
   /* W_H and W_k kept from step to step, and what they were built from: W_H is built again only when
      a body's part changed (FCSchemeCompliance), W_k only when W_H or the frames did (on the host) */
   Mat        WH, Wk;
-  PetscInt   wh_n3;    /* W_H's size: 3 x the contacts */
-  PetscReal  wh_h;     /* the time step it was scaled with */
+  PetscInt   wh_n3;    /* W_H's size: 3 x the contacts (h, in W_H, is fixed at set-up) */
   PetscBool  wh_valid; /* it holds the last build, complete and checked */
   PetscInt   wh_state; /* counts the builds of W_H that changed it */
   PetscInt   wk_state; /* the W_H state W_k was formed from (-1: none) */
@@ -350,8 +349,7 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
   }
   if (fast->host) fs.Wk = fast->Wk; /* formed again by RebuildW when W_H or the frames changed */
   {                                 /* W_H: kept when every body's part is the last one (on the host) */
-    PetscReal h    = scheme->nbodies ? scheme->bodies[0]->h : 0.0;
-    PetscBool kept = (PetscBool)(fast->host && fast->wh_valid && fast->wh_h == h);
+    PetscBool kept = (PetscBool)(fast->host && fast->wh_valid);
     fast->wh_valid = PETSC_FALSE;
     PetscCall(MatDenseGetArrayWrite(fs.WHm, &WH)); /* symmetric: row/column-major alike */
     PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
@@ -359,7 +357,6 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
     PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
     PetscCall(MatDenseRestoreArrayWrite(fs.WHm, &WH));
     fast->wh_valid = PETSC_TRUE;
-    fast->wh_h     = h;
     if (!kept) fast->wh_state++;
   }
 

@@ -31,7 +31,7 @@ struct _p_FCScheme {
 
 /* W = h^2 sum_b J_b A_b^-1 J_b^T of a contact set in its frames (identity frames give W_H),
    checked to be a compliance (scheme.c). kept (NULL: no): on entry, W holds the W of the last call,
-   for a set with the same rows and the same h; on return, whether W was left as it was because
+   for a set with the same rows (h is fixed at set-up); on return, whether W was left as it was because
    every body's part is the one it added last (a linear body on the same contacts: condensed.c) */
 PETSC_INTERN PetscErrorCode FCSchemeCompliance(FCScheme, const FCContactSet *, PetscReal W[], PetscBool *kept);
 /* The contact solver on prob (the set's linearization), with the set's dormant contacts; the ones
