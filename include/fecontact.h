@@ -40,6 +40,9 @@ PETSC_EXTERN PetscErrorCode    FCPhaseEnd(FCPhase);
 PETSC_EXTERN PetscErrorCode    FCPhaseGetTimes(PetscReal[FC_PHASE_NUM]); /* seconds since last reset */
 PETSC_EXTERN PetscErrorCode    FCPhaseResetTimes(void);
 PETSC_EXTERN PetscLogEvent     FC_EVENT_NEWTON; /* one Newton iteration of a recursive scheme */
+/* the work a scheme does only when something changed: W summed from the bodies' parts and checked,
+   W_k = C W_H C^T formed on the host (fast scheme; not counted when kept) */
+PETSC_EXTERN PetscLogEvent FC_EVENT_COMPLIANCE_SUM, FC_EVENT_CONGRUENCE_WK;
 
 /* ---------------------------------------------------------------------------------------
    Options helpers: every numeric option is checked for NaN/Inf and range, errors name it

@@ -39,8 +39,6 @@ typedef struct {
   PetscReal *wk_frames;
 } Fast;
 
-static PetscLogEvent EV_WK; /* "CongruenceWk": W_k formed on the host (not kept) */
-
 /* A matrix (ismat) or vector type given by an option is known to this PETSc build: a CUDA type in
    a host build is an input error at set-up, not at the first contact */
 static PetscErrorCode CheckType(MPI_Comm comm, PetscBool ismat, const char type[], const char option[])
@@ -227,9 +225,9 @@ static PetscErrorCode RebuildW(FastStep *fs)
     PetscBool same;
     PetscCall(SameFrames(fast, fs->set, &same));
     if (same && fs->Wk) PetscFunctionReturn(0);
-    PetscCall(PetscLogEventBegin(EV_WK, 0, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(FC_EVENT_CONGRUENCE_WK, 0, 0, 0, 0));
     PetscCall(CongruenceHost(fs));
-    PetscCall(PetscLogEventEnd(EV_WK, 0, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(FC_EVENT_CONGRUENCE_WK, 0, 0, 0, 0));
     PetscFunctionReturn(0);
   }
   PetscCall(MatMatMult(fs->C, fs->WHm, fs->U ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT, &fs->U));
@@ -467,7 +465,6 @@ PetscErrorCode FCSchemeCreate_Fast(FCScheme scheme)
   Fast *fast;
 
   PetscFunctionBegin;
-  if (!EV_WK) PetscCall(PetscLogEventRegister("CongruenceWk", FC_CLASSID, &EV_WK));
   PetscCall(PetscNew(&fast));
   PetscCall(PetscStrncpy(fast->wh_mat_type, MATSEQDENSE, sizeof(fast->wh_mat_type)));
   PetscCall(PetscStrncpy(fast->frames_mat_type, MATSEQAIJ, sizeof(fast->frames_mat_type)));

@@ -131,8 +131,6 @@ PetscErrorCode FCSchemeSolve(FCScheme scheme, PetscInt step, FCContactSet *set, 
   PetscFunctionReturn(0);
 }
 
-static PetscLogEvent EV_SUM; /* "ComplianceSum": W summed from the bodies' parts and checked (not kept) */
-
 PetscErrorCode FCSchemeCompliance(FCScheme scheme, const FCContactSet *set, PetscReal W[], PetscBool *kept)
 {
   FCBody   *bodies = scheme->bodies;
@@ -147,8 +145,7 @@ PetscErrorCode FCSchemeCompliance(FCScheme scheme, const FCContactSet *set, Pets
   }
   if (kept) *kept = same;
   if (same) PetscFunctionReturn(0); /* W, summed and checked from these same parts, holds */
-  if (!EV_SUM) PetscCall(PetscLogEventRegister("ComplianceSum", FC_CLASSID, &EV_SUM));
-  PetscCall(PetscLogEventBegin(EV_SUM, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(FC_EVENT_COMPLIANCE_SUM, 0, 0, 0, 0));
   PetscCall(PetscArrayzero(W, set->nrows * set->nrows));
   for (PetscInt b = 0; b < scheme->nbodies; b++) PetscCall(FCBodyAddCompliance(bodies[b], b, set, W));
   for (PetscInt k = 0; k < set->nrows * set->nrows; k++) W[k] *= h * h;
@@ -191,7 +188,7 @@ PetscErrorCode FCSchemeCompliance(FCScheme scheme, const FCContactSet *set, Pets
                "or the -compliance_type builder failed",
                (double)asym, (double)wmax);
   }
-  PetscCall(PetscLogEventEnd(EV_SUM, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(FC_EVENT_COMPLIANCE_SUM, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -9,7 +9,7 @@ const char *const FCPhaseNames[] = {
 static PetscLogEvent  events[FC_PHASE_NUM];
 static PetscLogDouble started[FC_PHASE_NUM], total[FC_PHASE_NUM];
 static PetscBool      registered = PETSC_FALSE;
-PetscLogEvent         FC_EVENT_NEWTON;
+PetscLogEvent         FC_EVENT_NEWTON, FC_EVENT_COMPLIANCE_SUM, FC_EVENT_CONGRUENCE_WK;
 
 PETSC_INTERN PetscErrorCode FCPhaseRegisterEvents(PetscClassId classid)
 {
@@ -21,6 +21,8 @@ PETSC_INTERN PetscErrorCode FCPhaseRegisterEvents(PetscClassId classid)
   if (registered) PetscFunctionReturn(0);
   for (int p = 0; p < FC_PHASE_NUM; p++) PetscCall(PetscLogEventRegister(eventnames[p], classid, &events[p]));
   PetscCall(PetscLogEventRegister("NewtonIteration", classid, &FC_EVENT_NEWTON));
+  PetscCall(PetscLogEventRegister("ComplianceSum", classid, &FC_EVENT_COMPLIANCE_SUM));
+  PetscCall(PetscLogEventRegister("CongruenceWk", classid, &FC_EVENT_CONGRUENCE_WK));
   registered = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
