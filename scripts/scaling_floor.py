@@ -25,20 +25,17 @@ import subprocess
 import sys
 
 import h5py
-import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXE = os.path.join(ROOT, "build", "fecontact")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
+from scaling import ENV, EXE, ROOT, scene  # the scenes of issue 16's pair, as scripts/scaling.py runs them
+
 OUT = os.path.join(ROOT, "build", "scaling_floor")
-SCENES = {"36k": ["-options_file", "input/table1_36k.opts"], "cube": ["-options_file", "input/cube_rest.opts"]}
 EVENTS = ["SchurAnalysis", "SchurNumeric", "SchurInverse"]
 PHASES = ["factorization", "free_motion", "compliance", "contact_solver", "correction", "rebuild_w"]
 
 
-def command(scene, tag, steps):
+def command(name, tag, steps):
     f = os.path.join(OUT, tag)
-    return [EXE] + SCENES[scene] + ["-time_steps", str(steps), "-output_every", str(steps), "-constraint_scheme", "fast",
+    return [EXE] + scene(name)[0] + ["-time_steps", str(steps), "-output_every", str(steps), "-constraint_scheme", "fast",
                                     "-newton_max_it", "5", "-quiet", "-output_file", f + ".h5",
                                     "-log_view", ":%s.csv:ascii_csv" % f, "-info", ":sys"]
 
