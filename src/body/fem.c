@@ -18,6 +18,12 @@
      -<body>_refactor_every k         co-rotational only: factor A every k steps (>= 1, default 1);
                                       between, K and f_int are current but A^-1 is the older
                                       factor's (a modified-Newton free motion, cheaper, less exact)
+     -<body>_assembly coo|values      co-rotational only: how K, assembled every step, is summed
+                                      (fem_step.c): coo (default) writes the element matrices in
+                                      place and sums them through the map PETSc built once
+                                      (MatSetValuesCOO; 16 bytes per element-matrix entry kept),
+                                      values inserts them one by one (MatSetValues, no map). A
+                                      linear K is assembled once, by values
      -<body>_ksp_type, -<body>_pc_type, -<body>_pc_factor_mat_solver_type ...   the solver */
 #include "femimpl.h"
 
@@ -43,9 +49,16 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
   PetscCall(FCOptionsRealArray(PetscOptionsObject, "-fixed_box",
                                "Fix the vertices inside xmin,ymin,zmin,xmax,ymax,zmax", 6, fem->fixed_box,
                                &fem->has_fixed_box));
-  if (strcmp(fem->material, "linear")) /* a linear A never changes: nothing to refactor */
+  if (strcmp(fem->material, "linear")) { /* a linear A never changes: nothing to refactor or re-sum */
+    const char *how[] = {"values", "coo"};
+    PetscInt    a     = fem->coo ? 1 : 0;
     PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_every", "Factor A every k steps (co-rotational)",
                            &fem->refactor_every, NULL));
+    PetscCall(
+        PetscOptionsEList("-assembly", "How K is summed every step (co-rotational)", NULL, how, 2, how[a], &a, NULL));
+    fem->coo = a == 1 ? PETSC_TRUE : PETSC_FALSE;
+  } else
+    fem->coo = PETSC_FALSE;
   PetscOptionsEnd();
   PetscCheck(fem->refactor_every >= 1, body->comm, PETSC_ERR_USER_INPUT,
              "Option -%srefactor_every must be >= 1, got %" PetscInt_FMT, body->prefix, fem->refactor_every);
@@ -233,6 +246,7 @@ static PetscErrorCode Destroy_FEM(FCBody body)
   PetscCall(MatDestroy(&fem->M));
   PetscCall(MatDestroy(&fem->K));
   PetscCall(MatDestroy(&fem->A));
+  PetscCall(PetscFree(fem->Kcells));
   PetscCall(VecDestroy(&fem->u));
   PetscCall(VecDestroy(&fem->v));
   PetscCall(VecDestroy(&fem->dv));
@@ -267,6 +281,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   PetscCall(PetscStrncpy(fem->material, "linear", sizeof(fem->material)));
   fem->poisson                 = 0.3;
   fem->refactor_every          = 1;
+  fem->coo                     = PETSC_TRUE; /* co-rotational; a linear K is summed once, by values */
   body->deformable             = PETSC_TRUE;
   body->state_cols             = 6; /* u, v */
   body->state_per_vertex       = PETSC_TRUE;

@@ -27,6 +27,8 @@ typedef struct {
   PetscBool        factored;       /* the factor of A is that of the current A */
   PetscInt         refactor_every; /* co-rotational: factor A every k steps, reuse the older factor between */
   PetscInt         factor_age;     /* steps since A was last factored */
+  PetscBool        coo;            /* -assembly coo: K summed by MatSetValuesCOO from Kcells */
+  PetscReal       *Kcells;         /* coo: the element matrices, 144 per cell, in cell order */
   PetscReal        mass;
   FCEnergy         energy;             /* the last energy computed (GetEnergy_FEM) ... */
   PetscObjectState energy_u, energy_v; /* ... for these states of u and v (0: none yet) */
