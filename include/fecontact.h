@@ -154,6 +154,14 @@ typedef struct _p_FCContactProblem *FCContactProblem;
 /* Dense W: n x n, row-major, symmetric, used in place (no copy): it must outlive the problem */
 PETSC_EXTERN PetscErrorCode FCContactProblemCreateDense(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
                                                         const PetscReal W[], const PetscReal q[], FCContactProblem *);
+/* Dense W held by block rows over comm: this rank passes only the rows of its contacts [c0, c1)
+   (rows off[c0] .. off[c1] - 1, n values each, row-major; used in place), the block that
+   FCContactSolverRowBlock gives it; the blocks tile the rows in rank order. Only a solver that
+   splits its sweeps over comm takes it (src/contact/problem_rows.c) */
+PETSC_EXTERN PetscErrorCode FCContactProblemCreateDenseRows(MPI_Comm comm, PetscInt nc, const PetscInt dim[],
+                                                            const PetscReal mu[], PetscInt c0, PetscInt c1,
+                                                            const PetscReal Wrows[], const PetscReal q[],
+                                                            FCContactProblem *);
 PETSC_EXTERN PetscErrorCode FCContactProblemCreateCSR(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
                                                       const PetscInt rowptr[], const PetscInt col[],
                                                       const PetscReal val[], const PetscReal q[], FCContactProblem *);
@@ -193,6 +201,11 @@ PETSC_EXTERN PetscErrorCode FCContactSolverSetTolerances(FCContactSolver, PetscR
    *changed; the solver then recomputes W r + q and restarts its acceleration. NULL: none. */
 typedef PetscErrorCode (*FCContactSolverUpdateFn)(void *ctx, FCContactProblem, PetscReal r[], PetscBool *changed);
 PETSC_EXTERN PetscErrorCode FCContactSolverSetUpdate(FCContactSolver, FCContactSolverUpdateFn, void *ctx);
+/* Whether the solver splits the sweeps of a dense problem of these contacts over its ranks
+   (-pgs_ranks split, or auto at that size), and then this rank's block of contacts [c0, c1): the
+   rows a problem by rows (FCContactProblemCreateDenseRows) must give it */
+PETSC_EXTERN PetscErrorCode FCContactSolverRowBlock(FCContactSolver, PetscInt nc, const PetscInt dim[],
+                                                    PetscBool *split, PetscInt *c0, PetscInt *c1);
 /* r: warm start on input, solution on output */
 PETSC_EXTERN PetscErrorCode FCContactSolverSolve(FCContactSolver, FCContactProblem, PetscReal r[]);
 PETSC_EXTERN PetscErrorCode FCContactSolverGetConvergence(FCContactSolver, PetscInt *sweeps, PetscReal *residual,

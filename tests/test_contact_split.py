@@ -15,6 +15,11 @@ solver on 1 rank, on bare problems run by tools/fclib_solve -dense.
   of those problems: the split sweeps where they converge, else rank 0 goes on from their iterate
   once they would not converge within -pgs_split_max_it sweeps (the stacks).
 - A whole scene with -pgs_ranks split on N ranks ends where the replicated run does (1e-8).
+- W_k by block rows (the fast scheme, -fast_wk_rows, the default where the sweeps are split: the
+  co-rotational cube resting on its 972 rows): rank 0 forms only its rows (the CongruenceWk flops
+  of the log, at most 1/N + 10 % of W_k whole's), and the motion is that of W_k whole to 1e-10,
+  also when rank 0 takes over from the split sweeps (-pgs_split_max_it 2: W gathered on rank 0)
+  and when the problem is written (-pgs_dump_problem: the same W to 1e-14 of its largest entry).
 Usage: test_contact_split.py --np N"""
 import os
 import subprocess
@@ -96,4 +101,40 @@ a, b = h5py.File(f1, "r"), h5py.File(fn, "r")
 dx = np.abs(final_state(a) - final_state(b)).max() / np.abs(final_state(a)).max()
 c.check(dx <= 1e-8, "cube_drop on %d ranks: -pgs_ranks split vs the default (root at this size), final state rel. diff %.1e <= 1e-8" % (NP, dx))
 c.check(b["steps/residual"][:].max() <= 1e-8, "cube_drop split: every step converged (max residual %.1e)" % b["steps/residual"][:].max())
+
+# W_k by block rows: each rank forms and keeps the rows its split sweeps read
+def flops_of(log, event):
+    """Rank 0's flops of a log event (-log_view :file:ascii_csv, column FLOP)"""
+    import csv
+    with open(log) as fl:
+        rows = list(csv.reader(fl))
+    k = rows[0].index("FLOP")
+    for row in rows[1:]:
+        if len(row) > k and row[0] == "Main Stage" and row[1] == event and row[2] == "0":
+            return float(row[k])
+    return -1.0
+
+
+rest = ["-options_file", "input/cube_rest.opts", "-time_steps", "3", "-constraint_scheme", "fast", "-newton_max_it", "5",
+        "-quiet"]
+res = {}
+for rows in (1, 0):
+    for extra, tag in (([], "auto"), (["-pgs_split_max_it", "2", "-pgs_dump_problem", out("rows%d.dump.h5" % rows)], "root")):
+        f, log = out("rows%d_%s.h5" % (rows, tag)), out("rows%d_%s.csv" % (rows, tag))
+        run(rest + extra + ["-fast_wk_rows", str(rows), "-output_file", f, "-log_view", ":%s:ascii_csv" % log], np_=NP)
+        res[rows, tag] = (h5py.File(f, "r"), flops_of(log, "CongruenceWk"))
+for tag in ("auto", "root"):
+    a, b = res[1, tag][0], res[0, tag][0]
+    dx = np.abs(a["bodies/cube/centroid"][:] - b["bodies/cube/centroid"][:]).max() / np.abs(b["bodies/cube/centroid"][:]).max()
+    share = res[1, tag][1] / res[0, tag][1]
+    c.check(a["steps/constraint_rows"][:].min() >= 900 and share <= 1.0 / NP + 0.1 and dx <= 1e-10,
+            "cube resting (%d rows), fast scheme, %s on %d ranks: W_k by rows, rank 0 forms %.2f of W_k whole's flops "
+            "(<= 1/%d + 0.1); centroids as with W_k whole to %.1e <= 1e-10 (sweeps %s and %s)" % (
+                a["steps/constraint_rows"][:].min(), "split sweeps" if tag == "auto" else "rank 0 taking over after 2 split sweeps",
+                NP, share, NP, dx, list(a["steps/pgs_iterations"][:]), list(b["steps/pgs_iterations"][:])))
+d1, d0 = h5py.File(out("rows1.dump.h5"), "r"), h5py.File(out("rows0.dump.h5"), "r")
+x1, x0 = d1["fclib_local/W/x"][:], d0["fclib_local/W/x"][:]
+dw = np.abs(x1 - x0).max() / np.abs(x0).max() if x1.shape == x0.shape else np.inf
+c.check(dw <= 1e-14, "-pgs_dump_problem with W_k by rows writes W gathered whole: %d entries, as W_k whole's to %.1e" % (
+    x1.size, dw))
 c.done()

@@ -12,12 +12,32 @@ struct _p_FCContactProblem {
   /* dense W (FCContactProblemCreateDense): n x n, row-major, borrowed from the caller, which keeps
      it alive while the problem exists; then the block CSR arrays above are NULL */
   const PetscReal *Wd;
-  PetscBool        symmetric; /* W = W^T to round-off: its rows serve as its columns (dense: assumed) */
-  FCContactProblem transpose; /* a non-symmetric block-sparse W: W^T by blocks (its rows are W's columns) */
-  PetscReal        qnorm;     /* ||q||, the residual's normalization */
-  PetscBool       *dormant;   /* borrowed (FCContactProblemSetDormant): contacts the sweeps skip, r_i = 0 */
-  PetscReal        wake;      /* a dormant contact wakes when its normal gap u_n < -wake */
+  /* dense W by block rows (FCContactProblemCreateDenseRows, problem_rows.c): Wd holds only the rows
+     [wlo, whi), those of contacts [c0, c1), this rank's block of rowcomm; whole W: MPI_COMM_NULL,
+     rows [0, n) */
+  MPI_Comm         rowcomm;
+  PetscInt         c0, c1, wlo, whi;
+  PetscMPIInt     *rcounts, *rdispls; /* every rank's rows (by rows) */
+  PetscBool        symmetric;         /* W = W^T to round-off: its rows serve as its columns (dense: assumed) */
+  FCContactProblem transpose;         /* a non-symmetric block-sparse W: W^T by blocks (its rows are W's columns) */
+  PetscReal        qnorm;             /* ||q||, the residual's normalization */
+  PetscBool       *dormant;           /* borrowed (FCContactProblemSetDormant): contacts the sweeps skip, r_i = 0 */
+  PetscReal        wake;              /* a dormant contact wakes when its normal gap u_n < -wake */
 };
+
+/* Row k of a dense W (held by this rank) */
+static inline const PetscReal *FCContactProblemRow(FCContactProblem p, PetscInt k)
+{
+  return p->Wd + (k - p->wlo) * p->n;
+}
+/* The blocks of contacts the split sweeps give the ranks: contiguous, about n / size rows each;
+   cfirst[b] is block b's first contact, cfirst[size] = nc (pgs_split.c) */
+PETSC_INTERN void FCContactSplitBlocks(PetscInt nc, const PetscInt off[], PetscMPIInt size, PetscInt cfirst[]);
+/* u = W r + q of a problem by rows: each rank its rows, then every row on every rank (collective) */
+PETSC_INTERN PetscErrorCode FCContactProblemVelocityRows(FCContactProblem, const PetscReal r[], PetscReal u[]);
+/* A problem by rows gathered whole on rank 0 of its rowcomm (collective): *whole and its W (to be
+   freed by the caller) on rank 0, NULL elsewhere; the whole one shares q, mu and the dormant mask */
+PETSC_INTERN PetscErrorCode FCContactProblemGatherWhole(FCContactProblem, PetscReal **W, FCContactProblem *whole);
 
 /* The relative natural-map residual of r given u = W r + q (no product with W) */
 PETSC_INTERN PetscReal FCContactProblemResidualFromVelocity(FCContactProblem, const PetscReal r[], const PetscReal u[]);

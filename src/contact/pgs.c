@@ -240,13 +240,19 @@ static PetscErrorCode Dump(FCContactSolver s, FCContactProblem p)
   PetscMPIInt    rank;
   PetscErrorCode werr = 0;
 
+  FCContactProblem whole = NULL;
+  PetscReal       *W     = NULL;
+
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  if (p->rowcomm != MPI_COMM_NULL) PetscCall(FCContactProblemGatherWhole(p, &W, &whole)); /* by rows */
   if (!rank) {
     PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-    werr = FCContactProblemWriteFCLIB(p, s->dump);
+    werr = FCContactProblemWriteFCLIB(whole ? whole : p, s->dump);
     PetscCall(PetscPopErrorHandler());
   }
+  PetscCall(FCContactProblemDestroy(&whole));
+  PetscCall(PetscFree(W));
   PetscCallMPI(MPI_Bcast(&werr, 1, MPI_INT, 0, s->comm));
   PetscCheck(!werr, s->comm, PETSC_ERR_FILE_WRITE,
              "Option -pgs_dump_problem: could not write the contact problem to '%s' (FCLIB needs the same rows for "
@@ -285,6 +291,28 @@ static PetscErrorCode SolveLazyHere(FCContactSolver s, FCContactProblem p, Petsc
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCContactSolverRowBlock(FCContactSolver s, PetscInt nc, const PetscInt dim[], PetscBool *split,
+                                       PetscInt *c0, PetscInt *c1)
+{
+  PetscMPIInt size, rank;
+  PetscInt   *off, *cfirst;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(s->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+  PetscCall(PetscMalloc2(nc + 1, &off, size + 1, &cfirst));
+  off[0] = 0;
+  for (PetscInt i = 0; i < nc; i++) off[i + 1] = off[i] + dim[i];
+  /* the choice of FCContactSolverSolve for a dense W */
+  *split = (PetscBool)(size > 1 && !s->update &&
+                       (s->placement == PGS_SPLIT || (s->placement == PGS_AUTO && off[nc] >= s->split_min_rows)));
+  FCContactSplitBlocks(nc, off, size, cfirst);
+  *c0 = *split ? cfirst[rank] : 0;
+  *c1 = *split ? cfirst[rank + 1] : nc;
+  PetscCall(PetscFree2(off, cfirst));
+  PetscFunctionReturn(0);
+}
+
 /* Where the replicated problem is solved (-pgs_ranks): split over the ranks (split; auto from
    -pgs_split_min_rows rows), on every rank (all; on 1 rank; with a per-sweep update, which is
    collective), or on rank 0, which broadcasts the forces (root; auto below that size) */
@@ -297,6 +325,10 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   if (s->dump[0] && !s->dump_unconverged && !s->dumped && p->n >= s->dump_rows) PetscCall(Dump(s, p));
   splittable = (PetscBool)(size > 1 && p->Wd && !s->update);
+  PetscCheck(p->rowcomm == MPI_COMM_NULL ||
+                 (splittable && (s->placement == PGS_SPLIT || (s->placement == PGS_AUTO && p->n >= s->split_min_rows))),
+             s->comm, PETSC_ERR_ARG_WRONG,
+             "A contact problem held by block rows needs split sweeps (FCContactSolverRowBlock says when)");
   if (splittable && s->placement == PGS_SPLIT)
     PetscCall(SolveLazy(s, p, r, SolveSplit));
   else if (splittable && s->placement == PGS_AUTO && p->n >= s->split_min_rows)
@@ -432,9 +464,9 @@ static PetscErrorCode SolveSplit(FCContactSolver s, FCContactProblem p, PetscRea
    contact zones in about as many sweeps as the replicated solver (docs/contact-solver.md); where
    they do not (the Jacobi coupling between blocks: multibody stacks; a hard FE problem that needs
    hundreds of sweeps), rank 0 goes on from the split iterate with the replicated sweeps and
-   broadcasts the forces. The split sweeps stop as soon as their rate says they would not converge
-   within -pgs_split_max_it (pgs_split.c), so such a problem pays a few dozen of them, not all.
-   Collective. */
+   broadcasts the forces (a problem held by block rows is gathered whole on rank 0 for that). The split sweeps stop as
+   soon as their rate says they would not converge within -pgs_split_max_it (pgs_split.c), so such a problem pays a few
+   dozen of them, not all. Collective. */
 static PetscErrorCode SolveSplitThenRoot(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscInt  max_it = s->max_it, split_sweeps;
@@ -448,7 +480,17 @@ static PetscErrorCode SolveSplitThenRoot(FCContactSolver s, FCContactProblem p, 
   split_sweeps   = s->sweeps;
   split_residual = s->residual;
   s->max_it      = max_it - split_sweeps;
-  PetscCall(OnRoot(s, p, r, SolveHere));
+  if (p->rowcomm != MPI_COMM_NULL) { /* by rows: rank 0 goes on with W gathered whole */
+    FCContactProblem whole;
+    PetscReal       *W;
+    PetscMPIInt      rank;
+    PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
+    PetscCall(FCContactProblemGatherWhole(p, &W, &whole));
+    PetscCall(OnRoot(s, rank ? p : whole, r, SolveHere));
+    PetscCall(FCContactProblemDestroy(&whole));
+    PetscCall(PetscFree(W));
+  } else
+    PetscCall(OnRoot(s, p, r, SolveHere));
   s->max_it = max_it;
   s->sweeps += split_sweeps;
   PetscCall(PetscInfo(NULL,

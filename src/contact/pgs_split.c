@@ -10,7 +10,8 @@
    (the product with W of the replicated sweep, split p ways); the price is the Jacobi coupling between blocks, which
    can need more sweeps (docs/contact-solver.md measures both). The residual is the same natural-map residual as the
    replicated solver's, summed over the blocks (an MPI_Allreduce), so every rank stops at the same sweep with the same
-   forces. Dense W only (what the schemes build); the stopping test and the exact recomputation of u every FC_PGS_EXACT
+   forces. Dense W only (what the schemes build), whole or held by block rows (each rank its block's,
+   problem_rows.c: the sweeps read no other); the stopping test and the exact recomputation of u every FC_PGS_EXACT
    sweeps follow the replicated solver. With giveup (-pgs_ranks auto) the exact residuals FC_SPLIT_EXACT sweeps apart
    give the rate of convergence, and the sweeps stop, unconverged, as soon as it says max_it will not be enough (the
    same decision on every rank: the residual is reduced). */
@@ -19,8 +20,18 @@
 
 #define FC_SPLIT_EXACT 16
 
+void FCContactSplitBlocks(PetscInt nc, const PetscInt off[], PetscMPIInt size, PetscInt cfirst[])
+{
+  PetscInt c = 0, n = off[nc];
+  for (PetscMPIInt b = 0; b < size; b++) {
+    cfirst[b] = c;
+    while (c < nc && off[c] < (b + 1) * n / size) c++;
+  }
+  cfirst[size] = nc;
+}
+
 /* u_b = q_b + W_b: r for the rows [lo, hi): W row-major is W^T = W column-major, whose columns
-   [lo, hi) are W's rows (one BLAS gemv, transposed) */
+   [lo, hi) are W's rows (one BLAS gemv, transposed); a problem by rows holds just these */
 static PetscErrorCode BlockVelocity(FCContactProblem p, PetscInt lo, PetscInt hi, const PetscReal r[], PetscReal ub[])
 {
   PetscBLASInt n, nb, one = 1;
@@ -31,7 +42,8 @@ static PetscErrorCode BlockVelocity(FCContactProblem p, PetscInt lo, PetscInt hi
   PetscCall(PetscBLASIntCast(hi - lo, &nb));
   for (PetscInt k = lo; k < hi; k++) ub[k - lo] = p->q[k];
   if (nb && n)
-    PetscCallBLAS("BLASgemv", BLASgemv_("T", &n, &nb, &alpha, p->Wd + lo * p->n, &n, r, &one, &beta, ub, &one));
+    PetscCallBLAS("BLASgemv",
+                  BLASgemv_("T", &n, &nb, &alpha, FCContactProblemRow(p, lo), &n, r, &one, &beta, ub, &one));
   PetscFunctionReturn(0);
 }
 
@@ -50,10 +62,11 @@ static PetscErrorCode AddOffBlock(FCContactProblem p, PetscInt lo, PetscInt hi, 
   PetscCall(PetscBLASIntCast(lo, &m0));
   PetscCall(PetscBLASIntCast(p->n - hi, &m1));
   if (nb && m0)
-    PetscCallBLAS("BLASgemv", BLASgemv_("T", &m0, &nb, &alpha, p->Wd + lo * p->n, &n, dr, &one, &beta, ub, &one));
-  if (nb && m1)
     PetscCallBLAS("BLASgemv",
-                  BLASgemv_("T", &m1, &nb, &alpha, p->Wd + lo * p->n + hi, &n, dr + hi, &one, &beta, ub, &one));
+                  BLASgemv_("T", &m0, &nb, &alpha, FCContactProblemRow(p, lo), &n, dr, &one, &beta, ub, &one));
+  if (nb && m1)
+    PetscCallBLAS("BLASgemv", BLASgemv_("T", &m1, &nb, &alpha, FCContactProblemRow(p, lo) + hi, &n, dr + hi, &one,
+                                        &beta, ub, &one));
   PetscFunctionReturn(0);
 }
 
@@ -87,12 +100,7 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(PetscMalloc3(size + 1, &cfirst, size, &counts, size, &displs));
   { /* contiguous blocks of contacts, about n / size rows each */
-    PetscInt c = 0;
-    for (PetscMPIInt b = 0; b < size; b++) {
-      cfirst[b] = c;
-      while (c < p->nc && p->off[c] < (b + 1) * n / size) c++;
-    }
-    cfirst[size] = p->nc;
+    FCContactSplitBlocks(p->nc, p->off, size, cfirst);
     for (PetscMPIInt b = 0; b < size; b++) {
       counts[b] = (PetscMPIInt)(p->off[cfirst[b + 1]] - p->off[cfirst[b]]);
       displs[b] = (PetscMPIInt)p->off[cfirst[b]];
@@ -105,6 +113,10 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
   }
   c0 = cfirst[rank];
   c1 = cfirst[rank + 1];
+  PetscCheck(p->rowcomm == MPI_COMM_NULL || (p->c0 == c0 && p->c1 == c1), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+             "The contact problem holds the rows of contacts [%" PetscInt_FMT ", %" PetscInt_FMT
+             ") on this rank, the split sweeps need [%" PetscInt_FMT ", %" PetscInt_FMT ") (FCContactSolverRowBlock)",
+             p->c0, p->c1, c0, c1);
   lo = p->off[c0];
   hi = p->off[c1];
   nb = hi - lo;
@@ -121,7 +133,7 @@ PetscErrorCode FCContactSolveSplit(MPI_Comm comm, FCContactProblem p, PetscReal 
       PetscBool changed;
       PetscCall(FCContactLocalUpdate(p, i, &ub[o - lo], omega, proximal, r, delta, &changed));
       if (changed) { /* u_b += W_b,i delta: the rows of contact i restricted to the block (W symmetric) */
-        const PetscReal *w = p->Wd + o * n + lo;
+        const PetscReal *w = FCContactProblemRow(p, o) + lo;
         if (d == 3)
           FCContactAddRows3(nb, w, w + n, w + 2 * n, delta[0], delta[1], delta[2], ub);
         else

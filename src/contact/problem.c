@@ -26,7 +26,10 @@ static PetscErrorCode ProblemAllocate(PetscInt nc, const PetscInt dim[], const P
     p->mu[i]      = mu[i];
     p->off[i + 1] = p->off[i] + dim[i];
   }
-  p->n = p->off[nc];
+  p->n       = p->off[nc];
+  p->rowcomm = MPI_COMM_NULL; /* whole W */
+  p->c1      = nc;
+  p->whi     = p->n;
   PetscCall(PetscMalloc1(p->n, &p->q));
   PetscCall(PetscArraycpy(p->q, q, p->n));
   for (PetscInt k = 0; k < p->n; k++) p->qnorm += q[k] * q[k];
@@ -166,9 +169,9 @@ PetscErrorCode FCContactProblemCreateDense(PetscInt nc, const PetscInt dim[], co
 void FCContactProblemDiagonalBlock(FCContactProblem p, PetscInt i, PetscReal Wii[9])
 {
   PetscInt d = p->dim[i], o = p->off[i];
-  if (p->Wd) {
+  if (p->Wd) { /* by rows: one of this rank's contacts */
     for (PetscInt a = 0; a < d; a++)
-      for (PetscInt b = 0; b < d; b++) Wii[a * d + b] = p->Wd[(o + a) * p->n + o + b];
+      for (PetscInt b = 0; b < d; b++) Wii[a * d + b] = FCContactProblemRow(p, o + a)[o + b];
   } else
     for (PetscInt a = 0; a < d * d; a++) Wii[a] = p->val[p->boff[p->diag[i]] + a];
 }
@@ -201,7 +204,7 @@ void FCContactProblemAddColumns(FCContactProblem p, PetscInt i, const PetscReal 
 {
   PetscInt d = p->dim[i], o = p->off[i], n = p->n;
   if (p->Wd) {
-    const PetscReal *a = p->Wd + o * n;
+    const PetscReal *a = FCContactProblemRow(p, o); /* by rows: one of this rank's contacts */
     if (d == 3)
       FCContactAddRows3(n, a, a + n, a + 2 * n, delta[0], delta[1], delta[2], u);
     else
@@ -223,6 +226,8 @@ void FCContactProblemAddColumns(FCContactProblem p, PetscInt i, const PetscReal 
 PetscErrorCode FCContactProblemGetDenseW(FCContactProblem p, PetscReal **W)
 {
   PetscFunctionBegin;
+  PetscCheck(p->rowcomm == MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_SUP,
+             "A contact problem held by block rows has no whole W here (FCContactProblemGatherWhole)");
   PetscCall(PetscCalloc1(p->n * p->n + 1, W));
   if (p->Wd)
     PetscCall(PetscArraycpy(*W, p->Wd, p->n * p->n));
@@ -249,6 +254,10 @@ PetscErrorCode FCContactProblemGetSizes(FCContactProblem p, PetscInt *nc, PetscI
 PetscErrorCode FCContactProblemVelocity(FCContactProblem p, const PetscReal r[], PetscReal u[])
 {
   PetscFunctionBegin;
+  if (p->rowcomm != MPI_COMM_NULL) {
+    PetscCall(FCContactProblemVelocityRows(p, r, u));
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscArraycpy(u, p->q, p->n));
   if (p->Wd) { /* row-major W is W^T column-major: u += (W^T)^T r */
     PetscBLASInt n, one = 1;
@@ -334,6 +343,7 @@ PetscErrorCode FCContactProblemDestroy(FCContactProblem *prob)
   PetscCall(PetscFree(p->rowptr));
   PetscCall(PetscFree3(p->col, p->boff, p->diag));
   PetscCall(PetscFree(p->val));
+  PetscCall(PetscFree2(p->rcounts, p->rdispls));
   PetscCall(FCContactProblemDestroy(&p->transpose));
   PetscCall(PetscFree(*prob));
   PetscFunctionReturn(0);
@@ -478,6 +488,8 @@ PetscErrorCode FCContactProblemWriteFCLIB(FCContactProblem p, const char path[])
   PetscInt   nnz = 0, e = 0, n = p->n;
 
   PetscFunctionBegin;
+  PetscCheck(p->rowcomm == MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_SUP,
+             "A contact problem held by block rows is written from its whole W (FCContactProblemGatherWhole)");
   for (PetscInt i = 0; i < p->nc; i++)
     PetscCheck(p->dim[i] == p->dim[0], PETSC_COMM_SELF, PETSC_ERR_SUP,
                "FCLIB needs the same rows for every contact: contact %" PetscInt_FMT " has %" PetscInt_FMT

@@ -20,21 +20,28 @@
                                  (beyond the paper: its closing remark; docs/accuracy.md measures it)
      the types of W_H (dense), the frames C (sparse) and the force vectors, host by default; on a
      GPU build -wh_mat_type seqdensecuda -frames_mat_type seqaijcusparse -contact_vec_type seqcuda
-     (docs/gpu.md) */
+     (docs/gpu.md)
+     -fast_wk_rows <bool>        where the contact solver splits its sweeps over the ranks
+                                 (-pgs_ranks split, or auto from -pgs_split_min_rows rows), each
+                                 rank forms and keeps only the block rows of W_k its sweeps read
+                                 (M^2 / p values, formed p ways; src/contact/problem_rows.c);
+                                 default true, host types only; false: W_k whole on every rank */
 #include "schemeimpl.h"
 
 typedef struct {
   char      wh_mat_type[FC_MAX_NAME], frames_mat_type[FC_MAX_NAME], vec_type[FC_MAX_NAME];
   PetscBool sweep_update; /* -fast_update sweep */
   PetscBool host;         /* W_H seqdense and C seqaij (the default types): W_k by CongruenceHost */
+  PetscBool by_rows;      /* -fast_wk_rows */
   /* W_H and W_k kept from step to step, and what they were built from: W_H is built again only when
      a body's part changed (FCSchemeCompliance), W_k only when W_H or the frames did (on the host) */
   Mat        WH, Wk;
-  PetscInt   wh_n3;    /* W_H's size: 3 x the contacts (h, in W_H, is fixed at set-up) */
-  PetscBool  wh_valid; /* it holds the last build, complete and checked */
-  PetscInt   wh_state; /* counts the builds of W_H that changed it */
-  PetscInt   wk_state; /* the W_H state W_k was formed from (-1: none) */
-  PetscInt   wk_nc;    /* the frames W_k was formed with: per contact its row, dim and n, t1, t2 */
+  PetscInt   wh_n3;        /* W_H's size: 3 x the contacts (h, in W_H, is fixed at set-up) */
+  PetscBool  wh_valid;     /* it holds the last build, complete and checked */
+  PetscInt   wh_state;     /* counts the builds of W_H that changed it */
+  PetscInt   wk_state;     /* the W_H state W_k was formed from (-1: none) */
+  PetscInt   wk_c0, wk_c1; /* the contacts whose rows W_k holds (all: 0, nc) */
+  PetscInt   wk_nc;        /* the frames W_k was formed with: per contact its row, dim and n, t1, t2 */
   PetscInt  *wk_rows;
   PetscReal *wk_frames;
 } Fast;
@@ -85,6 +92,8 @@ static PetscErrorCode SetFromOptions_Fast(FCScheme scheme, PetscOptionItems *Pet
                                 when, 2, when[a], &a, NULL));
     fast->sweep_update = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
+  PetscCall(PetscOptionsBool("-fast_wk_rows", "With split contact sweeps, each rank forms only its block rows of W_k",
+                             NULL, fast->by_rows, &fast->by_rows, NULL));
   PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->wh_mat_type, "-wh_mat_type"));
   PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->frames_mat_type, "-frames_mat_type"));
   PetscCall(CheckType(scheme->comm, PETSC_FALSE, fast->vec_type, "-contact_vec_type"));
@@ -97,14 +106,42 @@ static PetscErrorCode SetFromOptions_Fast(FCScheme scheme, PetscOptionItems *Pet
   PetscFunctionReturn(0);
 }
 
-/* W_H (3m)^2, U and U^T (M x 3m), W_k (M^2), replicated on every rank */
-static PetscErrorCode Memory_Fast(FCScheme scheme, const FCContactSet *set, PetscReal *bytes, const char **what)
+/* The contacts whose rows of W_k this rank forms: its block when the contact solver splits the
+   sweeps (and -fast_wk_rows, host types), else all */
+static PetscErrorCode RowBlock(FCScheme scheme, const FCContactSet *set, PetscBool *rows, PetscInt *c0, PetscInt *c1)
 {
-  PetscReal n3 = 3.0 * set->n, M = set->nrows;
+  Fast     *fast = (Fast *)scheme->data;
+  PetscInt *dims;
 
   PetscFunctionBegin;
-  *bytes = 8.0 * (n3 * n3 + 2.0 * M * n3 + M * M);
-  *what  = "dense W_H and W_k";
+  *rows = PETSC_FALSE;
+  *c0   = 0;
+  *c1   = set->n;
+  if (!fast->host || !fast->by_rows) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(set->n + 1, &dims));
+  for (PetscInt k = 0; k < set->n; k++) {
+    PetscCheck(set->c[k].row == (k ? set->c[k - 1].row + set->c[k - 1].dim : 0), PETSC_COMM_SELF, PETSC_ERR_PLIB,
+               "Contact %" PetscInt_FMT "'s rows do not follow the previous contact's", k);
+    dims[k] = set->c[k].dim;
+  }
+  PetscCall(FCContactSolverRowBlock(scheme->solver, set->n, dims, rows, c0, c1));
+  PetscCall(PetscFree(dims));
+  PetscFunctionReturn(0);
+}
+
+/* W_H (3m)^2, U and U^T (M x 3m; general types only), W_k (M^2, or this rank's block rows) */
+static PetscErrorCode Memory_Fast(FCScheme scheme, const FCContactSet *set, PetscReal *bytes, const char **what)
+{
+  Fast     *fast = (Fast *)scheme->data;
+  PetscReal n3 = 3.0 * set->n, M = set->nrows, Mb = M;
+  PetscBool rows;
+  PetscInt  c0, c1;
+
+  PetscFunctionBegin;
+  PetscCall(RowBlock(scheme, set, &rows, &c0, &c1));
+  if (rows) Mb = (c1 < set->n ? set->c[c1].row : set->nrows) - (c0 < set->n ? set->c[c0].row : set->nrows);
+  *bytes = 8.0 * (n3 * n3 + (fast->host ? 0.0 : 2.0 * M * n3) + M * Mb);
+  *what  = rows ? "dense W_H and this rank's rows of W_k" : "dense W_H and W_k";
   PetscFunctionReturn(0);
 }
 
@@ -137,12 +174,16 @@ typedef struct {
   PetscReal    *dfree, *d0, *q, *qold, *d;
   PetscInt      rebuilds; /* W_k rebuilt inside the contact solver (-fast_update sweep) */
   PetscBool     host;     /* W_H dense and C AIJ on the host: W_k by CongruenceHost */
+  PetscBool     rows;     /* W_k holds the rows [rlo, rhi) of contacts [c0, c1) only (RowBlock) */
+  PetscInt      c0, c1, rlo, rhi;
 } FastStep;
 
 /* W_k = C_k W_H C_k^T on the host, block by block: C_k is block diagonal (contact I's d_I frame
    rows act on its 3 columns), so W_k[I,J] = F_I W_H[I,J] F_J^T for the 3 x 3 blocks of W_H. One
    pass over W_H (read) and W_k (written), both column-major; the two general products below
-   (MatMatMult, then a transpose) stream a dense matrix of this size five times. */
+   (MatMatMult, then a transpose) stream a dense matrix of this size five times. By rows: only the
+   columns J of contacts [c0, c1), which are W_k's rows of those contacts (W_k is symmetric), M x
+   (rhi - rlo), the layout of a problem by rows. */
 static PetscErrorCode CongruenceHost(FastStep *fs)
 {
   const FCContactSet *set = fs->set;
@@ -151,15 +192,15 @@ static PetscErrorCode CongruenceHost(FastStep *fs)
   PetscInt            n3 = fs->n3, M = fs->M;
 
   PetscFunctionBegin;
-  if (!fs->Wk) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, M, M, NULL, &fs->Wk));
+  if (!fs->Wk) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, M, fs->rhi - fs->rlo, NULL, &fs->Wk));
   PetscCall(MatDenseGetArrayRead(fs->WHm, &wh));
   PetscCall(MatDenseGetArrayWrite(fs->Wk, &wk));
-  for (PetscInt kj = 0; kj < fs->nc; kj++) {
+  for (PetscInt kj = fs->c0; kj < fs->c1; kj++) {
     const FCContact *cj     = &set->c[kj];
     const PetscReal *fj[3]  = {cj->n, cj->t1, cj->t2};
     const PetscReal *col[3] = {wh + (3 * kj) * n3, wh + (3 * kj + 1) * n3, wh + (3 * kj + 2) * n3};
     PetscScalar     *out[3];
-    for (PetscInt b = 0; b < cj->dim; b++) out[b] = wk + (cj->row + b) * M;
+    for (PetscInt b = 0; b < cj->dim; b++) out[b] = wk + (cj->row + b - fs->rlo) * M;
     for (PetscInt ki = 0; ki < fs->nc; ki++) {
       const FCContact *ci    = &set->c[ki];
       const PetscReal *fi[3] = {ci->n, ci->t1, ci->t2};
@@ -174,7 +215,27 @@ static PetscErrorCode CongruenceHost(FastStep *fs)
   }
   PetscCall(MatDenseRestoreArrayWrite(fs->Wk, &wk));
   PetscCall(MatDenseRestoreArrayRead(fs->WHm, &wh));
+  { /* per block pair: 5 flops for each of the 3 d_J entries of p, 5 for each of the d_I d_J outputs */
+    PetscLogDouble rows = (PetscLogDouble)(fs->rhi - fs->rlo), cols = (PetscLogDouble)M;
+    PetscCall(PetscLogFlops(5.0 * rows * (3.0 * fs->nc + cols)));
+  }
   PetscFunctionReturn(0);
+}
+
+/* The normal compliance of every contact, n^T W_H[k,k] n: W_k's diagonal by the arithmetic of
+   CongruenceHost, for a W_k that holds only this rank's rows */
+static void NormalComplianceFromWH(FastStep *fs, const PetscScalar *wh)
+{
+  FCContactSet *set = fs->set;
+  PetscInt      n3  = fs->n3;
+  for (PetscInt k = 0; k < fs->nc; k++) {
+    FCContact       *c      = &set->c[k];
+    const PetscReal *col[3] = {wh + (3 * k) * n3, wh + (3 * k + 1) * n3, wh + (3 * k + 2) * n3};
+    PetscReal        p[3];
+    for (int i = 0; i < 3; i++)
+      p[i] = col[0][3 * k + i] * c->n[0] + col[1][3 * k + i] * c->n[1] + col[2][3 * k + i] * c->n[2];
+    c->wnn = c->n[0] * p[0] + c->n[1] * p[1] + c->n[2] * p[2];
+  }
 }
 
 /* Whether W_k was formed from the current W_H with the frames of the set (the host's kept W_k);
@@ -316,6 +377,9 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
   fs.n3     = n3;
   fs.M      = M;
   fs.host   = fast->host;
+  PetscCall(RowBlock(scheme, set, &fs.rows, &fs.c0, &fs.c1));
+  fs.rlo = fs.c0 < nc ? set->c[fs.c0].row : M;
+  fs.rhi = fs.c1 < nc ? set->c[fs.c1].row : M;
   /* W_H once per step: the bodies' builders on the contacts in identity frames */
   PetscCall(FCContactSetCopy(set, &fs.H));
   for (PetscInt k = 0; k < nc; k++) {
@@ -337,10 +401,10 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
     fast->wh_valid = PETSC_FALSE;
   }
   fs.WHm = fast->WH;
-  if (fast->Wk) { /* M x M: the rows of the frames (3 per contact with friction, else 1) */
-    PetscInt m;
-    PetscCall(MatGetSize(fast->Wk, &m, NULL));
-    if (m != M) {
+  if (fast->Wk) { /* M x M, or M x its block rows: the rows of the frames (3 per contact with friction, else 1) */
+    PetscInt m, mb;
+    PetscCall(MatGetSize(fast->Wk, &m, &mb));
+    if (m != M || mb != fs.rhi - fs.rlo || fast->wk_c0 != fs.c0 || fast->wk_c1 != fs.c1) {
       PetscCall(MatDestroy(&fast->Wk));
       fast->wk_state = -1;
     }
@@ -397,8 +461,16 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
     PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));
     PetscCall(ForcesInFrames(&fs, lambda));
     PetscCall(MatDenseGetArrayRead(fs.Wk, &w)); /* symmetric: column-major = row-major */
-    PetscCall(FCContactProblemCreateDense(nc, dims, mu, w, fs.q, &prob));
-    FCContactSetNormalCompliance(set, w);
+    if (fs.rows) {
+      const PetscScalar *wh;
+      PetscCall(FCContactProblemCreateDenseRows(scheme->comm, nc, dims, mu, fs.c0, fs.c1, w, fs.q, &prob));
+      PetscCall(MatDenseGetArrayRead(fs.WHm, &wh));
+      NormalComplianceFromWH(&fs, wh);
+      PetscCall(MatDenseRestoreArrayRead(fs.WHm, &wh));
+    } else {
+      PetscCall(FCContactProblemCreateDense(nc, dims, mu, w, fs.q, &prob));
+      FCContactSetNormalCompliance(set, w);
+    }
     PetscCall(FCSchemeContactSolve(scheme, set, prob, lambda));
     PetscCall(FCContactSolverGetConvergence(scheme->solver, &sweeps, &st->residual, &conv));
     PetscCall(FCContactProblemDestroy(&prob));
@@ -435,9 +507,11 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
   PetscCall(MatDestroy(&fs.C));
   PetscCall(MatDestroy(&fs.U));
   PetscCall(MatDestroy(&fs.Ut));
-  if (fast->host)
-    fast->Wk = fs.Wk; /* kept with W_H */
-  else
+  if (fast->host) { /* kept with W_H */
+    fast->Wk    = fs.Wk;
+    fast->wk_c0 = fs.c0;
+    fast->wk_c1 = fs.c1;
+  } else
     PetscCall(MatDestroy(&fs.Wk));
   PetscCall(VecDestroy(&fs.F));
   PetscCall(VecDestroy(&fs.dvec));
@@ -470,6 +544,7 @@ PetscErrorCode FCSchemeCreate_Fast(FCScheme scheme)
   PetscCall(PetscStrncpy(fast->frames_mat_type, MATSEQAIJ, sizeof(fast->frames_mat_type)));
   PetscCall(PetscStrncpy(fast->vec_type, VECSEQ, sizeof(fast->vec_type)));
   fast->host                 = PETSC_TRUE; /* the default types above */
+  fast->by_rows              = PETSC_TRUE;
   fast->wk_state             = -1;
   scheme->data               = fast;
   scheme->ops.setfromoptions = SetFromOptions_Fast;
