@@ -34,14 +34,14 @@
                                     default), ScaLAPACK over every rank of the body, or the host's
                                     Cholesky factor and each rank's block of columns of its inverse
                                     (columns). All the same on 1 rank (spdinverse.c; measured in
-                                    docs/scaling.md)
+                                    docs/scaling-history.md)
      -compliance_condensed_balance k
                                     k top levels of the nested dissection of the interior are
                                     bisections balanced in the vertex count and in the count of
                                     vertices next to S at once (default 0: METIS_NodeND alone), so
                                     that MUMPS' two top subtrees, on different ranks, share the
                                     fronts that S widens (schurfactor.c, Dissect; measured in
-                                    docs/scaling.md: a more even flop split, not a faster step) */
+                                    docs/scaling-history.md: a more even flop split, not a faster step) */
 #include "complianceimpl.h"
 
 typedef struct {
@@ -359,7 +359,7 @@ PetscErrorCode FCComplianceCreate_Condensed(FCCompliance comp)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&cd));
-  cd->inverse              = FC_SPD_INVERSE_HOST; /* docs/scaling.md, "The inversion of the Schur complement" */
+  cd->inverse              = FC_SPD_INVERSE_HOST; /* docs/scaling-history.md, "The inversion of the Schur complement" */
   comp->data               = cd;
   comp->factors            = PETSC_TRUE;
   comp->keepswb            = PETSC_TRUE; /* Build_Condensed keeps W_b while it holds */

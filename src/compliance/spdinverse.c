@@ -17,7 +17,7 @@
    VM's 2 ranks scalapack was no faster from 600 to 4800 rows; columns was 0.74-0.88x of host
    from 1400 rows in bench_spdinverse, slower at 972, and no faster in the solver at 1692 (the
    36k box: rank 1 comes late from its share of MUMPS' factorization) (issue 16; measured in
-   docs/scaling.md). */
+   docs/scaling-history.md). */
 #include "complianceimpl.h"
 #include <petscblaslapack.h>
 
