@@ -490,11 +490,14 @@ def write_doc(a, rows):
           "on rank 0, so they are serial in effect;",
           "- **split**: the contact solver (O(sweeps (3m)^2) a Newton iteration), by default (`-pgs_ranks auto`) "
           "over the ranks from 900 rows, each rank sweeping its block of contacts (O(sweeps 3m (3m/p))), with "
-          "`root` on rank 0 and a broadcast of 3m numbers (the `solver` rows);",
-          "- **replicated, does not shrink with p**: the W_k rebuild (O(M 3m 3) a Newton iteration), the frame and proximity updates (O(m)), "
-          "and the gathered contact surfaces (O(surface) per rank);",
-          "- **memory**: W_H, U, U^T and W_k are 8 ((3m)^2 + 2 M 3m + M^2) bytes on every rank (-contact_memory_limit "
-          "stops a step that would exceed it); `redundant` adds a sequential factor of A on every rank (its fill "
+          "`root` on rank 0 and a broadcast of 3m numbers (the `solver` rows); with it the W_k rebuild "
+          "(O(M 3m 3 / p) a Newton iteration: each rank forms the block rows its sweeps read, `-fast_wk_rows`);",
+          "- **replicated, does not shrink with p**: the sum and checks of W_H (O((3m)^2) when a body's part "
+          "changed), the W_k rebuild below 900 rows, the frame and proximity updates (O(m)), and the gathered "
+          "contact surfaces (O(surface) per rank);",
+          "- **memory**: W_H is 8 (3m)^2 bytes on every rank, W_k 8 M^2 / p where the sweeps are split (its "
+          "block rows) and 8 M^2 elsewhere; U and U^T (8 (2 M 3m)) only with non-host matrix types "
+          "(-contact_memory_limit stops a step that would exceed it); `redundant` adds a sequential factor of A on every rank (its fill "
           "grows like N^(4/3) for a 3D mesh and does not shrink with p: MUMPS' estimate is checked against -compliance_redundant_memory_limit at set-up; use fewer copies or `inverse` when it does not fit); "
           "`dense` keeps J^T and A^-1 J^T, 16 N 3m / p bytes per rank; a gmsh mesh is read whole on rank 0, a PETSc "
           "HDF5 mesh in slices (below).", "",
@@ -502,7 +505,7 @@ def write_doc(a, rows):
           "Allreduce of the partial W_b ((3m)^2 numbers: 184 MB at 1600 contacts) stays small against W_H / p; "
           "`-compliance_redundant_groups k` keeps k copies instead of p when memory is short.", "",
           "So with `redundant` the W_H phase scales until the replicated contact phases set the floor: with m fixed, "
-          "the step time tends to t_serial (the W_k rebuild, the W_H assembly); with m growing like the surface "
+          "the step time tends to t_serial (the W_H sum and checks, the serial parts of the factorization); with m growing like the surface "
           "(N^(2/3)), the replicated O(m^2) work grows like N^(4/3) per rank while the distributed work shrinks like "
           "N/p, and it dominates at scale. The contact solver's sweeps are split over the ranks by default "
           "(`-pgs_ranks auto`: each rank its own block of contacts, damped Jacobi between blocks, rank 0 going on "

@@ -19,7 +19,8 @@ solver on 1 rank, on bare problems run by tools/fclib_solve -dense.
   co-rotational cube resting on its 972 rows): rank 0 forms only its rows (the CongruenceWk flops
   of the log, at most 1/N + 10 % of W_k whole's), and the motion is that of W_k whole to 1e-10,
   also when rank 0 takes over from the split sweeps (-pgs_split_max_it 2: W gathered on rank 0)
-  and when the problem is written (-pgs_dump_problem: the same W to 1e-14 of its largest entry).
+  and when the problem is written (-pgs_dump_problem: the same W to 1e-14 of its largest entry);
+  a rank whose block is empty (4 contacts on 5 ranks) gives the 1-rank answer (1e-8).
 Usage: test_contact_split.py --np N"""
 import os
 import subprocess
@@ -132,6 +133,19 @@ for tag in ("auto", "root"):
             "(<= 1/%d + 0.1); centroids as with W_k whole to %.1e <= 1e-10 (sweeps %s and %s)" % (
                 a["steps/constraint_rows"][:].min(), "split sweeps" if tag == "auto" else "rank 0 taking over after 2 split sweeps",
                 NP, share, NP, dx, list(a["steps/pgs_iterations"][:]), list(b["steps/pgs_iterations"][:])))
+# a rank whose block is empty (a plank on the incline: 4 contacts, 12 rows, on 5 ranks, run once):
+# no rows to form or hold, the same answer as 1 rank (split from 1 row on; rank 0 takes over where
+# block Jacobi stalls on a rigid body)
+if NP == 3:
+    plank = ["-options_file", "input/incline.opts", "-box_half_extents", "0.2,0.01,0.1", "-time_steps", "20",
+             "-constraint_scheme", "fast", "-pgs_split_min_rows", "1", "-quiet"]
+    run(plank + ["-output_file", out("plank1.h5")])
+    run(plank + ["-output_file", out("plank5.h5")], np_=5)
+    p1, p5 = h5py.File(out("plank1.h5"), "r"), h5py.File(out("plank5.h5"), "r")
+    dx = np.abs(p1["bodies/box/centroid"][:] - p5["bodies/box/centroid"][:]).max() / np.abs(p1["bodies/box/centroid"][:]).max()
+    c.check(p5["steps/contacts"][:].max() == 4 and dx <= 1e-8,
+            "plank on the incline, %d contacts on 5 ranks (rank 4's block empty), W_k by rows: centroids as on 1 rank "
+            "to %.1e <= 1e-8" % (p5["steps/contacts"][:].max(), dx))
 d1, d0 = h5py.File(out("rows1.dump.h5"), "r"), h5py.File(out("rows0.dump.h5"), "r")
 x1, x0 = d1["fclib_local/W/x"][:], d0["fclib_local/W/x"][:]
 dw = np.abs(x1 - x0).max() / np.abs(x0).max() if x1.shape == x0.shape else np.inf

@@ -8,6 +8,8 @@
 #include "contactimpl.h"
 #include <petscblaslapack.h>
 
+static const PetscReal NoRows = 0.0;
+
 PetscErrorCode FCContactProblemCreateDenseRows(MPI_Comm comm, PetscInt nc, const PetscInt dim[], const PetscReal mu[],
                                                PetscInt c0, PetscInt c1, const PetscReal Wrows[], const PetscReal q[],
                                                FCContactProblem *prob)
@@ -19,7 +21,8 @@ PetscErrorCode FCContactProblemCreateDenseRows(MPI_Comm comm, PetscInt nc, const
   PetscFunctionBegin;
   PetscCheck(0 <= c0 && c0 <= c1 && c1 <= nc, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
              "Block of contacts [%" PetscInt_FMT ", %" PetscInt_FMT ") outside [0, %" PetscInt_FMT ")", c0, c1, nc);
-  PetscCall(FCContactProblemCreateDense(nc, dim, mu, Wrows, q, &p));
+  /* a rank with no contacts in its block may pass no rows (NULL): Wd still marks the problem dense */
+  PetscCall(FCContactProblemCreateDense(nc, dim, mu, c1 > c0 ? Wrows : &NoRows, q, &p));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   p->rowcomm = comm;
