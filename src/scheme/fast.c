@@ -129,7 +129,8 @@ static PetscErrorCode RowBlock(FCScheme scheme, const FCContactSet *set, PetscBo
   PetscFunctionReturn(0);
 }
 
-/* W_H (3m)^2, U and U^T (M x 3m; general types only), W_k (M^2, or this rank's block rows) */
+/* W_H (3m)^2, U and U^T (M x 3m; general types only), W_k (M^2, or the largest rank's block rows);
+   collective */
 static PetscErrorCode Memory_Fast(FCScheme scheme, const FCContactSet *set, PetscReal *bytes, const char **what)
 {
   Fast     *fast = (Fast *)scheme->data;
@@ -139,7 +140,10 @@ static PetscErrorCode Memory_Fast(FCScheme scheme, const FCContactSet *set, Pets
 
   PetscFunctionBegin;
   PetscCall(RowBlock(scheme, set, &rows, &c0, &c1));
-  if (rows) Mb = (c1 < set->n ? set->c[c1].row : set->nrows) - (c0 < set->n ? set->c[c0].row : set->nrows);
+  if (rows) { /* the largest block of the ranks: every rank decides the same against the limit */
+    Mb = (c1 < set->n ? set->c[c1].row : set->nrows) - (c0 < set->n ? set->c[c0].row : set->nrows);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &Mb, 1, MPIU_REAL, MPIU_MAX, scheme->comm));
+  }
   *bytes = 8.0 * (n3 * n3 + (fast->host ? 0.0 : 2.0 * M * n3) + M * Mb);
   *what  = rows ? "dense W_H and this rank's rows of W_k" : "dense W_H and W_k";
   PetscFunctionReturn(0);
