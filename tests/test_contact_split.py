@@ -20,7 +20,8 @@ solver on 1 rank, on bare problems run by tools/fclib_solve -dense.
   of the log, at most 1/N + 10 % of W_k whole's), and the motion is that of W_k whole to 1e-10,
   also when rank 0 takes over from the split sweeps (-pgs_split_max_it 2: W gathered on rank 0)
   and when the problem is written (-pgs_dump_problem: the same W to 1e-14 of its largest entry);
-  a rank whose block is empty (4 contacts on 5 ranks) gives the 1-rank answer (1e-8).
+  a rank whose block is empty (4 contacts on 5 ranks) gives the 1-rank answer (1e-8); with
+  -fast_update sweep (the solver does not split) W_k stays whole.
 Usage: test_contact_split.py --np N"""
 import os
 import subprocess
@@ -133,6 +134,15 @@ for tag in ("auto", "root"):
             "(<= 1/%d + 0.1); centroids as with W_k whole to %.1e <= 1e-10 (sweeps %s and %s)" % (
                 a["steps/constraint_rows"][:].min(), "split sweeps" if tag == "auto" else "rank 0 taking over after 2 split sweeps",
                 NP, share, NP, dx, list(a["steps/pgs_iterations"][:]), list(b["steps/pgs_iterations"][:])))
+# with -fast_update sweep the solver calls back after every sweep and does not split: W_k whole
+fs_, fw = out("rows_sweep.h5"), out("whole_sweep.h5")
+run(rest + ["-fast_update", "sweep", "-output_file", fs_], np_=NP)
+run(rest + ["-fast_update", "sweep", "-fast_wk_rows", "0", "-output_file", fw], np_=NP)
+a, b = h5py.File(fs_, "r"), h5py.File(fw, "r")
+dx = np.abs(a["bodies/cube/centroid"][:] - b["bodies/cube/centroid"][:]).max() / np.abs(b["bodies/cube/centroid"][:]).max()
+c.check(a["steps/step"].size == 3 and dx <= 1e-12,
+        "-fast_update sweep on %d ranks (%d rows): W_k whole, 3 steps, the motion of -fast_wk_rows 0 to %.1e <= 1e-12 "
+        "(MUMPS' parallel sums differ run to run)" % (NP, a["steps/constraint_rows"][:].min(), dx))
 # a rank whose block is empty (a plank on the incline: 4 contacts, 12 rows, on 5 ranks, run once):
 # no rows to form or hold, the same answer as 1 rank (split from 1 row on; rank 0 takes over where
 # block Jacobi stalls on a rigid body)

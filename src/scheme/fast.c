@@ -25,7 +25,8 @@
                                  (-pgs_ranks split, or auto from -pgs_split_min_rows rows), each
                                  rank forms and keeps only the block rows of W_k its sweeps read
                                  (M^2 / p values, formed p ways; src/contact/problem_rows.c);
-                                 default true, host types only; false: W_k whole on every rank */
+                                 default true, host types only; false (and -fast_update sweep,
+                                 whose solver does not split): W_k whole on every rank */
 #include "schemeimpl.h"
 
 typedef struct {
@@ -107,7 +108,7 @@ static PetscErrorCode SetFromOptions_Fast(FCScheme scheme, PetscOptionItems *Pet
 }
 
 /* The contacts whose rows of W_k this rank forms: its block when the contact solver splits the
-   sweeps (and -fast_wk_rows, host types), else all */
+   sweeps (and -fast_wk_rows, host types, no -fast_update sweep), else all */
 static PetscErrorCode RowBlock(FCScheme scheme, const FCContactSet *set, PetscBool *rows, PetscInt *c0, PetscInt *c1)
 {
   Fast     *fast = (Fast *)scheme->data;
@@ -117,7 +118,8 @@ static PetscErrorCode RowBlock(FCScheme scheme, const FCContactSet *set, PetscBo
   *rows = PETSC_FALSE;
   *c0   = 0;
   *c1   = set->n;
-  if (!fast->host || !fast->by_rows) PetscFunctionReturn(0);
+  /* -fast_update sweep: the solver calls back after every sweep, so it does not split (pgs.c) */
+  if (!fast->host || !fast->by_rows || fast->sweep_update) PetscFunctionReturn(0);
   PetscCall(PetscMalloc1(set->n + 1, &dims));
   for (PetscInt k = 0; k < set->n; k++) {
     PetscCheck(set->c[k].row == (k ? set->c[k - 1].row + set->c[k - 1].dim : 0), PETSC_COMM_SELF, PETSC_ERR_PLIB,
