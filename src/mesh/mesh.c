@@ -579,6 +579,22 @@ PetscErrorCode FCMeshGetBoundary(FCMesh *m, PetscInt *nbv, PetscInt **bv, PetscI
     for (int a = 0; a < 3; a++) isb[tv[a]] = PETSC_TRUE;
     nt++;
   }
+  { /* a vertex is on the boundary when any rank holds a boundary face through it: with overlap 0 a
+       boundary face lives only on the rank of its one cell, which need not be the vertex's owner, so
+       the marks are summed to the owner over the point SF before the ownership filter below (else a
+       vertex whose owner holds none of its faces would be nobody's candidate) */
+    PetscSF   sf;
+    PetscInt  pStart, pEnd;
+    PetscInt *mark;
+    PetscCall(DMPlexGetChart(m->dm, &pStart, &pEnd));
+    PetscCall(PetscCalloc1(pEnd - pStart, &mark));
+    for (PetscInt v = 0; v < nv; v++) mark[m->vStart + v - pStart] = isb[v];
+    PetscCall(DMGetPointSF(m->dm, &sf));
+    PetscCall(PetscSFReduceBegin(sf, MPIU_INT, mark, mark, MPI_MAX));
+    PetscCall(PetscSFReduceEnd(sf, MPIU_INT, mark, mark, MPI_MAX));
+    for (PetscInt v = 0; v < nv; v++) isb[v] = mark[m->vStart + v - pStart] ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(PetscFree(mark));
+  }
   for (PetscInt v = 0; v < nv; v++) nb += (isb[v] && m->owned[v]);
   PetscCall(PetscMalloc1(nb + 1, bv));
   nb = 0;
