@@ -3,9 +3,9 @@
    -contact_intersection_depth, on the real end-of-step geometry. It sees what the contact
    constraints of the step did not hold, whatever the reason (a crossing the detection missed, a
    constraint left open, bodies that started inside each other).
-   The points are those the detection constrains: the candidate points of a body (owned FE
-   boundary vertices, the vertices of a mesh shape, the points of a bounded rigid shape) against
-   the analytic shape of the other body (its signed distance), and, between two bodies with
+   The points are those the detection constrains: the vertices of a body's surface (an FE body or a
+   mesh shape) or the points of a bounded rigid shape, against the analytic shape of the other body
+   (its signed distance), and, between two bodies with
    surface triangles (FE-FE, FE-mesh), the vertices of each against the other's closed surface,
    both ways whatever -contact_fe_passes; and between those, the sharp edges of each (edges.c)
    through the other with both ends outside it: an edge whose point at 1/4, 1/2 or 3/4 of its
@@ -21,7 +21,11 @@
    Inside a closed surface: an odd number of crossings of a ray from the point (in a fixed,
    generic direction, so that it does not run along the edges of structured meshes), the
    triangles bucketed in a 2D grid across the ray; deeper than d: no triangle within d (the
-   spatial hash of collision.c, inflated by d). */
+   spatial hash of collision.c, inflated by d).
+   The vertices of a surface are taken from its gathered triangles, not from the detection's list of
+   candidate points (the owned boundary vertices, src/mesh/mesh.c), so that a vertex the detection
+   misses, whatever the reason (a partition on which no rank took it), is still counted when it
+   goes through the other body. */
 #include "collisionimpl.h"
 
 /* A generic direction: no mesh of the repository has an edge or a face along it */
@@ -152,15 +156,80 @@ static PetscBool DeepInside(const Closed *c, const PetscReal x[3], PetscReal dep
   return best < 0 || d2 > depth * depth ? PETSC_TRUE : PETSC_FALSE;
 }
 
-/* Points of P inside the closed surface B, deeper than depth */
-static PetscErrorCode PointsInSurface(FCBody P, const Closed *B, PetscReal depth, PetscInt *count)
+static int CompareVertex(const void *a, const void *b)
 {
-  PetscInt     n;
-  FCProximity *prox;
-  PetscReal   *x, *xf, *key;
+  const PetscReal *x = (const PetscReal *)a, *y = (const PetscReal *)b;
+  for (int i = 0; i < 3; i++)
+    if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
+  return 0;
+}
+
+/* The distinct vertices of ntri gathered triangles (the same on every rank), by reference
+   position, as [X (3), x now (3)] each: *nv of them in *vx (to be freed) */
+static PetscErrorCode SurfaceVertices(PetscInt ntri, const FCSurfaceTriangle tri[], PetscInt *nv, PetscReal **vx)
+{
+  PetscReal *v;
+  PetscInt   m = 0;
 
   PetscFunctionBegin;
-  PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x, &xf, &key));
+  PetscCall(PetscMalloc1(18 * ntri + 1, &v));
+  for (PetscInt t = 0; t < ntri; t++)
+    for (int a = 0; a < 3; a++)
+      for (int d = 0; d < 3; d++) {
+        v[18 * t + 6 * a + d]     = tri[t].X[a][d];
+        v[18 * t + 6 * a + 3 + d] = tri[t].x0[a][d];
+      }
+  if (ntri) qsort(v, 3 * ntri, 6 * sizeof(PetscReal), CompareVertex);
+  for (PetscInt k = 0; k < 3 * ntri; k++)
+    if (!m || CompareVertex(&v[6 * (m - 1)], &v[6 * k])) {
+      if (m != k) PetscCall(PetscArraycpy(&v[6 * m], &v[6 * k], 6));
+      m++;
+    }
+  *nv = m;
+  *vx = v;
+  PetscFunctionReturn(0);
+}
+
+/* The points of a body that this rank checks: the vertices of its surface (the gathered triangles
+   S, or gathered here when S is NULL), each checked by one rank (k % size); or, for a body without
+   surface triangles (a bounded analytic shape), the points of its picture (FCBodyGetContactPoints).
+   x: 3 per point (to be freed) */
+static PetscErrorCode CheckedPoints(MPI_Comm comm, FCBody body, const FCSurface *S, PetscInt *n, PetscReal **x)
+{
+  PetscFunctionBegin;
+  if (FCBodyHasSurfaceTriangles(body)) {
+    PetscInt           nv, m = 0, ntri;
+    FCSurfaceTriangle *tri = NULL;
+    PetscReal         *vx;
+    PetscMPIInt        rank, size;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    if (S)
+      PetscCall(SurfaceVertices(S->n, S->tri, &nv, &vx));
+    else {
+      PetscCall(FCSurfaceGather(comm, body, &ntri, &tri));
+      PetscCall(SurfaceVertices(ntri, tri, &nv, &vx));
+      PetscCall(PetscFree(tri));
+    }
+    for (PetscInt k = rank; k < nv; k += size, m++)
+      for (int d = 0; d < 3; d++) vx[3 * m + d] = vx[6 * k + 3 + d];
+    *n = m;
+    *x = vx;
+  } else {
+    FCProximity *prox;
+    PetscReal   *x0, *xf, *key;
+    PetscCall(FCBodyGetContactPoints(body, n, &prox, &x0, &xf, &key));
+    PetscCall(PetscMalloc1(3 * (*n) + 1, x));
+    PetscCall(PetscArraycpy(*x, x0, 3 * (*n)));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Points x of a body inside the closed surface B, deeper than depth */
+static PetscErrorCode PointsInSurface(PetscInt n, const PetscReal x[], const Closed *B, PetscReal depth,
+                                      PetscInt *count)
+{
+  PetscFunctionBegin;
   for (PetscInt i = 0; i < n; i++)
     if (DeepInside(B, &x[3 * i], depth)) (*count)++;
   PetscFunctionReturn(0);
@@ -197,15 +266,10 @@ static PetscErrorCode EdgesThroughSurface(MPI_Comm comm, const Closed *P, const 
   PetscFunctionReturn(0);
 }
 
-/* Points of P inside the analytic shape of B, deeper than depth */
-static PetscErrorCode PointsInShape(FCBody P, FCBody B, PetscReal depth, PetscInt *count)
+/* Points x of a body inside the analytic shape of B, deeper than depth */
+static PetscErrorCode PointsInShape(PetscInt n, const PetscReal x[], FCBody B, PetscReal depth, PetscInt *count)
 {
-  PetscInt     n;
-  FCProximity *prox;
-  PetscReal   *x, *xf, *key;
-
   PetscFunctionBegin;
-  PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x, &xf, &key));
   for (PetscInt i = 0; i < n; i++) {
     PetscReal d, nrm[3], cpb[3];
     PetscCall(FCBodyShapeDistance(B, FC_AT_NOW, &x[3 * i], &d, nrm, cpb));
@@ -223,12 +287,18 @@ PetscErrorCode FCCollisionCountIntersections(MPI_Comm comm, PetscInt nbodies, FC
   for (PetscInt p = 0; p < pairs->n; p++) {
     FCBody A = bodies[pairs->body[p][0]], B = bodies[pairs->body[p][1]];
     if (FCBodyHasSurfaceTriangles(A) && FCBodyHasSurfaceTriangles(B)) {
-      Closed    ca, cb;
-      PetscReal depth = pairs->intersection_depth;
+      Closed     ca, cb;
+      PetscReal  depth = pairs->intersection_depth;
+      PetscInt   n;
+      PetscReal *x;
       PetscCall(ClosedCreate(comm, A, depth, &ca));
       PetscCall(ClosedCreate(comm, B, depth, &cb));
-      PetscCall(PointsInSurface(A, &cb, depth, &local));
-      PetscCall(PointsInSurface(B, &ca, depth, &local));
+      PetscCall(CheckedPoints(comm, A, ca.S, &n, &x));
+      PetscCall(PointsInSurface(n, x, &cb, depth, &local));
+      PetscCall(PetscFree(x));
+      PetscCall(CheckedPoints(comm, B, cb.S, &n, &x));
+      PetscCall(PointsInSurface(n, x, &ca, depth, &local));
+      PetscCall(PetscFree(x));
       PetscCall(EdgesThroughSurface(comm, &ca, &cb, depth, &local));
       PetscCall(EdgesThroughSurface(comm, &cb, &ca, depth, &local));
       PetscCall(ClosedDestroy(&ca));
@@ -236,16 +306,21 @@ PetscErrorCode FCCollisionCountIntersections(MPI_Comm comm, PetscInt nbodies, FC
       continue;
     }
     for (int s = 0; s < 2; s++) { /* a body with points against the other's analytic shape */
-      FCBody X = s ? B : A, Y = s ? A : B;
+      FCBody     X = s ? B : A, Y = s ? A : B;
+      PetscInt   n;
+      PetscReal *x, depth = pairs->intersection_depth;
       if (!FCBodyIsDeformable(X) && !FCBodyHasBoundedShape(X)) continue; /* a plane has no points */
+      if (!FCBodyHasShape(Y) && !FCBodyHasSurfaceTriangles(Y)) continue;
+      PetscCall(CheckedPoints(comm, X, NULL, &n, &x));
       if (FCBodyHasShape(Y))
-        PetscCall(PointsInShape(X, Y, pairs->intersection_depth, &local));
-      else if (FCBodyHasSurfaceTriangles(Y)) { /* an analytic shape's points in a meshed body */
+        PetscCall(PointsInShape(n, x, Y, depth, &local));
+      else { /* an analytic shape's points in a meshed body */
         Closed cy;
-        PetscCall(ClosedCreate(comm, Y, pairs->intersection_depth, &cy));
-        PetscCall(PointsInSurface(X, &cy, pairs->intersection_depth, &local));
+        PetscCall(ClosedCreate(comm, Y, depth, &cy));
+        PetscCall(PointsInSurface(n, x, &cy, depth, &local));
         PetscCall(ClosedDestroy(&cy));
       }
+      PetscCall(PetscFree(x));
     }
   }
   PetscCall(MPIU_Allreduce(&local, count, 1, MPIU_INT, MPI_SUM, comm));
