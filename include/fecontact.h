@@ -101,6 +101,7 @@ typedef struct {
   PetscInt   nvpc;                  /* 4: tetrahedra, 3: triangles */
   PetscInt  *cells;                 /* nc * nvpc global vertex numbers */
   PetscReal *reference;             /* nv * 3 reference (placed, t = 0) coordinates */
+  PetscInt  *origin;                /* meshed bodies: nc, each cell's index in the mesh file; else NULL */
 } FCBodyVisual;
 
 PETSC_EXTERN PetscFunctionList FCBodyList;

@@ -117,6 +117,7 @@ typedef struct {
   PetscBool *owned;                          /* (vEnd-vStart) vertex owned by this rank                      */
   IS         vertexNumbering, cellNumbering; /* global numbers (negative: not owned)      */
   PetscInt  *visVert;                        /* owned vertices (local index) in increasing global number    */
+  PetscInt  *cellOrigin; /* (cEnd-cStart) each cell's index in the mesh as read, before distribution: the partition */
 } FCMesh;
 /* src/util/gather.c: n records of `size` bytes from every rank, concatenated in rank order on every
    rank (*all: total records, to be freed) */
@@ -137,6 +138,11 @@ PETSC_INTERN PetscErrorCode FCBLASView(void); /* -info: how many products it com
    stays finite with room to spare */
 #define FC_MESH_MAX_COORDINATE 1e100
 PETSC_INTERN PetscErrorCode FCMeshLoad(MPI_Comm, const char prefix[], const char bodyname[], FCMesh *);
+/* src/mesh/partreplay.c: -<body>_partition_file, the partition recorded in an earlier run's output
+   (/bodies/<body>/mesh/rank and cell_origin) set on the partitioner of the mesh as read (rank 0);
+   nothing without the option */
+PETSC_INTERN PetscErrorCode FCMeshPartitionReplay(DM serial, PetscPartitioner, const char prefix[],
+                                                  const char bodyname[]);
 PETSC_INTERN PetscErrorCode FCMeshTransform(FCMesh *, const PetscReal center[3], const PetscReal R[9],
                                             const PetscReal t[3]);
 PETSC_INTERN PetscErrorCode FCMeshCheckCells(FCMesh *, const char bodyname[]);

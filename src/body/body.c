@@ -242,6 +242,7 @@ PetscErrorCode FCBodyVisualDestroy(FCBodyVisual *vis)
   PetscFunctionBegin;
   PetscCall(PetscFree(vis->cells));
   PetscCall(PetscFree(vis->reference));
+  PetscCall(PetscFree(vis->origin));
   PetscFunctionReturn(0);
 }
 

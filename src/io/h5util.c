@@ -167,14 +167,15 @@ PetscErrorCode FCH5WriteDistributed(hid_t loc, const char name[], hid_t filetype
                                     hsize_t cols, hsize_t start, hsize_t n, const void *data)
 {
   hsize_t dims[2] = {rows, cols}, s[2] = {start, 0}, c[2] = {n, cols};
-  hid_t   fspace = H5Screate_simple(2, dims, NULL), dset, mspace;
+  int     rank   = cols ? 2 : 1; /* cols 0: a list (rows,) */
+  hid_t   fspace = H5Screate_simple(rank, dims, NULL), dset, mspace;
 
   PetscFunctionBegin;
   dset = H5Dcreate2(loc, name, filetype, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   FCH5Check(dset, name);
   if (n) {
     H5Sselect_hyperslab(fspace, H5S_SELECT_SET, s, NULL, c, NULL);
-    mspace = H5Screate_simple(2, c, NULL);
+    mspace = H5Screate_simple(rank, c, NULL);
   } else {
     H5Sselect_none(fspace);
     mspace = H5Screate(H5S_NULL);

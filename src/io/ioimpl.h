@@ -51,7 +51,8 @@ PETSC_INTERN PetscErrorCode FCH5CreateRows(hid_t loc, const char name[], hid_t t
                                            hsize_t chunkrows, hid_t *dset);
 /* Appends n rows (collective extend): rank 0 writes data, the others take part with nothing */
 PETSC_INTERN PetscErrorCode FCH5AppendRows(PetscMPIInt rank, hid_t dset, hid_t memtype, hsize_t n, const void *data);
-/* A fixed-size dataset (rows x cols) written by ranges: each rank its [start, start + n) rows */
+/* A fixed-size dataset (rows x cols, or a list of rows with cols 0) written by ranges: each rank
+   its [start, start + n) rows */
 PETSC_INTERN PetscErrorCode FCH5WriteDistributed(hid_t loc, const char name[], hid_t filetype, hid_t memtype,
                                                  hsize_t rows, hsize_t cols, hsize_t start, hsize_t n,
                                                  const void *data);

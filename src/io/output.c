@@ -94,7 +94,7 @@ static size_t ReserveBytes(PetscInt nbodies, FCBody bodies[], PetscBool header)
     PetscBool           pervertex;
     if (FCBodyGetVisual(bodies[i], &vis) || FCBodyGetStateLayout(bodies[i], &cols, &pervertex)) continue;
     bytes += (size_t)vis->nv_global * (24 + 8 * (size_t)cols) * (header ? 4 : 2);
-    if (header) bytes += (size_t)vis->nc_global * (size_t)vis->nvpc * 8;
+    if (header) bytes += (size_t)vis->nc_global * ((size_t)vis->nvpc + 2) * 8;
   }
   return bytes;
 }
@@ -192,6 +192,23 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     PetscCall(PetscFree(cells));
     PetscCall(FCH5WriteDistributed(gm, "reference", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, vis->nv_global, 3, vis->vstart,
                                    vis->nv, vis->reference));
+    if (vis->origin) { /* the partition: the rank of each cell and its index in the mesh as read, which
+                          -<body>_partition_file replays (src/mesh/partreplay.c) */
+      PetscMPIInt rank, size;
+      PetscCallMPI(MPI_Comm_rank(out->comm, &rank));
+      PetscCallMPI(MPI_Comm_size(out->comm, &size));
+      PetscCall(PetscMalloc1(2 * vis->nc + 1, &cells));
+      for (PetscInt k = 0; k < vis->nc; k++) {
+        cells[k]           = rank;
+        cells[vis->nc + k] = vis->origin[k];
+      }
+      PetscCall(FCH5WriteDistributed(gm, "rank", H5T_STD_I64LE, H5T_NATIVE_LLONG, vis->nc_global, 0, vis->cstart,
+                                     vis->nc, cells));
+      PetscCall(FCH5WriteDistributed(gm, "cell_origin", H5T_STD_I64LE, H5T_NATIVE_LLONG, vis->nc_global, 0, vis->cstart,
+                                     vis->nc, cells + vis->nc));
+      PetscCall(FCH5AttrInt(gm, "ranks", size));
+      PetscCall(PetscFree(cells));
+    }
     H5Gclose(gm);
     pv[0] = vis->nv_global;
     pv[1] = 3;

@@ -170,6 +170,13 @@ PetscErrorCode FCXdmfWrite(FCOutput out)
       PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/bodies/%s/positions", k, name));
       Item(fp, "     ", dims, "Float", base, path);
       fprintf(fp, "    </Geometry>\n");
+      if (vis->origin) { /* the partition: which rank held each cell */
+        fprintf(fp, "    <Attribute Name=\"rank\" AttributeType=\"Scalar\" Center=\"Cell\">\n");
+        PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT, vis->nc_global));
+        PetscCall(PetscSNPrintf(path, sizeof(path), "/bodies/%s/mesh/rank", name));
+        Item(fp, "     ", dims, "Int", base, path);
+        fprintf(fp, "    </Attribute>\n");
+      }
       for (int f = 0; f < FC_FIELD_NUM; f++) {
         PetscBool cell = FCVisualFieldIsCell((FCVisualField)f);
         if (out->fields[i][f] < 0) continue;

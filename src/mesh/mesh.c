@@ -136,21 +136,44 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
       return ierr;
     }
   }
-  if (distribute) { /* -<body>_petscpartitioner_type (default ptscotch; metis: src/mesh/partmetis.c) */
+  { /* -<body>_petscpartitioner_type (default ptscotch; metis: src/mesh/partmetis.c), or the partition
+       of an earlier run (-<body>_partition_file: src/mesh/partreplay.c). Each cell keeps its index in
+       the mesh as read (cellOrigin: the root of the migration SF), which the output records with the
+       rank that holds it, so that a run can be replayed on the same partition */
     PetscPartitioner part;
-    DM               pdm = NULL;
+    DM               pdm       = NULL;
+    PetscSF          migration = NULL;
     PetscMPIInt      size;
+    PetscInt         sStart, sEnd;
     PetscCallMPI(MPI_Comm_size(comm, &size));
-    PetscCall(DMPlexGetPartitioner(mesh->dm, &part));
-    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)part, prefix));
-    PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
-    PetscCall(PetscPartitionerSetFromOptions(part));
-    if (size > 1) PetscCall(DMPlexDistribute(mesh->dm, 0, NULL, &pdm));
+    PetscCall(DMPlexGetHeightStratum(mesh->dm, 0, &sStart, &sEnd));
+    if (distribute) {
+      PetscCall(DMPlexGetPartitioner(mesh->dm, &part));
+      PetscCall(PetscObjectSetOptionsPrefix((PetscObject)part, prefix));
+      PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
+      PetscCall(PetscPartitionerSetFromOptions(part));
+      PetscCall(FCMeshPartitionReplay(mesh->dm, part, prefix, bodyname));
+      if (size > 1) PetscCall(DMPlexDistribute(mesh->dm, 0, &migration, &pdm));
+    }
     if (pdm) {
       PetscCall(DMDestroy(&mesh->dm));
       mesh->dm = pdm;
       PetscCall(PetscObjectSetName((PetscObject)mesh->dm, bodyname));
       PetscCall(DMSetOptionsPrefix(mesh->dm, prefix));
+    }
+    PetscCall(DMPlexGetHeightStratum(mesh->dm, 0, &mesh->cStart, &mesh->cEnd));
+    PetscCall(PetscMalloc1(mesh->cEnd - mesh->cStart + 1, &mesh->cellOrigin));
+    for (PetscInt c = mesh->cStart; c < mesh->cEnd; c++) mesh->cellOrigin[c - mesh->cStart] = c - sStart;
+    if (migration) {
+      PetscInt           nleaves;
+      const PetscInt    *ilocal;
+      const PetscSFNode *iremote;
+      PetscCall(PetscSFGetGraph(migration, NULL, &nleaves, &ilocal, &iremote));
+      for (PetscInt i = 0; i < nleaves; i++) {
+        PetscInt p = ilocal ? ilocal[i] : i;
+        if (p >= mesh->cStart && p < mesh->cEnd) mesh->cellOrigin[p - mesh->cStart] = iremote[i].index - sStart;
+      }
+      PetscCall(PetscSFDestroy(&migration));
     }
   }
   PetscCall(DMViewFromOptions(mesh->dm, NULL, "-dm_view"));
@@ -409,11 +432,13 @@ PetscErrorCode FCMeshCreateVisual(FCMesh *mesh, FCBodyVisual *vis)
   PetscCall(PetscFree(pairs));
   vis->nc = nc;
   PetscCall(PetscMalloc1(4 * nc, &vis->cells));
+  PetscCall(PetscMalloc1(nc + 1, &vis->origin));
   k           = 0;
   vis->cstart = PETSC_MAX_INT;
   for (PetscInt c = 0; c < mesh->cEnd - mesh->cStart; c++) {
     if (gc[c] < 0) continue;
-    vis->cstart = PetscMin(vis->cstart, gc[c]);
+    vis->cstart    = PetscMin(vis->cstart, gc[c]);
+    vis->origin[k] = mesh->cellOrigin[c];
     for (int a = 0; a < 4; a++) {
       PetscInt g            = gv[mesh->cellVerts[4 * c + a] - mesh->vStart];
       vis->cells[4 * k + a] = g >= 0 ? g : -(g + 1);
@@ -434,6 +459,7 @@ PetscErrorCode FCMeshDestroy(FCMesh *mesh)
   PetscCall(PetscFree(mesh->cellVerts));
   PetscCall(PetscFree2(mesh->X, mesh->owned));
   PetscCall(PetscFree(mesh->visVert));
+  PetscCall(PetscFree(mesh->cellOrigin));
   PetscCall(DMDestroy(&mesh->dm));
   PetscFunctionReturn(0);
 }
