@@ -147,6 +147,15 @@ class Checker:
         sys.exit(1 if self.failed else 0)
 
 
+def only_from_argv():
+    """--only NAME: a test that runs a list of scenes runs only the scene NAME (and none of its
+    other checks), e.g. to repeat one case: tests/test_parallel.py --np 3 --only two_cubes"""
+    for i, a in enumerate(sys.argv):
+        if a == "--only":
+            return sys.argv[i + 1]
+    return None
+
+
 def np_from_argv(default=1):
     for i, a in enumerate(sys.argv):
         if a == "--np":

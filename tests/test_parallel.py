@@ -4,11 +4,11 @@ independent order), the number of contacts that carry a force at every step (a f
 speculative contact may come and go with round-off), and the contact forces of the last step.
 Tolerance 1e-8 relative: different partitions sum in different orders, and contact scenes
 amplify round-off a little through the solver's stopping test (measured up to 1e-10).
-Usage: test_parallel.py --np N"""
+Usage: test_parallel.py --np N [--only SCENE]"""
 import h5py
 import re
 import numpy as np
-from fctest import Checker, final_state, np_from_argv, out, run
+from fctest import Checker, final_state, np_from_argv, only_from_argv, out, run
 
 NP = np_from_argv(3)
 c = Checker("parallel np%d" % NP)
@@ -36,7 +36,10 @@ SCENES = [("default", ["-options_file", "input/default.opts", "-time_steps", "25
            ["-compliance_redundant_groups", "2"])]
 
 
+ONLY = only_from_argv()
 for name, args, *np_only in SCENES:
+    if ONLY is not None and name != ONLY:
+        continue
     tag = re.sub(r"\W+", "_", name)
     f1, fn = out("%s_np1.h5" % tag), out("%s_np%d.h5" % (tag, NP))
     run(args + ["-quiet", "-output_file", f1], np_=1)

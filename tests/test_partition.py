@@ -4,12 +4,12 @@ answer of PETSc's ptscotch on N ranks: the centroid trajectory of every body (ev
 vertices, edges, faces or cells per rank of -<body>_dm_view differ from ptscotch's on at least one scene), it balances the
 cells within its imbalance option, and its options are checked.
 Scenes: a contact scene (cube_drop, an FE cube on a plane) and an FE-FE one (two_cubes).
-Usage: test_partition.py --np N"""
+Usage: test_partition.py --np N [--only SCENE]"""
 import re
 
 import h5py
 import numpy as np
-from fctest import Checker, final_state, np_from_argv, out, run
+from fctest import Checker, final_state, np_from_argv, only_from_argv, out, run
 
 NP = np_from_argv(2)
 c = Checker("partition np%d" % NP)
@@ -27,8 +27,11 @@ def counts(stdout):
     return re.findall(r"Number of \d-cells per rank:([ 0-9]+)", stdout)
 
 
+ONLY = only_from_argv()
 differs = False
 for name, args, bodies in SCENES:
+    if ONLY is not None and name != ONLY:
+        continue
     res = {}
     for ptype in ["ptscotch", "metis"]:
         f = out("%s_%s_np%d.h5" % (name, ptype, NP))
@@ -50,6 +53,8 @@ for name, args, bodies in SCENES:
                 "%s: metis cells per rank %s, imbalance %.3f <= 1.03 (the default tolerance)" % (name, body_cells, imb))
     differs = differs or na != nb
     print("  %s: vertices, edges, faces, cells per rank: ptscotch %s, metis %s" % (name, na, nb))
+if ONLY is not None:  # one scene repeated: the checks of the whole set are not made
+    c.done()
 c.check(differs, "metis partitions differently from ptscotch on at least one body")
 
 # the objective and the imbalance options reach METIS: communication volume gives the same answer
