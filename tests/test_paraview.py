@@ -2,7 +2,7 @@
 with the reader File > Open picks and with the XDMF Reader, and at the last frame (and the first)
 what it reads equals what h5py reads from the .h5: the number of time steps and their times, every
 body's points, cells, displacement and velocity (point data), von Mises stress and energy density
-(cell data), and the contact point set of the frame's step (its count, points, force vector,
+(cell data), the partition `rank` (cell data of meshed bodies), and the contact point set of the frame's step (its count, points, force vector,
 normal and tangential force, state, gap); the readers print no error or warning. Scenes: the grasp
 (FE cube, two kinematic fingers, friction), the default scene (FE cube, rigid ball, ground plane),
 one FE cube alone, and a grasp restarted from a half-way file. The fields are checked against
@@ -83,8 +83,11 @@ def check_file(name, h5, frames_checked):
                 for fld in ["von_mises", "energy_density"]:
                     if fld in g:
                         same &= np.array_equal(pv[key + "cell/" + fld], g[fld][k])
+                if "mesh/rank" in g:  # the partition, a cell attribute of meshed bodies
+                    same &= np.array_equal(pv[key + "cell/rank"], g["mesh/rank"][:])
                 arrays = sorted(x.split("/")[-1] for x in pv.files if x.startswith(key + "point/") or x.startswith(key + "cell/"))
-                expect = sorted(x for x in ["displacement", "velocity", "von_mises", "energy_density"] if x in g)
+                expect = sorted([x for x in ["displacement", "velocity", "von_mises", "energy_density"] if x in g] +
+                                (["rank"] if "mesh/rank" in g else []))
                 same &= arrays == expect
                 if r == "xdmf2" and len(names) > 1:
                     same &= names[j] == b
