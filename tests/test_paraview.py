@@ -2,8 +2,9 @@
 with the reader File > Open picks and with the XDMF Reader, and at the last frame (and the first)
 what it reads equals what h5py reads from the .h5: the number of time steps and their times, every
 body's points, cells, displacement and velocity (point data), von Mises stress and energy density
-(cell data), the partition `rank` (cell data of meshed bodies), and the contact point set of the frame's step (its count, points, force vector,
-normal and tangential force, state, gap); the readers print no error or warning. Scenes: the grasp
+(cell data), the partition `rank` (cell data of meshed bodies), and the contact point set of the
+frame's step (its count, points, force vector, normal and tangential force, state, gap); the
+readers print no error or warning. Scenes: the grasp
 (FE cube, two kinematic fingers, friction), the default scene (FE cube, rigid ball, ground plane),
 one FE cube alone, and a grasp restarted from a half-way file. The fields are checked against
 physics too: u = x - X, the FE velocity against the positions (implicit Euler: x_n = x_{n-1} + h
