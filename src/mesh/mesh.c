@@ -464,9 +464,10 @@ PetscErrorCode FCMeshDestroy(FCMesh *mesh)
   PetscFunctionReturn(0);
 }
 
-/* Boundary of the mesh on this rank: the owned vertices of boundary faces, and the boundary
-   faces as vertex triples (local vertex indices) ordered so that (x1 - x0) x (x2 - x0) points
-   out of the body (the fourth vertex of the face's cell is behind it). */
+/* Boundary of the mesh on this rank: the vertices it owns that lie on a boundary face of any rank
+   (over the ranks, every boundary vertex once), and the boundary faces it holds as vertex triples
+   (local vertex indices) ordered so that (x1 - x0) x (x2 - x0) points out of the body (the fourth
+   vertex of the face's cell is behind it). */
 static int CompareEdge(const void *a, const void *b)
 {
   const PetscInt *x = (const PetscInt *)a, *y = (const PetscInt *)b;
