@@ -81,9 +81,11 @@ typedef struct _p_FCShape *FCShape;
 struct _p_FCShape {
   char      type[FC_MAX_NAME];
   PetscReal radius, half_extents[3], length, normal[3];
-  PetscBool bounded; /* a plane is not: it has no mass and can only be kinematic */
-  PetscBool smooth;  /* no edges or corners (sphere, capsule): -contact_shape_points' kind of contact */
-  void     *data;    /* shape-specific (the mesh of a mesh shape)               */
+  PetscBool bounded;    /* a plane is not: it has no mass and can only be kinematic */
+  PetscBool smooth;     /* no edges or corners (sphere, capsule): -contact_shape_points' kind of contact */
+  PetscInt  ncore;      /* a smooth shape is the set of points within `radius` of its core: a point */
+  PetscReal core[2][3]; /* (sphere, ncore 1) or a segment (capsule, ncore 2), body frame; 0 for others */
+  void     *data;       /* shape-specific (the mesh of a mesh shape)               */
   PetscErrorCode (*setfromoptions)(PetscOptionItems *, FCShape, const char bodyname[]);
   PetscErrorCode (*setup)(FCShape, MPI_Comm, const char prefix[], const char bodyname[]);
   PetscErrorCode (*destroy)(FCShape);
@@ -319,10 +321,13 @@ struct _p_FCBody {
 
 /* What a body is, and what code outside src/body/ may ask of it (src/body/body_ops.c): no other
    file reads body->ops or compares body type names. */
-PETSC_INTERN PetscBool FCBodyIsDeformable(FCBody);        /* FE: vertex DOFs, a deforming surface     */
-PETSC_INTERN PetscBool FCBodyIsPrescribed(FCBody);        /* kinematic: given motion, takes no force  */
-PETSC_INTERN PetscBool FCBodyHasShape(FCBody);            /* a signed distance (rigid, kinematic)     */
-PETSC_INTERN PetscBool FCBodyHasBoundedShape(FCBody);     /* ... of a closed shape (not a plane)      */
+PETSC_INTERN PetscBool FCBodyIsDeformable(FCBody);    /* FE: vertex DOFs, a deforming surface     */
+PETSC_INTERN PetscBool FCBodyIsPrescribed(FCBody);    /* kinematic: given motion, takes no force  */
+PETSC_INTERN PetscBool FCBodyHasShape(FCBody);        /* a signed distance (rigid, kinematic)     */
+PETSC_INTERN PetscBool FCBodyHasBoundedShape(FCBody); /* ... of a closed shape (not a plane)      */
+/* the core of a smooth shape (FCShape: a point or a segment, body frame) and its radius; *ncore 0
+   for a body without one */
+PETSC_INTERN void      FCBodyGetShapeCore(FCBody, PetscInt *ncore, PetscReal core[2][3], PetscReal *radius);
 PETSC_INTERN PetscBool FCBodyHasSmoothShape(FCBody);      /* ... without edges (sphere, capsule)      */
 PETSC_INTERN PetscBool FCBodyHasSurfaceTriangles(FCBody); /* FE bodies and mesh shapes           */
 PETSC_INTERN PetscReal FCBodyGetMass(FCBody);             /* after set-up; 0 for kinematic bodies */

@@ -29,6 +29,14 @@ PetscBool FCBodyHasSmoothShape(FCBody body)
   return body->shape && body->shape->smooth ? PETSC_TRUE : PETSC_FALSE;
 }
 
+void FCBodyGetShapeCore(FCBody body, PetscInt *ncore, PetscReal core[2][3], PetscReal *radius)
+{
+  *ncore  = body->shape && body->shape->smooth ? body->shape->ncore : 0;
+  *radius = *ncore ? body->shape->radius : 0.0;
+  for (PetscInt k = 0; k < *ncore; k++)
+    for (int i = 0; i < 3; i++) core[k][i] = body->shape->core[k][i];
+}
+
 PetscBool FCBodyHasSurfaceTriangles(FCBody body)
 {
   return body->ops.surfacetriangles ? PETSC_TRUE : PETSC_FALSE;

@@ -354,6 +354,16 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     S = bodies[ishp];
     PetscCheck(FCBodyHasShape(S), comm, PETSC_ERR_SUP, "Contact between '%s' and '%s' is not implemented yet", P->name,
                S->name);
+    if (!FCBodyIsDeformable(P) && !FCBodyHasSurfaceTriangles(P) && !FCBodyHasSurfaceTriangles(S) &&
+        (FCBodyHasSmoothShape(P) || FCBodyHasSmoothShape(S))) {
+      /* two analytic shapes, one of them smooth: from their closest points (smooth.c), the smooth
+         one as side 1 */
+      if (FCBodyHasSmoothShape(P))
+        PetscCall(FCCollisionSmoothShape(P, S, ipts, ishp, p, pairs, rank, set));
+      else
+        PetscCall(FCCollisionSmoothShape(S, P, ishp, ipts, p, pairs, rank, set));
+      continue;
+    }
     PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x0, &xf, &key));
     for (PetscInt i = 0; i < n; i++) {
       PetscReal d, nrm[3], cpb[3];

@@ -14,6 +14,8 @@ static PetscErrorCode SetFromOptions_Capsule(PetscOptionItems *PetscOptionsObjec
              PetscOptionsObject->prefix);
   PetscCall(FCCheckPositive(PetscOptionsObject->comm, PetscOptionsObject->prefix, "-radius", s->radius));
   PetscCall(FCCheckNonNegative(PetscOptionsObject->comm, PetscOptionsObject->prefix, "-length", s->length));
+  s->ncore = s->length > 0 ? 2 : 1; /* the axis segment between the cap centres */
+  for (int k = 0; k < 2; k++) s->core[k][2] = (k ? 0.5 : -0.5) * s->length;
   PetscFunctionReturn(0);
 }
 

@@ -49,5 +49,6 @@ PetscErrorCode FCShapeCreate_Sphere(FCShape s)
   s->tessellate     = Tessellate_Sphere;
   s->distance       = Distance_Sphere;
   s->smooth         = PETSC_TRUE;
+  s->ncore          = 1; /* the centre */
   PetscFunctionReturn(0);
 }
