@@ -83,8 +83,9 @@ struct _p_FCShape {
   PetscReal radius, half_extents[3], length, normal[3];
   PetscBool bounded;    /* a plane is not: it has no mass and can only be kinematic */
   PetscBool smooth;     /* no edges or corners (sphere, capsule): -contact_shape_points' kind of contact */
-  PetscInt  ncore;      /* a smooth shape is the set of points within `radius` of its core: a point */
-  PetscReal core[2][3]; /* (sphere, ncore 1) or a segment (capsule, ncore 2), body frame; 0 for others */
+  PetscInt  ncore;      /* a rounded shape is the set of points within `radius` of its core, a point */
+  PetscReal core[2][3]; /* (sphere, ncore 1) or a segment (capsule, cylinder: ncore 2), body frame */
+  PetscBool flat;       /* ... cut by flat ends through the segment's ends (cylinder); 0 for others */
   void     *data;       /* shape-specific (the mesh of a mesh shape)               */
   PetscErrorCode (*setfromoptions)(PetscOptionItems *, FCShape, const char bodyname[]);
   PetscErrorCode (*setup)(FCShape, MPI_Comm, const char prefix[], const char bodyname[]);
@@ -325,9 +326,9 @@ PETSC_INTERN PetscBool FCBodyIsDeformable(FCBody);    /* FE: vertex DOFs, a defo
 PETSC_INTERN PetscBool FCBodyIsPrescribed(FCBody);    /* kinematic: given motion, takes no force  */
 PETSC_INTERN PetscBool FCBodyHasShape(FCBody);        /* a signed distance (rigid, kinematic)     */
 PETSC_INTERN PetscBool FCBodyHasBoundedShape(FCBody); /* ... of a closed shape (not a plane)      */
-/* the core of a smooth shape (FCShape: a point or a segment, body frame) and its radius; *ncore 0
-   for a body without one */
-PETSC_INTERN void      FCBodyGetShapeCore(FCBody, PetscInt *ncore, PetscReal core[2][3], PetscReal *radius);
+/* the core of a rounded shape (FCShape: a point or a segment, body frame), its radius and whether
+   its ends are flat (cylinder); *ncore 0 for a body without one */
+PETSC_INTERN void FCBodyGetShapeCore(FCBody, PetscInt *ncore, PetscReal core[2][3], PetscReal *radius, PetscBool *flat);
 PETSC_INTERN PetscBool FCBodyHasSmoothShape(FCBody);      /* ... without edges (sphere, capsule)      */
 PETSC_INTERN PetscBool FCBodyHasSurfaceTriangles(FCBody); /* FE bodies and mesh shapes           */
 PETSC_INTERN PetscReal FCBodyGetMass(FCBody);             /* after set-up; 0 for kinematic bodies */

@@ -29,10 +29,11 @@ PetscBool FCBodyHasSmoothShape(FCBody body)
   return body->shape && body->shape->smooth ? PETSC_TRUE : PETSC_FALSE;
 }
 
-void FCBodyGetShapeCore(FCBody body, PetscInt *ncore, PetscReal core[2][3], PetscReal *radius)
+void FCBodyGetShapeCore(FCBody body, PetscInt *ncore, PetscReal core[2][3], PetscReal *radius, PetscBool *flat)
 {
-  *ncore  = body->shape && body->shape->smooth ? body->shape->ncore : 0;
+  *ncore  = body->shape ? body->shape->ncore : 0;
   *radius = *ncore ? body->shape->radius : 0.0;
+  *flat   = *ncore ? body->shape->flat : PETSC_FALSE;
   for (PetscInt k = 0; k < *ncore; k++)
     for (int i = 0; i < 3; i++) core[k][i] = body->shape->core[k][i];
 }

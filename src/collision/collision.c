@@ -294,6 +294,48 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
   PetscFunctionReturn(0);
 }
 
+/* The candidate points of P (an FE body's owned boundary vertices, a shape's picture points)
+   against the signed distance of the shape of S */
+static PetscErrorCode PointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, PetscInt ishp, PetscInt p,
+                                         const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+{
+  PetscInt     n;
+  FCProximity *prox;
+  PetscReal   *x0, *xf, *key, tau = FCCCDThreshold(pairs->distance);
+
+  PetscFunctionBegin;
+  PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x0, &xf, &key));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscReal d, nrm[3], cpb[3];
+    FCContact c;
+    PetscCall(FCBodyShapeDistance(S, FC_AT_NOW, &x0[3 * i], &d, nrm, cpb));
+    if (d >= pairs->distance) { /* continuous: a speculative contact if the motion reaches the shape */
+      PetscBool hit = PETSC_FALSE;
+      if (pairs->continuous) PetscCall(FCCCDPointShape(S, &x0[3 * i], &xf[3 * i], d, tau, &hit));
+      if (!hit) continue;
+    }
+    PetscCall(PetscMemzero(&c, sizeof(c)));
+    c.pair    = p;
+    c.body[0] = ipts;
+    c.body[1] = ishp;
+    c.prox[0] = prox[i];
+    for (int k = 0; k < 3; k++) {
+      c.prox[1].r[k] = cpb[k];
+      c.key[k]       = key[3 * i + k];
+      c.n[k]         = nrm[k];
+      c.p0[0][k]     = x0[3 * i + k];
+      c.pfree[0][k]  = xf[3 * i + k];
+    }
+    PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_START, c.p0[1]));
+    PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+    c.gap0  = d;
+    c.mu    = pairs->mu[p];
+    c.owner = rank;
+    PetscCall(FCContactSetAdd(set, &c));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], const FCContactPairs *pairs,
                                  FCContactSet *set)
 {
@@ -303,10 +345,8 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(FCContactSetReset(set));
   for (PetscInt p = 0; p < pairs->n; p++) {
-    PetscInt     ipts = 0, ishp = 0, n;
-    FCBody       P, S;
-    FCProximity *prox;
-    PetscReal   *x0, *xf, *key, tau = FCCCDThreshold(pairs->distance);
+    PetscInt ipts = 0, ishp = 0;
+    FCBody   P, S;
 
     if (FCBodyHasSurfaceTriangles(bodies[pairs->body[p][0]]) && FCBodyHasSurfaceTriangles(bodies[pairs->body[p][1]])) {
       /* the vertices of each body against the other's surface, or with -contact_fe_passes 1 only
@@ -354,45 +394,29 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     S = bodies[ishp];
     PetscCheck(FCBodyHasShape(S), comm, PETSC_ERR_SUP, "Contact between '%s' and '%s' is not implemented yet", P->name,
                S->name);
-    if (!FCBodyIsDeformable(P) && !FCBodyHasSurfaceTriangles(P) && !FCBodyHasSurfaceTriangles(S) &&
-        (FCBodyHasSmoothShape(P) || FCBodyHasSmoothShape(S))) {
-      /* two analytic shapes, one of them smooth: from their closest points (smooth.c), the smooth
-         one as side 1 */
+    if (!FCBodyIsDeformable(P) && !FCBodyHasSurfaceTriangles(P) && !FCBodyHasSurfaceTriangles(S)) {
+      /* two analytic shapes: a rounded one (sphere, capsule, cylinder) from the closest points of
+         its core (smooth.c), exact where one is smooth; the points of a box (its corners) against
+         the other's distance; a box and a cylinder, or two cylinders, both ways */
+      PetscInt  ncp, ncs;
+      PetscReal core[2][3], r;
+      PetscBool flat;
+      FCBodyGetShapeCore(P, &ncp, core, &r, &flat);
+      FCBodyGetShapeCore(S, &ncs, core, &r, &flat);
       if (FCBodyHasSmoothShape(P))
-        PetscCall(FCCollisionSmoothShape(P, S, ipts, ishp, p, pairs, rank, set));
-      else
-        PetscCall(FCCollisionSmoothShape(S, P, ishp, ipts, p, pairs, rank, set));
+        PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
+      else if (FCBodyHasSmoothShape(S))
+        PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
+      else {
+        if (ncp)
+          PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
+        else
+          PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, pairs, rank, set));
+        if (ncs) PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
+      }
       continue;
     }
-    PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x0, &xf, &key));
-    for (PetscInt i = 0; i < n; i++) {
-      PetscReal d, nrm[3], cpb[3];
-      FCContact c;
-      PetscCall(FCBodyShapeDistance(S, FC_AT_NOW, &x0[3 * i], &d, nrm, cpb));
-      if (d >= pairs->distance) { /* continuous: a speculative contact if the motion reaches the shape */
-        PetscBool hit = PETSC_FALSE;
-        if (pairs->continuous) PetscCall(FCCCDPointShape(S, &x0[3 * i], &xf[3 * i], d, tau, &hit));
-        if (!hit) continue;
-      }
-      PetscCall(PetscMemzero(&c, sizeof(c)));
-      c.pair    = p;
-      c.body[0] = ipts;
-      c.body[1] = ishp;
-      c.prox[0] = prox[i];
-      for (int k = 0; k < 3; k++) {
-        c.prox[1].r[k] = cpb[k];
-        c.key[k]       = key[3 * i + k];
-        c.n[k]         = nrm[k];
-        c.p0[0][k]     = x0[3 * i + k];
-        c.pfree[0][k]  = xf[3 * i + k];
-      }
-      PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_START, c.p0[1]));
-      PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_FREE, c.pfree[1]));
-      c.gap0  = d;
-      c.mu    = pairs->mu[p];
-      c.owner = rank;
-      PetscCall(FCContactSetAdd(set, &c));
-    }
+    PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, pairs, rank, set));
     /* -contact_shape_points (shapepoints.c) */
     if (pairs->shape_points && FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S)) {
       Surface *Sf;

@@ -72,10 +72,10 @@ PETSC_INTERN PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt
                                                    PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
                                                    FCContactSet *);
 
-/* smooth.c: a smooth shape P (sphere, capsule; body ip) against the analytic shape of S (body is),
-   from their exact closest points (rank 0) */
-PETSC_INTERN PetscErrorCode FCCollisionSmoothShape(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,
-                                                   const FCContactPairs *, PetscMPIInt rank, FCContactSet *);
+/* smooth.c: a rounded shape P (sphere, capsule, cylinder; body ip) against the analytic shape of S
+   (body is), from their exact closest points (rank 0) */
+PETSC_INTERN PetscErrorCode FCCollisionRoundedShape(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,
+                                                    const FCContactPairs *, PetscMPIInt rank, FCContactSet *);
 
 /* edges.c: the edge-edge contacts of the sharp edges of A (FE) against those of B (FE or mesh) */
 PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt pair,

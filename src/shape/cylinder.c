@@ -14,6 +14,9 @@ static PetscErrorCode SetFromOptions_Cylinder(PetscOptionItems *PetscOptionsObje
              PetscOptionsObject->prefix);
   PetscCall(FCCheckPositive(PetscOptionsObject->comm, PetscOptionsObject->prefix, "-radius", s->radius));
   PetscCall(FCCheckPositive(PetscOptionsObject->comm, PetscOptionsObject->prefix, "-length", s->length));
+  s->ncore = 2; /* the axis segment between the end faces' centres */
+  s->flat  = PETSC_TRUE;
+  for (int k = 0; k < 2; k++) s->core[k][2] = (k ? 0.5 : -0.5) * s->length;
   PetscFunctionReturn(0);
 }
 
