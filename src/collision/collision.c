@@ -295,9 +295,14 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
 }
 
 /* The candidate points of P (an FE body's owned boundary vertices, a shape's picture points)
-   against the signed distance of the shape of S */
-static PetscErrorCode PointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, PetscInt ishp, PetscInt p,
-                                         const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+   against the signed distance of the shape of S. With vn (-contact_facing; the vertex normals of
+   an FE P's surface), a vertex outside the shape whose closest point's normal does not face its
+   own (n . n_v > -FC_FACING_COS: a box's side face or rim seen by a slab vertex just ahead of the
+   box as it slides) is not a contact: a constraint along that normal would be a wall across the
+   sliding motion; a vertex that then moves inside is taken by the face it entered under */
+static PetscErrorCode PointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, PetscInt ishp, PetscInt p, PetscInt nvn,
+                                         const FCVertexNormal *vn, const FCContactPairs *pairs, PetscMPIInt rank,
+                                         FCContactSet *set)
 {
   PetscInt     n;
   FCProximity *prox;
@@ -309,6 +314,13 @@ static PetscErrorCode PointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, Pets
     PetscReal d, nrm[3], cpb[3];
     FCContact c;
     PetscCall(FCBodyShapeDistance(S, FC_AT_NOW, &x0[3 * i], &d, nrm, cpb));
+    if (vn && prox[i].nv == 1 && d > 0.0) {
+      FCVertexNormal        key1;
+      const FCVertexNormal *own;
+      for (int k = 0; k < 3; k++) key1.X[k] = prox[i].X[0][k];
+      own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), CompareX);
+      if (own && FCDot(nrm, own->n) > -FC_FACING_COS) continue;
+    }
     if (d >= pairs->distance) { /* continuous: a speculative contact if the motion reaches the shape */
       PetscBool hit = PETSC_FALSE;
       if (pairs->continuous) PetscCall(FCCCDPointShape(S, &x0[3 * i], &xf[3 * i], d, tau, &hit));
@@ -411,18 +423,26 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
         if (ncp)
           PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
         else
-          PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, pairs, rank, set));
+          PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, 0, NULL, pairs, rank, set));
         if (ncs) PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
       }
       continue;
     }
-    PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, pairs, rank, set));
-    /* -contact_shape_points (shapepoints.c) */
-    if (pairs->shape_points && FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S)) {
-      Surface *Sf;
-      PetscCall(SurfaceBuild(comm, P, pairs, &Sf));
-      PetscCall(FCCollisionShapePoints(S, P, ishp, ipts, Sf, p, pairs, rank, set));
-      PetscCall(FCSurfaceDestroy(&Sf));
+    { /* an FE body's vertices against the shape; against a bounded shape, with -contact_facing, only
+         where the shape faces their surface, and with -contact_shape_points the shape's picture
+         points against the FE surface (shapepoints.c) */
+      Surface        *Sf  = NULL;
+      FCVertexNormal *vn  = NULL;
+      PetscInt        nvn = 0;
+      if (FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S) &&
+          (pairs->shape_points || pairs->facing)) {
+        PetscCall(SurfaceBuild(comm, P, pairs, &Sf));
+        if (pairs->facing) PetscCall(VertexNormals(Sf->n, Sf->tri, &nvn, &vn));
+      }
+      PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, nvn, vn, pairs, rank, set));
+      if (Sf && pairs->shape_points) PetscCall(FCCollisionShapePoints(S, P, ishp, ipts, Sf, p, pairs, rank, set));
+      if (Sf) PetscCall(FCSurfaceDestroy(&Sf));
+      PetscCall(PetscFree(vn));
     }
   }
   PetscCall(FCContactSetGather(set, comm));

@@ -56,6 +56,9 @@ PETSC_INTERN PetscBool      FCRayGridInside(const FCSurface *, const FCRayGrid *
 typedef struct {
   PetscReal X[3], n[3]; /* a vertex's reference position (the sort key) and outward normal */
 } FCVertexNormal;
+/* -contact_facing: a surface faces a vertex when its normal n and the vertex's normal n_v have
+   n . n_v <= -FC_FACING_COS (opposed within 75 degrees) */
+#define FC_FACING_COS 0.25881904510252074
 PETSC_INTERN PetscErrorCode FCCollisionLandingTriangle(Surface *, const PetscReal x0[3], const PetscReal xf[3],
                                                        const PetscReal nv[3], PetscReal distance, PetscBool continuous,
                                                        PetscReal tau, PetscInt cand[], FCRayGrid *, PetscInt *best,
