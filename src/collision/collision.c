@@ -55,9 +55,10 @@ static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, const FCContactPairs
 }
 
 /* Continuous: the triangle of S that vertex x0 -> xf comes closest to first (within tau) over the
-   step, among those whose swept boxes its swept box overlaps; -1 if none */
-static void SweptVertexHit(Surface *S, const PetscReal x0[3], const PetscReal xf[3], PetscReal tau, PetscInt cand[],
-                           PetscInt *best)
+   step, among those whose swept boxes its swept box overlaps and, with nv (the normal of the
+   vertex's own surface), that face it at the start (FCSurfaceClosestFacing); -1 if none */
+static void SweptVertexHit(Surface *S, const PetscReal x0[3], const PetscReal xf[3], const PetscReal nv[3],
+                           PetscReal tau, PetscInt cand[], PetscInt *best)
 {
   PetscReal lo[3], hi[3], tbest = PETSC_MAX_REAL;
   PetscInt  nc;
@@ -71,6 +72,11 @@ static void SweptVertexHit(Surface *S, const PetscReal x0[3], const PetscReal xf
   for (PetscInt k = 0; k < nc; k++) {
     const FCSurfaceTriangle *T = &S->tri[cand[k]];
     PetscReal                t;
+    if (nv) {
+      PetscReal nt[3];
+      FCTriangleNormal(T->x0, nt);
+      if (FCDot(nt, nv) > -FC_FACING_COS) continue;
+    }
     if (FCCCDPointTriangle(x0, xf, T->x0, T->xf, tau, &t) && (t < tbest || (t == tbest && cand[k] < *best))) {
       tbest = t;
       *best = cand[k];
@@ -110,7 +116,7 @@ PetscErrorCode FCCollisionLandingTriangle(Surface *S, const PetscReal x0[3], con
   PetscFunctionBegin;
   FCSurfaceClosestFacing(S, x0, nv, best, w, cp, &d2);
   if (*best >= 0 && d2 <= distance * distance) PetscFunctionReturn(0);
-  if (continuous) SweptVertexHit(S, x0, xf, tau, cand, best);
+  if (continuous) SweptVertexHit(S, x0, xf, nv, tau, cand, best);
   if (*best < 0) {
     if (!grid->cells) PetscCall(FCRayGridCreate(S, grid));
     if (!FCRayGridInside(S, grid, x0)) PetscFunctionReturn(0);

@@ -184,7 +184,8 @@ void FCSurfaceClosest(const FCSurface *S, const PetscReal x[3], PetscInt *best, 
 }
 
 /* FCSurfaceClosest among the triangles that face the normal nv of the point's own surface
-   (n_T . nv <= 0); nv NULL: all */
+   (n_T . nv <= -FC_FACING_COS: a face at 90 degrees, the side face of a body sliding over a
+   slab's vertex, does not); nv NULL: all */
 void FCSurfaceClosestFacing(const FCSurface *S, const PetscReal x[3], const PetscReal nv[3], PetscInt *best,
                             PetscReal bw[3], PetscReal bcp[3], PetscReal *bestd)
 {
@@ -198,7 +199,7 @@ void FCSurfaceClosestFacing(const FCSurface *S, const PetscReal x[3], const Pets
     if (nv) {
       PetscReal nt[3];
       FCTriangleNormal(T->x0, nt);
-      if (nt[0] * nv[0] + nt[1] * nv[1] + nt[2] * nv[2] > 0.0) continue;
+      if (nt[0] * nv[0] + nt[1] * nv[1] + nt[2] * nv[2] > -FC_FACING_COS) continue;
     }
     FCClosestPointTriangle(x, T->x0[0], T->x0[1], T->x0[2], cp, w);
     for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
