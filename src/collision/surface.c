@@ -90,7 +90,7 @@ static PetscErrorCode SurfaceCreate(PetscInt n, FCSurfaceTriangle *tri, PetscRea
     }
   }
   qsort(S->cells, S->nentries, sizeof(FCCellEntry), CompareCell);
-  if (swept) PetscCall(PetscCalloc1(S->n + 1, &S->stamp));
+  PetscCall(PetscCalloc1(S->n + 1, &S->stamp)); /* box queries (FCSurfaceQueryBox) */
   *surface = S;
   PetscFunctionReturn(0);
 }
