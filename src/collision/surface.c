@@ -90,7 +90,7 @@ static PetscErrorCode SurfaceCreate(PetscInt n, FCSurfaceTriangle *tri, PetscRea
     }
   }
   qsort(S->cells, S->nentries, sizeof(FCCellEntry), CompareCell);
-  PetscCall(PetscCalloc1(S->n + 1, &S->stamp)); /* box queries (FCSurfaceQueryBox) */
+  if (swept) PetscCall(PetscCalloc1(S->n + 1, &S->stamp));
   *surface = S;
   PetscFunctionReturn(0);
 }
