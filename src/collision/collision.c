@@ -302,10 +302,13 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
 
 /* The candidate points of P (an FE body's owned boundary vertices, a shape's picture points)
    against the signed distance of the shape of S. With vn (-contact_facing; the vertex normals of
-   an FE P's surface), a vertex outside the shape whose closest point's normal does not face its
-   own (n . n_v > -FC_FACING_COS: a box's side face or rim seen by a slab vertex just ahead of the
-   box as it slides) is not a contact: a constraint along that normal would be a wall across the
-   sliding motion; a vertex that then moves inside is taken by the face it entered under */
+   an FE P's surface), a vertex outside the shape whose closest point's normal is within 75 degrees
+   of square to its own (|n . n_v| < FC_FACING_COS: a box's side face or rim seen by a slab vertex
+   just ahead of the box as it slides) is not a contact: a constraint along that normal would be a
+   wall across the sliding motion; a vertex that then moves inside is taken by the face it entered
+   under. (A vertex whose surface faces away from the shape, n . n_v > 0 beyond that band, belongs to
+   a body the shape has crossed, a discrete step into a thin plate: it keeps its contact, which holds
+   it on the side it is on.) */
 static PetscErrorCode PointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, PetscInt ishp, PetscInt p, PetscInt nvn,
                                          const FCVertexNormal *vn, const FCContactPairs *pairs, PetscMPIInt rank,
                                          FCContactSet *set)
@@ -325,7 +328,7 @@ static PetscErrorCode PointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, Pets
       const FCVertexNormal *own;
       for (int k = 0; k < 3; k++) key1.X[k] = prox[i].X[0][k];
       own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), CompareX);
-      if (own && FCDot(nrm, own->n) > -FC_FACING_COS) continue;
+      if (own && PetscAbsReal(FCDot(nrm, own->n)) < FC_FACING_COS) continue;
     }
     if (d >= pairs->distance) { /* continuous: a speculative contact if the motion reaches the shape */
       PetscBool hit = PETSC_FALSE;
