@@ -416,7 +416,7 @@ PetscErrorCode FCMeshCreateVisual(FCMesh *mesh, FCBodyVisual *vis)
       pairs[2 * k + 1] = v;
       k++;
     }
-  qsort(pairs, nv, 2 * sizeof(PetscInt), CompareGlobal);
+  if (nv) qsort(pairs, nv, 2 * sizeof(PetscInt), CompareGlobal); /* a rank may own no vertex (pairs NULL) */
   vis->nv     = nv;
   vis->vstart = nv ? pairs[0] : 0;
   vis->nvpc   = 4;
