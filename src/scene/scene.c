@@ -41,10 +41,13 @@
                               precedence; w < 1, default -1: off; lets a vertex in where the first pass
                               does not hold it, docs/hard-cases.md)
      -contact_facing 1|0      a vertex of a meshed body lands only on a triangle that faces its own
-                              surface (triangle normal . vertex normal <= 0; default 1): where two
-                              bodies' side faces are flush, a rim vertex is otherwise nearest to the
-                              other body's side face, and the two passes then make pairs of opposed
-                              constraints on the same motion (docs/hard-cases.md)
+                              surface (triangle normal . vertex normal <= -cos 75 degrees; default 1),
+                              and an FE vertex is no contact of a bounded shape whose normal there is
+                              within 75 degrees of square to its own: where two bodies' side faces are
+                              flush, a rim vertex is otherwise nearest to the other body's side face,
+                              and the two passes then make pairs of opposed constraints on the same
+                              motion (docs/hard-cases.md); a slab vertex ahead of a sliding body is
+                              otherwise a contact against its leading side face, a wall
      -contact_detection continuous|discrete   continuous (default): a point whose motion over the step
                               (start to free-motion end) reaches the other side is a contact too, with
                               its start-of-step gap and normal, so nothing passes through a thin body
