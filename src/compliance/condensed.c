@@ -24,8 +24,8 @@
    A linear body keeps its factor as long as its contacts stay inside S: W_b then costs the dense
    products only, and not even those while J_T (the contact DOFs, rows and weights) is the last
    build's: a body resting on a kinematic shape reuses its W_b (every rank keeps a copy, (3m)^2
-   values; the 36k box's compliance phase 19 -> 9.5 ms a step on 1 rank, 24 -> 12 on 2; the
-   "CondensedWb" event counts the builds that compute).
+   values; docs/scaling-history.md measures what it saves; the "CondensedWb" event counts the
+   builds that compute).
    Options:
      -compliance_condensed_ring k   rings of surface neighbours around the contact DOFs in S (k >= 0,
                                     default 0: S is exactly the last step's contact DOFs)

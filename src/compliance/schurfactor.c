@@ -279,9 +279,9 @@ static PetscErrorCode Induced(const idx_t xadj[], const idx_t adj[], idx_t n, co
    the count of vertices next to S (touch), with the boundary of the larger side as separator,
    ordered after both halves. Why: METIS_NodeND cuts a cube resting on a face as readily parallel
    to that face as across it; cut parallel, one half holds every front that S's variables widen,
-   and MUMPS, which maps the two halves to different ranks, gives one rank 60-65 % of the flops
-   (-info prints the split). Balanced, the split is closer to even, but the step was not faster
-   (docs/scaling-history.md), so it is not the default. */
+   and MUMPS, which maps the two halves to different ranks, gives one rank most of the flops
+   (-info prints the split). Balanced, the split is closer to even, but the step is not faster
+   (measured in docs/scaling-history.md), so it is not the default. */
 #define V(i) (vtx ? vtx[i] : (i))
 static PetscErrorCode Dissect(FCSchurFactor f, const idx_t xadj[], const idx_t adj[], const idx_t touch[], idx_t n,
                               const idx_t vtx[], PetscInt levels, idx_t loc[], idx_t order[], idx_t *no)

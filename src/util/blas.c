@@ -4,9 +4,8 @@
    OpenBLAS 0.3.21 (Debian 12) packs both operands of every dgemm into its block buffers, a product
    with one column too; OpenBLAS forwards such products to gemv itself only from 0.3.27
    (GEMM_GEMV_FORWARD). MUMPS' solve with one right-hand side calls dgemm with n = 1 on every
-   front (dmumps_solve_node_fwd / _bwd): in a 40-step run of the 36k box the packing
-   (dgemm_oncopy, dgemm_otcopy) took 26 % of the time (docs/benchmarks.md, "One-column
-   products"). Every other product goes to the next dgemm_ in the link order (the BLAS library),
+   front (dmumps_solve_node_fwd / _bwd), and the packing (dgemm_oncopy, dgemm_otcopy) is then a
+   large part of the solve (measured in docs/benchmarks.md, "One-column products"). Every other product goes to the next dgemm_ in the link order (the BLAS library),
    found by dlsym(RTLD_NEXT).
 
    Option (read at package initialization, src/fecontact.c):
