@@ -6,8 +6,9 @@ lost one vertex, which then sank through the other body unseen:
           contacts from step 20 where 1 rank has 74;
   --np 8: the 6-tet cube (meshes/six_tets.msh), the default partitioner (ptscotch): 3 instead of 4;
   --np 4: two_cubes with the left cube turned 180 degrees, partitioner simple: 34 instead of 35.
---np 4 also replays the partition of a ptscotch run (-<body>_partition_file, src/mesh/partreplay.c):
-the same cells on the same ranks as recorded, and the same state.
+--np 2 and --np 4 also replay the partition of a ptscotch run (-<body>_partition_file,
+src/mesh/partreplay.c): the same cells on the same ranks as recorded, and the same state; a replay
+on another number of ranks is refused.
 Usage: test_candidates.py --np N"""
 import h5py
 import numpy as np
@@ -60,7 +61,7 @@ if NP in SCENES:
                     "%s: body %s's partition recorded, every cell on a rank: cells per rank %s"
                     % (name, body, np.bincount(r, minlength=NP).tolist()))
 
-if NP == 4:  # the replay of a ptscotch partition
+if NP in (2, 4):  # the replay of a ptscotch partition
     f, fr = out("ptscotch.h5"), out("replay.h5")
     run(TWO_CUBES + ["-quiet", "-output_file", f], np_=NP)
     run(TWO_CUBES + ["-left_partition_file", f, "-right_partition_file", f, "-quiet", "-output_file", fr], np_=NP)
@@ -74,7 +75,9 @@ if NP == 4:  # the replay of a ptscotch partition
     c.check(d <= 1e-8 and np.array_equal(a["steps/contacts"][:], b["steps/contacts"][:]),
             "replay: the same contacts every step, final state rel. diff %.1e <= 1e-8" % d)
     # a replay on another number of ranks is refused, naming the option
-    p = run(TWO_CUBES + ["-left_partition_file", f, "-quiet", "-output_file", out("x.h5")], np_=2, check=False)
-    c.check(p.returncode != 0 and "-left_partition_file" in p.stderr and "4 ranks, this run has 2" in p.stderr,
-            "replay on 2 ranks of a 4-rank partition: refused (%s)" % p.stderr.strip().splitlines()[0][:140])
+    other = 3 if NP == 2 else 2
+    p = run(TWO_CUBES + ["-left_partition_file", f, "-quiet", "-output_file", out("x.h5")], np_=other, check=False)
+    c.check(p.returncode != 0 and "-left_partition_file" in p.stderr and
+            "%d ranks, this run has %d" % (NP, other) in p.stderr,
+            "replay on %d ranks of a %d-rank partition: refused (%s)" % (other, NP, p.stderr.strip().splitlines()[0][:140]))
 c.done()
