@@ -326,6 +326,7 @@ PETSC_INTERN PetscBool FCBodyIsDeformable(FCBody);    /* FE: vertex DOFs, a defo
 PETSC_INTERN PetscBool FCBodyIsPrescribed(FCBody);    /* kinematic: given motion, takes no force  */
 PETSC_INTERN PetscBool FCBodyHasShape(FCBody);        /* a signed distance (rigid, kinematic)     */
 PETSC_INTERN PetscBool FCBodyHasBoundedShape(FCBody); /* ... of a closed shape (not a plane)      */
+PETSC_INTERN PetscBool FCBodyHasShapeCore(FCBody);    /* ... rounded, with a core (sphere, capsule, cylinder) */
 /* the core of a rounded shape (FCShape: a point or a segment, body frame), its radius and whether
    its ends are flat (cylinder); *ncore 0 for a body without one */
 PETSC_INTERN void FCBodyGetShapeCore(FCBody, PetscInt *ncore, PetscReal core[2][3], PetscReal *radius, PetscBool *flat);

@@ -29,6 +29,11 @@ PetscBool FCBodyHasSmoothShape(FCBody body)
   return body->shape && body->shape->smooth ? PETSC_TRUE : PETSC_FALSE;
 }
 
+PetscBool FCBodyHasShapeCore(FCBody body)
+{
+  return body->shape && body->shape->ncore > 0 ? PETSC_TRUE : PETSC_FALSE;
+}
+
 void FCBodyGetShapeCore(FCBody body, PetscInt *ncore, PetscReal core[2][3], PetscReal *radius, PetscBool *flat)
 {
   *ncore  = body->shape ? body->shape->ncore : 0;

@@ -139,14 +139,6 @@ void FCCollisionTrianglePoint(const FCSurfaceTriangle *T, const PetscReal w[3], 
   for (int d = 0; d < 3; d++) xf[d] = w[0] * T->xf[0][d] + w[1] * T->xf[1][d] + w[2] * T->xf[2][d];
 }
 
-static int CompareX(const void *a, const void *b)
-{
-  const PetscReal *x = (const PetscReal *)a, *y = (const PetscReal *)b;
-  for (int i = 0; i < 3; i++)
-    if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
-  return 0;
-}
-
 /* The outward normals of the vertices of a surface's ntri triangles at the start of the step
    (sums of their triangles' normals weighted by area), sorted by reference position */
 static PetscErrorCode VertexNormals(PetscInt ntri, const FCSurfaceTriangle tri[], PetscInt *nvn, FCVertexNormal **vn)
@@ -169,9 +161,9 @@ static PetscErrorCode VertexNormals(PetscInt ntri, const FCSurfaceTriangle tri[]
         all[3 * t + a].n[d] = c[d];
       }
   }
-  if (ntri) qsort(all, 3 * ntri, sizeof(FCVertexNormal), CompareX);
+  if (ntri) qsort(all, 3 * ntri, sizeof(FCVertexNormal), FCComparePoint);
   for (PetscInt k = 0; k < 3 * ntri; k++) {
-    if (m && !CompareX(&all[m - 1], &all[k]))
+    if (m && !FCComparePoint(&all[m - 1], &all[k]))
       for (int d = 0; d < 3; d++) all[m - 1].n[d] += all[k].n[d];
     else
       all[m++] = all[k];
@@ -214,7 +206,7 @@ PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt i
     if (vn && prox[i].nv == 1) {
       FCVertexNormal key1;
       for (int d = 0; d < 3; d++) key1.X[d] = prox[i].X[0][d];
-      own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), CompareX);
+      own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), FCComparePoint);
     }
     PetscCall(FCCollisionLandingTriangle(S, &x0[3 * i], &xf[3 * i], own ? own->n : NULL, distance, pairs->continuous,
                                          tau, cand, &grid, &best, bw, bcp));
@@ -285,12 +277,12 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
         nheld++;
       }
   }
-  if (nheld > 1) qsort(held, nheld, 3 * sizeof(PetscReal), CompareX);
+  if (nheld > 1) qsort(held, nheld, 3 * sizeof(PetscReal), FCComparePoint);
   for (PetscInt k = 0; k < set->n; k++) {
     const FCContact *c      = &set->c[k];
     PetscBool        isheld = PETSC_FALSE;
     if (c->side2 == FC_SIDE_FE_TRIANGLE && c->body[0] == pairs->body[c->pair][1] && c->prox[0].nv == 1 && nheld)
-      isheld = bsearch(c->prox[0].X[0], held, nheld, 3 * sizeof(PetscReal), CompareX) ? PETSC_TRUE : PETSC_FALSE;
+      isheld = bsearch(c->prox[0].X[0], held, nheld, 3 * sizeof(PetscReal), FCComparePoint) ? PETSC_TRUE : PETSC_FALSE;
     if (isheld && drop_held) continue;
     set->c[k].dormant = isheld;
     set->c[kept++]    = set->c[k];
@@ -327,7 +319,7 @@ static PetscErrorCode PointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, Pets
       FCVertexNormal        key1;
       const FCVertexNormal *own;
       for (int k = 0; k < 3; k++) key1.X[k] = prox[i].X[0][k];
-      own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), CompareX);
+      own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), FCComparePoint);
       if (own && PetscAbsReal(FCDot(nrm, own->n)) < FC_FACING_COS) continue;
     }
     if (d >= pairs->distance) { /* continuous: a speculative contact if the motion reaches the shape */
@@ -419,21 +411,16 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
       /* two analytic shapes: a rounded one (sphere, capsule, cylinder) from the closest points of
          its core (smooth.c), exact where one is smooth; the points of a box (its corners) against
          the other's distance; a box and a cylinder, or two cylinders, both ways */
-      PetscInt  ncp, ncs;
-      PetscReal core[2][3], r;
-      PetscBool flat;
-      FCBodyGetShapeCore(P, &ncp, core, &r, &flat);
-      FCBodyGetShapeCore(S, &ncs, core, &r, &flat);
       if (FCBodyHasSmoothShape(P))
         PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
       else if (FCBodyHasSmoothShape(S))
         PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
       else {
-        if (ncp)
+        if (FCBodyHasShapeCore(P))
           PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
         else
           PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, 0, NULL, pairs, rank, set));
-        if (ncs) PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
+        if (FCBodyHasShapeCore(S)) PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
       }
       continue;
     }

@@ -103,6 +103,8 @@ PETSC_INTERN PetscReal FCClosestSegmentSegment(const PetscReal p0[3], const Pets
 /* The point at barycentric weights w of nv (2, 3) reference positions, exact where they share a
    coordinate: a contact's sort key */
 PETSC_INTERN void FCReferencePoint(PetscInt nv, const PetscReal Xv[][3], const PetscReal w[], PetscReal X[3]);
+/* qsort/bsearch order of records that start with a point (3 reals): lexicographic in x, y, z */
+PETSC_INTERN int FCComparePoint(const void *, const void *);
 /* Whether the ray x + s dir, s > 0, crosses triangle (a, b, c) (Moeller-Trumbore) */
 PETSC_INTERN PetscBool FCRayHitsTriangle(const PetscReal x[3], const PetscReal dir[3], const PetscReal a[3],
                                          const PetscReal b[3], const PetscReal c[3]);

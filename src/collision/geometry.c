@@ -150,3 +150,11 @@ void FCReferencePoint(PetscInt nv, const PetscReal Xv[][3], const PetscReal w[],
     for (PetscInt a = 1; a < nv; a++) X[k] += w[a] * (Xv[a][k] - Xv[0][k]);
   }
 }
+
+int FCComparePoint(const void *a, const void *b)
+{
+  const PetscReal *x = (const PetscReal *)a, *y = (const PetscReal *)b;
+  for (int i = 0; i < 3; i++)
+    if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
+  return 0;
+}

@@ -156,14 +156,6 @@ static PetscBool DeepInside(const Closed *c, const PetscReal x[3], PetscReal dep
   return best < 0 || d2 > depth * depth ? PETSC_TRUE : PETSC_FALSE;
 }
 
-static int CompareVertex(const void *a, const void *b)
-{
-  const PetscReal *x = (const PetscReal *)a, *y = (const PetscReal *)b;
-  for (int i = 0; i < 3; i++)
-    if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
-  return 0;
-}
-
 /* The distinct vertices of ntri gathered triangles (the same on every rank), by reference
    position, as [X (3), x now (3)] each: *nv of them in *vx (to be freed) */
 static PetscErrorCode SurfaceVertices(PetscInt ntri, const FCSurfaceTriangle tri[], PetscInt *nv, PetscReal **vx)
@@ -179,9 +171,9 @@ static PetscErrorCode SurfaceVertices(PetscInt ntri, const FCSurfaceTriangle tri
         v[18 * t + 6 * a + d]     = tri[t].X[a][d];
         v[18 * t + 6 * a + 3 + d] = tri[t].x0[a][d];
       }
-  if (ntri) qsort(v, 3 * ntri, 6 * sizeof(PetscReal), CompareVertex);
+  if (ntri) qsort(v, 3 * ntri, 6 * sizeof(PetscReal), FCComparePoint);
   for (PetscInt k = 0; k < 3 * ntri; k++)
-    if (!m || CompareVertex(&v[6 * (m - 1)], &v[6 * k])) {
+    if (!m || FCComparePoint(&v[6 * (m - 1)], &v[6 * k])) {
       if (m != k) PetscCall(PetscArraycpy(&v[6 * m], &v[6 * k], 6));
       m++;
     }
