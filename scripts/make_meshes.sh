@@ -34,6 +34,7 @@ MESHES=(
   "cylinder     cylinder.geo  lc 0.07"
   "sphere       sphere.geo    lc 0.075"
   "sphere_coarse sphere.geo   lc 0.2"
+  "ball_5cm     sphere.geo    r 0.05 lc 0.015"
   "slab         slab.geo      lc 0.125"
   "table1_18k   table1.geo    nx 20 ny 20 nz 15 d 0.05"
   "table1_24k   table1.geo    nx 20 ny 19 nz 21 d 0.05"

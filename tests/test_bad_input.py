@@ -48,6 +48,8 @@ cases = [
     ("rigid plane", ["-scene_bodies", "b", "-b_type", "rigid", "-b_shape", "plane", "-b_density", "1", "-quiet"], "kinematic"),
     ("sphere without radius", ["-scene_bodies", "b", "-b_type", "rigid", "-b_shape", "sphere", "-b_density", "1", "-quiet"], "-b_radius"),
     ("unknown material", opts(cube_material="rubber"), "Unknown material 'rubber'"),
+    ("unknown rotation step", opts(cube_material="corotational", cube_rotation="exactly"), "-cube_rotation"),
+    ("rotation step of a linear body", opts(cube_rotation="exact"), "-cube_rotation"),
     ("density zero", opts(cube_density="0"), "-cube_density must be > 0"),
     ("density negative (rigid)", ["-scene_bodies", "b", "-b_type", "rigid", "-b_shape", "sphere", "-b_radius", "1", "-b_density", "-1", "-quiet"], "-b_density must be > 0"),
     ("Young zero", opts(cube_young="0"), "-cube_young must be > 0"),

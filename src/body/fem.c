@@ -18,6 +18,11 @@
      -<body>_refactor_every k         co-rotational only: factor A every k steps (>= 1, default 1);
                                       between, K and f_int are current but A^-1 is the older
                                       factor's (a modified-Newton free motion, cheaper, less exact)
+     -<body>_rotation exact|linear    co-rotational only: exact (default) advances the body's mean
+                                      rotation within a step exactly and linearizes the elastic
+                                      force at the rotated state (fem_rotation.c), so that a
+                                      spinning body gains no energy; linear keeps eq. 2 as it is.
+                                      A body with fixed vertices always keeps eq. 2
      -<body>_assembly coo|values      co-rotational only: how K, assembled every step, is summed
                                       (fem_step.c): coo (default) writes the element matrices in
                                       place and sums them through the map PETSc built once
@@ -50,15 +55,20 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
                                "Fix the vertices inside xmin,ymin,zmin,xmax,ymax,zmax", 6, fem->fixed_box,
                                &fem->has_fixed_box));
   if (strcmp(fem->material, "linear")) { /* a linear A never changes: nothing to refactor or re-sum */
-    const char *how[] = {"values", "coo"};
-    PetscInt    a     = fem->coo ? 1 : 0;
+    const char *how[] = {"values", "coo"}, *rot[] = {"linear", "exact"};
+    PetscInt    a = fem->coo ? 1 : 0, r = fem->rotation_exact ? 1 : 0;
     PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_every", "Factor A every k steps (co-rotational)",
                            &fem->refactor_every, NULL));
     PetscCall(
         PetscOptionsEList("-assembly", "How K is summed every step (co-rotational)", NULL, how, 2, how[a], &a, NULL));
     fem->coo = a == 1 ? PETSC_TRUE : PETSC_FALSE;
-  } else
-    fem->coo = PETSC_FALSE;
+    PetscCall(PetscOptionsEList("-rotation", "The rotation within a step: exact or linear (co-rotational)", NULL, rot,
+                                2, rot[r], &r, NULL));
+    fem->rotation_exact = r == 1 ? PETSC_TRUE : PETSC_FALSE;
+  } else {
+    fem->coo            = PETSC_FALSE;
+    fem->rotation_exact = PETSC_FALSE;
+  }
   PetscOptionsEnd();
   PetscCheck(fem->refactor_every >= 1, body->comm, PETSC_ERR_USER_INPUT,
              "Option -%srefactor_every must be >= 1, got %" PetscInt_FMT, body->prefix, fem->refactor_every);
@@ -254,6 +264,12 @@ static PetscErrorCode Destroy_FEM(FCBody body)
   PetscCall(VecDestroy(&fem->fint));
   PetscCall(VecDestroy(&fem->fgrav));
   PetscCall(VecDestroy(&fem->work));
+  PetscCall(VecDestroy(&fem->rr));
+  PetscCall(VecDestroy(&fem->shift));
+  PetscCall(VecDestroy(&fem->uhat));
+  PetscCall(VecDestroy(&fem->rvt));
+  PetscCall(VecDestroy(&fem->rw));
+  PetscCall(VecDestroy(&fem->rcf));
   PetscCall(VecDestroy(&fem->uloc));
   PetscCall(VecDestroy(&fem->floc));
   PetscCall(PetscFree3(fem->ldof, fem->gdof, fem->fixed));
@@ -282,6 +298,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   fem->poisson                 = 0.3;
   fem->refactor_every          = 1;
   fem->coo                     = PETSC_TRUE; /* co-rotational; a linear K is summed once, by values */
+  fem->rotation_exact          = PETSC_TRUE; /* co-rotational without fixed vertices */
   body->deformable             = PETSC_TRUE;
   body->state_cols             = 6; /* u, v */
   body->state_per_vertex       = PETSC_TRUE;

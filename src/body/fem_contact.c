@@ -4,13 +4,13 @@
 #include "femimpl.h"
 
 /* Owned boundary vertices: positions at the start of the step and after the free motion
-   x_free = X + u + h (v + dv_free) */
+   x_free = X + u + h (v + dv_free) (+ delta, fem_rotation.c) */
 PetscErrorCode ContactPoints_FEM(FCBody body, PetscInt *n, FCProximity **prox, PetscReal **x0, PetscReal **xf,
                                  PetscReal **key)
 {
   FEM               *fem = (FEM *)body->data;
   FCMesh            *m   = &fem->mesh;
-  const PetscScalar *u, *v, *dv;
+  const PetscScalar *u, *v, *dv, *sh = NULL;
   PetscInt           lo;
 
   PetscFunctionBegin;
@@ -18,6 +18,7 @@ PetscErrorCode ContactPoints_FEM(FCBody body, PetscInt *n, FCProximity **prox, P
   PetscCall(VecGetArrayRead(fem->u, &u));
   PetscCall(VecGetArrayRead(fem->v, &v));
   PetscCall(VecGetArrayRead(fem->dv, &dv));
+  if (fem->shifted) PetscCall(VecGetArrayRead(fem->shift, &sh));
   for (PetscInt i = 0; i < fem->nbv; i++) {
     PetscInt     vtx = fem->bv[i], g = fem->gdof[vtx];
     FCProximity *p = &fem->bprox[i];
@@ -33,11 +34,13 @@ PetscErrorCode ContactPoints_FEM(FCBody body, PetscInt *n, FCProximity **prox, P
       fem->bx0[3 * i + d]  = X + (g < 0 ? 0.0 : PetscRealPart(u[g - lo + d]));
       fem->bxf[3 * i + d] =
           fem->bx0[3 * i + d] + (g < 0 ? 0.0 : body->h * PetscRealPart(v[g - lo + d] + dv[g - lo + d]));
+      if (sh && g >= 0) fem->bxf[3 * i + d] += PetscRealPart(sh[g - lo + d]);
     }
   }
   PetscCall(VecRestoreArrayRead(fem->u, &u));
   PetscCall(VecRestoreArrayRead(fem->v, &v));
   PetscCall(VecRestoreArrayRead(fem->dv, &dv));
+  if (sh) PetscCall(VecRestoreArrayRead(fem->shift, &sh));
   *n    = fem->nbv;
   *prox = fem->bprox;
   *x0   = fem->bx0;
@@ -47,7 +50,8 @@ PetscErrorCode ContactPoints_FEM(FCBody body, PetscInt *n, FCProximity **prox, P
 }
 
 /* Boundary triangles held by this rank with their positions at the start of the step and
-   after the free motion (ghost vertices included, through the local vectors) */
+   after the free motion (ghost vertices included, through the local vectors; a shifted step's
+   delta goes in as delta / h in the local dv) */
 PetscErrorCode SurfaceTriangles_FEM(FCBody body, PetscInt *n, FCSurfaceTriangle **tri)
 {
   FEM               *fem = (FEM *)body->data;
@@ -57,7 +61,11 @@ PetscErrorCode SurfaceTriangles_FEM(FCBody body, PetscInt *n, FCSurfaceTriangle 
   PetscFunctionBegin;
   PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
   PetscCall(DMGlobalToLocal(m->dm, fem->v, INSERT_VALUES, fem->vloc));
-  PetscCall(DMGlobalToLocal(m->dm, fem->dv, INSERT_VALUES, fem->dvloc));
+  if (fem->shifted) {
+    PetscCall(VecWAXPY(fem->work, 1.0 / body->h, fem->shift, fem->dv));
+    PetscCall(DMGlobalToLocal(m->dm, fem->work, INSERT_VALUES, fem->dvloc));
+  } else
+    PetscCall(DMGlobalToLocal(m->dm, fem->dv, INSERT_VALUES, fem->dvloc));
   PetscCall(VecGetArrayRead(fem->uloc, &u));
   PetscCall(VecGetArrayRead(fem->vloc, &v));
   PetscCall(VecGetArrayRead(fem->dvloc, &dv));
@@ -83,12 +91,12 @@ PetscErrorCode SurfaceTriangles_FEM(FCBody body, PetscInt *n, FCSurfaceTriangle 
 }
 
 /* x += sum of w_k x_k over the vertices of p: owned vertices at the current state X + u, or at
-   the trial state X + u + h (v + dv); fixed vertices (never moving, X kept in the proximity) are
-   added by rank 0 only, so that a sum over the ranks counts every vertex once */
+   the trial state X + u + h (v + dv) (+ delta, fem_rotation.c); fixed vertices (never moving, X kept in the proximity)
+   are added by rank 0 only, so that a sum over the ranks counts every vertex once */
 static PetscErrorCode AddVertexPositions(FCBody body, const FCProximity *p, PetscBool trial, PetscReal x[3])
 {
   FEM               *fem = (FEM *)body->data;
-  const PetscScalar *u, *X, *v = NULL, *dv = NULL;
+  const PetscScalar *u, *X, *v = NULL, *dv = NULL, *sh = NULL;
   PetscInt           lo, hi;
   PetscMPIInt        rank;
 
@@ -100,6 +108,7 @@ static PetscErrorCode AddVertexPositions(FCBody body, const FCProximity *p, Pets
   if (trial) {
     PetscCall(VecGetArrayRead(fem->v, &v));
     PetscCall(VecGetArrayRead(fem->dv, &dv));
+    if (fem->shifted) PetscCall(VecGetArrayRead(fem->shift, &sh));
   }
   for (PetscInt k = 0; k < p->nv; k++) {
     PetscInt g = p->gdof[k];
@@ -111,13 +120,15 @@ static PetscErrorCode AddVertexPositions(FCBody body, const FCProximity *p, Pets
     if (g < lo || g >= hi) continue;
     for (int d = 0; d < 3; d++)
       x[d] += p->w[k] *
-              PetscRealPart(X[g - lo + d] + u[g - lo + d] + (trial ? body->h * (v[g - lo + d] + dv[g - lo + d]) : 0.0));
+              PetscRealPart(X[g - lo + d] + u[g - lo + d] + (trial ? body->h * (v[g - lo + d] + dv[g - lo + d]) : 0.0) +
+                            (sh ? sh[g - lo + d] : 0.0));
   }
   PetscCall(VecRestoreArrayRead(fem->u, &u));
   PetscCall(VecRestoreArrayRead(fem->Xg, &X));
   if (trial) {
     PetscCall(VecRestoreArrayRead(fem->v, &v));
     PetscCall(VecRestoreArrayRead(fem->dv, &dv));
+    if (sh) PetscCall(VecRestoreArrayRead(fem->shift, &sh));
   }
   PetscFunctionReturn(0);
 }

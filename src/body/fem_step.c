@@ -223,16 +223,26 @@ PetscErrorCode FCFEMCreateOperators(FCBody body)
   PetscFunctionReturn(0);
 }
 
-/* Free motion, eq. 5: A dv_free = b = h (f_g - f_int) - M (h alpha v) - K ((h beta + h^2) v) */
+/* Free motion, eq. 5: A dv_free = b = h (f_g - f_int) - M (h alpha v) - K ((h beta + h^2) v); a body
+   that advances its rotation exactly takes it in the turning frame (fem_rotation.c) */
 PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
 {
   FEM      *fem = (FEM *)body->data;
   PetscReal h   = body->h;
+  PetscBool rotate;
+  Vec       vb, vk; /* the velocities that B and h^2 K act on */
 
   PetscFunctionBegin;
-  if (!fem->Acurrent) { /* co-rotational: K and f_int at q_t; A too every refactor_every steps */
-    PetscCall(FCFEMAssembleElastic(body, fem->u, fem->fint, fem->K));
-    if (fem->factor_age >= fem->refactor_every) {
+  rotate = FCFEMRotationActive(fem);
+  if (rotate) {
+    PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));
+    PetscCall(FCFEMRotationPredict(body));
+    PetscCall(FCPhaseEnd(FC_PHASE_FREE_MOTION));
+  }
+  if (!fem->Acurrent || (rotate && !fem->factored)) { /* co-rotational: K and f_int at q_t (turned); A
+                                                         too every refactor_every steps */
+    PetscCall(FCFEMAssembleElastic(body, rotate ? fem->uhat : fem->u, fem->fint, fem->K));
+    if (fem->factor_age >= fem->refactor_every || !fem->factored) {
       PetscCall(FCFEMFormA(body));
       PetscCall(FCFEMFactorA(body));
     }
@@ -240,6 +250,8 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
   }
   if (!fem->factored) PetscCall(FCFEMFactorA(body)); /* the first step: factored at first use */
   PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));
+  vb = rotate ? fem->rvt : fem->v;
+  vk = rotate ? fem->rw : fem->v;
   if (fem->mat->linear) PetscCall(MatMult(fem->K, fem->u, fem->fint)); /* f_int = K u */
   if (body->gravity[0] != 0.0 || body->gravity[1] != 0.0 || body->gravity[2] != 0.0)
     PetscCall(VecAXPBYPCZ(fem->b, h, -h, 0.0, fem->fgrav, fem->fint));
@@ -247,18 +259,32 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
     PetscCall(VecCopy(fem->fint, fem->b));
     PetscCall(VecScale(fem->b, -h));
   }
+  if (rotate) PetscCall(VecAXPY(fem->b, h, fem->rcf));
   if (fem->alpha != 0.0) {
-    PetscCall(MatMult(fem->M, fem->v, fem->work));
+    PetscCall(MatMult(fem->M, vb, fem->work));
     PetscCall(VecAXPY(fem->b, -h * fem->alpha, fem->work));
   }
-  PetscCall(MatMult(fem->K, fem->v, fem->work));
-  PetscCall(VecAXPY(fem->b, -(h * fem->beta + h * h), fem->work));
+  if (vb == vk) {
+    PetscCall(MatMult(fem->K, fem->v, fem->work));
+    PetscCall(VecAXPY(fem->b, -(h * fem->beta + h * h), fem->work));
+  } else {
+    if (fem->beta != 0.0) {
+      PetscCall(MatMult(fem->K, vb, fem->work));
+      PetscCall(VecAXPY(fem->b, -h * fem->beta, fem->work));
+    }
+    PetscCall(MatMult(fem->K, vk, fem->work));
+    PetscCall(VecAXPY(fem->b, -h * h, fem->work));
+  }
   PetscCall(FCFEMSolveA(body, fem->b, fem->dv, "Free-motion", t));
+  if (rotate) { /* dv = D + v~ - v_t */
+    PetscCall(VecAXPY(fem->dv, 1.0, fem->rvt));
+    PetscCall(VecAXPY(fem->dv, -1.0, fem->v));
+  }
   PetscCall(FCPhaseEnd(FC_PHASE_FREE_MOTION));
   PetscFunctionReturn(0);
 }
 
-/* eq. 2: v_{t+h} = v_t + dv, u_{t+h} = u_t + h v_{t+h} */
+/* eq. 2: v_{t+h} = v_t + dv, u_{t+h} = u_t + h v_{t+h} (+ delta, fem_rotation.c) */
 PetscErrorCode Integrate_FEM(FCBody body, PetscReal t)
 {
   FEM *fem = (FEM *)body->data;
@@ -266,6 +292,8 @@ PetscErrorCode Integrate_FEM(FCBody body, PetscReal t)
   PetscFunctionBegin;
   PetscCall(VecAXPY(fem->v, 1.0, fem->dv));
   PetscCall(VecAXPY(fem->u, body->h, fem->v));
+  if (fem->shifted) PetscCall(VecAXPY(fem->u, 1.0, fem->shift));
+  fem->shifted = PETSC_FALSE;
   if (!fem->mat->linear) fem->Acurrent = PETSC_FALSE;
   fem->Rcurrent = PETSC_FALSE;
   fem->factor_age++;

@@ -3,6 +3,7 @@
      fem_step.c     element loops, A and its factorization, free motion (eq. 5), integration (eq. 2)
      fem_state.c    centroid, energies, visual positions and fields, restart state, NaN check
      fem_contact.c  contact points, surface triangles, proximity positions, the compliance builder
+     fem_rotation.c the rotation of a free co-rotational body within a step
      fem_check.c    the checks of the derived quantities (mass, energies, M, K, A) at set-up */
 #pragma once
 #include "../fcimpl.h"
@@ -46,6 +47,12 @@ typedef struct {
   Vec                dvfree;   /* recursive schemes: dv_free kept while corrections are tried */
   FCCompliance       comp;     /* W_b and the correction (-compliance_type); bodies in a contact pair */
   PetscBool          Rcurrent; /* comp has the best-fit rotation of the current u (set once per step) */
+  /* the rotation within a step (fem_rotation.c) */
+  PetscBool rotation_exact;  /* -rotation exact (co-rotational bodies without fixed vertices) */
+  PetscBool shifted;         /* this step's positions include shift (set by the free motion)  */
+  Vec       rr, shift, uhat; /* r, delta, u + (Q - I) r                                       */
+  Vec       rvt, rw, rcf;    /* v~, v - omega x r, the centrifugal force                      */
+  PetscReal omega[3];        /* the mean angular velocity of the step                         */
 } FEM;
 
 /* Element positions: reference X and current x = X + u (fixed vertices do not move); uloc NULL: X */
@@ -84,6 +91,9 @@ PETSC_INTERN PetscErrorCode FCFEMFactorA(FCBody); /* by the builder that owns it
 PETSC_INTERN PetscErrorCode FCFEMSolveA(FCBody, Vec b, Vec x, const char what[], PetscReal t);
 PETSC_INTERN PetscErrorCode FreeMotion_FEM(FCBody, PetscReal);
 PETSC_INTERN PetscErrorCode Integrate_FEM(FCBody, PetscReal);
+/* fem_rotation.c */
+PETSC_INTERN PetscBool      FCFEMRotationActive(FEM *);
+PETSC_INTERN PetscErrorCode FCFEMRotationPredict(FCBody);
 /* fem_state.c */
 PETSC_INTERN PetscErrorCode GetCentroid_FEM(FCBody, PetscReal[3]);
 PETSC_INTERN PetscErrorCode GetEnergy_FEM(FCBody, FCEnergy *);
