@@ -44,6 +44,7 @@ MESHES=(
   "thin_slab    table1.geo    nx 16 ny 16 nz 2 d 0.02"
   "small_cube   table1.geo    nx 4 ny 4 nz 4 d 0.05"
   "six_tets     table1.geo    nx 2 ny 2 nz 2 d 0.2"
+  "slide_slab_coarse table1.geo nx 21 ny 7 nz 2 d 0.05"
   "slide_slab   table1.geo    nx 41 ny 13 nz 3 d 0.025"
   "slide_slab_fine table1.geo nx 81 ny 25 nz 5 d 0.0125"
   "bar          table1.geo    nx 12 ny 3 nz 3 d 0.05"

@@ -14,7 +14,11 @@
      -<body>_mass_type lumped|consistent   (default consistent)
      -<body>_rayleigh_mass alpha      damping alpha M (>= 0, default 0)
      -<body>_rayleigh_stiffness beta  damping beta K (>= 0, default 0)
-     -<body>_fixed_box x0,y0,z0,x1,y1,z1   vertices inside (placed coordinates) are fixed
+     -<body>_fixed_box x0,y0,z0,x1,y1,z1[,...]   vertices inside (placed coordinates) are fixed;
+                                      up to FC_MAX_FIXED_BOXES boxes, 6 numbers each
+     -<body>_inverted error|allow     error (default): the run stops at the end of a step where an
+                                      element is turned inside out (det F <= 0: a small-strain
+                                      material does not resist it, fem_state.c); allow runs on
      -<body>_refactor_every k         co-rotational only: factor A every k steps (>= 1, default 1);
                                       between, K and f_int are current but A^-1 is the older
                                       factor's (a modified-Newton free motion, cheaper, less exact)
@@ -51,9 +55,25 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
                           &fem->alpha, NULL));
   PetscCall(FCOptionsReal(PetscOptionsObject, "-rayleigh_stiffness", "Rayleigh damping beta (B = alpha M + beta K)",
                           &fem->beta, NULL));
-  PetscCall(FCOptionsRealArray(PetscOptionsObject, "-fixed_box",
-                               "Fix the vertices inside xmin,ymin,zmin,xmax,ymax,zmax", 6, fem->fixed_box,
-                               &fem->has_fixed_box));
+  {
+    PetscInt n = 0;
+    PetscCall(FCOptionsRealList(PetscOptionsObject, "-fixed_box",
+                                "Fix the vertices inside xmin,ymin,zmin,xmax,ymax,zmax (one or more boxes)",
+                                6 * FC_MAX_FIXED_BOXES + 1, fem->fixed_box, &n, &fem->has_fixed_box));
+    PetscCheck(
+        !fem->has_fixed_box || (n > 0 && n % 6 == 0 && n <= 6 * FC_MAX_FIXED_BOXES), body->comm, PETSC_ERR_USER_INPUT,
+        "Option -%sfixed_box needs 6 comma-separated numbers per box (xmin,ymin,zmin,xmax,ymax,zmax), at most %d "
+        "boxes; got %" PetscInt_FMT " numbers",
+        body->prefix, FC_MAX_FIXED_BOXES, n);
+    fem->nfixed_box = n / 6;
+  }
+  {
+    const char *inv[] = {"error", "allow"};
+    PetscInt    a     = fem->allow_inverted ? 1 : 0;
+    PetscCall(PetscOptionsEList("-inverted", "An element turned inside out: error (stop) or allow", NULL, inv, 2,
+                                inv[a], &a, NULL));
+    fem->allow_inverted = a == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
   if (strcmp(fem->material, "linear")) { /* a linear A never changes: nothing to refactor or re-sum */
     const char *how[] = {"values", "coo"}, *rot[] = {"linear", "exact"};
     PetscInt    a = fem->coo ? 1 : 0, r = fem->rotation_exact ? 1 : 0;
@@ -89,11 +109,11 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
              "Option -%spoisson must lie in (-1, 0.5), got %g", body->prefix, (double)fem->poisson);
   PetscCall(FCCheckNonNegative(body->comm, body->prefix, "-rayleigh_mass", fem->alpha));
   PetscCall(FCCheckNonNegative(body->comm, body->prefix, "-rayleigh_stiffness", fem->beta));
-  if (fem->has_fixed_box)
+  for (PetscInt b = 0; b < fem->nfixed_box; b++)
     for (int d = 0; d < 3; d++)
-      PetscCheck(fem->fixed_box[d] <= fem->fixed_box[3 + d], body->comm, PETSC_ERR_USER_INPUT,
-                 "Option -%sfixed_box: min %d (%g) > max (%g)", body->prefix, d, (double)fem->fixed_box[d],
-                 (double)fem->fixed_box[3 + d]);
+      PetscCheck(fem->fixed_box[6 * b + d] <= fem->fixed_box[6 * b + 3 + d], body->comm, PETSC_ERR_USER_INPUT,
+                 "Option -%sfixed_box, box %" PetscInt_FMT ": min %d (%g) > max (%g)", body->prefix, b, d,
+                 (double)fem->fixed_box[6 * b + d], (double)fem->fixed_box[6 * b + 3 + d]);
   PetscFunctionReturn(0);
 }
 
@@ -137,7 +157,9 @@ static PetscErrorCode SetUp_FEM(FCBody body)
      point - pStart, and rejects valid indices when the chart does not start at 0 */
   PetscCall(PetscSectionSetChart(s, 0, m->vEnd));
   for (PetscInt v = 0; v < nv; v++) {
-    fem->fixed[v] = fem->has_fixed_box && InBox(fem->fixed_box, &m->X[3 * v]) ? PETSC_TRUE : PETSC_FALSE;
+    fem->fixed[v] = PETSC_FALSE;
+    for (PetscInt b = 0; b < fem->nfixed_box; b++)
+      if (InBox(&fem->fixed_box[6 * b], &m->X[3 * v])) fem->fixed[v] = PETSC_TRUE;
     PetscCall(PetscSectionSetDof(s, m->vStart + v, 3));
     PetscCall(PetscSectionSetFieldDof(s, m->vStart + v, 0, 3));
     if (fem->fixed[v]) {

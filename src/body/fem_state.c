@@ -228,10 +228,21 @@ PetscErrorCode SetState_FEM(FCBody body, const PetscReal s[])
   PetscFunctionReturn(0);
 }
 
+/* The state after a step: finite, and no element turned inside out (J = det F <= 0), which linear
+   and co-rotational elasticity (small-strain models) do not resist: a body crushed or stretched
+   through its own thickness, whose surface then crosses itself and whatever touches it */
 PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
 {
-  FEM      *fem = (FEM *)body->data;
-  PetscReal nu, nv;
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  PetscReal          nu, nv;
+  const PetscScalar *ul;
+  struct {
+    double J;
+    int    rank;
+  } worst              = {PETSC_MAX_REAL, 0}, all; /* MPI_DOUBLE_INT for MPI_MINLOC */
+  PetscReal   where[4] = {0, 0, 0, 0};             /* centroid of the worst cell, count */
+  PetscMPIInt rank;
 
   PetscFunctionBegin;
   PetscCall(VecNorm(fem->u, NORM_INFINITY, &nu));
@@ -240,5 +251,37 @@ PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
              "Body '%s' diverged at step %" PetscInt_FMT
              ": its displacement or velocity is NaN or Inf (time step too large?)",
              body->name, step);
-  PetscFunctionReturn(0);
+  if (fem->allow_inverted) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
+  PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
+  PetscCall(VecGetArrayRead(fem->uloc, &ul));
+  for (PetscInt c = 0; c < m->cEnd - m->cStart; c++) {
+    PetscReal X[12], x[12], F[9], J;
+    FCFEMGatherElement(fem, c, ul, X, x);
+    FCMaterialDeformationGradient(x, &fem->Dminv[9 * c], F);
+    J = FCMat3Det(F);
+    if (J > 0.0) continue;
+    where[3] += 1.0;
+    if (J < worst.J) {
+      worst.J = (double)J;
+      for (int d = 0; d < 3; d++) where[d] = 0.25 * (x[d] + x[3 + d] + x[6 + d] + x[9 + d]);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
+  worst.rank = rank;
+  PetscCallMPI(MPI_Allreduce(&worst, &all, 1, MPI_DOUBLE_INT, MPI_MINLOC, body->comm));
+  if (all.J > 0.0) PetscFunctionReturn(0);
+  {
+    PetscReal n = where[3];
+    PetscCallMPI(MPI_Bcast(where, 3, MPIU_REAL, (PetscMPIInt)all.rank, body->comm));
+    PetscCall(MPIU_Allreduce(&n, &where[3], 1, MPIU_REAL, MPIU_SUM, body->comm));
+  }
+  SETERRQ(body->comm, PETSC_ERR_CONV_FAILED,
+          "Body '%s': %.0f element(s) turned inside out at step %" PetscInt_FMT
+          " (volume ratio J = det F down to %g, at (%g, %g, %g)). The %s material is a small-strain model and "
+          "does not resist it: the body is crushed or stretched through its own thickness, and its surface "
+          "crosses itself and what it touches. Make the body stiffer or thicker, its mesh finer, or -time_step "
+          "smaller; -%sinverted allow runs on",
+          body->name, (double)where[3], step, (double)all.J, (double)where[0], (double)where[1], (double)where[2],
+          fem->material, body->prefix);
 }

@@ -8,18 +8,22 @@
 #pragma once
 #include "../fcimpl.h"
 
+#define FC_MAX_FIXED_BOXES 8 /* -<body>_fixed_box: boxes at most */
+
 typedef struct {
   FCMesh           mesh;
   FCMaterial       mat;
   char             material[FC_MAX_NAME];
   PetscReal        young, poisson, alpha, beta;
   PetscBool        lumped, has_fixed_box;
-  PetscReal        fixed_box[6];
-  PetscInt         nfixed;      /* global number of fixed vertices */
-  PetscInt        *ldof;        /* per local vertex: offset in the local vector */
-  PetscInt        *gdof;        /* per local vertex: first global DOF, -1 when fixed */
-  PetscBool       *fixed;       /* per local vertex */
-  PetscReal       *Dminv, *vol; /* per cell */
+  PetscReal        fixed_box[6 * FC_MAX_FIXED_BOXES + 1]; /* nfixed_box boxes, 6 numbers each */
+  PetscInt         nfixed_box;
+  PetscBool        allow_inverted; /* -inverted allow: no stop at an element turned inside out */
+  PetscInt         nfixed;         /* global number of fixed vertices */
+  PetscInt        *ldof;           /* per local vertex: offset in the local vector */
+  PetscInt        *gdof;           /* per local vertex: first global DOF, -1 when fixed */
+  PetscBool       *fixed;          /* per local vertex */
+  PetscReal       *Dminv, *vol;    /* per cell */
   Mat              M, K, A;
   Vec              u, v, dv, b, fint, fgrav, work, uloc, floc;
   KSP              ksp;
