@@ -257,6 +257,24 @@ def mass_ratio():
     c.check(gap >= -1e-10, "%s: heavy box never sinks into the light one (min centroid gap %.2e m >= -1e-10)" % (label, gap))
 
 
+def mass_ratio_newton(np_=1, checks=True):
+    """Case 3 with -contact_solver newton (sweeps, then nonsmooth Newton, src/contact/newton.c)."""
+    label = "mass ratio 1:1000, newton"
+    H, o, wall = scene(label, ["-options_file", "input/hard/mass_ratio.opts", "-contact_solver", "newton"], np_)
+    if checks:
+        # measured: residual 7.2e-9 at worst (every step converged to -pgs_tol 1e-8, in at most 22 sweeps
+        # and Newton steps), the heavy box's rise after its lowest point 6.6e-14 m. Bounds: residual
+        # 1e-8 (the tolerance: converged at every step), the other bounds as mass_ratio's
+        stability(label, H, o, wall, pen_tol=1e-10, res_tol=1e-8, dE_tol=1e-6, plane=(0, 0, 1), pen_geo_tol=1e-10)
+        v, d = speed_end(H, o), moved_last(H, o, 50)
+        z = H["bodies/heavy/centroid"][:, 2]
+        rise = z[np.argmin(z):].max() - z.min()
+        c.check(v <= 1e-8 and d <= 1.5e-10 and rise <= 1e-10,
+                "%s: at rest (speed %.2e m/s, moved %.2e m over the last 50 steps), the heavy box rises %.2e m <= 1e-10 "
+                "after its lowest point, at most %d iterations a step" % (label, v, d, rise, H["steps/pgs_iterations"][:].max()))
+    return H
+
+
 def stiffness_contrast(np_=1, checks=True):
     """Case 4: input/hard/stiffness_contrast.opts (E = 1e9 cube on an E = 1e3 cube)."""
     label = "stiffness 1e9/1e3"
@@ -640,6 +658,7 @@ if NP == 1:
     for hs in [0.05, 0.1]:
         large_step(hs)
     mass_ratio()
+    mass_ratio_newton()
     stiffness_contrast()
     two_way_drop()
     incompressible()
@@ -659,6 +678,7 @@ else:
     compare("grasp w=6", grasp(6, 1, checks=False), grasp(6, NP))
     compare("large step h=0.05", large_step(0.05, 1, checks=False), large_step(0.05, NP))
     compare("impact 20/10 m/s", impact(1, checks=False), impact(NP))
+    compare("mass ratio, newton", mass_ratio_newton(1, checks=False), mass_ratio_newton(NP))
     # -contact_shape_points (the default) adds rows nearly redundant with the slab vertices' own:
     # the forces are not unique, and MUMPS' parallel round-off moves the ball's end by up to 8.6e-8 m
     # between 1 and 2 ranks (measured in the sanitized pass; 3.3e-15 m in a normal one), as for case 13

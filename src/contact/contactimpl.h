@@ -66,6 +66,10 @@ PETSC_INTERN void FCContactProjectCone(PetscInt d, PetscReal mu, const PetscReal
 /* ||e||^2 of the natural map of one contact (see FCContactProblemResidual) */
 PETSC_INTERN PetscReal FCContactNaturalMapError2(PetscInt dim, PetscReal mu, const PetscReal r[], const PetscReal u[]);
 
+/* newton.c: nonsmooth Newton on the Alart-Curnier function of a whole problem, on this rank; r in:
+   the warm start, out: the forces; its = Newton steps taken, residual as FCContactProblemResidual */
+PETSC_INTERN PetscErrorCode FCContactSolveNewton(FCContactProblem, PetscReal tol, PetscInt max_it, PetscReal r[],
+                                                 PetscInt *its, PetscReal *residual);
 /* pgs_split.c: the sweeps split over the ranks of comm (-pgs_ranks split), dense W only; r in:
    the warm start (the same on every rank), out: the forces (the same on every rank). With
    giveup, the sweeps stop early, unconverged, once their rate of convergence says they would not

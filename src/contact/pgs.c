@@ -46,11 +46,23 @@
                            (default 1) in the FCLIB layout, for tools/bench_pgs, tools/fclib_solve
                            or Siconos (rank 0; contacts with friction and without cannot be mixed);
                            with -pgs_dump_unconverged, the first such problem the solver does not
-                           converge on (the last linearization of the step), for a bug report */
+                           converge on (the last linearization of the step), for a bug report
+     -contact_solver pgs|newton
+                           pgs (default): the sweeps above; newton: rounds of sweeps, then
+                           nonsmooth Newton steps on the Alart-Curnier function from their iterate,
+                           with a dense LU of its n x n Jacobian and a line search (newton.c), for
+                           small ill-conditioned problems where the sweeps stall; the same residual
+                           and tolerance (-pgs_tol); solved on rank 0 (every rank with -pgs_ranks
+                           all), never split; not with the fast scheme's -fast_update sweep, which
+                           calls back after every sweep
+     -contact_newton_max_it n
+                           with newton: Newton steps at most (>= 1, default 100) */
 #include "contactimpl.h"
 
 typedef enum { PGS_AUTO, PGS_ALL, PGS_ROOT, PGS_SPLIT } PGSPlacement; /* -pgs_ranks, in this order */
 static const char *const PGSPlacements[] = {"auto", "all", "root", "split"};
+typedef enum { SOLVER_PGS, SOLVER_NEWTON } SolverType; /* -contact_solver, in this order */
+static const char *const SolverTypes[] = {"pgs", "newton"};
 
 struct _p_FCContactSolver {
   MPI_Comm                comm;
@@ -66,6 +78,8 @@ struct _p_FCContactSolver {
   PetscBool               dumped, dump_unconverged; /* -pgs_dump_unconverged: the first unconverged problem */
   FCContactSolverUpdateFn update;                   /* after every sweep (FCContactSolverSetUpdate) */
   void                   *updatectx;
+  PetscInt                type;          /* SolverType (-contact_solver) */
+  PetscInt                newton_max_it; /* -contact_newton_max_it */
 };
 
 PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
@@ -82,6 +96,8 @@ PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
   (*solver)->split_damping  = 0.8;
   (*solver)->split_min_rows = 900;
   (*solver)->split_max_it   = 200;
+  (*solver)->type           = SOLVER_PGS;
+  (*solver)->newton_max_it  = 100;
   PetscFunctionReturn(0);
 }
 
@@ -116,6 +132,11 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
                            "With -pgs_ranks auto: split sweeps before rank 0 takes over an unconverged solve",
                            &s->split_max_it, NULL));
   }
+  PetscCall(PetscOptionsEList("-contact_solver", "The contact solver: projected Gauss-Seidel or nonsmooth Newton", NULL,
+                              SolverTypes, 2, SolverTypes[s->type], &s->type, NULL));
+  if (s->type == SOLVER_NEWTON)
+    PetscCall(FCOptionsInt(PetscOptionsObject, "-contact_newton_max_it",
+                           "Newton steps at most (-contact_solver newton)", &s->newton_max_it, NULL));
   PetscCall(PetscOptionsString("-pgs_dump_problem", "Write a contact problem to this FCLIB file", NULL, s->dump,
                                s->dump, sizeof(s->dump), NULL));
   if (s->dump[0]) {
@@ -150,6 +171,8 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
              s->max_it);
   PetscCheck(s->split_min_rows >= 1, s->comm, PETSC_ERR_USER_INPUT,
              "Option -pgs_split_min_rows must be >= 1, got %" PetscInt_FMT, s->split_min_rows);
+  PetscCheck(s->newton_max_it >= 1, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_newton_max_it must be >= 1, got %" PetscInt_FMT, s->newton_max_it);
   PetscCheck(s->split_max_it >= 1, s->comm, PETSC_ERR_USER_INPUT,
              "Option -pgs_split_max_it must be >= 1, got %" PetscInt_FMT, s->split_max_it);
   PetscFunctionReturn(0);
@@ -231,6 +254,8 @@ static PetscErrorCode SolveHere(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveSplit(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveSplitThenRoot(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveLazyHere(FCContactSolver, FCContactProblem, PetscReal[]);
+static PetscErrorCode SolveNewton(FCContactSolver, FCContactProblem, PetscReal[]);
+static PetscErrorCode SolveLazyNewton(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveLazy(FCContactSolver, FCContactProblem, PetscReal[],
                                 PetscErrorCode (*)(FCContactSolver, FCContactProblem, PetscReal[]));
 
@@ -291,6 +316,51 @@ static PetscErrorCode SolveLazyHere(FCContactSolver s, FCContactProblem p, Petsc
   PetscFunctionReturn(0);
 }
 
+/* -contact_solver newton on this rank: rounds of FC_NEWTON_SWEEPS sweeps (NNCG), then Newton steps
+   from their iterate (newton.c), until converged or out of budget (-pgs_max_it sweeps and Newton
+   steps together, -contact_newton_max_it Newton steps). The sweeps find the contacts' states
+   roughly, from which Newton converges fast, and take over where a Newton step cannot lower |Phi|
+   (kinks, redundant contacts); a round whose Newton steps do not lower the residual tenfold makes the
+   next round's sweeps four times more, so that where Newton does not help the cost tends to the
+   sweeps'. Sweeps and steps both count as the solver's iterations. */
+#define FC_NEWTON_SWEEPS 20
+static PetscErrorCode SolveNewton(FCContactSolver s, FCContactProblem p, PetscReal r[])
+{
+  PetscInt max_it = s->max_it, total = 0, newton = 0, sweeps = FC_NEWTON_SWEEPS;
+
+  PetscFunctionBegin;
+  for (;;) {
+    PetscInt  its;
+    PetscReal before;
+    s->max_it = PetscMin(sweeps, max_it - total);
+    PetscCall(SolveHere(s, p, r));
+    total += s->sweeps;
+    if (s->converged || total >= max_it || newton >= s->newton_max_it) break;
+    before = s->residual;
+    PetscCall(
+        FCContactSolveNewton(p, s->tol, PetscMin(s->newton_max_it - newton, max_it - total), r, &its, &s->residual));
+    newton += its;
+    total += its;
+    if (s->residual > 0.1 * before) sweeps *= 4; /* Newton did not pay: more sweeps before the next try */
+    s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
+    if (s->converged || total >= max_it || newton >= s->newton_max_it) break;
+  }
+  s->max_it = max_it;
+  s->sweeps = total;
+  PetscCall(PetscInfo(NULL,
+                      "contact solver newton: %" PetscInt_FMT " sweeps and Newton steps, %" PetscInt_FMT
+                      " of them Newton steps, residual %g\n",
+                      total, newton, (double)s->residual));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SolveLazyNewton(FCContactSolver s, FCContactProblem p, PetscReal r[])
+{
+  PetscFunctionBegin;
+  PetscCall(SolveLazy(s, p, r, SolveNewton));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCContactSolverRowBlock(FCContactSolver s, PetscInt nc, const PetscInt dim[], PetscBool *split,
                                        PetscInt *c0, PetscInt *c1)
 {
@@ -304,7 +374,7 @@ PetscErrorCode FCContactSolverRowBlock(FCContactSolver s, PetscInt nc, const Pet
   off[0] = 0;
   for (PetscInt i = 0; i < nc; i++) off[i + 1] = off[i] + dim[i];
   /* the choice of FCContactSolverSolve for a dense W */
-  *split = (PetscBool)(size > 1 && !s->update &&
+  *split = (PetscBool)(size > 1 && !s->update && s->type == SOLVER_PGS &&
                        (s->placement == PGS_SPLIT || (s->placement == PGS_AUTO && off[nc] >= s->split_min_rows)));
   FCContactSplitBlocks(nc, off, size, cfirst);
   *c0 = *split ? cfirst[rank] : 0;
@@ -324,6 +394,18 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   if (s->dump[0] && !s->dump_unconverged && !s->dumped && p->n >= s->dump_rows) PetscCall(Dump(s, p));
+  if (s->type == SOLVER_NEWTON) {
+    PetscCheck(!s->update, s->comm, PETSC_ERR_USER_INPUT,
+               "Option -contact_solver newton: the fast scheme's -fast_update sweep re-linearizes after every PGS "
+               "sweep; use -fast_update newton or -contact_solver pgs");
+    PetscCheck(p->rowcomm == MPI_COMM_NULL, s->comm, PETSC_ERR_PLIB, "Newton takes a whole problem, not block rows");
+    if (s->placement == PGS_ALL || size == 1)
+      PetscCall(SolveLazy(s, p, r, SolveNewton));
+    else
+      PetscCall(OnRoot(s, p, r, SolveLazyNewton));
+    if (s->dump[0] && s->dump_unconverged && !s->dumped && !s->converged && p->n >= s->dump_rows) PetscCall(Dump(s, p));
+    PetscFunctionReturn(0);
+  }
   splittable = (PetscBool)(size > 1 && p->Wd && !s->update);
   PetscCheck(p->rowcomm == MPI_COMM_NULL ||
                  (splittable && (s->placement == PGS_SPLIT || (s->placement == PGS_AUTO && p->n >= s->split_min_rows))),

@@ -1,0 +1,179 @@
+/* Nonsmooth Newton on FC(W, q, mu) (-contact_solver newton): the Alart-Curnier function of the 3D
+   Coulomb law (Alart & Curnier 1991; Siconos' FC3D_NSN_AC), per contact with rho = d / tr(W_ii)
+   and x_N = r_N - rho u_N, y = r_T - rho u_T, R = mu max(0, x_N):
+       Phi_N = r_N - max(0, x_N)
+       Phi_T = r_T - P_{disc of radius R}(y)
+   with u = W r + q. Phi(r) = 0 exactly at the solutions of the Coulomb problem (the same as those
+   of De Saxce's cone complementarity the natural-map residual measures). A Newton step solves
+   H dr = -Phi with H = A + B W, A and B the block-diagonal generalized derivatives of Phi in r and
+   u (d x d per contact: stick, slide or open), by a dense LU (LAPACK getrf/getrs) of the whole
+   n x n H. Globalization: backtracking (Armijo) on psi = |Phi|^2 / 2 along dr, whose slope is
+   -2 psi for the Newton direction. Stops on the natural-map residual / ||q|| <= tol, the test of
+   the sweeps (pgs.c), or after max_it Newton steps, or when three steps in a row are short (the
+   line search failed or took less than 1/64 of the step: Newton is not converging from there; the
+   caller sweeps, pgs.c). A dormant contact (FCContactProblemSetDormant) keeps r_i = 0 (Phi_i = r_i). */
+#include "contactimpl.h"
+#include <petscblaslapack.h>
+
+/* Phi_i and its derivatives A_i (in r_i) and B_i (in u_i), d x d row-major */
+static void ACBlock(PetscInt d, PetscReal mu, PetscReal rho, const PetscReal r[], const PetscReal u[], PetscReal phi[],
+                    PetscReal A[9], PetscReal B[9])
+{
+  PetscReal xN = r[0] - rho * u[0], R, y[2] = {0, 0}, ny = 0.0;
+
+  for (PetscInt k = 0; k < d * d; k++) A[k] = B[k] = 0.0;
+  if (xN > 0.0) {
+    phi[0] = rho * u[0];
+    B[0]   = rho;
+  } else {
+    phi[0] = r[0];
+    A[0]   = 1.0;
+  }
+  if (d == 1) return;
+  R = mu * PetscMax(0.0, xN);
+  for (PetscInt a = 0; a < d - 1; a++) {
+    y[a] = r[1 + a] - rho * u[1 + a];
+    ny += y[a] * y[a];
+  }
+  ny = PetscSqrtReal(ny);
+  if (ny <= R) { /* stick: Phi_T = r_T - y = rho u_T */
+    for (PetscInt a = 0; a < d - 1; a++) {
+      phi[1 + a]               = rho * u[1 + a];
+      B[(1 + a) * d + (1 + a)] = rho;
+    }
+    return;
+  }
+  { /* slide (or open, R = 0): Phi_T = r_T - R y / |y| */
+    PetscReal yh[2], s = R / ny, dR = xN > 0.0 ? mu : 0.0;
+    for (PetscInt a = 0; a < d - 1; a++) yh[a] = y[a] / ny;
+    for (PetscInt a = 0; a < d - 1; a++) {
+      phi[1 + a]     = r[1 + a] - R * yh[a];
+      A[(1 + a) * d] = -dR * yh[a];
+      B[(1 + a) * d] = dR * rho * yh[a];
+      for (PetscInt b = 0; b < d - 1; b++) {
+        PetscReal P            = (a == b ? 1.0 : 0.0) - yh[a] * yh[b];
+        A[(1 + a) * d + 1 + b] = (a == b ? 1.0 : 0.0) - s * P;
+        B[(1 + a) * d + 1 + b] = rho * s * P;
+      }
+    }
+  }
+}
+
+/* Phi at (r, u) and psi = |Phi|^2 / 2; with A, B (n x 3 each, per contact d x d) when wanted */
+static PetscReal Merit(FCContactProblem p, const PetscReal rho[], const PetscReal r[], const PetscReal u[],
+                       PetscReal phi[], PetscReal *A, PetscReal *B)
+{
+  PetscReal psi = 0.0;
+  for (PetscInt i = 0; i < p->nc; i++) {
+    PetscInt  d = p->dim[i], o = p->off[i];
+    PetscReal Ai[9], Bi[9];
+    if (p->dormant && p->dormant[i]) {
+      for (PetscInt a = 0; a < d; a++) phi[o + a] = r[o + a];
+      for (PetscInt k = 0; k < d * d; k++) Ai[k] = (k % (d + 1) == 0) ? 1.0 : 0.0, Bi[k] = 0.0;
+    } else
+      ACBlock(d, p->mu[i], rho[i], &r[o], &u[o], &phi[o], Ai, Bi);
+    for (PetscInt a = 0; a < d; a++) psi += 0.5 * phi[o + a] * phi[o + a];
+    if (A)
+      for (PetscInt k = 0; k < d * d; k++) {
+        A[9 * i + k] = Ai[k];
+        B[9 * i + k] = Bi[k];
+      }
+  }
+  return psi;
+}
+
+PetscErrorCode FCContactSolveNewton(FCContactProblem p, PetscReal tol, PetscInt max_it, PetscReal r[], PetscInt *its,
+                                    PetscReal *residual)
+{
+  PetscInt      n = p->n, nc = p->nc, fails = 0;
+  PetscReal     reg = 1e-8;
+  PetscReal    *W, *u, *phi, *A, *B, *H, *dr, *wdr, *rt, *ut, *rho, psi;
+  PetscBLASInt *piv, bn, one = 1, info;
+
+  PetscFunctionBegin;
+  *its = 0;
+  for (PetscInt i = 0; i < nc; i++) { /* the warm start into the cones */
+    PetscReal x[3];
+    for (PetscInt a = 0; a < p->dim[i]; a++) x[a] = r[p->off[i] + a];
+    FCContactProjectCone(p->dim[i], p->mu[i], x, &r[p->off[i]]);
+    if (p->dormant && p->dormant[i])
+      for (PetscInt a = 0; a < p->dim[i]; a++) r[p->off[i] + a] = 0.0;
+  }
+  PetscCall(PetscMalloc1(n + 1, &u));
+  PetscCall(FCContactProblemVelocity(p, r, u));
+  *residual = FCContactProblemResidualFromVelocity(p, r, u);
+  if (*residual <= tol || !n) {
+    PetscCall(PetscFree(u));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscBLASIntCast(n, &bn));
+  PetscCall(FCContactProblemGetDenseW(p, &W));
+  PetscCall(PetscMalloc4(n, &phi, 9 * nc, &A, 9 * nc, &B, (size_t)n * n, &H));
+  PetscCall(PetscMalloc6(n, &dr, n, &wdr, n, &rt, n, &ut, nc, &rho, n, &piv));
+  for (PetscInt i = 0; i < nc; i++) {
+    PetscReal Wii[9], tr = 0.0;
+    FCContactProblemDiagonalBlock(p, i, Wii);
+    for (PetscInt a = 0; a < p->dim[i]; a++) tr += Wii[a * p->dim[i] + a];
+    rho[i] = tr > 0.0 ? p->dim[i] / tr : 1.0;
+  }
+  psi = Merit(p, rho, r, u, phi, A, B);
+  while (*residual > tol && *its < max_it && fails < 3) {
+    PetscReal t = 1.0, psit = psi;
+    PetscBool accepted = PETSC_FALSE;
+    /* H (row-major) = A + B W, row by row of each contact */
+    for (PetscInt i = 0; i < nc; i++) {
+      PetscInt d = p->dim[i], o = p->off[i];
+      for (PetscInt k = 0; k < d; k++) {
+        PetscReal *h = &H[(size_t)(o + k) * n];
+        for (PetscInt j = 0; j < n; j++) h[j] = 0.0;
+        for (PetscInt a = 0; a < d; a++) {
+          PetscReal        b = B[9 * i + k * d + a];
+          const PetscReal *w = &W[(size_t)(o + a) * n];
+          if (b != 0.0)
+            for (PetscInt j = 0; j < n; j++) h[j] += b * w[j];
+        }
+        for (PetscInt a = 0; a < d; a++) h[o + a] += A[9 * i + k * d + a];
+        h[o + k] += reg; /* redundant contacts make W, and H with it, singular */
+      }
+    }
+    for (PetscInt k = 0; k < n; k++) dr[k] = -phi[k];
+    /* row-major H is H^T column-major: solve H^T^T dr = -Phi with getrs "T" */
+    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, H, &bn, piv, &info));
+    if (info == 0) PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("T", &bn, &one, H, &bn, piv, dr, &bn, &info));
+    if (info != 0) { /* a singular H: a step along -Phi, the line search decides */
+      for (PetscInt k = 0; k < n; k++) dr[k] = -phi[k];
+    }
+    PetscCallBLAS("BLASgemv",
+                  BLASgemv_("T", &bn, &bn, &(PetscScalar){1.0}, W, &bn, dr, &one, &(PetscScalar){0.0}, wdr, &one));
+    for (PetscInt ls = 0; ls < 30; ls++, t *= 0.5) {
+      for (PetscInt k = 0; k < n; k++) {
+        rt[k] = r[k] + t * dr[k];
+        ut[k] = u[k] + t * wdr[k];
+      }
+      psit = Merit(p, rho, rt, ut, phi, NULL, NULL);
+      if (psit <= (1.0 - 2e-4 * t) * psi) {
+        accepted = PETSC_TRUE;
+        break;
+      }
+    }
+    fails = accepted && t >= 1.0 / 64 ? 0 : fails + 1; /* a short step: Newton is not converging here */
+    PetscCall(PetscArraycpy(r, rt, n));
+    PetscCall(PetscArraycpy(u, ut, n));
+    (*its)++;
+    if (*its % 8 == 0) PetscCall(FCContactProblemVelocity(p, r, u)); /* against the drift of u += t W dr */
+    psi       = Merit(p, rho, r, u, phi, A, B);
+    *residual = FCContactProblemResidualFromVelocity(p, r, u);
+    PetscCall(PetscInfo(NULL, "Newton step %" PetscInt_FMT ": step length %g%s, |Phi| %g, residual %g\n", *its,
+                        (double)t, accepted ? "" : " (line search failed)", (double)PetscSqrtReal(2.0 * psi),
+                        (double)*residual));
+    PetscCheck(!PetscIsInfOrNanReal(*residual), PETSC_COMM_SELF, PETSC_ERR_FP,
+               "Contact solver (Newton) diverged (NaN residual) after %" PetscInt_FMT " iterations", *its);
+  }
+  PetscCall(FCContactProblemVelocity(p, r, u));
+  *residual = FCContactProblemResidualFromVelocity(p, r, u);
+  PetscCall(PetscFree4(phi, A, B, H));
+  PetscCall(PetscFree6(dr, wdr, rt, ut, rho, piv));
+  PetscCall(PetscFree(W));
+  PetscCall(PetscFree(u));
+  PetscFunctionReturn(0);
+}
