@@ -80,6 +80,8 @@ cases = [
     ("fixed boxes: 7 numbers", opts(cube_fixed_box="-9,-9,-9,-0.4,9,9,1"), "6 comma-separated numbers per box"),
     ("second fixed box min > max", opts(cube_fixed_box="-9,-9,-9,-0.4,9,9,1,0,0,0,1,1"), "box 1"),
     ("inverted: unknown value", opts(cube_inverted="maybe"), "-cube_inverted"),
+    ("unknown contact solver", opts(contact_solver="lu"), "-contact_solver"),
+    ("Newton steps < 1", opts(contact_solver="newton", contact_newton_max_it="0"), "-contact_newton_max_it"),
     ("surface not closed", opts(cube_dm_plex_filename="tests/data/nonmanifold.msh"), "not closed"),
     # PETSc 3.18's gmsh reader faults on these (docs/reliability.md): a clear error, exit 1
     ("mesh that crashes PETSc's reader", opts(cube_dm_plex_filename="tools/fuzz/petsc-gmsh-crashes/v22_node_tag_0.msh"), "malformed"),
