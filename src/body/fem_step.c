@@ -68,8 +68,8 @@ PetscErrorCode FCFEMFormA(FCBody body)
   PetscCall(FCPhaseBegin(FC_PHASE_ASSEMBLY));
   PetscCall(MatCopy(fem->K, fem->A, SAME_NONZERO_PATTERN));
   PetscCall(MatScale(fem->A, h * fem->beta + h * h));
-  /* SAME: K, M and A are duplicates of one filled pattern (FCFEMCreateOperators); SUBSET took the
-     row-by-row path of MatAXPY_Basic on MPIAIJ, 11 ms a step on the 17.5k cube whatever the ranks */
+  /* SAME: K, M and A are duplicates of one filled pattern (FCFEMCreateOperators); SUBSET takes the
+     row-by-row path of MatAXPY_Basic on MPIAIJ, a cost every step */
   PetscCall(MatAXPY(fem->A, 1.0 + h * fem->alpha, fem->M, SAME_NONZERO_PATTERN));
   PetscCall(MatSetOption(fem->A, MAT_SPD, PETSC_TRUE));
   PetscCall(FCPhaseEnd(FC_PHASE_ASSEMBLY));

@@ -13,11 +13,9 @@
                 narrowest).
 
    Both take Sigma's upper triangle (column-major, ns x ns, on the host) and leave the whole
-   symmetric C in the same array. host is the default (-compliance_condensed_inverse): on this
-   VM's 2 ranks scalapack was no faster from 600 to 4800 rows; columns was 0.74-0.88x of host
-   from 1400 rows in bench_spdinverse, slower at 972, and no faster in the solver at 1692 (the
-   36k box: rank 1 comes late from its share of MUMPS' factorization) (issue 16; measured in
-   docs/scaling-history.md). */
+   symmetric C in the same array. host is the default (-compliance_condensed_inverse): on 2 ranks
+   neither split paid in the solver, where rank 1 comes late from its share of MUMPS'
+   factorization (the measurements: docs/scaling-history.md). */
 #include "complianceimpl.h"
 #include <petscblaslapack.h>
 

@@ -180,8 +180,8 @@ void FCContactProblemDiagonalBlock(FCContactProblem p, PetscInt i, PetscReal Wii
    Unrolled by 4 for the vectorizer; on x86-64 with GCC, also compiled for x86-64-v3 (AVX2, FMA) and
    chosen at run time (function multiversioning), since the portable build targets SSE2 only. The
    clone is named by the ISA level, not "arch=haswell": GCC dispatches an arch= clone on the CPU
-   model, so an AMD EPYC (this VM) with AVX2 and FMA ran the SSE2 default (perf: the
-   ".default" symbol), while x86-64-v3 is dispatched on the features (GCC >= 12) */
+   model, so a CPU it does not name (an AMD EPYC with AVX2 and FMA) runs the SSE2 default, while
+   x86-64-v3 is dispatched on the features (GCC >= 12) */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
