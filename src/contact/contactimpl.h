@@ -2,6 +2,26 @@
 #pragma once
 #include "../fcimpl.h"
 
+/* The contact solver's settings and last convergence (pgs.c: options, placement, the sweeps;
+   newton.c: the Newton driver) */
+struct _p_FCContactSolver {
+  MPI_Comm                comm;
+  PetscReal               tol, residual, omega, proximal;
+  PetscInt                max_it, sweeps;
+  PetscBool               converged, nncg;
+  PetscInt                placement;                /* PGSPlacement (-pgs_ranks) */
+  PetscReal               split_damping;            /* -pgs_split_damping */
+  PetscInt                split_min_rows;           /* -pgs_split_min_rows (auto) */
+  PetscInt                split_max_it;             /* -pgs_split_max_it (auto): then root from there */
+  char                    dump[PETSC_MAX_PATH_LEN]; /* -pgs_dump_problem */
+  PetscInt                dump_rows;
+  PetscBool               dumped, dump_unconverged; /* -pgs_dump_unconverged: the first unconverged problem */
+  FCContactSolverUpdateFn update;                   /* after every sweep (FCContactSolverSetUpdate) */
+  void                   *updatectx;
+  PetscInt                type;          /* -contact_solver: 0 pgs, 1 newton (pgs.c) */
+  PetscInt                newton_max_it; /* -contact_newton_max_it */
+};
+
 struct _p_FCContactProblem {
   PetscInt   nc, n;     /* contacts, rows                                  */
   PetscInt  *dim, *off; /* rows per contact (1..3), first row (off[nc] = n) */
@@ -66,6 +86,10 @@ PETSC_INTERN void FCContactProjectCone(PetscInt d, PetscReal mu, const PetscReal
 /* ||e||^2 of the natural map of one contact (see FCContactProblemResidual) */
 PETSC_INTERN PetscReal FCContactNaturalMapError2(PetscInt dim, PetscReal mu, const PetscReal r[], const PetscReal u[]);
 
+/* pgs.c: the sweeps (NNCG unless -pgs_acceleration none) on this rank, up to s->max_it */
+PETSC_INTERN PetscErrorCode FCContactSolverSweeps(FCContactSolver, FCContactProblem, PetscReal[]);
+/* newton.c: -contact_solver newton on this rank, rounds of sweeps then Newton steps */
+PETSC_INTERN PetscErrorCode FCContactSolverNewton(FCContactSolver, FCContactProblem, PetscReal[]);
 /* newton.c: nonsmooth Newton on the Alart-Curnier function of a whole problem, on this rank; r in:
    the warm start, out: the forces; its = Newton steps taken, residual as FCContactProblemResidual */
 PETSC_INTERN PetscErrorCode FCContactSolveNewton(FCContactProblem, PetscReal tol, PetscInt max_it, PetscReal r[],

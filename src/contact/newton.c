@@ -177,3 +177,40 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, PetscReal tol, PetscInt 
   PetscCall(PetscFree(u));
   PetscFunctionReturn(0);
 }
+
+/* -contact_solver newton on this rank (called by pgs.c's placement): rounds of FC_NEWTON_SWEEPS sweeps (NNCG), then
+   Newton steps from their iterate (newton.c), until converged or out of budget (-pgs_max_it sweeps and Newton steps
+   together, -contact_newton_max_it Newton steps). The sweeps find the contacts' states roughly, from which Newton
+   converges fast, and take over where a Newton step cannot lower |Phi| (kinks, redundant contacts); a round whose
+   Newton steps do not lower the residual tenfold makes the next round's sweeps four times more, so that where Newton
+   does not help the cost tends to the sweeps'. Sweeps and steps both count as the solver's iterations. */
+#define FC_NEWTON_SWEEPS 20
+PetscErrorCode FCContactSolverNewton(FCContactSolver s, FCContactProblem p, PetscReal r[])
+{
+  PetscInt max_it = s->max_it, total = 0, newton = 0, sweeps = FC_NEWTON_SWEEPS;
+
+  PetscFunctionBegin;
+  for (;;) {
+    PetscInt  its;
+    PetscReal before;
+    s->max_it = PetscMin(sweeps, max_it - total);
+    PetscCall(FCContactSolverSweeps(s, p, r));
+    total += s->sweeps;
+    if (s->converged || total >= max_it || newton >= s->newton_max_it) break;
+    before = s->residual;
+    PetscCall(
+        FCContactSolveNewton(p, s->tol, PetscMin(s->newton_max_it - newton, max_it - total), r, &its, &s->residual));
+    newton += its;
+    total += its;
+    if (s->residual > 0.1 * before) sweeps *= 4; /* Newton did not pay: more sweeps before the next try */
+    s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
+    if (s->converged || total >= max_it || newton >= s->newton_max_it) break;
+  }
+  s->max_it = max_it;
+  s->sweeps = total;
+  PetscCall(PetscInfo(NULL,
+                      "contact solver newton: %" PetscInt_FMT " sweeps and Newton steps, %" PetscInt_FMT
+                      " of them Newton steps, residual %g\n",
+                      total, newton, (double)s->residual));
+  PetscFunctionReturn(0);
+}

@@ -64,24 +64,6 @@ static const char *const PGSPlacements[] = {"auto", "all", "root", "split"};
 typedef enum { SOLVER_PGS, SOLVER_NEWTON } SolverType; /* -contact_solver, in this order */
 static const char *const SolverTypes[] = {"pgs", "newton"};
 
-struct _p_FCContactSolver {
-  MPI_Comm                comm;
-  PetscReal               tol, residual, omega, proximal;
-  PetscInt                max_it, sweeps;
-  PetscBool               converged, nncg;
-  PetscInt                placement;                /* PGSPlacement (-pgs_ranks) */
-  PetscReal               split_damping;            /* -pgs_split_damping */
-  PetscInt                split_min_rows;           /* -pgs_split_min_rows (auto) */
-  PetscInt                split_max_it;             /* -pgs_split_max_it (auto): then root from there */
-  char                    dump[PETSC_MAX_PATH_LEN]; /* -pgs_dump_problem */
-  PetscInt                dump_rows;
-  PetscBool               dumped, dump_unconverged; /* -pgs_dump_unconverged: the first unconverged problem */
-  FCContactSolverUpdateFn update;                   /* after every sweep (FCContactSolverSetUpdate) */
-  void                   *updatectx;
-  PetscInt                type;          /* SolverType (-contact_solver) */
-  PetscInt                newton_max_it; /* -contact_newton_max_it */
-};
-
 PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
 {
   PetscFunctionBegin;
@@ -250,11 +232,9 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SolveHere(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveSplit(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveSplitThenRoot(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveLazyHere(FCContactSolver, FCContactProblem, PetscReal[]);
-static PetscErrorCode SolveNewton(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveLazyNewton(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveLazy(FCContactSolver, FCContactProblem, PetscReal[],
                                 PetscErrorCode (*)(FCContactSolver, FCContactProblem, PetscReal[]));
@@ -312,52 +292,14 @@ static PetscErrorCode OnRoot(FCContactSolver s, FCContactProblem p, PetscReal r[
 static PetscErrorCode SolveLazyHere(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscFunctionBegin;
-  PetscCall(SolveLazy(s, p, r, SolveHere));
-  PetscFunctionReturn(0);
-}
-
-/* -contact_solver newton on this rank: rounds of FC_NEWTON_SWEEPS sweeps (NNCG), then Newton steps
-   from their iterate (newton.c), until converged or out of budget (-pgs_max_it sweeps and Newton
-   steps together, -contact_newton_max_it Newton steps). The sweeps find the contacts' states
-   roughly, from which Newton converges fast, and take over where a Newton step cannot lower |Phi|
-   (kinks, redundant contacts); a round whose Newton steps do not lower the residual tenfold makes the
-   next round's sweeps four times more, so that where Newton does not help the cost tends to the
-   sweeps'. Sweeps and steps both count as the solver's iterations. */
-#define FC_NEWTON_SWEEPS 20
-static PetscErrorCode SolveNewton(FCContactSolver s, FCContactProblem p, PetscReal r[])
-{
-  PetscInt max_it = s->max_it, total = 0, newton = 0, sweeps = FC_NEWTON_SWEEPS;
-
-  PetscFunctionBegin;
-  for (;;) {
-    PetscInt  its;
-    PetscReal before;
-    s->max_it = PetscMin(sweeps, max_it - total);
-    PetscCall(SolveHere(s, p, r));
-    total += s->sweeps;
-    if (s->converged || total >= max_it || newton >= s->newton_max_it) break;
-    before = s->residual;
-    PetscCall(
-        FCContactSolveNewton(p, s->tol, PetscMin(s->newton_max_it - newton, max_it - total), r, &its, &s->residual));
-    newton += its;
-    total += its;
-    if (s->residual > 0.1 * before) sweeps *= 4; /* Newton did not pay: more sweeps before the next try */
-    s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
-    if (s->converged || total >= max_it || newton >= s->newton_max_it) break;
-  }
-  s->max_it = max_it;
-  s->sweeps = total;
-  PetscCall(PetscInfo(NULL,
-                      "contact solver newton: %" PetscInt_FMT " sweeps and Newton steps, %" PetscInt_FMT
-                      " of them Newton steps, residual %g\n",
-                      total, newton, (double)s->residual));
+  PetscCall(SolveLazy(s, p, r, FCContactSolverSweeps));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode SolveLazyNewton(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscFunctionBegin;
-  PetscCall(SolveLazy(s, p, r, SolveNewton));
+  PetscCall(SolveLazy(s, p, r, FCContactSolverNewton));
   PetscFunctionReturn(0);
 }
 
@@ -400,7 +342,7 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
                "sweep; use -fast_update newton or -contact_solver pgs");
     PetscCheck(p->rowcomm == MPI_COMM_NULL, s->comm, PETSC_ERR_PLIB, "Newton takes a whole problem, not block rows");
     if (s->placement == PGS_ALL || size == 1)
-      PetscCall(SolveLazy(s, p, r, SolveNewton));
+      PetscCall(SolveLazy(s, p, r, FCContactSolverNewton));
     else
       PetscCall(OnRoot(s, p, r, SolveLazyNewton));
     if (s->dump[0] && s->dump_unconverged && !s->dumped && !s->converged && p->n >= s->dump_rows) PetscCall(Dump(s, p));
@@ -416,7 +358,7 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   else if (splittable && s->placement == PGS_AUTO && p->n >= s->split_min_rows)
     PetscCall(SolveLazy(s, p, r, SolveSplitThenRoot));
   else if (s->placement == PGS_ALL || size == 1 || s->update)
-    PetscCall(SolveLazy(s, p, r, SolveHere));
+    PetscCall(SolveLazy(s, p, r, FCContactSolverSweeps));
   else
     PetscCall(OnRoot(s, p, r, SolveLazyHere));
   if (s->dump[0] && s->dump_unconverged && !s->dumped && !s->converged && p->n >= s->dump_rows) PetscCall(Dump(s, p));
@@ -429,7 +371,7 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
    recomputed exactly (one product) every FC_PGS_EXACT sweeps, against the drift of the incremental
    updates, and before the solver stops. */
 #define FC_PGS_EXACT 16
-static PetscErrorCode SolveHere(FCContactSolver s, FCContactProblem p, PetscReal r[])
+PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscInt   n = p->n;
   PetscBool  exact;
@@ -568,11 +510,11 @@ static PetscErrorCode SolveSplitThenRoot(FCContactSolver s, FCContactProblem p, 
     PetscMPIInt      rank;
     PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
     PetscCall(FCContactProblemGatherWhole(p, &W, &whole));
-    PetscCall(OnRoot(s, rank ? p : whole, r, SolveHere));
+    PetscCall(OnRoot(s, rank ? p : whole, r, FCContactSolverSweeps));
     PetscCall(FCContactProblemDestroy(&whole));
     PetscCall(PetscFree(W));
   } else
-    PetscCall(OnRoot(s, p, r, SolveHere));
+    PetscCall(OnRoot(s, p, r, FCContactSolverSweeps));
   s->max_it = max_it;
   s->sweeps += split_sweeps;
   PetscCall(PetscInfo(NULL,
