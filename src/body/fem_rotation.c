@@ -178,7 +178,6 @@ PetscErrorCode FCFEMRotationPredict(FCBody body)
   }
   PetscCall(MatMult(fem->M, fem->rcf, fem->work));
   PetscCall(VecAXPBY(fem->rcf, -1.0, 0.0, fem->work));
-  for (int d = 0; d < 3; d++) fem->omega[d] = omega[d];
   fem->shifted = PETSC_TRUE;
   PetscFunctionReturn(0);
 }

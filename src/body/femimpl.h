@@ -56,7 +56,6 @@ typedef struct {
   PetscBool shifted;         /* this step's positions include shift (set by the free motion)  */
   Vec       rr, shift, uhat; /* r, delta, u + (Q - I) r                                       */
   Vec       rvt, rw, rcf;    /* v~, v - omega x r, the centrifugal force                      */
-  PetscReal omega[3];        /* the mean angular velocity of the step                         */
 } FEM;
 
 /* Element positions: reference X and current x = X + u (fixed vertices do not move); uloc NULL: X */
