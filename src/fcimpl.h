@@ -332,6 +332,8 @@ PETSC_INTERN PetscBool FCBodyHasShapeCore(FCBody);    /* ... rounded, with a cor
 PETSC_INTERN void FCBodyGetShapeCore(FCBody, PetscInt *ncore, PetscReal core[2][3], PetscReal *radius, PetscBool *flat);
 PETSC_INTERN PetscBool FCBodyHasSmoothShape(FCBody);      /* ... without edges (sphere, capsule)      */
 PETSC_INTERN PetscBool FCBodyHasSurfaceTriangles(FCBody); /* FE bodies and mesh shapes           */
+PETSC_INTERN PetscBool FCBodyIsBox(FCBody);               /* a rigid or kinematic box              */
+PETSC_INTERN void      FCBodyGetBoxHalfExtents(FCBody, PetscReal h[3]);
 PETSC_INTERN PetscReal FCBodyGetMass(FCBody);             /* after set-up; 0 for kinematic bodies */
 /* Restart state: `cols` values per visual vertex (pervertex, distributed like the visual) or one
    row of `cols` values on rank 0 */

@@ -43,6 +43,18 @@ void FCBodyGetShapeCore(FCBody body, PetscInt *ncore, PetscReal core[2][3], Pets
     for (int i = 0; i < 3; i++) core[k][i] = body->shape->core[k][i];
 }
 
+PetscBool FCBodyIsBox(FCBody body)
+{
+  PetscBool box = PETSC_FALSE;
+  if (body->shape) PetscStrcmp(body->shape->type, FCSHAPEBOX, &box);
+  return box;
+}
+
+void FCBodyGetBoxHalfExtents(FCBody body, PetscReal h[3])
+{
+  for (int i = 0; i < 3; i++) h[i] = body->shape ? body->shape->half_extents[i] : 0.0;
+}
+
 PetscBool FCBodyHasSurfaceTriangles(FCBody body)
 {
   return body->ops.surfacetriangles ? PETSC_TRUE : PETSC_FALSE;

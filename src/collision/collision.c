@@ -409,13 +409,17 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
                S->name);
     if (!FCBodyIsDeformable(P) && !FCBodyHasSurfaceTriangles(P) && !FCBodyHasSurfaceTriangles(S)) {
       /* two analytic shapes: a rounded one (sphere, capsule, cylinder) from the closest points of
-         its core (smooth.c), exact where one is smooth; the points of a box (its corners) against
-         the other's distance; a box and a cylinder, or two cylinders, both ways */
+         its core (smooth.c), exact where one is smooth; two boxes face to face by their separating
+         axis (boxbox.c); otherwise the points of a box (its corners) against the other's distance; a box and a
+         cylinder, or two cylinders, both ways */
       if (FCBodyHasSmoothShape(P))
         PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
       else if (FCBodyHasSmoothShape(S))
         PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
       else {
+        PetscBool done = PETSC_FALSE;
+        if (FCBodyIsBox(P) && FCBodyIsBox(S)) PetscCall(FCCollisionBoxBox(P, S, ipts, ishp, p, pairs, rank, set, &done));
+        if (done) continue;
         if (FCBodyHasShapeCore(P))
           PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
         else

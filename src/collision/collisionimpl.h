@@ -80,6 +80,12 @@ PETSC_INTERN PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt
 PETSC_INTERN PetscErrorCode FCCollisionRoundedShape(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,
                                                     const FCContactPairs *, PetscMPIInt rank, FCContactSet *);
 
+/* boxbox.c: two boxes (P body ip, S body is) that have a face each parallel to the other's: the corners of each
+   over the other's face in contact, along that face's normal (*done); otherwise nothing (*done false) */
+PETSC_INTERN PetscErrorCode FCCollisionBoxBox(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,
+                                              const FCContactPairs *, PetscMPIInt rank, FCContactSet *,
+                                              PetscBool *done);
+
 /* edges.c: the edge-edge contacts of the sharp edges of A (FE) against those of B (FE or mesh) */
 PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt pair,
                                                 const FCContactPairs *, FCContactSet *);

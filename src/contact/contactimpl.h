@@ -18,8 +18,9 @@ struct _p_FCContactSolver {
   PetscBool               dumped, dump_unconverged; /* -pgs_dump_unconverged: the first unconverged problem */
   FCContactSolverUpdateFn update;                   /* after every sweep (FCContactSolverSetUpdate) */
   void                   *updatectx;
-  PetscInt                type;          /* -contact_solver: 0 pgs, 1 newton (pgs.c) */
+  PetscInt                type;          /* -contact_solver: 0 auto, 1 pgs, 2 newton (pgs.c) */
   PetscInt                newton_max_it; /* -contact_newton_max_it */
+  PetscBool               giveup;        /* the sweeps stop once their rate says max_it will not do (auto) */
 };
 
 struct _p_FCContactProblem {
@@ -90,6 +91,9 @@ PETSC_INTERN PetscReal FCContactNaturalMapError2(PetscInt dim, PetscReal mu, con
 PETSC_INTERN PetscErrorCode FCContactSolverSweeps(FCContactSolver, FCContactProblem, PetscReal[]);
 /* newton.c: -contact_solver newton on this rank, rounds of sweeps then Newton steps */
 PETSC_INTERN PetscErrorCode FCContactSolverNewton(FCContactSolver, FCContactProblem, PetscReal[]);
+/* newton.c: -contact_solver auto on this rank: the sweeps, and FCContactSolverNewton from their iterate when their
+   rate says they will not converge within max_it */
+PETSC_INTERN PetscErrorCode FCContactSolverAuto(FCContactSolver, FCContactProblem, PetscReal[]);
 /* newton.c: nonsmooth Newton on the Alart-Curnier function of a whole problem, on this rank; r in:
    the warm start, out: the forces; its = Newton steps taken, residual as FCContactProblemResidual */
 PETSC_INTERN PetscErrorCode FCContactSolveNewton(FCContactProblem, PetscReal tol, PetscInt max_it, PetscReal r[],

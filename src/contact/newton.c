@@ -183,34 +183,79 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, PetscReal tol, PetscInt 
    together, -contact_newton_max_it Newton steps). The sweeps find the contacts' states roughly, from which Newton
    converges fast, and take over where a Newton step cannot lower |Phi| (kinks, redundant contacts); a round whose
    Newton steps do not lower the residual tenfold makes the next round's sweeps four times more, so that where Newton
-   does not help the cost tends to the sweeps'. Sweeps and steps both count as the solver's iterations. */
+   does not help the cost tends to the sweeps'. Newton steps that end with a larger natural-map residual than the
+   sweeps' (|Phi| and the residual are different measures) are undone. Once the Newton steps are spent, the sweeps
+   take the rest of the budget. Sweeps and steps both count as the solver's iterations. */
 #define FC_NEWTON_SWEEPS 20
 PetscErrorCode FCContactSolverNewton(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
-  PetscInt max_it = s->max_it, total = 0, newton = 0, sweeps = FC_NEWTON_SWEEPS;
+  PetscInt   max_it = s->max_it, total = 0, newton = 0, sweeps = FC_NEWTON_SWEEPS;
+  PetscReal *rs;
 
   PetscFunctionBegin;
+  PetscCall(PetscMalloc1(p->n + 1, &rs));
   for (;;) {
     PetscInt  its;
     PetscReal before;
-    s->max_it = PetscMin(sweeps, max_it - total);
+    s->max_it = newton < s->newton_max_it ? PetscMin(sweeps, max_it - total) : max_it - total;
     PetscCall(FCContactSolverSweeps(s, p, r));
     total += s->sweeps;
-    if (s->converged || total >= max_it || newton >= s->newton_max_it) break;
+    if (s->converged || total >= max_it) break;
     before = s->residual;
+    PetscCall(PetscArraycpy(rs, r, p->n));
     PetscCall(
         FCContactSolveNewton(p, s->tol, PetscMin(s->newton_max_it - newton, max_it - total), r, &its, &s->residual));
     newton += its;
     total += its;
+    if (s->residual > before) { /* worse than the sweeps left it: back to their iterate */
+      PetscCall(PetscArraycpy(r, rs, p->n));
+      s->residual = before;
+    }
     if (s->residual > 0.1 * before) sweeps *= 4; /* Newton did not pay: more sweeps before the next try */
+    if (s->update) { /* -fast_update sweep: re-linearized at Newton's forces too; a new problem, the sweeps go on */
+      PetscBool changed = PETSC_FALSE;
+      PetscCall((*s->update)(s->updatectx, p, r, &changed));
+      if (changed) {
+        PetscReal *u;
+        PetscCall(PetscMalloc1(p->n + 1, &u));
+        PetscCall(FCContactProblemVelocity(p, r, u));
+        s->residual = FCContactProblemResidualFromVelocity(p, r, u);
+        PetscCall(PetscFree(u));
+      }
+    }
     s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
-    if (s->converged || total >= max_it || newton >= s->newton_max_it) break;
+    if (s->converged || total >= max_it) break;
   }
+  PetscCall(PetscFree(rs));
   s->max_it = max_it;
   s->sweeps = total;
   PetscCall(PetscInfo(NULL,
                       "contact solver newton: %" PetscInt_FMT " sweeps and Newton steps, %" PetscInt_FMT
                       " of them Newton steps, residual %g\n",
                       total, newton, (double)s->residual));
+  PetscFunctionReturn(0);
+}
+
+/* -contact_solver auto: the sweeps as -contact_solver pgs, stopped once their rate of convergence (exact residuals
+   FC_PGS_EXACT sweeps apart, pgs.c) says they would not reach the tolerance within max_it; then FCContactSolverNewton
+   from their iterate with the budget left (whose rounds undo Newton steps that do not pay and end with the sweeps).
+   A problem the sweeps converge on at a steady rate within their budget is solved by them alone, as by pgs; one on
+   which they stall (mass or stiffness ratios: docs/hard-cases.md) by Newton. */
+PetscErrorCode FCContactSolverAuto(FCContactSolver s, FCContactProblem p, PetscReal r[])
+{
+  PetscInt max_it = s->max_it, sweeps;
+
+  PetscFunctionBegin;
+  s->giveup = PETSC_TRUE;
+  PetscCall(FCContactSolverSweeps(s, p, r));
+  s->giveup = PETSC_FALSE;
+  if (s->converged || s->sweeps >= max_it) PetscFunctionReturn(0);
+  sweeps = s->sweeps;
+  PetscCall(PetscInfo(NULL, "contact solver auto: the sweeps would not converge (residual %g after %" PetscInt_FMT
+                      "); Newton from there\n", (double)s->residual, sweeps));
+  s->max_it = max_it - sweeps;
+  PetscCall(FCContactSolverNewton(s, p, r));
+  s->max_it = max_it;
+  s->sweeps += sweeps;
   PetscFunctionReturn(0);
 }

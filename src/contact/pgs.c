@@ -61,8 +61,8 @@
 
 typedef enum { PGS_AUTO, PGS_ALL, PGS_ROOT, PGS_SPLIT } PGSPlacement; /* -pgs_ranks, in this order */
 static const char *const PGSPlacements[] = {"auto", "all", "root", "split"};
-typedef enum { SOLVER_PGS, SOLVER_NEWTON } SolverType; /* -contact_solver, in this order */
-static const char *const SolverTypes[] = {"pgs", "newton"};
+typedef enum { SOLVER_AUTO, SOLVER_PGS, SOLVER_NEWTON } SolverType; /* -contact_solver, in this order */
+static const char *const SolverTypes[] = {"auto", "pgs", "newton"};
 
 PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
 {
@@ -78,7 +78,7 @@ PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
   (*solver)->split_damping  = 0.8;
   (*solver)->split_min_rows = 900;
   (*solver)->split_max_it   = 200;
-  (*solver)->type           = SOLVER_PGS;
+  (*solver)->type           = SOLVER_AUTO; /* docs/contact-solver.md */
   (*solver)->newton_max_it  = 100;
   PetscFunctionReturn(0);
 }
@@ -114,11 +114,13 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
                            "With -pgs_ranks auto: split sweeps before rank 0 takes over an unconverged solve",
                            &s->split_max_it, NULL));
   }
-  PetscCall(PetscOptionsEList("-contact_solver", "The contact solver: projected Gauss-Seidel or nonsmooth Newton", NULL,
-                              SolverTypes, 2, SolverTypes[s->type], &s->type, NULL));
-  if (s->type == SOLVER_NEWTON)
+  PetscCall(PetscOptionsEList("-contact_solver",
+                              "The contact solver: sweeps then Newton where they stall, projected Gauss-Seidel, or "
+                              "nonsmooth Newton",
+                              NULL, SolverTypes, 3, SolverTypes[s->type], &s->type, NULL));
+  if (s->type != SOLVER_PGS)
     PetscCall(FCOptionsInt(PetscOptionsObject, "-contact_newton_max_it",
-                           "Newton steps at most (-contact_solver newton)", &s->newton_max_it, NULL));
+                           "Newton steps at most (-contact_solver auto or newton)", &s->newton_max_it, NULL));
   PetscCall(PetscOptionsString("-pgs_dump_problem", "Write a contact problem to this FCLIB file", NULL, s->dump,
                                s->dump, sizeof(s->dump), NULL));
   if (s->dump[0]) {
@@ -235,7 +237,6 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
 static PetscErrorCode SolveSplit(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveSplitThenRoot(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveLazyHere(FCContactSolver, FCContactProblem, PetscReal[]);
-static PetscErrorCode SolveLazyNewton(FCContactSolver, FCContactProblem, PetscReal[]);
 static PetscErrorCode SolveLazy(FCContactSolver, FCContactProblem, PetscReal[],
                                 PetscErrorCode (*)(FCContactSolver, FCContactProblem, PetscReal[]));
 
@@ -289,17 +290,20 @@ static PetscErrorCode OnRoot(FCContactSolver s, FCContactProblem p, PetscReal r[
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SolveLazyHere(FCContactSolver s, FCContactProblem p, PetscReal r[])
+/* The solver of -contact_solver on this rank */
+static PetscErrorCode Here(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscFunctionBegin;
-  PetscCall(SolveLazy(s, p, r, FCContactSolverSweeps));
+  if (s->type == SOLVER_NEWTON) PetscCall(FCContactSolverNewton(s, p, r));
+  else if (s->type == SOLVER_AUTO) PetscCall(FCContactSolverAuto(s, p, r));
+  else PetscCall(FCContactSolverSweeps(s, p, r));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SolveLazyNewton(FCContactSolver s, FCContactProblem p, PetscReal r[])
+static PetscErrorCode SolveLazyHere(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscFunctionBegin;
-  PetscCall(SolveLazy(s, p, r, FCContactSolverNewton));
+  PetscCall(SolveLazy(s, p, r, Here));
   PetscFunctionReturn(0);
 }
 
@@ -316,7 +320,7 @@ PetscErrorCode FCContactSolverRowBlock(FCContactSolver s, PetscInt nc, const Pet
   off[0] = 0;
   for (PetscInt i = 0; i < nc; i++) off[i + 1] = off[i] + dim[i];
   /* the choice of FCContactSolverSolve for a dense W */
-  *split = (PetscBool)(size > 1 && !s->update && s->type == SOLVER_PGS &&
+  *split = (PetscBool)(size > 1 && !s->update && s->type != SOLVER_NEWTON &&
                        (s->placement == PGS_SPLIT || (s->placement == PGS_AUTO && off[nc] >= s->split_min_rows)));
   FCContactSplitBlocks(nc, off, size, cfirst);
   *c0 = *split ? cfirst[rank] : 0;
@@ -336,19 +340,7 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_size(s->comm, &size));
   if (s->dump[0] && !s->dump_unconverged && !s->dumped && p->n >= s->dump_rows) PetscCall(Dump(s, p));
-  if (s->type == SOLVER_NEWTON) {
-    PetscCheck(!s->update, s->comm, PETSC_ERR_USER_INPUT,
-               "Option -contact_solver newton: the fast scheme's -fast_update sweep re-linearizes after every PGS "
-               "sweep; use -fast_update newton or -contact_solver pgs");
-    PetscCheck(p->rowcomm == MPI_COMM_NULL, s->comm, PETSC_ERR_PLIB, "Newton takes a whole problem, not block rows");
-    if (s->placement == PGS_ALL || size == 1)
-      PetscCall(SolveLazy(s, p, r, FCContactSolverNewton));
-    else
-      PetscCall(OnRoot(s, p, r, SolveLazyNewton));
-    if (s->dump[0] && s->dump_unconverged && !s->dumped && !s->converged && p->n >= s->dump_rows) PetscCall(Dump(s, p));
-    PetscFunctionReturn(0);
-  }
-  splittable = (PetscBool)(size > 1 && p->Wd && !s->update);
+  splittable = (PetscBool)(size > 1 && p->Wd && !s->update && s->type != SOLVER_NEWTON);
   PetscCheck(p->rowcomm == MPI_COMM_NULL ||
                  (splittable && (s->placement == PGS_SPLIT || (s->placement == PGS_AUTO && p->n >= s->split_min_rows))),
              s->comm, PETSC_ERR_ARG_WRONG,
@@ -358,7 +350,7 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
   else if (splittable && s->placement == PGS_AUTO && p->n >= s->split_min_rows)
     PetscCall(SolveLazy(s, p, r, SolveSplitThenRoot));
   else if (s->placement == PGS_ALL || size == 1 || s->update)
-    PetscCall(SolveLazy(s, p, r, FCContactSolverSweeps));
+    PetscCall(SolveLazy(s, p, r, Here));
   else
     PetscCall(OnRoot(s, p, r, SolveLazyHere));
   if (s->dump[0] && s->dump_unconverged && !s->dumped && !s->converged && p->n >= s->dump_rows) PetscCall(Dump(s, p));
@@ -371,11 +363,16 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
    recomputed exactly (one product) every FC_PGS_EXACT sweeps, against the drift of the incremental
    updates, and before the solver stops. */
 #define FC_PGS_EXACT 16
+/* With s->giveup (-contact_solver auto), the sweeps stop, unconverged, at an exact residual from this many sweeps on,
+   when the rate since the previous one says they would not converge within max_it; before, NNCG's restarts make the
+   rate noisy */
+#define FC_PGS_GIVEUP 64
 PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscInt   n = p->n;
   PetscBool  exact;
   PetscReal *u, *rold = NULL, *uold = NULL, *dir = NULL, *wdir = NULL, *rsweep = NULL, *usweep = NULL, gg_old = 0.0;
+  PetscReal  checkpoint = 0.0; /* the exact residual FC_PGS_EXACT sweeps ago (giveup) */
 
   PetscFunctionBegin;
   s->converged = PETSC_FALSE;
@@ -436,6 +433,13 @@ PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, Pets
     exact = s->sweeps % FC_PGS_EXACT == 0 ? PETSC_TRUE : PETSC_FALSE;
     if (exact) PetscCall(FCContactProblemVelocity(p, r, u));
     s->residual = FCContactProblemResidualFromVelocity(p, r, u);
+    if (exact && s->giveup) { /* from exact residuals FC_PGS_EXACT sweeps apart: the sweeps still needed */
+      PetscReal rate = checkpoint > 0.0 ? s->residual / checkpoint : 0.0;
+      if (s->sweeps >= FC_PGS_GIVEUP && s->residual > s->tol &&
+          (rate >= 1.0 || s->sweeps + FC_PGS_EXACT * PetscLogReal(s->tol / s->residual) / PetscLogReal(rate) > s->max_it))
+        break;
+      checkpoint = s->residual;
+    }
     if (moved && !(s->residual < previous)) { /* the step did not pay: back to the sweep's iterate, restart */
       PetscCall(PetscArraycpy(r, rsweep, n));
       PetscCall(PetscArraycpy(u, usweep, n));
@@ -454,6 +458,7 @@ PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, Pets
         exact       = PETSC_TRUE;
         s->residual = FCContactProblemResidualFromVelocity(p, r, u);
         gg_old      = 0.0; /* NNCG restarts */
+        checkpoint  = 0.0; /* and the rate is the new problem's */
       }
     }
     if (s->residual <= s->tol && !exact) { /* converged on the carried u: confirm on the exact one */
@@ -510,11 +515,11 @@ static PetscErrorCode SolveSplitThenRoot(FCContactSolver s, FCContactProblem p, 
     PetscMPIInt      rank;
     PetscCallMPI(MPI_Comm_rank(s->comm, &rank));
     PetscCall(FCContactProblemGatherWhole(p, &W, &whole));
-    PetscCall(OnRoot(s, rank ? p : whole, r, FCContactSolverSweeps));
+    PetscCall(OnRoot(s, rank ? p : whole, r, Here));
     PetscCall(FCContactProblemDestroy(&whole));
     PetscCall(PetscFree(W));
   } else
-    PetscCall(OnRoot(s, p, r, FCContactSolverSweeps));
+    PetscCall(OnRoot(s, p, r, Here));
   s->max_it = max_it;
   s->sweeps += split_sweeps;
   PetscCall(PetscInfo(NULL,
