@@ -20,9 +20,11 @@ that needs a looser bound is a solver problem to report, not a tolerance to rais
 
 Usage: test_hard_cases.py [--np N]
   --np 1    : every case on 1 rank (prints a summary table, see docs/hard-cases.md);
-  --np N > 1: eight quick cases (grasp 6 rad/s, large step h = 0.05, impact, ball on the thin FE
-              slab, FE cube on the thin plate, crossed bars, the two started-inside scenes) on N ranks with the same checks, and their final centroids compared with a 1-rank run (1e-8 m on 1 m
-              bodies)."""
+  --np N > 1: the quick cases (grasp 6 rad/s, large step h = 0.05, impact, mass ratio with newton,
+              the FE mass ratio 1:1e4, stiff on soft, ball on the thin FE slab, FE cube on the thin
+              plate, crossed bars, stiffness contrast, the two started-inside scenes, the orbit) on N
+              ranks, their final centroids compared with a 1-rank run (1e-8 m on 1 m bodies unless
+              stated)."""
 import re
 import time
 
@@ -236,25 +238,125 @@ def large_step(hstep, np_=1, checks=True):
     return H
 
 
+def rise(H, b):
+    """How far body b's centroid rises after its lowest point (a bounce) (m)."""
+    z = H["bodies/%s/centroid" % b][:, 2]
+    return z[np.argmin(z):].max() - z.min()
+
+
 def mass_ratio():
-    """Case 3: input/hard/mass_ratio.opts (250 kg box on a 0.25 kg box)."""
+    """Case 3: input/hard/mass_ratio.opts (250 kg box on a 0.25 kg box), the default solver (auto)."""
     label = "mass ratio 1:1000"
     H, o, wall = scene(label, ["-options_file", "input/hard/mass_ratio.opts"])
-    # KNOWN FAILURE: with the default -pgs_max_it 1000 PGS never converges here (docs/hard-cases.md).
-    # Bounds chosen from the same scene with -pgs_max_it 100000 (PGS then converges, up to 25801
-    # sweeps per step): penetration 1.3e-11 m, residual 1.0e-8, max_t E(t) - E(0) = -1.1 J, final
-    # speed 1.3e-9 m/s, motion over the last 50 steps 1.5e-11 m, heavy-light centroid gap -8.8e-12 m.
-    # Bounds: penetration 1e-10 m (7x), residual 1e-7 (10 pgs_tol), energy growth 1e-6 J (as the
-    # other resting scenes), final speed 1e-8 m/s (8x), motion over the last 50 steps 1.5e-10 m
-    # (10x), gap -1e-10 m (11x).
-    stability(label, H, o, wall, pen_tol=1e-10, res_tol=1e-7, dE_tol=1e-6, plane=(0, 0, 1), pen_geo_tol=1e-10)
-    v, d = speed_end(H, o), moved_last(H, o, 50)
+    # measured (auto: the sweeps, then Newton where they stall): every step converged (residual
+    # 1.0e-8 at worst, at most 134 sweeps and Newton steps), penetration 1.6e-11 m, below the plane
+    # 1.0e-11 m, max_t E(t) - E(0) = -1.1 J, final speed 1.3e-9 m/s, motion over the last 50 steps
+    # 3.1e-11 m, the heavy box's rise after its lowest point 2.3e-11 m. Bounds: residual the tolerance,
+    # penetration 1e-10 m (6x), energy growth 1e-6 J (as the other resting scenes), speed 1e-8 m/s
+    # (8x), motion 1.5e-10 m (5x), rise 1e-10 m (4x; the issue asked for no bounce above 1e-5 m)
+    stability(label, H, o, wall, pen_tol=1e-10, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6, plane=(0, 0, 1), pen_geo_tol=1e-10)
+    v, d, up = speed_end(H, o), moved_last(H, o, 50), rise(H, "heavy")
     c.check(v <= 1e-8, "%s: at rest at the end, centroid speed %.2e m/s <= 1e-8" % (label, v))
     c.check(d <= 1.5e-10, "%s: no jitter, centroids move %.2e m over the last 50 steps <= 1.5e-10" % (label, d))
+    c.check(up <= 1e-10, "%s: the heavy box does not bounce, rises %.2e m <= 1e-10 after its lowest point" % (label, up))
     # the heavy box stays on the light one: its bottom not below the light box's top
     zh, zl = H["bodies/heavy/centroid"][:, 2], H["bodies/light/centroid"][:, 2]
     gap = (zh - 0.1 - (zl + 0.0390625)).min()
     c.check(gap >= -1e-10, "%s: heavy box never sinks into the light one (min centroid gap %.2e m >= -1e-10)" % (label, gap))
+
+
+def mass_ratio_sweep_update(np_=1, checks=True):
+    """Case 3 with the fast scheme's -fast_update sweep: the solver calls back after every sweep and
+    after its Newton steps (the default auto solver switches to Newton here)."""
+    label = "mass ratio 1:1000, -fast_update sweep"
+    H, o, wall = scene(label, ["-options_file", "input/hard/mass_ratio.opts", "-fast_update", "sweep"], np_)
+    if checks:
+        # measured: every step converged; the other figures as mass_ratio's. Bounds as mass_ratio's
+        stability(label, H, o, wall, pen_tol=1e-10, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6, plane=(0, 0, 1), pen_geo_tol=1e-10)
+        v, up = speed_end(H, o), rise(H, "heavy")
+        c.check(v <= 1e-8 and up <= 1e-10, "%s: at rest (speed %.2e m/s), the heavy box rises %.2e m <= 1e-10" % (label, v, up))
+    return H
+
+
+def mass_ratio_1e4(np_=1, checks=True):
+    """Case 17: input/hard/mass_ratio_1e4.opts (1930 kg block on a 0.192 kg board, rigid)."""
+    label = "mass ratio 1:1e4 rigid"
+    H, o, wall = scene(label, ["-options_file", "input/hard/mass_ratio_1e4.opts"], np_)
+    if not checks:
+        return H
+    # measured: every step converged (9.8e-9 at worst, at most 101 sweeps and Newton steps; -contact_solver
+    # pgs: 45 of 100 steps unconverged, residual up to 6.6e-3, scripts/hard_solvers.py), penetration
+    # 1.1e-10 m, below the plane 9.6e-11 m, final speed 2.5e-10 m/s, motion over the last 50 steps
+    # 5.3e-11 m, rise 7.4e-11 m. Bounds: 10x each; energy growth 1e-6 J
+    stability(label, H, o, wall, pen_tol=1e-9, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6, plane=(0, 0, 1), pen_geo_tol=1e-9)
+    v, d, up = speed_end(H, o), moved_last(H, o, 50), rise(H, "heavy")
+    c.check(v <= 2.5e-9 and d <= 5e-10 and up <= 1e-9,
+            "%s: at rest (speed %.2e m/s <= 2.5e-9, moved %.2e m <= 5e-10 over the last 50 steps), the block rises %.2e m <= 1e-9"
+            % (label, v, d, up))
+    return H
+
+
+def mass_ratio_fe(np_=1, checks=True):
+    """Case 18: input/hard/mass_ratio_fe.opts (695 kg FE block on a 0.0695 kg FE foam board)."""
+    label = "mass ratio 1:1e4 FE"
+    H, o, wall = scene(label, ["-options_file", "input/hard/mass_ratio_fe.opts"], np_)
+    if not checks:
+        return H
+    # measured: every step converged (7.7e-9 at worst, at most 525 sweeps and Newton steps; pgs stops
+    # at step 1, residual above -pgs_fail_residual), penetration 3.0e-11 m, below the plane 2.5e-11 m,
+    # smallest tet volume ratio 0.986, final speed 1.4e-6 m/s (the block still rocks on the foam,
+    # damped by implicit Euler). Bounds: 10x each; energy growth 1e-6 J
+    stability(label, H, o, wall, pen_tol=3e-10, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6, plane=(0, 0, 1), pen_geo_tol=3e-10)
+    v = speed_end(H, o)
+    c.check(v <= 1.4e-5, "%s: settling, centroid speed %.2e m/s <= 1.4e-5 at the end" % (label, v))
+    c.check(min_tet_volume_ratio(H, o) > 0.9, "%s: no element squashed, smallest volume ratio %.3f > 0.9" % (label, min_tet_volume_ratio(H, o)))
+    # the foam's compression under the block's weight, sigma = m g / A = 75.8 kPa on E = 5e6: between
+    # the laterally confined value (friction holds both faces of the 6:1 board: sigma / E (1 + nu)
+    # (1 - 2 nu) / (1 - nu) = 0.563 mm) and the free one (sigma / E t = 0.758 mm); 5 % below the confined
+    # one allowed for the stiffness of linear tets. Measured 0.57 mm
+    sigma = 695.0 * 9.81 / 0.09
+    confined, free = sigma / 5e6 * 1.3 * 0.4 / 0.7 * 0.05, sigma / 5e6 * 0.05
+    comp = 0.05 - (H["bodies/heavy/centroid"][-1, 2] - 0.2)
+    c.check(0.95 * confined <= comp <= free, "%s: the foam is compressed by %.3f mm (confined %.3f mm, free %.3f mm)"
+            % (label, comp * 1e3, confined * 1e3, free * 1e3))
+    return H
+
+
+def stiff_on_soft(np_=1, checks=True):
+    """Case 16: input/hard/stiff_on_soft.opts (E = 1e10 steel cube at 1 m/s onto an E = 1e5 slab, h = 0.05)."""
+    label = "stiff 1e10 on soft 1e5, h=0.05"
+    H, o, wall = scene(label, ["-options_file", "input/hard/stiff_on_soft.opts"], np_)
+    if not checks:
+        return H
+    # measured: every step converged (1.8e-11 at worst, at most 741 sweeps and Newton steps; pgs: 38 of
+    # 40 steps unconverged), penetration 2.2e-5 m at the impact (the slab's surface linearized over a
+    # 5 cm step while the cube sinks 3 mm into it; 1.3e-10 m at worst over the last 10 steps, 3.6e-12 m
+    # at the end), smallest tet volume ratio 0.891, final speed 9.5e-12 m/s. Bounds: penetration 1e-4 m
+    # (4.5x) and 1e-9 m over the last 10 steps (8x), speed 1e-10 m/s (10x), volume ratio 0.5; energy
+    # growth 1e-6 J
+    stability(label, H, o, wall, pen_tol=1e-4, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6)
+    pen_end = H["steps/max_penetration"][-10:].max()
+    c.check(pen_end <= 1e-9, "%s: at rest, penetration %.2e m <= 1e-9 over the last 10 steps" % (label, pen_end))
+    c.check(speed_end(H, o) <= 1e-10, "%s: at rest at the end, speed %.2e m/s <= 1e-10" % (label, speed_end(H, o)))
+    c.check(min_tet_volume_ratio(H, o) > 0.5, "%s: no inverted element, smallest volume ratio %.3f > 0.5" % (label, min_tet_volume_ratio(H, o)))
+    return H
+
+
+def stack10():
+    """Case 19: input/hard/stack10.opts (ten equal 195 kg boxes, 200 steps)."""
+    label = "stack of 10 equal boxes"
+    H, o, wall = scene(label, ["-options_file", "input/hard/stack10.opts"])
+    # measured: every step converged (1.0e-8 at worst, at most 217 sweeps and Newton steps),
+    # penetration 2.3e-12 m, below the plane 2.3e-12 m, final speed 1.2e-14 m/s, motion over the last
+    # 50 steps 4.4e-11 m. Bounds: 1e-10 m, 1e-10 m, 1e-10 m/s, 5e-10 m; energy growth 1e-6 J. The boxes
+    # are as wide as each other: each corner sits on an edge of the box below (src/collision/boxbox.c)
+    stability(label, H, o, wall, pen_tol=1e-10, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6, plane=(0, 0, 1), pen_geo_tol=1e-10)
+    v, d = speed_end(H, o), moved_last(H, o, 50)
+    c.check(v <= 1e-10 and d <= 5e-10, "%s: at rest (speed %.2e m/s, moved %.2e m over the last 50 steps)" % (label, v, d))
+    z = np.array([H["bodies/b%d/centroid" % (i + 1)][-1] for i in range(10)])
+    dz = np.abs(z[:, 2] - (0.05 + 0.1 * np.arange(10))).max()
+    dxy = np.abs(z[:, :2]).max()
+    c.check(dz <= 1e-8 and dxy <= 1e-8, "%s: every box where it belongs (height off by %.1e m, sideways %.1e m <= 1e-8)" % (label, dz, dxy))
 
 
 def mass_ratio_newton(np_=1, checks=True):
@@ -659,6 +761,11 @@ if NP == 1:
         large_step(hs)
     mass_ratio()
     mass_ratio_newton()
+    mass_ratio_sweep_update()
+    mass_ratio_1e4()
+    mass_ratio_fe()
+    stiff_on_soft()
+    stack10()
     stiffness_contrast()
     two_way_drop()
     incompressible()
@@ -679,6 +786,9 @@ else:
     compare("large step h=0.05", large_step(0.05, 1, checks=False), large_step(0.05, NP))
     compare("impact 20/10 m/s", impact(1, checks=False), impact(NP))
     compare("mass ratio, newton", mass_ratio_newton(1, checks=False), mass_ratio_newton(NP))
+    compare("mass ratio, -fast_update sweep", mass_ratio_sweep_update(1, checks=False), mass_ratio_sweep_update(NP))
+    compare("mass ratio 1:1e4 FE", mass_ratio_fe(1, checks=False), mass_ratio_fe(NP))
+    compare("stiff 1e10 on soft 1e5", stiff_on_soft(1, checks=False), stiff_on_soft(NP))
     # -contact_shape_points (the default) adds rows nearly redundant with the slab vertices' own:
     # the forces are not unique, and MUMPS' parallel round-off moves the ball's end by up to 8.6e-8 m
     # between 1 and 2 ranks (measured in the sanitized pass; 3.3e-15 m in a normal one), as for case 13

@@ -47,16 +47,20 @@
                            or Siconos (rank 0; contacts with friction and without cannot be mixed);
                            with -pgs_dump_unconverged, the first such problem the solver does not
                            converge on (the last linearization of the step), for a bug report
-     -contact_solver pgs|newton
-                           pgs (default): the sweeps above; newton: rounds of sweeps, then
-                           nonsmooth Newton steps on the Alart-Curnier function from their iterate,
-                           with a dense LU of its n x n Jacobian and a line search (newton.c), for
-                           small ill-conditioned problems where the sweeps stall; the same residual
-                           and tolerance (-pgs_tol); solved on rank 0 (every rank with -pgs_ranks
-                           all), never split; not with the fast scheme's -fast_update sweep, which
-                           calls back after every sweep
+     -contact_solver auto|pgs|newton
+                           pgs: the sweeps above; newton: rounds of sweeps, then nonsmooth Newton
+                           steps on the Alart-Curnier function from their iterate, with a dense LU
+                           of its n x n Jacobian and a line search (newton.c), for ill-conditioned
+                           problems where the sweeps stall (mass and stiffness ratios); the same
+                           residual and tolerance (-pgs_tol); solved on rank 0 (every rank with
+                           -pgs_ranks all or the fast scheme's -fast_update sweep), never split.
+                           auto (default): the sweeps, stopped once their rate (every 16 sweeps,
+                           from the 64th) says they will not converge within -pgs_max_it, then
+                           newton from their iterate with the budget left; placed as pgs (split
+                           sweeps, then rank 0, on large problems). A problem the sweeps converge
+                           on steadily is solved as by pgs. docs/contact-solver.md
      -contact_newton_max_it n
-                           with newton: Newton steps at most (>= 1, default 100) */
+                           with newton or auto: Newton steps at most (>= 1, default 100) */
 #include "contactimpl.h"
 
 typedef enum { PGS_AUTO, PGS_ALL, PGS_ROOT, PGS_SPLIT } PGSPlacement; /* -pgs_ranks, in this order */
