@@ -250,7 +250,7 @@ def mass_ratio():
     H, o, wall = scene(label, ["-options_file", "input/hard/mass_ratio.opts"])
     # measured (auto: the sweeps, then Newton where they stall): every step converged (residual
     # 1.0e-8 at worst, at most 134 sweeps and Newton steps), penetration 1.6e-11 m, below the plane
-    # 1.0e-11 m, max_t E(t) - E(0) = -1.1 J, final speed 1.3e-9 m/s, motion over the last 50 steps
+    # 1.0e-11 m, max_t E(t) - E(0) = -1.1 J, final speed 0.8-1.3e-9 m/s, motion over the last 50 steps
     # 3.1e-11 m, the heavy box's rise after its lowest point 2.3e-11 m. Bounds: residual the tolerance,
     # penetration 1e-10 m (6x), energy growth 1e-6 J (as the other resting scenes), speed 1e-8 m/s
     # (8x), motion 1.5e-10 m (5x), rise 1e-10 m (4x; the issue asked for no bounce above 1e-5 m)
@@ -285,13 +285,15 @@ def mass_ratio_1e4(np_=1, checks=True):
     if not checks:
         return H
     # measured: every step converged (9.8e-9 at worst, at most 101 sweeps and Newton steps; -contact_solver
-    # pgs: 45 of 100 steps unconverged, residual up to 6.6e-3, scripts/hard_solvers.py), penetration
-    # 1.1e-10 m, below the plane 9.6e-11 m, final speed 2.5e-10 m/s, motion over the last 50 steps
-    # 5.3e-11 m, rise 7.4e-11 m. Bounds: 10x each; energy growth 1e-6 J
+    # pgs: 53 of 100 steps unconverged, residual up to 6.6e-3, scripts/hard_solvers.py), penetration
+    # 1.1e-10 m, below the plane 9.6e-11 m, motion over the last 50 steps 6.8e-11 m, rise 7.4e-11 m:
+    # bounds 10x each; final speed 6.9e-9 m/s (2.5e-10 with the rate test of auto placed before NNCG's
+    # undo: the speed at rest is the solver tolerance's, about tol ||q|| / h): bound 2e-8 m/s (3x);
+    # energy growth 1e-6 J
     stability(label, H, o, wall, pen_tol=1e-9, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6, plane=(0, 0, 1), pen_geo_tol=1e-9)
     v, d, up = speed_end(H, o), moved_last(H, o, 50), rise(H, "heavy")
-    c.check(v <= 2.5e-9 and d <= 5e-10 and up <= 1e-9,
-            "%s: at rest (speed %.2e m/s <= 2.5e-9, moved %.2e m <= 5e-10 over the last 50 steps), the block rises %.2e m <= 1e-9"
+    c.check(v <= 2e-8 and d <= 7e-10 and up <= 1e-9,
+            "%s: at rest (speed %.2e m/s <= 2e-8, moved %.2e m <= 7e-10 over the last 50 steps), the block rises %.2e m <= 1e-9"
             % (label, v, d, up))
     return H
 
@@ -331,13 +333,14 @@ def stiff_on_soft(np_=1, checks=True):
     # measured: every step converged (1.8e-11 at worst, at most 741 sweeps and Newton steps; pgs: 38 of
     # 40 steps unconverged), penetration 2.2e-5 m at the impact (the slab's surface linearized over a
     # 5 cm step while the cube sinks 3 mm into it; 1.3e-10 m at worst over the last 10 steps, 3.6e-12 m
-    # at the end), smallest tet volume ratio 0.891, final speed 9.5e-12 m/s. Bounds: penetration 1e-4 m
-    # (4.5x) and 1e-9 m over the last 10 steps (8x), speed 1e-10 m/s (10x), volume ratio 0.5; energy
+    # at the end), smallest tet volume ratio 0.891, final speed 4.0e-11 m/s (9.5e-12 with the rate test
+    # of auto placed before NNCG's undo: round-off of the solver's tolerance). Bounds: penetration 1e-4 m
+    # (4.5x) and 1e-9 m over the last 10 steps (8x), speed 4e-10 m/s (10x), volume ratio 0.5; energy
     # growth 1e-6 J
     stability(label, H, o, wall, pen_tol=1e-4, res_tol=1.0001 * PGS_TOL, dE_tol=1e-6)
     pen_end = H["steps/max_penetration"][-10:].max()
     c.check(pen_end <= 1e-9, "%s: at rest, penetration %.2e m <= 1e-9 over the last 10 steps" % (label, pen_end))
-    c.check(speed_end(H, o) <= 1e-10, "%s: at rest at the end, speed %.2e m/s <= 1e-10" % (label, speed_end(H, o)))
+    c.check(speed_end(H, o) <= 4e-10, "%s: at rest at the end, speed %.2e m/s <= 4e-10" % (label, speed_end(H, o)))
     c.check(min_tet_volume_ratio(H, o) > 0.5, "%s: no inverted element, smallest volume ratio %.3f > 0.5" % (label, min_tet_volume_ratio(H, o)))
     return H
 

@@ -437,13 +437,6 @@ PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, Pets
     exact = s->sweeps % FC_PGS_EXACT == 0 ? PETSC_TRUE : PETSC_FALSE;
     if (exact) PetscCall(FCContactProblemVelocity(p, r, u));
     s->residual = FCContactProblemResidualFromVelocity(p, r, u);
-    if (exact && s->giveup) { /* from exact residuals FC_PGS_EXACT sweeps apart: the sweeps still needed */
-      PetscReal rate = checkpoint > 0.0 ? s->residual / checkpoint : 0.0;
-      if (s->sweeps >= FC_PGS_GIVEUP && s->residual > s->tol &&
-          (rate >= 1.0 || s->sweeps + FC_PGS_EXACT * PetscLogReal(s->tol / s->residual) / PetscLogReal(rate) > s->max_it))
-        break;
-      checkpoint = s->residual;
-    }
     if (moved && !(s->residual < previous)) { /* the step did not pay: back to the sweep's iterate, restart */
       PetscCall(PetscArraycpy(r, rsweep, n));
       PetscCall(PetscArraycpy(u, usweep, n));
@@ -464,6 +457,13 @@ PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, Pets
         gg_old      = 0.0; /* NNCG restarts */
         checkpoint  = 0.0; /* and the rate is the new problem's */
       }
+    }
+    if (s->giveup && s->sweeps % FC_PGS_EXACT == 0) { /* residuals FC_PGS_EXACT sweeps apart: the sweeps still needed */
+      PetscReal rate = checkpoint > 0.0 ? s->residual / checkpoint : 0.0;
+      if (s->sweeps >= FC_PGS_GIVEUP && s->residual > s->tol &&
+          (rate >= 1.0 || s->sweeps + FC_PGS_EXACT * PetscLogReal(s->tol / s->residual) / PetscLogReal(rate) > s->max_it))
+        break;
+      checkpoint = s->residual;
     }
     if (s->residual <= s->tol && !exact) { /* converged on the carried u: confirm on the exact one */
       PetscCall(FCContactProblemVelocity(p, r, u));
