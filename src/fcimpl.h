@@ -334,7 +334,7 @@ PETSC_INTERN PetscBool FCBodyHasSmoothShape(FCBody);      /* ... without edges (
 PETSC_INTERN PetscBool FCBodyHasSurfaceTriangles(FCBody); /* FE bodies and mesh shapes           */
 PETSC_INTERN PetscBool FCBodyIsBox(FCBody);               /* a rigid or kinematic box              */
 PETSC_INTERN void      FCBodyGetBoxHalfExtents(FCBody, PetscReal h[3]);
-PETSC_INTERN PetscReal FCBodyGetMass(FCBody);             /* after set-up; 0 for kinematic bodies */
+PETSC_INTERN PetscReal FCBodyGetMass(FCBody); /* after set-up; 0 for kinematic bodies */
 /* Restart state: `cols` values per visual vertex (pervertex, distributed like the visual) or one
    row of `cols` values on rank 0 */
 PETSC_INTERN PetscErrorCode FCBodyGetStateLayout(FCBody, PetscInt *cols, PetscBool *pervertex);

@@ -23,7 +23,7 @@
 #include "collisionimpl.h"
 
 #define FC_BOX_PARALLEL_COS 0.9998476951563913 /* cos 1 degree */
-#define FC_BOX_EDGE_KEY     (-1e9)              /* the key of an edge crossing: edge numbers below this */
+#define FC_BOX_EDGE_KEY (-1e9)                 /* the key of an edge crossing: edge numbers below this */
 
 typedef struct {
   FCBody       b;
@@ -43,7 +43,7 @@ static PetscErrorCode BoxGet(FCBody b, PetscInt index, Box *B)
   FCBodyGetBoxHalfExtents(b, B->h);
   for (int j = 0; j < 3; j++) { /* R^T e_j is row j of R */
     PetscReal e[3] = {0, 0, 0}, r[3];
-    e[j] = 1.0;
+    e[j]           = 1.0;
     PetscCall(FCBodyToBodyFrame(b, FC_AT_NOW, e, PETSC_TRUE, r));
     for (int k = 0; k < 3; k++) B->R[3 * j + k] = r[k];
   }
@@ -66,7 +66,8 @@ static PetscErrorCode World(const Box *B, const PetscReal r[3], PetscReal x[3])
 /* The overlap of C's corners with F along each of F's axes (negative: a gap), and on which side of F they lie */
 static PetscErrorCode Overlaps(const Box *F, const Box *C, PetscReal ov[3], PetscReal side[3])
 {
-  PetscReal lo[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[3] = {PETSC_MIN_REAL, PETSC_MIN_REAL, PETSC_MIN_REAL};
+  PetscReal lo[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL},
+            hi[3] = {PETSC_MIN_REAL, PETSC_MIN_REAL, PETSC_MIN_REAL};
 
   PetscFunctionBegin;
   for (int k = 0; k < 3; k++) side[k] = 0.0;
@@ -178,7 +179,7 @@ PetscErrorCode FCCollisionBoxBox(FCBody P, FCBody S, PetscInt ip, PetscInt is, P
   if (PetscAbsReal(dot) < FC_BOX_PARALLEL_COS) PetscFunctionReturn(0);
   *done = PETSC_TRUE;
   s     = side[f][k] >= 0.0 ? 1.0 : -1.0; /* F's face toward C, outward normal s F_k */
-  sc    = dot * s > 0.0 ? -1.0 : 1.0;      /* C's incident face, outward normal sc C_m (about -s F_k) */
+  sc    = dot * s > 0.0 ? -1.0 : 1.0;     /* C's incident face, outward normal sc C_m (about -s F_k) */
   j1    = (k + 1) % 3;
   j2    = (k + 2) % 3;
   FaceCorners(C->h, m, sc, cr);
@@ -197,8 +198,8 @@ PetscErrorCode FCCollisionBoxBox(FCBody P, FCBody S, PetscInt ip, PetscInt is, P
   for (int i = 0; i < 4; i++) { /* F's corners under the incident face: the point of that face over each */
     PetscReal z[3], x[3], p[2] = {fr[i][j1], fr[i][j2]};
     PetscCall(FCBodyToBodyFrame(C->b, FC_AT_NOW, fx[i], PETSC_FALSE, z));
-    if (PetscAbsReal(z[(m + 1) % 3]) > C->h[(m + 1) % 3] + tol || PetscAbsReal(z[(m + 2) % 3]) > C->h[(m + 2) % 3] + tol ||
-        Seen(nseen, seen, p, tol))
+    if (PetscAbsReal(z[(m + 1) % 3]) > C->h[(m + 1) % 3] + tol ||
+        PetscAbsReal(z[(m + 2) % 3]) > C->h[(m + 2) % 3] + tol || Seen(nseen, seen, p, tol))
       continue;
     z[m] = sc * C->h[m];
     PetscCall(World(C, z, x));

@@ -418,7 +418,8 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
         PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
       else {
         PetscBool done = PETSC_FALSE;
-        if (FCBodyIsBox(P) && FCBodyIsBox(S)) PetscCall(FCCollisionBoxBox(P, S, ipts, ishp, p, pairs, rank, set, &done));
+        if (FCBodyIsBox(P) && FCBodyIsBox(S))
+          PetscCall(FCCollisionBoxBox(P, S, ipts, ishp, p, pairs, rank, set, &done));
         if (done) continue;
         if (FCBodyHasShapeCore(P))
           PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));

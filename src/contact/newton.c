@@ -236,23 +236,32 @@ PetscErrorCode FCContactSolverNewton(FCContactSolver s, FCContactProblem p, Pets
   PetscFunctionReturn(0);
 }
 
-/* -contact_solver auto: the sweeps as -contact_solver pgs, stopped once their rate of convergence (exact residuals
+/* -contact_solver auto: the sweeps as -contact_solver pgs, stopped once their rate of convergence (residuals
    FC_PGS_EXACT sweeps apart, pgs.c) says they would not reach the tolerance within max_it; then FCContactSolverNewton
-   from their iterate with the budget left (whose rounds undo Newton steps that do not pay and end with the sweeps).
-   A problem the sweeps converge on at a steady rate within their budget is solved by them alone, as by pgs; one on
-   which they stall (mass or stiffness ratios: docs/hard-cases.md) by Newton. */
+   with the budget left, from the warm start the solve began with: the iterate of sweeps that stall is a poor start
+   for Newton (on stacks its steps stay short near the contacts' kinks: docs/contact-solver.md), the driver's own 20
+   sweeps a good one. A problem the sweeps converge on at a steady rate within their budget is solved by them alone,
+   as by pgs; one on which they stall (mass or stiffness ratios: docs/hard-cases.md) by Newton. */
 PetscErrorCode FCContactSolverAuto(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscInt max_it = s->max_it, sweeps;
 
+  PetscReal *r0;
+
   PetscFunctionBegin;
+  PetscCall(PetscMalloc1(p->n + 1, &r0));
+  PetscCall(PetscArraycpy(r0, r, p->n));
   s->giveup = PETSC_TRUE;
   PetscCall(FCContactSolverSweeps(s, p, r));
   s->giveup = PETSC_FALSE;
+  if (!s->converged && s->sweeps < max_it) PetscCall(PetscArraycpy(r, r0, p->n)); /* Newton from the warm start */
+  PetscCall(PetscFree(r0));
   if (s->converged || s->sweeps >= max_it) PetscFunctionReturn(0);
   sweeps = s->sweeps;
-  PetscCall(PetscInfo(NULL, "contact solver auto: the sweeps would not converge (residual %g after %" PetscInt_FMT
-                      "); Newton from there\n", (double)s->residual, sweeps));
+  PetscCall(PetscInfo(NULL,
+                      "contact solver auto: the sweeps would not converge (residual %g after %" PetscInt_FMT
+                      "); Newton from there\n",
+                      (double)s->residual, sweeps));
   s->max_it = max_it - sweeps;
   PetscCall(FCContactSolverNewton(s, p, r));
   s->max_it = max_it;

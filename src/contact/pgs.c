@@ -56,11 +56,11 @@
                            -pgs_ranks all or the fast scheme's -fast_update sweep), never split.
                            auto (default): the sweeps, stopped once their rate (every 16 sweeps,
                            from the 64th) says they will not converge within -pgs_max_it, then
-                           newton from their iterate with the budget left; placed as pgs (split
+                           newton from the solve's warm start with the budget left; placed as pgs (split
                            sweeps, then rank 0, on large problems). A problem the sweeps converge
                            on steadily is solved as by pgs. docs/contact-solver.md
      -contact_newton_max_it n
-                           with newton or auto: Newton steps at most (>= 1, default 100) */
+                           with newton or auto: Newton steps at most (>= 1, default 300) */
 #include "contactimpl.h"
 
 typedef enum { PGS_AUTO, PGS_ALL, PGS_ROOT, PGS_SPLIT } PGSPlacement; /* -pgs_ranks, in this order */
@@ -83,7 +83,7 @@ PetscErrorCode FCContactSolverCreate(MPI_Comm comm, FCContactSolver *solver)
   (*solver)->split_min_rows = 900;
   (*solver)->split_max_it   = 200;
   (*solver)->type           = SOLVER_AUTO; /* docs/contact-solver.md */
-  (*solver)->newton_max_it  = 100;
+  (*solver)->newton_max_it  = 300;
   PetscFunctionReturn(0);
 }
 
@@ -298,9 +298,12 @@ static PetscErrorCode OnRoot(FCContactSolver s, FCContactProblem p, PetscReal r[
 static PetscErrorCode Here(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscFunctionBegin;
-  if (s->type == SOLVER_NEWTON) PetscCall(FCContactSolverNewton(s, p, r));
-  else if (s->type == SOLVER_AUTO) PetscCall(FCContactSolverAuto(s, p, r));
-  else PetscCall(FCContactSolverSweeps(s, p, r));
+  if (s->type == SOLVER_NEWTON)
+    PetscCall(FCContactSolverNewton(s, p, r));
+  else if (s->type == SOLVER_AUTO)
+    PetscCall(FCContactSolverAuto(s, p, r));
+  else
+    PetscCall(FCContactSolverSweeps(s, p, r));
   PetscFunctionReturn(0);
 }
 
@@ -461,7 +464,8 @@ PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, Pets
     if (s->giveup && s->sweeps % FC_PGS_EXACT == 0) { /* residuals FC_PGS_EXACT sweeps apart: the sweeps still needed */
       PetscReal rate = checkpoint > 0.0 ? s->residual / checkpoint : 0.0;
       if (s->sweeps >= FC_PGS_GIVEUP && s->residual > s->tol &&
-          (rate >= 1.0 || s->sweeps + FC_PGS_EXACT * PetscLogReal(s->tol / s->residual) / PetscLogReal(rate) > s->max_it))
+          (rate >= 1.0 ||
+           s->sweeps + FC_PGS_EXACT * PetscLogReal(s->tol / s->residual) / PetscLogReal(rate) > s->max_it))
         break;
       checkpoint = s->residual;
     }
