@@ -89,36 +89,16 @@ static PetscErrorCode AddPoint(const Box *F, const Box *C, int k, PetscReal s, c
                                const PetscReal key[3], PetscInt pair, const FCContactPairs *pairs, PetscMPIInt rank,
                                FCContactSet *set)
 {
-  PetscReal y[3], d;
-  FCContact c;
+  PetscReal y[3], n[3], cp[3];
 
   PetscFunctionBegin;
-  PetscCall(PetscMemzero(&c, sizeof(c)));
   PetscCall(FCBodyToBodyFrame(F->b, FC_AT_NOW, x, PETSC_FALSE, y));
-  d = s * y[k] - F->h[k];
-  PetscCall(FCBodyToBodyFrame(C->b, FC_AT_NOW, x, PETSC_FALSE, c.prox[0].r));
-  PetscCall(FCBodyProximityPosition(C->b, &c.prox[0], FC_AT_FREE, c.pfree[0]));
-  if (d >= pairs->distance) { /* continuous: a speculative contact if the point's motion reaches F */
-    PetscBool hit = PETSC_FALSE;
-    if (pairs->continuous) PetscCall(FCCCDPointShape(F->b, x, c.pfree[0], d, FCCCDThreshold(pairs->distance), &hit));
-    if (!hit) PetscFunctionReturn(0);
-  }
-  c.pair    = pair;
-  c.body[0] = C->index;
-  c.body[1] = F->index;
   for (int j = 0; j < 3; j++) {
-    c.prox[1].r[j] = j == k ? s * F->h[k] : PetscMax(-F->h[j], PetscMin(F->h[j], y[j]));
-    c.key[j]       = key[j];
-    c.n[j]         = s * F->R[3 * j + k];
-    c.p0[0][j]     = x[j];
+    cp[j] = j == k ? s * F->h[k] : PetscMax(-F->h[j], PetscMin(F->h[j], y[j]));
+    n[j]  = s * F->R[3 * j + k];
   }
-  PetscCall(FCBodyProximityPosition(F->b, &c.prox[1], FC_AT_START, c.p0[1]));
-  PetscCall(FCBodyProximityPosition(F->b, &c.prox[1], FC_AT_FREE, c.pfree[1]));
-  c.gap0  = d;
-  c.mu    = pairs->mu[pair];
-  c.owner = rank;
-  c.side2 = FC_SIDE_SHAPE;
-  PetscCall(FCContactSetAdd(set, &c));
+  PetscCall(FCCollisionAddShapeContact(C->b, F->b, C->index, F->index, pair, x, s * y[k] - F->h[k], n, cp, key, pairs,
+                                       rank, set));
   PetscFunctionReturn(0);
 }
 

@@ -80,6 +80,14 @@ PETSC_INTERN PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt
 PETSC_INTERN PetscErrorCode FCCollisionRoundedShape(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,
                                                     const FCContactPairs *, PetscMPIInt rank, FCContactSet *);
 
+/* smooth.c: the contact of point x (world, now) of rigid or kinematic body P (body ip) with the shape of S (body is)
+   at signed distance d, with S's outward normal n there and closest point cpb (S's body frame), keyed by key; from
+   the alarm distance on, only where the point's motion over the step reaches S (continuous detection) */
+PETSC_INTERN PetscErrorCode FCCollisionAddShapeContact(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,
+                                                       const PetscReal x[3], PetscReal d, const PetscReal n[3],
+                                                       const PetscReal cpb[3], const PetscReal key[3],
+                                                       const FCContactPairs *, PetscMPIInt     rank, FCContactSet *);
+
 /* boxbox.c: two boxes (P body ip, S body is) that have a face each parallel to the other's: the corners of each
    over the other's face in contact, along that face's normal (*done); otherwise nothing (*done false) */
 PETSC_INTERN PetscErrorCode FCCollisionBoxBox(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,

@@ -50,39 +50,50 @@ static PetscErrorCode World(const Rounded *R, const PetscReal xb[3], PetscInt wh
   PetscFunctionReturn(0);
 }
 
-/* The contact of P's point x (world, now) with S, keyed by key (body frame of P) */
-static PetscErrorCode AddContact(const Rounded *R, const PetscReal x[3], const PetscReal key[3], PetscInt pair,
-                                 const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+PetscErrorCode FCCollisionAddShapeContact(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,
+                                          const PetscReal x[3], PetscReal d, const PetscReal n[3],
+                                          const PetscReal cpb[3], const PetscReal key[3], const FCContactPairs *pairs,
+                                          PetscMPIInt rank, FCContactSet *set)
 {
   FCContact c;
-  PetscReal d, n[3], cpb[3];
 
   PetscFunctionBegin;
   PetscCall(PetscMemzero(&c, sizeof(c)));
-  PetscCall(Distance(R, x, &d, n, cpb));
-  PetscCall(FCBodyToBodyFrame(R->P, FC_AT_NOW, x, PETSC_FALSE, c.prox[0].r));
-  PetscCall(FCBodyProximityPosition(R->P, &c.prox[0], FC_AT_FREE, c.pfree[0]));
+  PetscCall(FCBodyToBodyFrame(P, FC_AT_NOW, x, PETSC_FALSE, c.prox[0].r));
+  PetscCall(FCBodyProximityPosition(P, &c.prox[0], FC_AT_FREE, c.pfree[0]));
   if (d >= pairs->distance) { /* continuous: a speculative contact if the point's motion reaches S */
     PetscBool hit = PETSC_FALSE;
-    if (pairs->continuous) PetscCall(FCCCDPointShape(R->S, x, c.pfree[0], d, FCCCDThreshold(pairs->distance), &hit));
+    if (pairs->continuous) PetscCall(FCCCDPointShape(S, x, c.pfree[0], d, FCCCDThreshold(pairs->distance), &hit));
     if (!hit) PetscFunctionReturn(0);
   }
   c.pair    = pair;
-  c.body[0] = R->ip;
-  c.body[1] = R->is;
+  c.body[0] = ip;
+  c.body[1] = is;
   for (int i = 0; i < 3; i++) {
     c.prox[1].r[i] = cpb[i];
     c.key[i]       = key[i];
     c.n[i]         = n[i];
     c.p0[0][i]     = x[i];
   }
-  PetscCall(FCBodyProximityPosition(R->S, &c.prox[1], FC_AT_START, c.p0[1]));
-  PetscCall(FCBodyProximityPosition(R->S, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+  PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_START, c.p0[1]));
+  PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_FREE, c.pfree[1]));
   c.gap0  = d;
   c.mu    = pairs->mu[pair];
   c.owner = rank;
   c.side2 = FC_SIDE_SHAPE;
   PetscCall(FCContactSetAdd(set, &c));
+  PetscFunctionReturn(0);
+}
+
+/* The contact of P's point x (world, now) with S, keyed by key (body frame of P) */
+static PetscErrorCode AddContact(const Rounded *R, const PetscReal x[3], const PetscReal key[3], PetscInt pair,
+                                 const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+{
+  PetscReal d, n[3], cpb[3];
+
+  PetscFunctionBegin;
+  PetscCall(Distance(R, x, &d, n, cpb));
+  PetscCall(FCCollisionAddShapeContact(R->P, R->S, R->ip, R->is, pair, x, d, n, cpb, key, pairs, rank, set));
   PetscFunctionReturn(0);
 }
 
