@@ -370,16 +370,16 @@ PetscErrorCode FCContactSolverSolve(FCContactSolver s, FCContactProblem p, Petsc
    recomputed exactly (one product) every FC_PGS_EXACT sweeps, against the drift of the incremental
    updates, and before the solver stops. */
 #define FC_PGS_EXACT 16
-/* With s->giveup (-contact_solver auto), the sweeps stop, unconverged, at an exact residual from this many sweeps on,
-   when the rate since the previous one says they would not converge within max_it; before, NNCG's restarts make the
-   rate noisy */
+/* With s->giveup (-contact_solver auto), the sweeps stop, unconverged, from this many sweeps on, when
+   the rate of the residual over the last FC_PGS_EXACT sweeps says they would not converge within max_it; before, NNCG's
+   restarts make the rate noisy */
 #define FC_PGS_GIVEUP 64
 PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscInt   n = p->n;
   PetscBool  exact;
   PetscReal *u, *rold = NULL, *uold = NULL, *dir = NULL, *wdir = NULL, *rsweep = NULL, *usweep = NULL, gg_old = 0.0;
-  PetscReal  checkpoint = 0.0; /* the exact residual FC_PGS_EXACT sweeps ago (giveup) */
+  PetscReal  checkpoint = 0.0; /* the residual FC_PGS_EXACT sweeps ago (giveup) */
 
   PetscFunctionBegin;
   s->converged = PETSC_FALSE;
