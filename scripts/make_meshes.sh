@@ -43,6 +43,7 @@ MESHES=(
   "cube_18      table1.geo    nx 18 ny 18 nz 18 d 0.0588235294117647"
   "thin_slab    table1.geo    nx 16 ny 16 nz 2 d 0.02"
   "small_cube   table1.geo    nx 4 ny 4 nz 4 d 0.05"
+  "cube_6       table1.geo    nx 6 ny 6 nz 6 d 0.03"
   "soft_slab    table1.geo    nx 13 ny 13 nz 5 d 0.025"
   "heavy_block  table1.geo    nx 7 ny 7 nz 9 d 0.05"
   "foam_board   table1.geo    nx 7 ny 7 nz 2 d 0.05"

@@ -254,7 +254,7 @@ PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt i
    surface) whose vertex has a barycentric weight > w in some first-pass contact (a vertex of the
    first body against a triangle of the second) is held by that first-pass contact, and the two
    constraints are nearly redundant (W ill-conditioned: PGS stalls, docs/hard-cases.md).
-     -contact_fe_pass2_dormant w (the default, w = 0): the held contact is dormant: the contact
+     -contact_fe_pass2_dormant w (the default, w = 0.01): the held contact is dormant: the contact
        solver keeps it out of its sweeps and wakes it only where the solution without it leaves
        its vertex deeper than -contact_dormant_depth inside (pgs.c, SolveLazy);
      -contact_fe_pass2_drop w: the held contact is dropped (takes precedence).

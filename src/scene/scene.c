@@ -33,7 +33,9 @@
                               stall, docs/hard-cases.md): it is dormant, out of the contact solver's
                               sweeps unless the solution without it leaves its vertex deeper than
                               -contact_dormant_depth inside (src/contact/pgs.c, SolveLazy)
-                              (w < 1; default 0; < 0: every contact solved)
+                              (w < 1; default 0.01: a weight within the deformation's noise of 0, a
+                              landing point on the triangle's opposite edge, would hold the vertex in one
+                              step and not in the next; < 0: every contact solved)
      -contact_dormant_depth d  that depth (>= 0, default 1e-5 m: a tenth of the end-of-step
                               intersection check's -contact_intersection_depth); also for the dormant
                               corner contacts of -contact_shape_points
@@ -145,7 +147,7 @@ static PetscErrorCode ReadContactPairs(FCScene s)
   s->pairs.distance           = 0.01;
   s->pairs.passes             = 2;
   s->pairs.pass2_drop         = -1.0;
-  s->pairs.pass2_dormant      = 0.0;
+  s->pairs.pass2_dormant      = 0.01;
   s->pairs.dormant_depth      = 1e-5;
   s->pairs.facing             = PETSC_TRUE;
   s->pairs.intersection_depth = 1e-4;
