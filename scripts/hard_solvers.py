@@ -24,6 +24,7 @@ SCENES = {
     "mass_ratio_fe": ["-options_file", "input/hard/mass_ratio_fe.opts"],
     "stiff_on_soft": ["-options_file", "input/hard/stiff_on_soft.opts"],
     "stack10": ["-options_file", "input/hard/stack10.opts"],
+    "stack_nonconforming": ["-options_file", "input/hard/stack_nonconforming.opts"],
     # where the sweeps converge: auto must cost the same
     "grasp": ["-options_file", "input/hard/grasp_fast.opts"],
     "stack5": ["-options_file", "input/hard/stack5.opts"],

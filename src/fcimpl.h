@@ -175,8 +175,11 @@ typedef struct {
   PetscReal   n[3], t1[3], t2[3];    /* frame at the start of the step */
   PetscReal   p0[2][3], pfree[2][3]; /* proximity positions at the start and after free motion */
   PetscReal   gap0, mu, gap_end;
-  PetscReal   slack;         /* penetration the step may leave: what a start inside the other body exceeds
-                                -contact_separation_speed x h by (0 for a contact that starts outside) */
+  PetscReal   slack; /* penetration the step may leave: what a start inside the other body exceeds
+                        -contact_separation_speed x h by (0 for a contact that starts outside) */
+  PetscReal qcurv;   /* an FE point against a rounded rigid shape (shapepoints.c): the shape's exact gap there after
+                        the free motion minus n . d_free, which the shape's point, turning with it, misses by
+                        r (1 - cos theta) (a rolling ball would sink by that each step); 0 otherwise */
   PetscInt  dim, row, owner; /* rows (1 frictionless, 3), first row, detecting rank */
   PetscReal force[3];        /* lambda in the [n t1 t2] frame (force units)      */
   PetscInt  state;           /* 0 open, 1 stick, 2 slip */
@@ -489,6 +492,7 @@ typedef struct {
   PetscBool  continuous;    /* -contact_detection continuous (default) or discrete */
   PetscBool  edges;         /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
   PetscBool  shape_points;  /* -contact_shape_points: a bounded shape's points against an FE surface too */
+  PetscBool  rounded_exact; /* -contact_rounded_surface exact: a sphere's or capsule's nearest FE surface points */
   PetscReal
       separation_speed; /* -contact_separation_speed: bodies that start inside each other part at most this fast */
   PetscReal intersection_depth;   /* a point deeper than this inside another body is an intersection */

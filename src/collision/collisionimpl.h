@@ -75,6 +75,12 @@ PETSC_INTERN PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt
                                                    PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
                                                    FCContactSet *);
 
+/* roundedsurface.c: the points of the FE surface S (of body ife) nearest the core of the sphere or capsule Sh (body
+   ish), taken after the free motion, and a sphere's picture points behind them, dormant (rank 0) */
+PETSC_INTERN PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife, Surface *S,
+                                                        PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
+                                                        FCContactSet *);
+
 /* smooth.c: a rounded shape P (sphere, capsule, cylinder; body ip) against the analytic shape of S
    (body is), from their exact closest points (rank 0) */
 PETSC_INTERN PetscErrorCode FCCollisionRoundedShape(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,

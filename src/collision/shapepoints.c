@@ -1,30 +1,31 @@
 /* -contact_shape_points (default on, called by FCCollisionDetect): the FE vertices see a bounded shape only at the
    vertices, so a shape smaller than the elements, a box's corner or a sphere's cap sinks into an FE face between them
-   (the end-of-step check counts its points inside, intersection.c). The points of the shape's picture (rank 0) are then
-   contacts too, in one of two forms:
-   - a smooth shape (sphere, capsule; SmoothShapeOnSurface): each picture point finds its triangle
-     of the FE surface as a vertex does (FCCollisionLandingTriangle), and the contact is the FE material point
-     there (barycentric weights, side 1) against the shape's signed distance (side 2): the kind of
-     contact an FE vertex has, so the schemes re-linearize it with the shape's closest point, which
-     follows a turning or rolling shape (the fingers of the grasp slide 5 cm a step over the cube:
-     a point fixed in the shape's frame would leave its triangle);
-   - a shape with corners and edges (box, cylinder; ShapePointsOnSurface): the picture point,
-     fixed in the shape's frame, against its landing triangle, as a rigid mesh's vertex. (The
-     shape's distance at the FE point is degenerate at a corner: the FE point above a box corner
-     sunk into the face is on the box's edge, at distance 0.)
-   The first kind is made only where the shape dips between the triangle's vertices: where its gap
-   at the point is smaller than the gaps of the vertices interpolated there by more than
-   -contact_intersection_depth (at the start of the step, for a point within the alarm
-   distance); elsewhere the vertices' own contacts hold the point to within that depth. A point
-   whose triangle point is an FE vertex is that vertex's own contact, and two picture points
-   landing on one triangle point make one contact. Near the vertices' own contacts these rows are
-   nearly redundant (W nearly singular, the forces not unique): results stay reproducible because
-   the contacts are sorted by keys that do not depend on round-off (FCReferencePoint). */
+   (the end-of-step check counts its points inside, intersection.c). Contacts of the shape with the FE surface
+   between the vertices are then made too (rank 0), in one of two forms:
+   - a smooth shape (sphere, capsule; roundedsurface.c): the points of the FE surface nearest the shape's core
+     (a point or a segment), the FE material point there (barycentric weights, side 1) against the shape's signed
+     distance (side 2): the kind of contact an FE vertex has, exact for the shape, so a ball or a capsule rolls
+     over the surface as it rolls on a plane and not as the polyhedron of its picture (each facet an impact); a
+     shape that moves more than half its radius in a step (an impact) has its picture's points instead, each
+     against the triangle it lands on (PicturePointsOnSurface);
+   - a shape with corners and edges (box, cylinder; ShapePointsOnSurface): the points
+     of the shape's picture, fixed in the shape's frame, against their landing triangles, as a rigid mesh's
+     vertices, dormant. (The shape's distance at the FE point is degenerate at a corner: the FE point above a box
+     corner sunk into the face is on the box's edge, at distance 0.)
+   The first kind is made only where the shape dips between the triangle's vertices: where its gap at the point is
+   smaller than the gaps of the vertices interpolated there by more than -contact_intersection_depth (at the start
+   of the step, for a point within the alarm distance); elsewhere the vertices' own contacts hold the point to
+   within that depth. A point at an FE vertex is that vertex's own contact. Near the vertices' own contacts these
+   rows are nearly redundant (W nearly singular, the forces not unique): results stay reproducible because the
+   contacts are sorted by keys that do not depend on round-off (FCReferencePoint, edge points from the edge alone). */
 #include "collisionimpl.h"
 
-/* The first form (a sphere, a capsule) */
-static PetscErrorCode SmoothShapeOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
-                                           const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+/* A sphere or a capsule that moves more than half its radius in the step (an impact): the points of its
+   picture, each against the FE triangle it lands on (FCCollisionLandingTriangle: continuous, so a fast
+   shape's points find the surface they will reach), as the FE material point there against the shape's
+   signed distance, where the shape dips between the triangle's vertices */
+static PetscErrorCode PicturePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
+                                             const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
   PetscInt     n, *cand = NULL, nmade = 0;
   FCRayGrid    grid = {{0}};
@@ -115,13 +116,40 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
   PetscFunctionReturn(0);
 }
 
+/* Whether the core of rounded shape Sh moves less than half its radius over the step (rolling, sliding, resting),
+   or is kinematic (its pose at the end is given, not predicted): its surface points are then taken after the free
+   motion (roundedsurface.c) */
+static PetscErrorCode CoreFollows(FCBody Sh, PetscBool *follows)
+{
+  PetscInt    ncore;
+  PetscReal   core[2][3], r, move = 0.0;
+  PetscBool   flat;
+  FCProximity q = {0};
+
+  PetscFunctionBegin;
+  FCBodyGetShapeCore(Sh, &ncore, core, &r, &flat);
+  for (PetscInt k = 0; k < ncore; k++) {
+    PetscReal x0[3], xf[3];
+    for (int i = 0; i < 3; i++) q.r[i] = core[k][i];
+    PetscCall(FCBodyProximityPosition(Sh, &q, FC_AT_NOW, x0));
+    PetscCall(FCBodyProximityPosition(Sh, &q, FC_AT_FREE, xf));
+    move = PetscMax(move, PetscSqrtReal(PetscSqr(xf[0] - x0[0]) + PetscSqr(xf[1] - x0[1]) + PetscSqr(xf[2] - x0[2])));
+  }
+  *follows = (PetscBool)(FCBodyIsPrescribed(Sh) || move <= 0.5 * r);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                       const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
+  PetscBool follows = PETSC_FALSE;
+
   PetscFunctionBegin;
-  if (FCBodyHasSmoothShape(Sh))
-    PetscCall(SmoothShapeOnSurface(Sh, F, ish, ife, S, pair, pairs, rank, set));
-  else
-    PetscCall(ShapePointsOnSurface(Sh, F, ish, ife, S, pair, pairs, rank, set));
+  if (pairs->rounded_exact && FCBodyHasSmoothShape(Sh)) PetscCall(CoreFollows(Sh, &follows));
+  if (follows)
+    PetscCall(FCCollisionRoundedOnSurface(Sh, ish, ife, S, pair, pairs, rank, set));
+  else if (FCBodyHasSmoothShape(Sh))
+    PetscCall(PicturePointsOnSurface(Sh, F, ish, ife, S, pair, pairs, rank, set));
+  if (!FCBodyHasSmoothShape(Sh)) PetscCall(ShapePointsOnSurface(Sh, F, ish, ife, S, pair, pairs, rank, set));
   PetscFunctionReturn(0);
 }

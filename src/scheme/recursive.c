@@ -46,7 +46,7 @@ PetscErrorCode FCSchemeLinearize(FCScheme scheme, FCContactSet *set, const Petsc
       FCContactFrame(c->n, c->t1, c->t2);
       q[c->row] = gap - FCDot(c->n, dd) + c->slack;
     } else
-      q[c->row] = FCDot(c->n, &dfree[3 * k]) + c->slack;
+      q[c->row] = FCDot(c->n, &dfree[3 * k]) + c->qcurv + c->slack;
     if (c->dim == 3) {
       PetscReal rel[3];
       for (int i = 0; i < 3; i++) rel[i] = dfree[3 * k + i] - d0[3 * k + i];
@@ -86,7 +86,8 @@ void FCSchemeStartLinearization(const FCContactSet *set, PetscReal dfree[], Pets
       d0[3 * k + i]    = c->p0[0][i] - c->p0[1][i];
       rel[i]           = dfree[3 * k + i] - d0[3 * k + i];
     }
-    q[c->row] = FCDot(c->n, &dfree[3 * k]) + c->slack; /* the penetration the step may leave (collision.c) */
+    /* slack: the penetration the step may leave (collision.c); qcurv: a rounded shape's turn (shapepoints.c) */
+    q[c->row] = FCDot(c->n, &dfree[3 * k]) + c->qcurv + c->slack;
     if (c->dim == 3) {
       q[c->row + 1] = FCDot(c->t1, rel);
       q[c->row + 2] = FCDot(c->t2, rel);

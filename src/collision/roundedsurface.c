@@ -1,0 +1,334 @@
+/* A sphere or a capsule against an FE surface, from their exact closest points (-contact_shape_points, called by
+   FCCollisionShapePoints, shapepoints.c): besides the FE vertices against the shape's signed distance, the points of
+   the FE surface nearest the shape's core, each the FE material point there (barycentric weights, side 1) against
+   the shape's distance (side 2), taken where the point and the shape will be after the free motion. A ball or a
+   capsule then rolls over an FE surface as it rolls on a plane, not as the polyhedron of its picture (each facet an
+   impact) nor over the surface's vertices (a bump at each). */
+#include "collisionimpl.h"
+
+/* The point of the triangle with vertices at x (reference positions Xr) nearest the world point c: its weights w
+   and the number of them above 0 (1 a vertex, 2 an edge, 3 the face). An edge point is recomputed from the
+   edge alone, its ends in reference order, so that the two triangles of the edge give the same
+   point to the bit, and X its reference position (the key) from the edge alone too. */
+#define FC_FEATURE_EPS 1e-9
+static PetscInt NearestFeature(const PetscReal x[3][3], const PetscReal Xr[3][3], const PetscReal c[3], PetscReal w[3],
+                               PetscReal X[3])
+{
+  PetscReal cp[3];
+  PetscInt  nz = 0, e[3] = {0, 0, 0};
+
+  FCClosestPointTriangle(c, x[0], x[1], x[2], cp, w);
+  { /* a weight within round-off of 0 is 0: the point is on the edge or at the vertex */
+    PetscReal sum = 0.0;
+    for (int a = 0; a < 3; a++) {
+      if (w[a] < FC_FEATURE_EPS) w[a] = 0.0;
+      sum += w[a];
+    }
+    for (int a = 0; a < 3; a++) w[a] /= sum;
+  }
+  for (int a = 0; a < 3; a++)
+    if (w[a] > 0.0) e[nz++] = a;
+  if (nz == 2) {
+    PetscInt  a = e[0], b = e[1], o = 3 - a - b;
+    PetscReal ab[3], ac[3], t;
+    if (FCComparePoint(Xr[a], Xr[b]) > 0) {
+      a = e[1];
+      b = e[0];
+    }
+    for (int i = 0; i < 3; i++) {
+      ab[i] = x[b][i] - x[a][i];
+      ac[i] = c[i] - x[a][i];
+    }
+    t    = PetscMin(1.0, PetscMax(0.0, FCDot(ac, ab) / FCDot(ab, ab)));
+    w[a] = 1.0 - t;
+    w[b] = t;
+    w[o] = 0.0;
+    {
+      const PetscReal Xe[2][3] = {{Xr[a][0], Xr[a][1], Xr[a][2]}, {Xr[b][0], Xr[b][1], Xr[b][2]}}, we[2] = {1.0 - t, t};
+      FCReferencePoint(2, Xe, we, X);
+    }
+    if (t == 0.0 || t == 1.0) return 1; /* an end of the edge */
+  } else
+    FCReferencePoint(3, Xr, w, X);
+  return nz;
+}
+
+/* The distance from the world point x to the triangle with vertices at t */
+static PetscReal TriangleDistance(const PetscReal t[3][3], const PetscReal x[3])
+{
+  PetscReal cp[3], w[3], d2 = 0.0;
+  FCClosestPointTriangle(x, t[0], t[1], t[2], cp, w);
+  for (int i = 0; i < 3; i++) d2 += PetscSqr(x[i] - cp[i]);
+  return PetscSqrtReal(d2);
+}
+
+/* The core points (world) that may be nearest the triangle with vertices at T: a sphere's centre; a
+   capsule's two ends and the point of its segment nearest T where that is inside (golden-section
+   search: the distance to a triangle is convex along a segment) */
+#define FC_SURFACE_GOLDEN_IT 60
+static PetscInt CorePoints(PetscInt ncore, const PetscReal core[2][3], const PetscReal T[3][3], PetscReal c[3][3])
+{
+  PetscReal lo = 0.0, hi = 1.0, g = 0.5 * (PetscSqrtReal(5.0) - 1.0), t1, t2, d1, d2, x[3];
+  PetscInt  n = ncore;
+
+  for (PetscInt k = 0; k < ncore; k++)
+    for (int i = 0; i < 3; i++) c[k][i] = core[k][i];
+  if (ncore == 1) return n;
+#define AT(t)                                                                                                          \
+  (x[0] = core[0][0] + (t) * (core[1][0] - core[0][0]), x[1] = core[0][1] + (t) * (core[1][1] - core[0][1]),           \
+   x[2] = core[0][2] + (t) * (core[1][2] - core[0][2]), TriangleDistance(T, x))
+  t1 = hi - g * (hi - lo);
+  t2 = lo + g * (hi - lo);
+  d1 = AT(t1);
+  d2 = AT(t2);
+  for (int it = 0; it < FC_SURFACE_GOLDEN_IT; it++) {
+    if (d1 <= d2) {
+      hi = t2;
+      t2 = t1;
+      d2 = d1;
+      t1 = hi - g * (hi - lo);
+      d1 = AT(t1);
+    } else {
+      lo = t1;
+      t1 = t2;
+      d1 = d2;
+      t2 = lo + g * (hi - lo);
+      d2 = AT(t2);
+    }
+  }
+  t1 = 0.5 * (lo + hi);
+  if (AT(t1) < PetscMin(AT(0.0), AT(1.0)) - PETSC_SMALL) {
+    (void)AT(t1);
+    for (int i = 0; i < 3; i++) c[n][i] = x[i];
+    n++;
+  }
+#undef AT
+  return n;
+}
+
+typedef struct {
+  PetscReal X[3];        /* reference position: the sort key */
+  PetscInt  tri, front;  /* front: the core in front of triangle tri's plane */
+  PetscReal w[3], cb[3]; /* weights in triangle tri; the core point nearest (body frame) */
+} EdgePoint;
+
+/* A rounded shape against an FE surface: what AddSurfacePoint needs */
+typedef struct {
+  FCBody                Sh;
+  PetscInt              ish, ife, pair;
+  PetscReal             r; /* radius */
+  const FCContactPairs *pairs;
+  PetscMPIInt           rank;
+  FCContactSet         *set;
+} Across;
+
+/* The contact of the FE material point at weights bw of triangle T (key X) against the rounded shape whose core
+   point cb (body frame) is nearest it after the free motion, made where the shape will dip between the triangle's
+   vertices deeper than their own contacts hold it (by -contact_intersection_depth) within the alarm distance. It is
+   taken where the point and the shape will be: the normal is the shape's at the point after the free motion, the
+   shape's point is the one along n from cb at the start (a rolling ball's lowest point: its lever arm has no moment
+   about the centre), and the gap the solver starts from is the shape's exact one after the free motion (qcurv), so a
+   ball that rolls neither brakes nor sinks. */
+static PetscErrorCode AddSurfacePoint(const Across *A, const FCSurfaceTriangle *T, const PetscReal bw[3],
+                                      const PetscReal X[3], const PetscReal cb[3])
+{
+  PetscReal   bcp[3], yf[3], d0 = 0.0, df, cf[3], interp = 0.0, n[3], p2[3], core[3];
+  FCProximity tp = {0}, q = {0};
+  FCContact   c;
+
+  PetscFunctionBegin;
+  FCCollisionTrianglePoint(T, bw, &tp, yf);
+  for (int i = 0; i < 3; i++) bcp[i] = bw[0] * T->x0[0][i] + bw[1] * T->x0[1][i] + bw[2] * T->x0[2][i];
+  PetscCall(FCBodyShapeDistance(A->Sh, FC_AT_FREE, yf, &df, n, cf));
+  for (int a = 0; a < 3; a++) {
+    PetscReal da, na[3], ca[3];
+    if (bw[a] == 0.0) continue;
+    PetscCall(FCBodyShapeDistance(A->Sh, FC_AT_FREE, T->xf[a], &da, na, ca));
+    interp += bw[a] * da;
+  }
+  /* after the free motion: within the alarm distance, and dipping between the vertices */
+  if (df >= A->pairs->distance || df >= interp - PetscMax(A->pairs->intersection_depth, PETSC_SMALL))
+    PetscFunctionReturn(0);
+  for (int a = 0; a < 3; a++) { /* the start gap: its vertices' (the start-inside rule, collision.c) */
+    PetscReal da, na[3], ca[3];
+    if (bw[a] == 0.0) continue;
+    PetscCall(FCBodyShapeDistance(A->Sh, FC_AT_NOW, T->x0[a], &da, na, ca));
+    d0 += bw[a] * da;
+  }
+  PetscCall(PetscMemzero(&c, sizeof(c)));
+  for (int i = 0; i < 3; i++) q.r[i] = cb[i];
+  PetscCall(FCBodyProximityPosition(A->Sh, &q, FC_AT_NOW, core));
+  for (int i = 0; i < 3; i++) p2[i] = core[i] + A->r * n[i];
+  PetscCall(FCBodyToBodyFrame(A->Sh, FC_AT_NOW, p2, PETSC_FALSE, c.prox[1].r));
+  c.qcurv   = df; /* minus n . d_free, below */
+  c.pair    = A->pair;
+  c.body[0] = A->ife;
+  c.body[1] = A->ish;
+  c.prox[0] = tp;
+  for (int k = 0; k < 3; k++) {
+    c.prox[0].r[k] = X[k];
+    c.key[k]       = X[k];
+    c.n[k]         = n[k];
+    c.p0[0][k]     = bcp[k];
+    c.pfree[0][k]  = yf[k];
+  }
+  PetscCall(FCBodyProximityPosition(A->Sh, &c.prox[1], FC_AT_START, c.p0[1]));
+  PetscCall(FCBodyProximityPosition(A->Sh, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+  {
+    PetscReal dfree[3];
+    for (int k = 0; k < 3; k++) dfree[k] = c.pfree[0][k] - c.pfree[1][k];
+    c.qcurv -= FCDot(n, dfree);
+  }
+  c.side2 = FC_SIDE_SHAPE;
+  c.gap0  = d0;
+  c.mu    = A->pairs->mu[A->pair];
+  c.owner = A->rank;
+  PetscCall(FCContactSetAdd(A->set, &c));
+  PetscFunctionReturn(0);
+}
+
+/* Behind the exact points of a sphere, the FE points its picture's points land on, as the same kind of
+   contact (taken after the free motion, where the shape dips between the triangle's vertices), dormant: woken
+   only where the step's motion leaves one inside (a soft body dragged by a turning finger deforms where the free
+   motion did not say). The core point of each is the core's nearest to its FE point after the free motion. */
+static PetscErrorCode PicturePointsBehind(const Across *A, Surface *S, PetscInt ncore, const PetscReal fr[2][3])
+{
+  PetscInt     n, *cand = NULL, nmade = 0;
+  FCRayGrid    grid = {{0}};
+  FCProximity *prox;
+  PetscReal   *x0, *xf, *key, *made = NULL, tau = FCCCDThreshold(A->pairs->distance);
+
+  PetscFunctionBegin;
+  PetscCall(FCBodyGetContactPoints(A->Sh, &n, &prox, &x0, &xf, &key));
+  if (!n) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * n, &made));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscInt    best, first = A->set->n;
+    PetscReal   bw[3], bcp[3], yf[3], X[3], cw[3], cb[3], t = 0.0;
+    PetscBool   dup = PETSC_FALSE;
+    FCProximity tp  = {0};
+    PetscCall(FCCollisionLandingTriangle(S, &x0[3 * i], &xf[3 * i], NULL, A->pairs->distance, A->pairs->continuous, tau,
+                                         cand, &grid, &best, bw, bcp));
+    if (best < 0 || bw[0] == 1.0 || bw[1] == 1.0 || bw[2] == 1.0) continue; /* none, or an FE vertex */
+    FCCollisionTrianglePoint(&S->tri[best], bw, &tp, yf);
+    FCReferencePoint(3, S->tri[best].X, bw, X);
+    for (PetscInt m = 0; m < nmade && !dup; m++)
+      dup = made[3 * m] == X[0] && made[3 * m + 1] == X[1] && made[3 * m + 2] == X[2] ? PETSC_TRUE : PETSC_FALSE;
+    if (dup) continue;
+    for (int k = 0; k < 3; k++) made[3 * nmade + k] = X[k];
+    nmade++;
+    if (ncore == 2) { /* the segment's point nearest the FE point */
+      PetscReal ab[3], ay[3];
+      for (int k = 0; k < 3; k++) {
+        ab[k] = fr[1][k] - fr[0][k];
+        ay[k] = yf[k] - fr[0][k];
+      }
+      t = PetscMin(1.0, PetscMax(0.0, FCDot(ay, ab) / FCDot(ab, ab)));
+    }
+    for (int k = 0; k < 3; k++) cw[k] = ncore == 2 ? fr[0][k] + t * (fr[1][k] - fr[0][k]) : fr[0][k];
+    PetscCall(FCBodyToBodyFrame(A->Sh, FC_AT_FREE, cw, PETSC_FALSE, cb));
+    PetscCall(AddSurfacePoint(A, &S->tri[best], bw, X, cb));
+    for (PetscInt k = first; k < A->set->n; k++) A->set->c[k].dormant = PETSC_TRUE;
+  }
+  PetscCall(PetscFree2(cand, made));
+  PetscCall(PetscFree(grid.cells));
+  PetscFunctionReturn(0);
+}
+
+/* A smooth shape (sphere, capsule): the points of the FE surface nearest the shape's core,
+   from each triangle near the shape (its swept box over the step, grown by the radius and the alarm distance): a
+   point inside a face whose outer side the core is on; a point on an edge where both triangles of the edge find
+   it (the distance to the surface is smallest there: a ridge, or the foot of the core on the edge itself;
+   elsewhere the face beside it holds a nearer point); a vertex is that vertex's own contact. These are the exact
+   closest points of the shape and the surface, which move continuously as the shape rolls (its picture's points
+   would make it roll as a polyhedron). They are taken after the free motion (the caller decides: shapepoints.c,
+   CoreFollows). */
+PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
+                                           const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+{
+  PetscInt    ncore, nc = 0, nedge = 0, *cand;
+  PetscReal   core[2][3], now[2][3], fr[2][3], lo[3], hi[3], grow;
+  EdgePoint  *edge;
+  FCProximity q    = {0};
+  Across      A    = {0};
+  PetscBool   flat = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  if (rank) PetscFunctionReturn(0);
+  FCBodyGetShapeCore(Sh, &ncore, core, &A.r, &flat);
+  PetscCheck(ncore > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Body '%s' has no rounded shape", Sh->name);
+  A.Sh    = Sh;
+  A.ish   = ish;
+  A.ife   = ife;
+  A.pair  = pair;
+  A.pairs = pairs;
+  A.rank  = rank;
+  A.set   = set;
+  grow    = A.r + pairs->distance;
+  for (PetscInt k = 0; k < ncore; k++) {
+    for (int i = 0; i < 3; i++) q.r[i] = core[k][i];
+    PetscCall(FCBodyProximityPosition(Sh, &q, FC_AT_NOW, now[k]));
+    PetscCall(FCBodyProximityPosition(Sh, &q, FC_AT_FREE, fr[k]));
+  }
+  for (int i = 0; i < 3; i++) {
+    lo[i] = PETSC_MAX_REAL;
+    hi[i] = -PETSC_MAX_REAL;
+    for (PetscInt k = 0; k < ncore; k++) {
+      lo[i] = PetscMin(lo[i], PetscMin(now[k][i], fr[k][i]) - grow);
+      hi[i] = PetscMax(hi[i], PetscMax(now[k][i], fr[k][i]) + grow);
+    }
+  }
+  PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * S->n + 1, &edge));
+  if (S->stamp)
+    FCSurfaceQueryBox(S, lo, hi, cand, &nc);
+  else
+    for (PetscInt t = 0; t < S->n; t++) cand[nc++] = t;
+  for (PetscInt k = 0; k < nc; k++) {
+    const FCSurfaceTriangle *T = &S->tri[cand[k]];
+    const PetscReal(*x)[3]     = T->xf;
+    PetscReal c[3][3], nt[3];
+    PetscInt  np = CorePoints(ncore, fr, x, c);
+    FCTriangleNormal(x, nt);
+    for (PetscInt j = 0; j < np; j++) {
+      PetscReal w[3], X[3], side[3], cb[3];
+      PetscInt  nz;
+      if (TriangleDistance(x, c[j]) > grow) continue; /* too far from the shape at the end */
+      nz = NearestFeature(x, T->X, c[j], w, X);
+      if (nz < 2) continue; /* a vertex: its own contact */
+      PetscCall(FCBodyToBodyFrame(Sh, FC_AT_FREE, c[j], PETSC_FALSE, cb));
+      for (int i = 0; i < 3; i++) side[i] = c[j][i] - (w[0] * x[0][i] + w[1] * x[1][i] + w[2] * x[2][i]);
+      if (nz == 3) {
+        if (FCDot(side, nt) <= 0.0) continue; /* the core behind the face */
+        PetscCall(AddSurfacePoint(&A, T, w, X, cb));
+      } else {
+        for (int i = 0; i < 3; i++) {
+          edge[nedge].X[i]  = X[i];
+          edge[nedge].w[i]  = w[i];
+          edge[nedge].cb[i] = cb[i];
+        }
+        edge[nedge].tri   = cand[k];
+        edge[nedge].front = FCDot(side, nt) > 0.0;
+        nedge++;
+      }
+    }
+  }
+  /* the edge points both triangles of their edge find, the core in front of one of them at least (not an edge of
+     the surface's far side, seen through a thin body) */
+  if (nedge > 1) qsort(edge, nedge, sizeof(EdgePoint), FCComparePoint);
+  for (PetscInt e = 0; e < nedge;) {
+    PetscInt f = e + 1, first = e, front = edge[e].front; /* the edge's lowest triangle makes it: the same on any run */
+    while (f < nedge && !FCComparePoint(&edge[e], &edge[f])) {
+      if (edge[f].tri < edge[first].tri) first = f;
+      front = front || edge[f].front;
+      f++;
+    }
+    if (f - e >= 2 && front)
+      PetscCall(AddSurfacePoint(&A, &S->tri[edge[first].tri], edge[first].w, edge[first].X, edge[first].cb));
+    e = f;
+  }
+  PetscCall(PetscFree2(cand, edge));
+  /* (a capsule lying on a face: its picture's points along the line of contact, woken by the step's
+     linearization, made the problem rank-deficient enough to stall 2 of 100 solves of tests/test_rolling.py) */
+  if (ncore == 1) PetscCall(PicturePointsBehind(&A, S, ncore, fr));
+  PetscFunctionReturn(0);
+}
