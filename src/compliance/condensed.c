@@ -24,7 +24,7 @@
    A linear body keeps its factor as long as its contacts stay inside S: W_b then costs the dense
    products only, and not even those while J_T (the contact DOFs, rows and weights) is the last
    build's: a body resting on a kinematic shape reuses its W_b (every rank keeps a copy, (3m)^2
-   values; docs/scaling-history.md measures what it saves; the "CondensedWb" event counts the
+   values; bf6eaaa:docs/scaling-history.md measures what it saves; the "CondensedWb" event counts the
    builds that compute).
    Options:
      -compliance_condensed_ring k   rings of surface neighbours around the contact DOFs in S (k >= 0,
@@ -34,14 +34,14 @@
                                     default), ScaLAPACK over every rank of the body, or the host's
                                     Cholesky factor and each rank's block of columns of its inverse
                                     (columns). All the same on 1 rank (spdinverse.c; measured in
-                                    docs/scaling-history.md)
+                                    bf6eaaa:docs/scaling-history.md)
      -compliance_condensed_balance k
                                     k top levels of the nested dissection of the interior are
                                     bisections balanced in the vertex count and in the count of
                                     vertices next to S at once (default 0: METIS_NodeND alone), so
                                     that MUMPS' two top subtrees, on different ranks, share the
                                     fronts that S widens (schurfactor.c, Dissect; measured in
-                                    docs/scaling-history.md: a more even flop split, not a faster step) */
+                                    bf6eaaa:docs/scaling-history.md: a more even flop split, not a faster step) */
 #include "complianceimpl.h"
 
 typedef struct {
@@ -359,7 +359,7 @@ PetscErrorCode FCComplianceCreate_Condensed(FCCompliance comp)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&cd));
-  cd->inverse              = FC_SPD_INVERSE_HOST; /* docs/scaling-history.md, "The inversion of the Schur complement" */
+  cd->inverse              = FC_SPD_INVERSE_HOST; /* measured: bf6eaaa:docs/scaling-history.md */
   comp->data               = cd;
   comp->factors            = PETSC_TRUE;
   comp->keepswb            = PETSC_TRUE; /* Build_Condensed keeps W_b while it holds */
