@@ -120,6 +120,12 @@ PETSC_INTERN void FCSurfaceClosestFacing(const FCSurface *, const PetscReal x[3]
                                          PetscReal w[3], PetscReal cp[3], PetscReal *d2);
 PETSC_INTERN PetscReal FCClosestSegmentSegment(const PetscReal p0[3], const PetscReal p1[3], const PetscReal q0[3],
                                                const PetscReal q1[3], PetscReal *s, PetscReal *t);
+/* The t in [0, 1] where f(t, ctx) is smallest, f convex on [0, 1] (the distance to a convex shape along a segment):
+   golden-section search, FC_GOLDEN_IT steps, the bracket shrinking by 0.618 each, below round-off; the middle of the
+   last bracket */
+#define FC_GOLDEN_IT 60
+PETSC_INTERN PetscErrorCode FCGoldenMinimum(PetscErrorCode (*f)(PetscReal t, void *ctx, PetscReal *ft), void *ctx,
+                                            PetscReal *t);
 /* The point at barycentric weights w of nv (2, 3) reference positions, exact where they share a
    coordinate: a contact's sort key */
 PETSC_INTERN void FCReferencePoint(PetscInt nv, const PetscReal Xv[][3], const PetscReal w[], PetscReal X[3]);

@@ -158,3 +158,31 @@ int FCComparePoint(const void *a, const void *b)
     if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
   return 0;
 }
+
+PetscErrorCode FCGoldenMinimum(PetscErrorCode (*f)(PetscReal, void *, PetscReal *), void *ctx, PetscReal *t)
+{
+  PetscReal lo = 0.0, hi = 1.0, g = 0.5 * (PetscSqrtReal(5.0) - 1.0), t1, t2, d1, d2;
+
+  PetscFunctionBegin;
+  t1 = hi - g * (hi - lo);
+  t2 = lo + g * (hi - lo);
+  PetscCall((*f)(t1, ctx, &d1));
+  PetscCall((*f)(t2, ctx, &d2));
+  for (int it = 0; it < FC_GOLDEN_IT; it++) {
+    if (d1 <= d2) {
+      hi = t2;
+      t2 = t1;
+      d2 = d1;
+      t1 = hi - g * (hi - lo);
+      PetscCall((*f)(t1, ctx, &d1));
+    } else {
+      lo = t1;
+      t1 = t2;
+      d1 = d2;
+      t2 = lo + g * (hi - lo);
+      PetscCall((*f)(t2, ctx, &d2));
+    }
+  }
+  *t = 0.5 * (lo + hi);
+  PetscFunctionReturn(0);
+}

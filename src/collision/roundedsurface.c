@@ -62,48 +62,44 @@ static PetscReal TriangleDistance(const PetscReal t[3][3], const PetscReal x[3])
   return PetscSqrtReal(d2);
 }
 
-/* The core points (world) that may be nearest the triangle with vertices at T: a sphere's centre; a
-   capsule's two ends and the point of its segment nearest T where that is inside (golden-section
-   search: the distance to a triangle is convex along a segment) */
-#define FC_SURFACE_GOLDEN_IT 60
-static PetscInt CorePoints(PetscInt ncore, const PetscReal core[2][3], const PetscReal T[3][3], PetscReal c[3][3])
-{
-  PetscReal lo = 0.0, hi = 1.0, g = 0.5 * (PetscSqrtReal(5.0) - 1.0), t1, t2, d1, d2, x[3];
-  PetscInt  n = ncore;
+typedef struct {
+  const PetscReal (*core)[3], (*T)[3];
+} CoreCtx;
 
+/* The distance from the core segment's point t to the triangle, for FCGoldenMinimum */
+static PetscErrorCode CoreAt(PetscReal t, void *ctx, PetscReal *d)
+{
+  CoreCtx  *cc = (CoreCtx *)ctx;
+  PetscReal x[3];
+
+  for (int i = 0; i < 3; i++) x[i] = cc->core[0][i] + t * (cc->core[1][i] - cc->core[0][i]);
+  *d = TriangleDistance(cc->T, x);
+  return 0;
+}
+
+/* The core points (world) that may be nearest the triangle with vertices at T: a sphere's centre; a
+   capsule's two ends and the point of its segment nearest T where that is inside (the distance to a
+   triangle is convex along a segment) */
+static PetscErrorCode CorePoints(PetscInt ncore, const PetscReal core[2][3], const PetscReal T[3][3], PetscReal c[3][3],
+                                 PetscInt *n)
+{
+  CoreCtx   cc = {core, T};
+  PetscReal t, dt, d0, d1;
+
+  PetscFunctionBegin;
+  *n = ncore;
   for (PetscInt k = 0; k < ncore; k++)
     for (int i = 0; i < 3; i++) c[k][i] = core[k][i];
-  if (ncore == 1) return n;
-#define AT(t)                                                                                                          \
-  (x[0] = core[0][0] + (t) * (core[1][0] - core[0][0]), x[1] = core[0][1] + (t) * (core[1][1] - core[0][1]),           \
-   x[2] = core[0][2] + (t) * (core[1][2] - core[0][2]), TriangleDistance(T, x))
-  t1 = hi - g * (hi - lo);
-  t2 = lo + g * (hi - lo);
-  d1 = AT(t1);
-  d2 = AT(t2);
-  for (int it = 0; it < FC_SURFACE_GOLDEN_IT; it++) {
-    if (d1 <= d2) {
-      hi = t2;
-      t2 = t1;
-      d2 = d1;
-      t1 = hi - g * (hi - lo);
-      d1 = AT(t1);
-    } else {
-      lo = t1;
-      t1 = t2;
-      d1 = d2;
-      t2 = lo + g * (hi - lo);
-      d2 = AT(t2);
-    }
+  if (ncore == 1) PetscFunctionReturn(0);
+  PetscCall(FCGoldenMinimum(CoreAt, &cc, &t));
+  PetscCall(CoreAt(t, &cc, &dt));
+  PetscCall(CoreAt(0.0, &cc, &d0));
+  PetscCall(CoreAt(1.0, &cc, &d1));
+  if (dt < PetscMin(d0, d1) - PETSC_SMALL) {
+    for (int i = 0; i < 3; i++) c[*n][i] = core[0][i] + t * (core[1][i] - core[0][i]);
+    (*n)++;
   }
-  t1 = 0.5 * (lo + hi);
-  if (AT(t1) < PetscMin(AT(0.0), AT(1.0)) - PETSC_SMALL) {
-    (void)AT(t1);
-    for (int i = 0; i < 3; i++) c[n][i] = x[i];
-    n++;
-  }
-#undef AT
-  return n;
+  PetscFunctionReturn(0);
 }
 
 typedef struct {
@@ -287,7 +283,8 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
     const FCSurfaceTriangle *T = &S->tri[cand[k]];
     const PetscReal(*x)[3]     = T->xf;
     PetscReal c[3][3], nt[3];
-    PetscInt  np = CorePoints(ncore, fr, x, c);
+    PetscInt  np;
+    PetscCall(CorePoints(ncore, fr, x, c, &np));
     FCTriangleNormal(x, nt);
     for (PetscInt j = 0; j < np; j++) {
       PetscReal w[3], X[3], side[3], cb[3];

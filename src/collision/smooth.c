@@ -19,7 +19,6 @@
    shape's body is rigid or kinematic, on rank 0, which makes these contacts. */
 #include "collisionimpl.h"
 
-#define FC_GOLDEN_IT 60  /* golden-section steps: the bracket shrinks by 0.618^60, below round-off */
 #define FC_FLAT_DEG 5.0  /* a cylinder's end within this of parallel to the other surface lies flat on it */
 #define FC_FACE_POINTS 8 /* rim points of an end face that lies flat */
 #define FC_INTERIOR 0.01 /* a segment's interior point within this fraction of an end is that end's */
@@ -142,6 +141,21 @@ static PetscErrorCode SegmentDistance(const Rounded *R, const PetscReal a[3], co
   PetscFunctionReturn(0);
 }
 
+typedef struct {
+  const Rounded   *R;
+  const PetscReal *a, *b;
+} SegmentCtx;
+
+/* SegmentDistance for FCGoldenMinimum */
+static PetscErrorCode SegmentAt(PetscReal t, void *ctx, PetscReal *d)
+{
+  SegmentCtx *sc = (SegmentCtx *)ctx;
+
+  PetscFunctionBegin;
+  PetscCall(SegmentDistance(sc->R, sc->a, sc->b, t, d));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCCollisionRoundedShape(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,
                                        const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
@@ -161,7 +175,7 @@ PetscErrorCode FCCollisionRoundedShape(FCBody P, FCBody S, PetscInt ip, PetscInt
     PetscFunctionReturn(0);
   }
   {
-    PetscReal a[3], b[3], l, lo = 0.0, hi = 1.0, g = 0.5 * (PetscSqrtReal(5.0) - 1.0), t1, t2, d1, d2, da, db;
+    PetscReal a[3], b[3], l, t1, d1, da, db;
     PetscCall(World(&R, R.core[0], FC_AT_NOW, a));
     PetscCall(World(&R, R.core[1], FC_AT_NOW, b));
     for (int i = 0; i < 3; i++) R.a[i] = b[i] - a[i];
@@ -169,26 +183,10 @@ PetscErrorCode FCCollisionRoundedShape(FCBody P, FCBody S, PetscInt ip, PetscInt
     for (int i = 0; i < 3; i++) R.a[i] /= l;
     for (PetscInt k = 0; k < 2; k++) PetscCall(CoreContacts(&R, R.core[k], k, pair, pairs, rank, set));
     /* the segment's interior: where the distance to S is smallest, if not at an end */
-    t1 = hi - g * (hi - lo);
-    t2 = lo + g * (hi - lo);
-    PetscCall(SegmentDistance(&R, a, b, t1, &d1));
-    PetscCall(SegmentDistance(&R, a, b, t2, &d2));
-    for (int it = 0; it < FC_GOLDEN_IT; it++) {
-      if (d1 <= d2) {
-        hi = t2;
-        t2 = t1;
-        d2 = d1;
-        t1 = hi - g * (hi - lo);
-        PetscCall(SegmentDistance(&R, a, b, t1, &d1));
-      } else {
-        lo = t1;
-        t1 = t2;
-        d1 = d2;
-        t2 = lo + g * (hi - lo);
-        PetscCall(SegmentDistance(&R, a, b, t2, &d2));
-      }
+    {
+      SegmentCtx sc = {&R, a, b};
+      PetscCall(FCGoldenMinimum(SegmentAt, &sc, &t1));
     }
-    t1 = 0.5 * (lo + hi);
     PetscCall(SegmentDistance(&R, a, b, t1, &d1));
     PetscCall(SegmentDistance(&R, a, b, 0.0, &da));
     PetscCall(SegmentDistance(&R, a, b, 1.0, &db));
