@@ -21,9 +21,9 @@
 #include "collisionimpl.h"
 
 /* A sphere or a capsule (-contact_rounded_surface picture, the default; with exact, one that moves more than half its
-   radius in the step, an impact): the points of its picture, each against the FE triangle it lands on (FCCollisionLandingTriangle: continuous, so a fast
-   shape's points find the surface they will reach), as the FE material point there against the shape's
-   signed distance, where the shape dips between the triangle's vertices */
+   radius in the step, an impact): the points of its picture, each against the FE triangle it lands on
+   (FCCollisionLandingTriangle: continuous, so a fast shape's points find the surface they will reach), as the FE
+   material point there against the shape's signed distance, where the shape dips between the triangle's vertices */
 static PetscErrorCode PicturePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                              const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
