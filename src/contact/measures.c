@@ -2,7 +2,8 @@
    (FCCollisionEndGaps gives each contact's end gap, end normal and d = p1 - p2). They judge what
    a scheme delivered, independently of the linearization it solved (eq. 18 in its frames):
      penetration      max and RMS over contacts of max(0, -gap_end)                          (m)
-     violation        max over contacts of |gap_end| if the contact pushes, else max(0, -gap_end)
+     violation        max over contacts of |gap_end| if the contact pushes (F_n above 1e-12 of the
+                      largest F_n: a force of round-off pushes nothing), else max(0, -gap_end)
      complementarity  RMS over contacts of the natural-map error ||r - P_K(r - (u + mu |u_T| e_n))||
                       with u = (gap_end, t1e.(d_end - d0), t2e.(d_end - d0)) in the end frame
                       [n_end t1e t2e] and r = W_nn F (the force as the displacement it causes
@@ -14,15 +15,16 @@
 
 void FCContactSetMeasure(const FCContactSet *set, FCContactMeasures *m)
 {
-  PetscReal pen2 = 0.0, e2 = 0.0, fmax = 0.0, cone = 0.0;
+  PetscReal pen2 = 0.0, e2 = 0.0, fmax = 0.0, cone = 0.0, fnmax = 0.0;
 
   PetscMemzero(m, sizeof(*m));
+  for (PetscInt k = 0; k < set->n; k++) fnmax = PetscMax(fnmax, set->c[k].force[0]);
   for (PetscInt k = 0; k < set->n; k++) {
     const FCContact *c = &set->c[k];
     PetscReal        t1[3], t2[3], F[3], Fe[3], r[3], u[3], rel[3], pen = PetscMax(0.0, -c->gap_end), ft;
     m->max_penetration = PetscMax(m->max_penetration, pen);
     pen2 += pen * pen;
-    m->violation = PetscMax(m->violation, c->force[0] > 0.0 ? PetscAbsReal(c->gap_end) : pen);
+    m->violation = PetscMax(m->violation, c->force[0] > 1e-12 * fnmax ? PetscAbsReal(c->gap_end) : pen);
     FCContactFrame(c->n_end, t1, t2);
     for (int i = 0; i < 3; i++) {
       F[i]   = c->force[0] * c->n[i] + c->force[1] * c->t1[i] + c->force[2] * c->t2[i];
