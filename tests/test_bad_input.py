@@ -94,6 +94,8 @@ cases = [
     ("contact pair, malformed", ["-options_file", "input/cube_drop.opts", "-contact_pairs", "cubeground", "-quiet"], "body1:body2"),
     ("pass-2 drop weight 1", ["-options_file", "input/two_cubes.opts", "-contact_fe_pass2_drop", "1", "-quiet"], "-contact_fe_pass2_drop"),
     ("pass-2 drop weight nan", ["-options_file", "input/two_cubes.opts", "-contact_fe_pass2_drop", "nan", "-quiet"], "-contact_fe_pass2_drop"),
+    ("rounded surface: unknown value", ["-options_file", "input/rolling.opts", "-contact_rounded_surface", "exakt", "-quiet"],
+     "-contact_rounded_surface"),
     ("contact mu negative", ["-options_file", "input/cube_drop.opts", "-contact_mu", "-0.3", "-quiet"], "-contact_mu"),
     ("BLAS forward not a boolean", ["-options_file", "input/cube_drop.opts", "-blas_gemv_forward", "maybe", "-quiet"],
      "-blas_gemv_forward takes no value or one of"),
