@@ -75,6 +75,15 @@ PETSC_INTERN PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt
                                                    PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
                                                    FCContactSet *);
 
+/* shapepoints.c: each point of the picture of shape Sh that lands on surface S inside a triangle (not at an FE
+   vertex: that vertex's own contact), once per FE material point (by its reference position X): fn gets the
+   triangle, the weights bw, the point's start position bcp and X, and says whether it made a contact there (a
+   later picture point landing on the same X is then skipped) */
+typedef PetscErrorCode (*FCLandingFn)(const FCSurfaceTriangle *T, const PetscReal bw[3], const PetscReal bcp[3],
+                                      const PetscReal X[3], void *ctx, PetscBool *made);
+PETSC_INTERN PetscErrorCode FCCollisionPictureLandings(FCBody Sh, Surface *S, const FCContactPairs *, FCLandingFn fn,
+                                                       void *ctx);
+
 /* roundedsurface.c: the points of the FE surface S (of body ife) nearest the core of the sphere or capsule Sh (body
    ish), taken after the free motion, and a sphere's picture points behind them, dormant (rank 0) */
 PETSC_INTERN PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife, Surface *S,

@@ -183,51 +183,41 @@ static PetscErrorCode AddSurfacePoint(const Across *A, const FCSurfaceTriangle *
   PetscFunctionReturn(0);
 }
 
+typedef struct {
+  const Across *A;
+  PetscInt      ncore;
+  PetscReal     fr[2][3]; /* the core after the free motion (world) */
+} BehindCtx;
+
 /* Behind the exact points of a sphere, the FE points its picture's points land on, as the same kind of
    contact (taken after the free motion, where the shape dips between the triangle's vertices), dormant: woken
    only where the step's motion leaves one inside (a soft body dragged by a turning finger deforms where the free
    motion did not say). The core point of each is the core's nearest to its FE point after the free motion. */
-static PetscErrorCode PicturePointsBehind(const Across *A, Surface *S, PetscInt ncore, const PetscReal fr[2][3])
+static PetscErrorCode PicturePointBehind(const FCSurfaceTriangle *T, const PetscReal bw[3], const PetscReal bcp[3],
+                                         const PetscReal X[3], void *ctx, PetscBool *made)
 {
-  PetscInt     n, *cand = NULL, nmade = 0;
-  FCRayGrid    grid = {{0}};
-  FCProximity *prox;
-  PetscReal   *x0, *xf, *key, *made = NULL, tau = FCCCDThreshold(A->pairs->distance);
+  BehindCtx    *B     = (BehindCtx *)ctx;
+  const Across *A     = B->A;
+  PetscInt      first = A->set->n;
+  PetscReal     yf[3], cw[3], cb[3], t = 0.0;
+  FCProximity   tp        = {0};
+  const PetscReal(*fr)[3] = B->fr;
 
   PetscFunctionBegin;
-  PetscCall(FCBodyGetContactPoints(A->Sh, &n, &prox, &x0, &xf, &key));
-  if (!n) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * n, &made));
-  for (PetscInt i = 0; i < n; i++) {
-    PetscInt    best, first = A->set->n;
-    PetscReal   bw[3], bcp[3], yf[3], X[3], cw[3], cb[3], t = 0.0;
-    PetscBool   dup = PETSC_FALSE;
-    FCProximity tp  = {0};
-    PetscCall(FCCollisionLandingTriangle(S, &x0[3 * i], &xf[3 * i], NULL, A->pairs->distance, A->pairs->continuous, tau,
-                                         cand, &grid, &best, bw, bcp));
-    if (best < 0 || bw[0] == 1.0 || bw[1] == 1.0 || bw[2] == 1.0) continue; /* none, or an FE vertex */
-    FCCollisionTrianglePoint(&S->tri[best], bw, &tp, yf);
-    FCReferencePoint(3, S->tri[best].X, bw, X);
-    for (PetscInt m = 0; m < nmade && !dup; m++)
-      dup = made[3 * m] == X[0] && made[3 * m + 1] == X[1] && made[3 * m + 2] == X[2] ? PETSC_TRUE : PETSC_FALSE;
-    if (dup) continue;
-    for (int k = 0; k < 3; k++) made[3 * nmade + k] = X[k];
-    nmade++;
-    if (ncore == 2) { /* the segment's point nearest the FE point */
-      PetscReal ab[3], ay[3];
-      for (int k = 0; k < 3; k++) {
-        ab[k] = fr[1][k] - fr[0][k];
-        ay[k] = yf[k] - fr[0][k];
-      }
-      t = PetscMin(1.0, PetscMax(0.0, FCDot(ay, ab) / FCDot(ab, ab)));
+  *made = PETSC_TRUE;
+  FCCollisionTrianglePoint(T, bw, &tp, yf);
+  if (B->ncore == 2) { /* the segment's point nearest the FE point */
+    PetscReal ab[3], ay[3];
+    for (int k = 0; k < 3; k++) {
+      ab[k] = fr[1][k] - fr[0][k];
+      ay[k] = yf[k] - fr[0][k];
     }
-    for (int k = 0; k < 3; k++) cw[k] = ncore == 2 ? fr[0][k] + t * (fr[1][k] - fr[0][k]) : fr[0][k];
-    PetscCall(FCBodyToBodyFrame(A->Sh, FC_AT_FREE, cw, PETSC_FALSE, cb));
-    PetscCall(AddSurfacePoint(A, &S->tri[best], bw, X, cb));
-    for (PetscInt k = first; k < A->set->n; k++) A->set->c[k].dormant = PETSC_TRUE;
+    t = PetscMin(1.0, PetscMax(0.0, FCDot(ay, ab) / FCDot(ab, ab)));
   }
-  PetscCall(PetscFree2(cand, made));
-  PetscCall(PetscFree(grid.cells));
+  for (int k = 0; k < 3; k++) cw[k] = B->ncore == 2 ? fr[0][k] + t * (fr[1][k] - fr[0][k]) : fr[0][k];
+  PetscCall(FCBodyToBodyFrame(A->Sh, FC_AT_FREE, cw, PETSC_FALSE, cb));
+  PetscCall(AddSurfacePoint(A, T, bw, X, cb));
+  for (PetscInt k = first; k < A->set->n; k++) A->set->c[k].dormant = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -326,6 +316,10 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
   PetscCall(PetscFree2(cand, edge));
   /* (a capsule lying on a face: its picture's points along the line of contact, woken by the step's
      linearization, made the problem rank-deficient enough to stall 2 of 100 solves of tests/test_rolling.py) */
-  if (ncore == 1) PetscCall(PicturePointsBehind(&A, S, ncore, fr));
+  if (ncore == 1) {
+    BehindCtx B = {&A, ncore, {{0}}};
+    for (int i = 0; i < 3; i++) B.fr[0][i] = fr[0][i];
+    PetscCall(FCCollisionPictureLandings(Sh, S, pairs, PicturePointBehind, &B));
+  }
   PetscFunctionReturn(0);
 }

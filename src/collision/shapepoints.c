@@ -7,7 +7,7 @@
      distance (side 2): the kind of contact an FE vertex has, exact for the shape, so a ball or a capsule rolls
      over the surface as it rolls on a plane and not as the polyhedron of its picture (each facet an impact); a
      shape that moves more than half its radius in a step (an impact) has its picture's points instead, each
-     against the triangle it lands on (PicturePointsOnSurface);
+     against the triangle it lands on (PicturePointOnSurface);
    - a shape with corners and edges (box, cylinder; ShapePointsOnSurface): the points
      of the shape's picture, fixed in the shape's frame, against their landing triangles, as a rigid mesh's
      vertices, dormant. (The shape's distance at the FE point is degenerate at a corner: the FE point above a box
@@ -20,83 +20,101 @@
    contacts are sorted by keys that do not depend on round-off (FCReferencePoint, edge points from the edge alone). */
 #include "collisionimpl.h"
 
-/* A sphere or a capsule (-contact_rounded_surface picture, the default; with exact, one that moves more than half its
-   radius in the step, an impact): the points of its picture, each against the FE triangle it lands on
-   (FCCollisionLandingTriangle: continuous, so a fast shape's points find the surface they will reach), as the FE
-   material point there against the shape's signed distance, where the shape dips between the triangle's vertices */
-static PetscErrorCode PicturePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
-                                             const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+PetscErrorCode FCCollisionPictureLandings(FCBody Sh, Surface *S, const FCContactPairs *pairs, FCLandingFn fn, void *ctx)
 {
   PetscInt     n, *cand = NULL, nmade = 0;
   FCRayGrid    grid = {{0}};
   FCProximity *prox;
-  PetscReal   *x0, *xf, *key, *made = NULL, distance = pairs->distance, tau = FCCCDThreshold(distance);
+  PetscReal   *x0, *xf, *key, *made = NULL, tau = FCCCDThreshold(pairs->distance);
 
   PetscFunctionBegin;
   PetscCall(FCBodyGetContactPoints(Sh, &n, &prox, &x0, &xf, &key));
   if (!n) PetscFunctionReturn(0);
   PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * n, &made));
   for (PetscInt i = 0; i < n; i++) {
-    PetscInt    best;
-    PetscReal   bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0}, yf[3], X[3] = {0, 0, 0}, d, nrm[3], cpb[3];
-    PetscBool   dup = PETSC_FALSE;
-    FCProximity tp  = {0};
-    FCContact   c;
-    PetscCall(FCCollisionLandingTriangle(S, &x0[3 * i], &xf[3 * i], NULL, distance, pairs->continuous, tau, cand, &grid,
-                                         &best, bw, bcp));
-    if (best < 0) continue;
-    if (bw[0] == 1.0 || bw[1] == 1.0 || bw[2] == 1.0) continue; /* an FE vertex: its own contact */
-    {
-      const FCSurfaceTriangle *T = &S->tri[best];
-      FCCollisionTrianglePoint(T, bw, &tp, yf); /* bcp: its start position */
-      FCReferencePoint(3, T->X, bw, X);         /* the key: free of the weights' round-off */
-      for (PetscInt m = 0; m < nmade && !dup; m++)
-        dup = made[3 * m] == X[0] && made[3 * m + 1] == X[1] && made[3 * m + 2] == X[2] ? PETSC_TRUE : PETSC_FALSE;
-      if (dup) continue;
-      PetscCall(FCBodyShapeDistance(Sh, FC_AT_NOW, bcp, &d, nrm, cpb));
-      { /* needed only where the shape dips between the vertices: deeper than the gap the vertices'
-           own constraints hold (interpolated) by more than the intersection depth */
-        PetscReal interp = 0.0;
-        for (int a = 0; a < 3; a++) {
-          PetscReal da, na[3], ca[3];
-          PetscCall(FCBodyShapeDistance(Sh, FC_AT_NOW, T->x0[a], &da, na, ca));
-          interp += bw[a] * da;
-        }
-        /* (a point only the motion brings to the surface keeps its contact: its dip is not
-           known at the start of the step) */
-        if (d < distance && d >= interp - PetscMax(pairs->intersection_depth, PETSC_SMALL)) continue;
-      }
-      if (d >= distance) { /* the triangle point's own motion against the shape decides */
-        PetscBool hit = PETSC_FALSE;
-        if (pairs->continuous) PetscCall(FCCCDPointShape(Sh, bcp, yf, d, tau, &hit));
-        if (!hit) continue;
-      }
-      for (int k = 0; k < 3; k++) made[3 * nmade + k] = X[k];
-      nmade++;
-      PetscCall(PetscMemzero(&c, sizeof(c)));
-      c.pair    = pair;
-      c.body[0] = ife;
-      c.body[1] = ish;
-      c.prox[0] = tp;
-      for (int k = 0; k < 3; k++) {
-        c.prox[0].r[k] = X[k];
-        c.prox[1].r[k] = cpb[k];
-        c.key[k]       = X[k];
-        c.n[k]         = nrm[k];
-        c.p0[0][k]     = bcp[k];
-        c.pfree[0][k]  = yf[k];
-      }
-      PetscCall(FCBodyProximityPosition(Sh, &c.prox[1], FC_AT_START, c.p0[1]));
-      PetscCall(FCBodyProximityPosition(Sh, &c.prox[1], FC_AT_FREE, c.pfree[1]));
-      c.side2 = FC_SIDE_SHAPE;
-      c.gap0  = d;
-      c.mu    = pairs->mu[pair];
-      c.owner = rank;
-      PetscCall(FCContactSetAdd(set, &c));
-    }
+    PetscInt  best;
+    PetscReal bw[3] = {0, 0, 0}, bcp[3] = {0, 0, 0}, X[3];
+    PetscBool dup = PETSC_FALSE, mk = PETSC_FALSE;
+    PetscCall(FCCollisionLandingTriangle(S, &x0[3 * i], &xf[3 * i], NULL, pairs->distance, pairs->continuous, tau, cand,
+                                         &grid, &best, bw, bcp));
+    if (best < 0 || bw[0] == 1.0 || bw[1] == 1.0 || bw[2] == 1.0) continue; /* none, or an FE vertex */
+    FCReferencePoint(3, S->tri[best].X, bw, X); /* the key: free of the weights' round-off */
+    for (PetscInt m = 0; m < nmade && !dup; m++)
+      dup = made[3 * m] == X[0] && made[3 * m + 1] == X[1] && made[3 * m + 2] == X[2] ? PETSC_TRUE : PETSC_FALSE;
+    if (dup) continue;
+    PetscCall(fn(&S->tri[best], bw, bcp, X, ctx, &mk));
+    if (!mk) continue;
+    for (int k = 0; k < 3; k++) made[3 * nmade + k] = X[k];
+    nmade++;
   }
   PetscCall(PetscFree2(cand, made));
   PetscCall(PetscFree(grid.cells));
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  FCBody                Sh;
+  PetscInt              ish, ife, pair;
+  const FCContactPairs *pairs;
+  PetscMPIInt           rank;
+  FCContactSet         *set;
+} PictureCtx;
+
+/* A sphere or a capsule (-contact_rounded_surface picture, the default; with exact, one that moves more than half its
+   radius in the step, an impact): the points of its picture, each against the FE triangle it lands on
+   (FCCollisionLandingTriangle: continuous, so a fast shape's points find the surface they will reach), as the FE
+   material point there against the shape's signed distance, where the shape dips between the triangle's vertices */
+static PetscErrorCode PicturePointOnSurface(const FCSurfaceTriangle *T, const PetscReal bw[3], const PetscReal bcp[3],
+                                            const PetscReal X[3], void *ctx, PetscBool *made)
+{
+  PictureCtx           *P     = (PictureCtx *)ctx;
+  const FCContactPairs *pairs = P->pairs;
+  PetscReal             yf[3], d, nrm[3], cpb[3], distance = pairs->distance;
+  FCProximity           tp = {0};
+  FCContact             c;
+
+  PetscFunctionBegin;
+  *made = PETSC_FALSE;
+  FCCollisionTrianglePoint(T, bw, &tp, yf);
+  PetscCall(FCBodyShapeDistance(P->Sh, FC_AT_NOW, bcp, &d, nrm, cpb));
+  { /* needed only where the shape dips between the vertices: deeper than the gap the vertices'
+       own constraints hold (interpolated) by more than the intersection depth */
+    PetscReal interp = 0.0;
+    for (int a = 0; a < 3; a++) {
+      PetscReal da, na[3], ca[3];
+      PetscCall(FCBodyShapeDistance(P->Sh, FC_AT_NOW, T->x0[a], &da, na, ca));
+      interp += bw[a] * da;
+    }
+    /* (a point only the motion brings to the surface keeps its contact: its dip is not
+       known at the start of the step) */
+    if (d < distance && d >= interp - PetscMax(pairs->intersection_depth, PETSC_SMALL)) PetscFunctionReturn(0);
+  }
+  if (d >= distance) { /* the triangle point's own motion against the shape decides */
+    PetscBool hit = PETSC_FALSE;
+    if (pairs->continuous) PetscCall(FCCCDPointShape(P->Sh, bcp, yf, d, FCCCDThreshold(distance), &hit));
+    if (!hit) PetscFunctionReturn(0);
+  }
+  *made = PETSC_TRUE;
+  PetscCall(PetscMemzero(&c, sizeof(c)));
+  c.pair    = P->pair;
+  c.body[0] = P->ife;
+  c.body[1] = P->ish;
+  c.prox[0] = tp;
+  for (int k = 0; k < 3; k++) {
+    c.prox[0].r[k] = X[k];
+    c.prox[1].r[k] = cpb[k];
+    c.key[k]       = X[k];
+    c.n[k]         = nrm[k];
+    c.p0[0][k]     = bcp[k];
+    c.pfree[0][k]  = yf[k];
+  }
+  PetscCall(FCBodyProximityPosition(P->Sh, &c.prox[1], FC_AT_START, c.p0[1]));
+  PetscCall(FCBodyProximityPosition(P->Sh, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+  c.side2 = FC_SIDE_SHAPE;
+  c.gap0  = d;
+  c.mu    = pairs->mu[P->pair];
+  c.owner = P->rank;
+  PetscCall(FCContactSetAdd(P->set, &c));
   PetscFunctionReturn(0);
 }
 
@@ -148,8 +166,10 @@ PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt ish, PetscIn
   if (pairs->rounded_exact && FCBodyHasSmoothShape(Sh)) PetscCall(CoreFollows(Sh, &follows));
   if (follows)
     PetscCall(FCCollisionRoundedOnSurface(Sh, ish, ife, S, pair, pairs, rank, set));
-  else if (FCBodyHasSmoothShape(Sh))
-    PetscCall(PicturePointsOnSurface(Sh, F, ish, ife, S, pair, pairs, rank, set));
+  else if (FCBodyHasSmoothShape(Sh)) {
+    PictureCtx P = {Sh, ish, ife, pair, pairs, rank, set};
+    PetscCall(FCCollisionPictureLandings(Sh, S, pairs, PicturePointOnSurface, &P));
+  }
   if (!FCBodyHasSmoothShape(Sh)) PetscCall(ShapePointsOnSurface(Sh, F, ish, ife, S, pair, pairs, rank, set));
   PetscFunctionReturn(0);
 }
