@@ -90,6 +90,11 @@ PETSC_INTERN PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish,
                                                         PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
                                                         FCContactSet *);
 
+/* roundedsurface.c: whether the FE surface S's own free motion turns the normal of the sphere or capsule Sh at the
+   surface's points nearest its core by more than -contact_intersection_depth allows (the same answer on every rank) */
+PETSC_INTERN PetscErrorCode FCCollisionRoundedSurfaceTurns(FCBody Sh, Surface *S, const FCContactPairs *,
+                                                           PetscBool *turns);
+
 /* smooth.c: a rounded shape P (sphere, capsule, cylinder; body ip) against the analytic shape of S
    (body is), from their exact closest points (rank 0) */
 PETSC_INTERN PetscErrorCode FCCollisionRoundedShape(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,

@@ -221,36 +221,13 @@ static PetscErrorCode PicturePointBehind(const FCSurfaceTriangle *T, const Petsc
   PetscFunctionReturn(0);
 }
 
-/* A smooth shape (sphere, capsule): the points of the FE surface nearest the shape's core,
-   from each triangle near the shape (its swept box over the step, grown by the radius and the alarm distance): a
-   point inside a face whose outer side the core is on; a point on an edge where both triangles of the edge find
-   it (the distance to the surface is smallest there: a ridge, or the foot of the core on the edge itself;
-   elsewhere the face beside it holds a nearer point); a vertex is that vertex's own contact. These are the exact
-   closest points of the shape and the surface, which move continuously as the shape rolls (its picture's points
-   would make it roll as a polyhedron). They are taken after the free motion (the caller decides: shapepoints.c,
-   CoreFollows). */
-PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
-                                           const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+/* The box the core of Sh sweeps over the step (now and after the free motion), grown by grow */
+static PetscErrorCode CoreBox(FCBody Sh, PetscInt ncore, const PetscReal core[2][3], PetscReal grow,
+                              PetscReal now[2][3], PetscReal fr[2][3], PetscReal lo[3], PetscReal hi[3])
 {
-  PetscInt    ncore, nc = 0, nedge = 0, *cand;
-  PetscReal   core[2][3], now[2][3], fr[2][3], lo[3], hi[3], grow;
-  EdgePoint  *edge;
-  FCProximity q    = {0};
-  Across      A    = {0};
-  PetscBool   flat = PETSC_FALSE;
+  FCProximity q = {0};
 
   PetscFunctionBegin;
-  if (rank) PetscFunctionReturn(0);
-  FCBodyGetShapeCore(Sh, &ncore, core, &A.r, &flat);
-  PetscCheck(ncore > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Body '%s' has no rounded shape", Sh->name);
-  A.Sh    = Sh;
-  A.ish   = ish;
-  A.ife   = ife;
-  A.pair  = pair;
-  A.pairs = pairs;
-  A.rank  = rank;
-  A.set   = set;
-  grow    = A.r + pairs->distance;
   for (PetscInt k = 0; k < ncore; k++) {
     for (int i = 0; i < 3; i++) q.r[i] = core[k][i];
     PetscCall(FCBodyProximityPosition(Sh, &q, FC_AT_NOW, now[k]));
@@ -264,6 +241,92 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
       hi[i] = PetscMax(hi[i], PetscMax(now[k][i], fr[k][i]) + grow);
     }
   }
+  PetscFunctionReturn(0);
+}
+
+/* The exact points are linearized after the free motion: their normal is the shape's at the FE point's free position.
+   That is where the surface ends only if the step's contact forces move it little from there, as under a ball that
+   rolls. A soft surface that holds the shape up (a membrane under a falling ball) springs back without the forces in
+   the free motion, deep inside the shape, and the forces put it back: the normal at its free position is then turned
+   from the one where it ends by an angle theta, and the plane of the linearized contact, tangent to the shape along
+   that normal, holds the point r (1 - cos theta) off the shape with a force far from the shape's normal, which pushes
+   the membrane sideways (input/membrane.opts: an element of it turned inside out).
+   Here: whether, at any point of the surface nearest the core after the free motion and within the alarm distance,
+   the free motion of the FE point alone (the core after the free motion) turns the shape's normal by theta with
+   r (1 - cos theta) above -contact_intersection_depth. The caller (shapepoints.c) then takes the shape's picture
+   points, linearized at the start of the step, as for an impact. From the gathered surface and the shape's pose: the
+   same on every rank. */
+PetscErrorCode FCCollisionRoundedSurfaceTurns(FCBody Sh, Surface *S, const FCContactPairs *pairs, PetscBool *turns)
+{
+  PetscInt  ncore, nc = 0, *cand;
+  PetscReal core[2][3], now[2][3], fr[2][3], lo[3], hi[3], grow, r,
+      tol        = PetscMax(pairs->intersection_depth, PETSC_SMALL);
+  PetscBool flat = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  *turns = PETSC_FALSE;
+  FCBodyGetShapeCore(Sh, &ncore, core, &r, &flat);
+  if (ncore <= 0) PetscFunctionReturn(0);
+  grow = r + pairs->distance;
+  PetscCall(CoreBox(Sh, ncore, core, grow, now, fr, lo, hi));
+  PetscCall(PetscMalloc1(S->n + 1, &cand));
+  if (S->stamp)
+    FCSurfaceQueryBox(S, lo, hi, cand, &nc);
+  else
+    for (PetscInt t = 0; t < S->n; t++) cand[nc++] = t;
+  for (PetscInt k = 0; k < nc && !*turns; k++) {
+    const FCSurfaceTriangle *T = &S->tri[cand[k]];
+    PetscReal                c[3][3];
+    PetscInt                 np;
+    PetscCall(CorePoints(ncore, fr, T->xf, c, &np));
+    for (PetscInt j = 0; j < np && !*turns; j++) {
+      PetscReal cp[3], w[3], nf[3], ns[3], lf, ls;
+      FCClosestPointTriangle(c[j], T->xf[0], T->xf[1], T->xf[2], cp, w);
+      for (int i = 0; i < 3; i++) {
+        nf[i] = cp[i] - c[j][i];
+        ns[i] = w[0] * T->x0[0][i] + w[1] * T->x0[1][i] + w[2] * T->x0[2][i] - c[j][i];
+      }
+      lf = PetscSqrtReal(FCDot(nf, nf));
+      ls = PetscSqrtReal(FCDot(ns, ns));
+      if (lf - r >= pairs->distance) continue; /* out of reach after the free motion */
+      if (lf <= PETSC_SMALL * r || ls <= PETSC_SMALL * r || r * (1.0 - FCDot(nf, ns) / (lf * ls)) > tol)
+        *turns = PETSC_TRUE;
+    }
+  }
+  PetscCall(PetscFree(cand));
+  PetscFunctionReturn(0);
+}
+
+/* A smooth shape (sphere, capsule): the points of the FE surface nearest the shape's core,
+   from each triangle near the shape (its swept box over the step, grown by the radius and the alarm distance): a
+   point inside a face whose outer side the core is on; a point on an edge where both triangles of the edge find
+   it (the distance to the surface is smallest there: a ridge, or the foot of the core on the edge itself;
+   elsewhere the face beside it holds a nearer point); a vertex is that vertex's own contact. These are the exact
+   closest points of the shape and the surface, which move continuously as the shape rolls (its picture's points
+   would make it roll as a polyhedron). They are taken after the free motion (the caller decides: shapepoints.c,
+   CoreFollows). */
+PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
+                                           const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+{
+  PetscInt   ncore, nc = 0, nedge = 0, *cand;
+  PetscReal  core[2][3], now[2][3], fr[2][3], lo[3], hi[3], grow;
+  EdgePoint *edge;
+  Across     A    = {0};
+  PetscBool  flat = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  if (rank) PetscFunctionReturn(0);
+  FCBodyGetShapeCore(Sh, &ncore, core, &A.r, &flat);
+  PetscCheck(ncore > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Body '%s' has no rounded shape", Sh->name);
+  A.Sh    = Sh;
+  A.ish   = ish;
+  A.ife   = ife;
+  A.pair  = pair;
+  A.pairs = pairs;
+  A.rank  = rank;
+  A.set   = set;
+  grow    = A.r + pairs->distance;
+  PetscCall(CoreBox(Sh, ncore, core, grow, now, fr, lo, hi));
   PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * S->n + 1, &edge));
   if (S->stamp)
     FCSurfaceQueryBox(S, lo, hi, cand, &nc);

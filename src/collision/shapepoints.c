@@ -6,8 +6,10 @@
      (a point or a segment), the FE material point there (barycentric weights, side 1) against the shape's signed
      distance (side 2): the kind of contact an FE vertex has, exact for the shape, so a ball or a capsule rolls
      over the surface as it rolls on a plane and not as the polyhedron of its picture (each facet an impact); a
-     shape that moves more than half its radius in a step (an impact) has its picture's points instead, each
-     against the triangle it lands on (PicturePointOnSurface);
+     shape that moves more than half its radius in a step (an impact), or a dynamic one on a surface whose own free
+     motion turns the shape's normal at its points (a soft membrane springing back from under a ball:
+     FCCollisionRoundedSurfaceTurns), has its picture's points instead, each against the triangle it lands on
+     (PicturePointOnSurface);
    - a shape with corners and edges (box, cylinder; ShapePointsOnSurface): the points
      of the shape's picture, fixed in the shape's frame, against their landing triangles, as a rigid mesh's
      vertices, dormant. (The shape's distance at the FE point is degenerate at a corner: the FE point above a box
@@ -135,9 +137,10 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
 }
 
 /* Whether the core of rounded shape Sh moves less than half its radius over the step (rolling, sliding, resting),
-   or is kinematic (its pose at the end is given, not predicted): its surface points are then taken after the free
-   motion (roundedsurface.c) */
-static PetscErrorCode CoreFollows(FCBody Sh, PetscBool *follows)
+   and, for a dynamic shape, the FE surface S's own free motion does not turn the shape's normal at its points
+   (FCCollisionRoundedSurfaceTurns), or is kinematic (its pose at the end is given, not predicted): its surface points
+   are then taken after the free motion (roundedsurface.c) */
+static PetscErrorCode CoreFollows(FCBody Sh, Surface *S, const FCContactPairs *pairs, PetscBool *follows)
 {
   PetscInt    ncore;
   PetscReal   core[2][3], r, move = 0.0;
@@ -154,6 +157,13 @@ static PetscErrorCode CoreFollows(FCBody Sh, PetscBool *follows)
     move = PetscMax(move, PetscSqrtReal(PetscSqr(xf[0] - x0[0]) + PetscSqr(xf[1] - x0[1]) + PetscSqr(xf[2] - x0[2])));
   }
   *follows = (PetscBool)(FCBodyIsPrescribed(Sh) || move <= 0.5 * r);
+  /* a dynamic shape: and the surface ends near where its free motion leaves it (roundedsurface.c; the fast scheme
+     re-linearizes the normal against a kinematic shape at its given pose, not against a dynamic one) */
+  if (*follows && !FCBodyIsPrescribed(Sh)) {
+    PetscBool turns;
+    PetscCall(FCCollisionRoundedSurfaceTurns(Sh, S, pairs, &turns));
+    if (turns) *follows = PETSC_FALSE;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -163,7 +173,7 @@ PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt ish, PetscIn
   PetscBool follows = PETSC_FALSE;
 
   PetscFunctionBegin;
-  if (pairs->rounded_exact && FCBodyHasSmoothShape(Sh)) PetscCall(CoreFollows(Sh, &follows));
+  if (pairs->rounded_exact && FCBodyHasSmoothShape(Sh)) PetscCall(CoreFollows(Sh, S, pairs, &follows));
   if (follows)
     PetscCall(FCCollisionRoundedOnSurface(Sh, ish, ife, S, pair, pairs, rank, set));
   else if (FCBodyHasSmoothShape(Sh)) {
