@@ -31,7 +31,10 @@ c.check(all(np.isfinite(v) for k in m for v in m[k]), "measures are finite")
 c.check(m[8][0] < m[3][0] < m[1][0], "complementarity falls with Newton iterations: %.2e (1) > %.2e (3) > %.2e (8) m" % (m[1][0], m[3][0], m[8][0]))
 # the recursive scheme converges: 8 iterations leave far less than the explicit linearization
 c.check(m[8][0] < 1e-3 * m[1][0], "8 iterations: complementarity %.2e < 1e-3 x that of 1 (%.2e)" % (m[8][0], m[1][0]))
-c.check(m[8][1] < m[3][1] < m[1][1] and m[1][1] > 1e-2, "cone violation falls: %.2e > %.2e > %.2e (explicit-like 1 iteration > 1e-2: the normals turn)" % (m[1][1], m[3][1], m[8][1]))
+# (the fingers' exact contact points, -contact_rounded_surface exact, take their normals where the fingers will be after
+# the step, so 1 iteration's forces are off the end cone by much less than with their picture's points; what is left
+# of the turn still puts them outside it by more than 5e-3)
+c.check(m[8][1] < m[3][1] < m[1][1] and m[1][1] > 5e-3, "cone violation falls: %.2e > %.2e > %.2e (explicit-like 1 iteration > 5e-3: the normals turn)" % (m[1][1], m[3][1], m[8][1]))
 rel = max(abs(me[i] - m[1][i]) / me[i] for i in range(3))
 c.check(rel < 1e-6, "fast with 1 iteration = explicit: measures rel. diff %.1e < 1e-6" % rel)
 # energy change adds up

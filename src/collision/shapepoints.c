@@ -62,7 +62,7 @@ typedef struct {
   FCContactSet         *set;
 } PictureCtx;
 
-/* A sphere or a capsule (-contact_rounded_surface picture, the default; with exact, one that moves more than half its
+/* A sphere or a capsule (-contact_rounded_surface picture; with exact, the default, one that moves more than half its
    radius in the step, an impact): the points of its picture, each against the FE triangle it lands on
    (FCCollisionLandingTriangle: continuous, so a fast shape's points find the surface they will reach), as the FE
    material point there against the shape's signed distance, where the shape dips between the triangle's vertices */

@@ -63,11 +63,11 @@
                               shape smaller than the elements, a corner or a sphere's cap pressed
                               into an FE face between its vertices (default 1; src/collision/
                               shapepoints.c); 0: the FE vertices against the shape only
-     -contact_rounded_surface picture|exact  with shape points, a sphere or a capsule against an FE
-                              surface: its picture's points where they land (default), or the points of
-                              the surface nearest its core, taken after the free motion (src/collision/
-                              roundedsurface.c: rolls without braking; a soft membrane wrapped round a
-                              ball had an element turned inside out with it, docs/validation.md)
+     -contact_rounded_surface exact|picture  with shape points, a sphere or a capsule against an FE
+                              surface: the points of the surface nearest its core, taken after the free
+                              motion (default; src/collision/roundedsurface.c: it rolls without
+                              braking), or its picture's points where they land (shapepoints.c: it
+                              rolls as its picture's polyhedron, docs/validation.md)
      -contact_separation_speed v  bodies that start a step inside each other are pushed apart at most
                               this fast: a contact deeper than v h at the start may stay (depth - v h)
                               deep at the end of the step (> 0, default 1 m/s; docs/hard-cases.md)
@@ -191,11 +191,11 @@ static PetscErrorCode ReadContactPairs(FCScene s)
                             NULL));
     {
       const char *kinds[] = {"picture", "exact"};
-      PetscInt    kind    = 0;
+      PetscInt    kind    = 1;
       PetscCall(
           PetscOptionsEList("-contact_rounded_surface",
                             "A sphere or a capsule against an FE surface: its picture's points or the exact nearest",
-                            NULL, kinds, 2, kinds[0], &kind, NULL));
+                            NULL, kinds, 2, kinds[1], &kind, NULL));
       s->pairs.rounded_exact = kind == 1 ? PETSC_TRUE : PETSC_FALSE;
     }
     PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_separation_speed",
