@@ -301,9 +301,69 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
    under. (A vertex whose surface faces away from the shape, n . n_v > 0 beyond that band, belongs to
    a body the shape has crossed, a discrete step into a thin plate: it keeps its contact, which holds
    it on the side it is on.) */
+/* The contact of FE vertex x0 -> xf (prox: its proximity) against the rounded shape S (-contact_rounded_surface exact,
+   the shape's surface points taken after the free motion: FCCollisionRoundedFollows), taken as the surface points of
+   roundedsurface.c are: the normal the shape's at the vertex after the free motion, the shape's point the one along
+   it from the core's nearest point at the start (no moment about the core), the gap the solver starts from the
+   shape's exact distance after the free motion (qcurv). Linearized at the start instead, the contact of a vertex
+   just ahead of a rolling ball or cylinder is the plane tangent to the shape there, which the shape's forward motion
+   runs into: a vertical kick and a brake at each vertex it rolls over. */
+static PetscErrorCode VertexAtFree(FCBody S, const PetscReal x0[3], const PetscReal xf[3], FCContact *c)
+{
+  PetscInt    ncore;
+  PetscReal   core[2][3], r, df, cpf[3], cw[3], cb[3], p2[3], dfree[3];
+  PetscBool   flat;
+  FCProximity q = {0};
+
+  PetscFunctionBegin;
+  FCBodyGetShapeCore(S, &ncore, core, &r, &flat);
+  PetscCall(FCBodyShapeDistance(S, FC_AT_FREE, xf, &df, c->n, cpf));
+  { /* the core's point nearest the vertex after the free motion (body frame) */
+    PetscReal fr[2][3], t = 0.0;
+    for (PetscInt k = 0; k < ncore; k++) {
+      for (int i = 0; i < 3; i++) q.r[i] = core[k][i];
+      PetscCall(FCBodyProximityPosition(S, &q, FC_AT_FREE, fr[k]));
+    }
+    if (ncore == 2) {
+      PetscReal ab[3], ay[3];
+      for (int i = 0; i < 3; i++) {
+        ab[i] = fr[1][i] - fr[0][i];
+        ay[i] = xf[i] - fr[0][i];
+      }
+      t = FCDot(ay, ab) / FCDot(ab, ab);
+      if (flat && t >= 0.0 && t <= 1.0) { /* over a cylinder's side, its rims included: the side's distance and
+                                               radial normal (at a rim the end face is as near, and sideways) */
+        PetscReal v[3], l;
+        for (int i = 0; i < 3; i++) v[i] = ay[i] - t * ab[i];
+        l = PetscSqrtReal(FCDot(v, v));
+        if (l > 0.0) {
+          df = l - r;
+          for (int i = 0; i < 3; i++) c->n[i] = v[i] / l;
+        }
+      }
+      t = PetscMin(1.0, PetscMax(0.0, t));
+    }
+    for (int i = 0; i < 3; i++) cw[i] = ncore == 2 ? fr[0][i] + t * (fr[1][i] - fr[0][i]) : fr[0][i];
+    PetscCall(FCBodyToBodyFrame(S, FC_AT_FREE, cw, PETSC_FALSE, cb));
+  }
+  for (int i = 0; i < 3; i++) q.r[i] = cb[i];
+  PetscCall(FCBodyProximityPosition(S, &q, FC_AT_NOW, p2));
+  for (int i = 0; i < 3; i++) p2[i] += r * c->n[i];
+  PetscCall(FCBodyToBodyFrame(S, FC_AT_NOW, p2, PETSC_FALSE, c->prox[1].r));
+  for (int i = 0; i < 3; i++) {
+    c->p0[0][i]    = x0[i];
+    c->pfree[0][i] = xf[i];
+  }
+  PetscCall(FCBodyProximityPosition(S, &c->prox[1], FC_AT_START, c->p0[1]));
+  PetscCall(FCBodyProximityPosition(S, &c->prox[1], FC_AT_FREE, c->pfree[1]));
+  for (int i = 0; i < 3; i++) dfree[i] = c->pfree[0][i] - c->pfree[1][i];
+  c->qcurv = df - FCDot(c->n, dfree);
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode PointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, PetscInt ishp, PetscInt p, PetscInt nvn,
-                                         const FCVertexNormal *vn, const FCContactPairs *pairs, PetscMPIInt rank,
-                                         FCContactSet *set)
+                                         const FCVertexNormal *vn, PetscBool atfree, const FCContactPairs *pairs,
+                                         PetscMPIInt rank, FCContactSet *set)
 {
   PetscInt     n;
   FCProximity *prox;
@@ -341,6 +401,7 @@ static PetscErrorCode PointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, Pets
     }
     PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_START, c.p0[1]));
     PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+    if (atfree) PetscCall(VertexAtFree(S, &x0[3 * i], &xf[3 * i], &c));
     c.gap0  = d;
     c.mu    = pairs->mu[p];
     c.owner = rank;
@@ -424,7 +485,7 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
         if (FCBodyHasShapeCore(P))
           PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
         else
-          PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, 0, NULL, pairs, rank, set));
+          PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, 0, NULL, PETSC_FALSE, pairs, rank, set));
         if (FCBodyHasShapeCore(S)) PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
       }
       continue;
@@ -432,15 +493,17 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
     { /* an FE body's vertices against the shape; against a bounded shape, with -contact_facing, only
          where the shape faces their surface, and with -contact_shape_points the shape's picture
          points against the FE surface (shapepoints.c) */
-      Surface        *Sf  = NULL;
-      FCVertexNormal *vn  = NULL;
-      PetscInt        nvn = 0;
+      Surface        *Sf     = NULL;
+      FCVertexNormal *vn     = NULL;
+      PetscInt        nvn    = 0;
+      PetscBool       atfree = PETSC_FALSE;
       if (FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S) &&
           (pairs->shape_points || pairs->facing)) {
         PetscCall(SurfaceBuild(comm, P, pairs, &Sf));
         if (pairs->facing) PetscCall(VertexNormals(Sf->n, Sf->tri, &nvn, &vn));
       }
-      PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, nvn, vn, pairs, rank, set));
+      if (Sf && pairs->shape_points) PetscCall(FCCollisionRoundedFollows(S, Sf, pairs, &atfree));
+      PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, nvn, vn, atfree, pairs, rank, set));
       if (Sf && pairs->shape_points) PetscCall(FCCollisionShapePoints(S, P, ishp, ipts, Sf, p, pairs, rank, set));
       if (Sf) PetscCall(FCSurfaceDestroy(&Sf));
       PetscCall(PetscFree(vn));

@@ -75,6 +75,11 @@ PETSC_INTERN PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt
                                                    PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
                                                    FCContactSet *);
 
+/* shapepoints.c: whether the surface points of rounded shape Sh against the FE surface S (and the FE vertices'
+   contacts with it) are taken after the free motion (-contact_rounded_surface exact, and the shape's core follows its
+   free motion: no impact, no surface turning its normal); the same on every rank */
+PETSC_INTERN PetscErrorCode FCCollisionRoundedFollows(FCBody Sh, Surface *S, const FCContactPairs *,
+                                                      PetscBool *follows);
 /* shapepoints.c: each point of the picture of shape Sh that lands on surface S inside a triangle (not at an FE
    vertex: that vertex's own contact), once per FE material point (by its reference position X): fn gets the
    triangle, the weights bw, the point's start position bcp and X, and says whether it made a contact there (a
@@ -94,6 +99,10 @@ PETSC_INTERN PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish,
    surface's points nearest its core by more than -contact_intersection_depth allows (the same answer on every rank) */
 PETSC_INTERN PetscErrorCode FCCollisionRoundedSurfaceTurns(FCBody Sh, Surface *S, const FCContactPairs *,
                                                            PetscBool *turns);
+
+/* roundedsurface.c: whether the side of cylinder Sh lies on the FE surface S after the free motion (the same on every
+   rank) */
+PETSC_INTERN PetscErrorCode FCCollisionCylinderLies(FCBody Sh, Surface *S, const FCContactPairs *, PetscBool *lies);
 
 /* smooth.c: a rounded shape P (sphere, capsule, cylinder; body ip) against the analytic shape of S
    (body is), from their exact closest points (rank 0) */

@@ -1,9 +1,9 @@
-/* A sphere or a capsule against an FE surface, from their exact closest points (-contact_shape_points, called by
-   FCCollisionShapePoints, shapepoints.c): besides the FE vertices against the shape's signed distance, the points of
-   the FE surface nearest the shape's core, each the FE material point there (barycentric weights, side 1) against
-   the shape's distance (side 2), taken where the point and the shape will be after the free motion. A ball or a
-   capsule then rolls over an FE surface as it rolls on a plane, not as the polyhedron of its picture (each facet an
-   impact) nor over the surface's vertices (a bump at each). */
+/* A sphere, a capsule or a cylinder's side against an FE surface, from their exact closest points
+   (-contact_shape_points, called by FCCollisionShapePoints, shapepoints.c): besides the FE vertices against the
+   shape's signed distance, the points of the FE surface nearest the shape's core, each the FE material point there
+   (barycentric weights, side 1) against the shape's distance (side 2), taken where the point and the shape will be
+   after the free motion. A ball, a capsule or a cylinder then rolls over an FE surface as it rolls on a plane, not as
+   the polyhedron of its picture (each facet an impact) nor over the surface's vertices (a bump at each). */
 #include "collisionimpl.h"
 
 /* The point of the triangle with vertices at x (reference positions Xr) nearest the world point c: its weights w
@@ -102,6 +102,55 @@ static PetscErrorCode CorePoints(PetscInt ncore, const PetscReal core[2][3], con
   PetscFunctionReturn(0);
 }
 
+/* A cylinder's side over the triangle with vertices at T (outward normal nt): the axis points (world) whose feet on
+   the triangle's plane are the ends of the part of the axis' foot that lies on the triangle (where it enters and
+   leaves the triangle, or an end of the axis over it). Their nearest points on the triangle are then the points
+   under the side line where it crosses the triangle's edges, and its ends: the FE points a cylinder lying on the
+   surface presses (its rims, the ends of that line, are its picture's points). None where the axis is steeper than
+   60 degrees to the plane (the cylinder stands on a rim or an end: its picture's points). */
+static void SidePoints(const PetscReal core[2][3], const PetscReal T[3][3], const PetscReal nt[3], PetscReal c[3][3],
+                       PetscInt *n)
+{
+  PetscReal ab[3], lab, tin, tout, inset;
+
+  *n = 0;
+  for (int i = 0; i < 3; i++) ab[i] = core[1][i] - core[0][i];
+  lab = PetscSqrtReal(FCDot(ab, ab));
+  if (lab == 0.0 || PetscAbsReal(FCDot(ab, nt)) > 0.5 * lab) return;
+  /* the line's ends a hair inside the rims: their feet on the axis within the segment (the side's distance,
+   * ShapeDistance) */
+  inset = 1e-6;
+  tin   = inset;
+  tout  = 1.0 - inset;
+  for (int e = 0; e < 3;
+       e++) { /* the foot a' + t (b' - a') on the inner side of edge e: m . (a' - v_e) + t m . ab >= 0 */
+    PetscReal ed[3], m[3], oc[3], a0[3], num, den;
+    for (int i = 0; i < 3; i++) {
+      ed[i] = T[(e + 1) % 3][i] - T[e][i];
+      oc[i] = T[(e + 2) % 3][i] - T[e][i];
+      a0[i] = core[0][i] - T[e][i];
+    }
+    FCCross(nt, ed, m);
+    if (FCDot(m, oc) < 0.0)
+      for (int i = 0; i < 3; i++) m[i] = -m[i];
+    num = FCDot(m, a0); /* m is in the plane: the feet's offsets along nt do not count */
+    den = FCDot(m, ab);
+    if (den == 0.0) {
+      if (num < 0.0) return;
+    } else if (den > 0.0)
+      tin = PetscMax(tin, -num / den);
+    else
+      tout = PetscMin(tout, -num / den);
+  }
+  if (tin > tout) return;
+  for (int i = 0; i < 3; i++) c[0][i] = core[0][i] + tin * ab[i];
+  *n = 1;
+  if (tout > tin) {
+    for (int i = 0; i < 3; i++) c[1][i] = core[0][i] + tout * ab[i];
+    *n = 2;
+  }
+}
+
 typedef struct {
   PetscReal X[3];        /* reference position: the sort key */
   PetscInt  tri, front;  /* front: the core in front of triangle tri's plane */
@@ -112,11 +161,42 @@ typedef struct {
 typedef struct {
   FCBody                Sh;
   PetscInt              ish, ife, pair;
-  PetscReal             r; /* radius */
+  PetscReal             r;       /* radius */
+  PetscBool             side;    /* a cylinder's side: the distance to its axis' line, less r */
+  PetscReal             axis[3]; /* the cylinder's axis after the free motion (unit, world) */
   const FCContactPairs *pairs;
   PetscMPIInt           rank;
   FCContactSet         *set;
 } Across;
+
+/* The shape's distance at the world point y after the free motion and its normal there; on a cylinder's side (A->side:
+   y's foot on the axis within the segment, SidePoints) the side's own, whose normal stays radial at the rims where the
+   end faces are as near */
+static PetscErrorCode ShapeDistance(const Across *A, const PetscReal cb[3], const PetscReal y[3], PetscReal *d,
+                                    PetscReal n[3])
+{
+  PetscReal cf[3];
+
+  PetscFunctionBegin;
+  if (!A->side) {
+    PetscCall(FCBodyShapeDistance(A->Sh, FC_AT_FREE, y, d, n, cf));
+    PetscFunctionReturn(0);
+  }
+  {
+    FCProximity q = {0};
+    PetscReal   c[3], v[3], l;
+    for (int i = 0; i < 3; i++) q.r[i] = cb[i];
+    PetscCall(FCBodyProximityPosition(A->Sh, &q, FC_AT_FREE, c));
+    for (int i = 0; i < 3; i++) v[i] = y[i] - c[i];
+    l = FCDot(v, A->axis);
+    for (int i = 0; i < 3; i++) v[i] -= l * A->axis[i];
+    l = PetscSqrtReal(FCDot(v, v));
+    PetscCheck(l > 0.0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Body '%s': a point on its axis", A->Sh->name);
+    *d = l - A->r;
+    for (int i = 0; i < 3; i++) n[i] = v[i] / l;
+  }
+  PetscFunctionReturn(0);
+}
 
 /* The contact of the FE material point at weights bw of triangle T (key X) against the rounded shape whose core
    point cb (body frame) is nearest it after the free motion, made where the shape will dip between the triangle's
@@ -128,14 +208,14 @@ typedef struct {
 static PetscErrorCode AddSurfacePoint(const Across *A, const FCSurfaceTriangle *T, const PetscReal bw[3],
                                       const PetscReal X[3], const PetscReal cb[3])
 {
-  PetscReal   bcp[3], yf[3], d0 = 0.0, df, cf[3], interp = 0.0, n[3], p2[3], core[3];
+  PetscReal   bcp[3], yf[3], d0 = 0.0, df, interp = 0.0, n[3], p2[3], core[3];
   FCProximity tp = {0}, q = {0};
   FCContact   c;
 
   PetscFunctionBegin;
   FCCollisionTrianglePoint(T, bw, &tp, yf);
   for (int i = 0; i < 3; i++) bcp[i] = bw[0] * T->x0[0][i] + bw[1] * T->x0[1][i] + bw[2] * T->x0[2][i];
-  PetscCall(FCBodyShapeDistance(A->Sh, FC_AT_FREE, yf, &df, n, cf));
+  PetscCall(ShapeDistance(A, cb, yf, &df, n));
   for (int a = 0; a < 3; a++) {
     PetscReal da, na[3], ca[3];
     if (bw[a] == 0.0) continue;
@@ -244,6 +324,39 @@ static PetscErrorCode CoreBox(FCBody Sh, PetscInt ncore, const PetscReal core[2]
   PetscFunctionReturn(0);
 }
 
+/* Whether the side of cylinder Sh lies over a triangle of S near it after the free motion (SidePoints has points
+   there within reach): the side's points then hold the rims' lowest points too (the ends of the side's lowest line),
+   and its picture's points on the rims would be rows redundant with them, fixed in the shape's frame */
+PetscErrorCode FCCollisionCylinderLies(FCBody Sh, Surface *S, const FCContactPairs *pairs, PetscBool *lies)
+{
+  PetscInt  ncore, nc = 0, *cand;
+  PetscReal core[2][3], now[2][3], fr[2][3], lo[3], hi[3], grow, r;
+  PetscBool flat = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  *lies = PETSC_FALSE;
+  FCBodyGetShapeCore(Sh, &ncore, core, &r, &flat);
+  if (ncore != 2 || !flat) PetscFunctionReturn(0);
+  grow = r + pairs->distance;
+  PetscCall(CoreBox(Sh, ncore, core, grow, now, fr, lo, hi));
+  PetscCall(PetscMalloc1(S->n + 1, &cand));
+  if (S->stamp)
+    FCSurfaceQueryBox(S, lo, hi, cand, &nc);
+  else
+    for (PetscInt t = 0; t < S->n; t++) cand[nc++] = t;
+  for (PetscInt k = 0; k < nc && !*lies; k++) {
+    const FCSurfaceTriangle *T = &S->tri[cand[k]];
+    PetscReal                c[3][3], nt[3];
+    PetscInt                 np;
+    FCTriangleNormal(T->xf, nt);
+    SidePoints(fr, T->xf, nt, c, &np);
+    for (PetscInt j = 0; j < np; j++)
+      if (TriangleDistance(T->xf, c[j]) <= grow) *lies = PETSC_TRUE;
+  }
+  PetscCall(PetscFree(cand));
+  PetscFunctionReturn(0);
+}
+
 /* The exact points are linearized after the free motion: their normal is the shape's at the FE point's free position.
    That is where the surface ends only if the step's contact forces move it little from there, as under a ball that
    rolls. A soft surface that holds the shape up (a membrane under a falling ball) springs back without the forces in
@@ -253,9 +366,11 @@ static PetscErrorCode CoreBox(FCBody Sh, PetscInt ncore, const PetscReal core[2]
    the membrane sideways (input/membrane.opts: an element of it turned inside out).
    Here: whether, at any point of the surface nearest the core after the free motion and within the alarm distance,
    the free motion of the FE point alone (the core after the free motion) turns the shape's normal by theta with
-   r (1 - cos theta) above -contact_intersection_depth. The caller (shapepoints.c) then takes the shape's picture
-   points, linearized at the start of the step, as for an impact. From the gathered surface and the shape's pose: the
-   same on every rank. */
+   r (1 - cos theta) above -contact_intersection_depth; or whether the shape's own free motion takes it deeper into
+   the surface than the alarm distance: an impact, after which the shape does not end near its free pose either (a
+   ball dropped onto the membrane: the first step's contacts taken there, deep in it, made a problem the contact solver
+   did not converge on within its budget). The caller (shapepoints.c) then takes the shape's picture points,
+   linearized at the start of the step. From the gathered surface and the shape's pose: the same on every rank. */
 PetscErrorCode FCCollisionRoundedSurfaceTurns(FCBody Sh, Surface *S, const FCContactPairs *pairs, PetscBool *turns)
 {
   PetscInt  ncore, nc = 0, *cand;
@@ -289,7 +404,8 @@ PetscErrorCode FCCollisionRoundedSurfaceTurns(FCBody Sh, Surface *S, const FCCon
       lf = PetscSqrtReal(FCDot(nf, nf));
       ls = PetscSqrtReal(FCDot(ns, ns));
       if (lf - r >= pairs->distance) continue; /* out of reach after the free motion */
-      if (lf <= PETSC_SMALL * r || ls <= PETSC_SMALL * r || r * (1.0 - FCDot(nf, ns) / (lf * ls)) > tol)
+      if (lf <= PETSC_SMALL * r || ls <= PETSC_SMALL * r || r * (1.0 - FCDot(nf, ns) / (lf * ls)) > tol ||
+          r - lf > pairs->distance)
         *turns = PETSC_TRUE;
     }
   }
@@ -297,8 +413,9 @@ PetscErrorCode FCCollisionRoundedSurfaceTurns(FCBody Sh, Surface *S, const FCCon
   PetscFunctionReturn(0);
 }
 
-/* A smooth shape (sphere, capsule): the points of the FE surface nearest the shape's core,
-   from each triangle near the shape (its swept box over the step, grown by the radius and the alarm distance): a
+/* A rounded shape (sphere, capsule, a cylinder's side): the points of the FE surface nearest the shape's core (a
+   cylinder's: those under its lowest line, SidePoints, against the side's own distance), from each triangle near the
+   shape (its swept box over the step, grown by the radius and the alarm distance): a
    point inside a face whose outer side the core is on; a point on an edge where both triangles of the edge find
    it (the distance to the surface is smallest there: a ridge, or the foot of the core on the edge itself;
    elsewhere the face beside it holds a nearer point); a vertex is that vertex's own contact. These are the exact
@@ -327,6 +444,13 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
   A.set   = set;
   grow    = A.r + pairs->distance;
   PetscCall(CoreBox(Sh, ncore, core, grow, now, fr, lo, hi));
+  if (flat) { /* a cylinder: its side */
+    PetscReal l = 0.0;
+    for (int i = 0; i < 3; i++) A.axis[i] = fr[1][i] - fr[0][i];
+    l = PetscSqrtReal(FCDot(A.axis, A.axis));
+    for (int i = 0; i < 3; i++) A.axis[i] /= l;
+    A.side = PETSC_TRUE;
+  }
   PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * S->n + 1, &edge));
   if (S->stamp)
     FCSurfaceQueryBox(S, lo, hi, cand, &nc);
@@ -337,8 +461,11 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
     const PetscReal(*x)[3]     = T->xf;
     PetscReal c[3][3], nt[3];
     PetscInt  np;
-    PetscCall(CorePoints(ncore, fr, x, c, &np));
     FCTriangleNormal(x, nt);
+    if (flat)
+      SidePoints(fr, x, nt, c, &np);
+    else
+      PetscCall(CorePoints(ncore, fr, x, c, &np));
     for (PetscInt j = 0; j < np; j++) {
       PetscReal w[3], X[3], side[3], cb[3];
       PetscInt  nz;

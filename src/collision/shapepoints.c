@@ -2,18 +2,22 @@
    vertices, so a shape smaller than the elements, a box's corner or a sphere's cap sinks into an FE face between them
    (the end-of-step check counts its points inside, intersection.c). Contacts of the shape with the FE surface
    between the vertices are then made too (rank 0), in one of two forms:
-   - a smooth shape (sphere, capsule; roundedsurface.c): the points of the FE surface nearest the shape's core
-     (a point or a segment), the FE material point there (barycentric weights, side 1) against the shape's signed
-     distance (side 2): the kind of contact an FE vertex has, exact for the shape, so a ball or a capsule rolls
-     over the surface as it rolls on a plane and not as the polyhedron of its picture (each facet an impact); a
-     shape that moves more than half its radius in a step (an impact), or a dynamic one on a surface whose own free
-     motion turns the shape's normal at its points (a soft membrane springing back from under a ball:
-     FCCollisionRoundedSurfaceTurns), has its picture's points instead, each against the triangle it lands on
-     (PicturePointOnSurface);
+   - a rounded shape (sphere, capsule, and a cylinder's side; roundedsurface.c): the points of the FE surface
+     nearest the shape's core (a point or a segment; a cylinder lying on the surface: the points under its lowest
+     line), the FE material point there (barycentric weights, side 1) against the shape's signed distance (side 2):
+     the kind of contact an FE vertex has, exact for the shape, so a ball, a capsule or a cylinder rolls over the
+     surface as it rolls on a plane and not as the polyhedron of its picture (each facet an impact); taken after the
+     free motion (-contact_rounded_surface exact), as are the FE vertices' own contacts with the shape then
+     (collision.c). A shape that moves more than half its radius in a step, or a dynamic one whose free motion takes
+     it deeper into the surface than the alarm distance (an impact) or that lies on a surface whose own free motion
+     turns the shape's normal at its points (a soft membrane springing back from under a ball;
+     FCCollisionRoundedSurfaceTurns), has a sphere's or capsule's picture points instead, each against the triangle
+     it lands on (PicturePointOnSurface);
    - a shape with corners and edges (box, cylinder; ShapePointsOnSurface): the points
      of the shape's picture, fixed in the shape's frame, against their landing triangles, as a rigid mesh's
-     vertices, dormant. (The shape's distance at the FE point is degenerate at a corner: the FE point above a box
-     corner sunk into the face is on the box's edge, at distance 0.)
+     vertices, dormant; a cylinder's rims not while its side lies on the surface (the ends of its lowest line hold
+     the rims' lowest points: FCCollisionCylinderLies). (The shape's distance at the FE point is degenerate at a
+     corner: the FE point above a box corner sunk into the face is on the box's edge, at distance 0.)
    The first kind is made only where the shape dips between the triangle's vertices: where its gap at the point is
    smaller than the gaps of the vertices interpolated there by more than -contact_intersection_depth (at the start
    of the step, for a point within the alarm distance); elsewhere the vertices' own contacts hold the point to
@@ -148,6 +152,8 @@ static PetscErrorCode CoreFollows(FCBody Sh, Surface *S, const FCContactPairs *p
   FCProximity q = {0};
 
   PetscFunctionBegin;
+  *follows = PETSC_FALSE;
+  if (!pairs->rounded_exact || !FCBodyHasShapeCore(Sh)) PetscFunctionReturn(0);
   FCBodyGetShapeCore(Sh, &ncore, core, &r, &flat);
   for (PetscInt k = 0; k < ncore; k++) {
     PetscReal x0[3], xf[3];
@@ -170,16 +176,24 @@ static PetscErrorCode CoreFollows(FCBody Sh, Surface *S, const FCContactPairs *p
 PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                       const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
-  PetscBool follows = PETSC_FALSE;
+  PetscBool follows = PETSC_FALSE, lies = PETSC_FALSE;
 
   PetscFunctionBegin;
-  if (pairs->rounded_exact && FCBodyHasSmoothShape(Sh)) PetscCall(CoreFollows(Sh, S, pairs, &follows));
+  PetscCall(CoreFollows(Sh, S, pairs, &follows));
+  if (follows && !FCBodyHasSmoothShape(Sh)) PetscCall(FCCollisionCylinderLies(Sh, S, pairs, &lies));
   if (follows)
     PetscCall(FCCollisionRoundedOnSurface(Sh, ish, ife, S, pair, pairs, rank, set));
   else if (FCBodyHasSmoothShape(Sh)) {
     PictureCtx P = {Sh, ish, ife, pair, pairs, rank, set};
     PetscCall(FCCollisionPictureLandings(Sh, S, pairs, PicturePointOnSurface, &P));
   }
-  if (!FCBodyHasSmoothShape(Sh)) PetscCall(ShapePointsOnSurface(Sh, F, ish, ife, S, pair, pairs, rank, set));
+  if (!FCBodyHasSmoothShape(Sh) && !lies) PetscCall(ShapePointsOnSurface(Sh, F, ish, ife, S, pair, pairs, rank, set));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCCollisionRoundedFollows(FCBody Sh, Surface *S, const FCContactPairs *pairs, PetscBool *follows)
+{
+  PetscFunctionBegin;
+  PetscCall(CoreFollows(Sh, S, pairs, follows));
   PetscFunctionReturn(0);
 }
