@@ -114,18 +114,18 @@ BEGIN, END = "<!-- begin bench_contact_solver.py -->", "<!-- end bench_contact_s
 BEGIN_S, END_S = "<!-- begin bench_contact_solver.py solvers -->", "<!-- end bench_contact_solver.py solvers -->"
 
 
-def write_block(path, block, BEGIN=BEGIN, END=END):
-    """Writes the measured block between the page's markers and leaves the rest of the page (the
-    hand-written sections) as it is; a new page gets a title and the block"""
+def write_block(path, block, begin=BEGIN, end=END):
+    """Writes the measured block between the page's markers begin and end and leaves the rest of the
+    page (the hand-written sections) as it is; a new page gets a title and both tables' markers"""
     if not os.path.exists(path):
-        text = "# Contact solver: our PGS against Siconos NSGS\n\n%s\n%s%s\n" % (BEGIN, block, END)
-    else:
-        with open(path) as f:
-            text = f.read()
-        i, j = text.find(BEGIN), text.find(END)
-        if i < 0 or j < i:
-            sys.exit("%s has no '%s' ... '%s' block to replace: add the markers where the table goes" % (path, BEGIN, END))
-        text = text[:i + len(BEGIN)] + "\n" + block + text[j:]
+        with open(path, "w") as f:
+            f.write("# Contact solvers against Siconos\n\n%s\n%s\n\n%s\n%s\n" % (BEGIN_S, END_S, BEGIN, END))
+    with open(path) as f:
+        text = f.read()
+    i, j = text.find(begin), text.find(end)
+    if i < 0 or j < i:
+        sys.exit("%s has no '%s' ... '%s' block to replace: add the markers where the table goes" % (path, begin, end))
+    text = text[:i + len(begin)] + "\n" + block + text[j:]
     with open(path, "w") as f:
         f.write(text)
 
@@ -197,8 +197,10 @@ def solvers_table(a, conv):
         mine = [t for t, ok in [(tp, okp), (tn, okn), (ta, oka)] if ok]
         if sic and mine:
             best = "%.2f" % (min(mine) / min(sic)) if min(sic) >= 1e-3 else "(below 1 ms)"
+        elif not sic:
+            best = "-" if cols[0] == "-" else "Siconos does not converge"
         else:
-            best = "-" if not sic else "ours do not converge"
+            best = "ours do not converge"
         line = "| %s | %d | %d | %s | %s | %.2f | %s | %s | %s |" % (name, nc, n, cell(ip, tp, okp), cell(inn, tn, okn),
                                                                 tn / max(tp, 1e-9), cell(ia, ta, oka), " | ".join(cols), best)
         print(line, flush=True)
@@ -225,7 +227,7 @@ def main():
         srows = solvers_table(a, conv)
         if a.markdown:
             import platform
-            block = ("Command: `scripts/bench_contact_solver.py --tol %g --max-it %d --repeat %d --markdown %s` (%s, %d cores, "
+            block = ("Command: `scripts/bench_contact_solver.py --tol %g --max-it %d --repeat %d --tables solvers --markdown %s` (%s, %d cores, "
                      "%s; Siconos 4.4)\n\n" % (a.tol, a.max_it, a.repeat, a.markdown, platform.node(), os.cpu_count(),
                                                time.strftime("%Y-%m-%d"))
                      + HDR_S + "\n|---|---:|---:|---|---|---:|---|---|---|---|---:|\n" + "\n".join(srows) + "\n")

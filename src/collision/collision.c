@@ -284,7 +284,7 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
     if (c->side2 == FC_SIDE_FE_TRIANGLE && c->body[0] == pairs->body[c->pair][1] && c->prox[0].nv == 1 && nheld)
       isheld = bsearch(c->prox[0].X[0], held, nheld, 3 * sizeof(PetscReal), FCComparePoint) ? PETSC_TRUE : PETSC_FALSE;
     if (isheld && drop_held) continue;
-    set->c[k].dormant = isheld;
+    set->c[k].dormant = set->c[k].dormant || isheld; /* (a shape's points made dormant stay so) */
     set->c[kept++]    = set->c[k];
   }
   set->n = kept;
@@ -308,7 +308,8 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
    shape's exact distance after the free motion (qcurv). Linearized at the start instead, the contact of a vertex
    just ahead of a rolling ball or cylinder is the plane tangent to the shape there, which the shape's forward motion
    runs into: a vertical kick and a brake at each vertex it rolls over. */
-static PetscErrorCode VertexAtFree(FCBody S, const PetscReal x0[3], const PetscReal xf[3], FCContact *c)
+static PetscErrorCode VertexAtFree(FCBody S, const PetscReal x0[3], const PetscReal xf[3], const PetscReal nv[3],
+                                   FCContact *c)
 {
   PetscInt    ncore;
   PetscReal   core[2][3], r, df, cpf[3], cw[3], cb[3], p2[3], dfree[3];
@@ -331,14 +332,15 @@ static PetscErrorCode VertexAtFree(FCBody S, const PetscReal x0[3], const PetscR
         ay[i] = xf[i] - fr[0][i];
       }
       t = FCDot(ay, ab) / FCDot(ab, ab);
-      if (flat && t >= 0.0 && t <= 1.0) { /* over a cylinder's side, its rims included: the side's distance and
-                                               radial normal (at a rim the end face is as near, and sideways) */
-        PetscReal v[3], l;
-        for (int i = 0; i < 3; i++) v[i] = ay[i] - t * ab[i];
-        l = PetscSqrtReal(FCDot(v, v));
-        if (l > 0.0) {
-          df = l - r;
-          for (int i = 0; i < 3; i++) c->n[i] = v[i] / l;
+      if (flat) { /* a cylinder: where its side is nearest, the side's own distance (its normal radial at the rims,
+                     where the end faces are as near and sideways) */
+        PetscReal L = PetscSqrtReal(FCDot(ab, ab)), u[3], ds, ns[3];
+        PetscBool side;
+        for (int i = 0; i < 3; i++) u[i] = ab[i] / L;
+        FCCylinderSideDistance(fr[0], u, L, r, xf, nv, &ds, ns, &side);
+        if (side) {
+          df = ds;
+          for (int i = 0; i < 3; i++) c->n[i] = ns[i];
         }
       }
       t = PetscMin(1.0, PetscMax(0.0, t));
@@ -372,16 +374,17 @@ static PetscErrorCode PointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, Pets
   PetscFunctionBegin;
   PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x0, &xf, &key));
   for (PetscInt i = 0; i < n; i++) {
-    PetscReal d, nrm[3], cpb[3];
-    FCContact c;
+    PetscReal             d, nrm[3], cpb[3];
+    FCContact             c;
+    const FCVertexNormal *own;
     PetscCall(FCBodyShapeDistance(S, FC_AT_NOW, &x0[3 * i], &d, nrm, cpb));
-    if (vn && prox[i].nv == 1 && d > 0.0) {
-      FCVertexNormal        key1;
-      const FCVertexNormal *own;
+    own = NULL; /* the vertex's own outward normal (with -contact_facing) */
+    if (vn && prox[i].nv == 1) {
+      FCVertexNormal key1;
       for (int k = 0; k < 3; k++) key1.X[k] = prox[i].X[0][k];
       own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), FCComparePoint);
-      if (own && PetscAbsReal(FCDot(nrm, own->n)) < FC_FACING_COS) continue;
     }
+    if (own && d > 0.0 && PetscAbsReal(FCDot(nrm, own->n)) < FC_FACING_COS) continue;
     if (d >= pairs->distance) { /* continuous: a speculative contact if the motion reaches the shape */
       PetscBool hit = PETSC_FALSE;
       if (pairs->continuous) PetscCall(FCCCDPointShape(S, &x0[3 * i], &xf[3 * i], d, tau, &hit));
@@ -401,7 +404,7 @@ static PetscErrorCode PointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, Pets
     }
     PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_START, c.p0[1]));
     PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_FREE, c.pfree[1]));
-    if (atfree) PetscCall(VertexAtFree(S, &x0[3 * i], &xf[3 * i], &c));
+    if (atfree) PetscCall(VertexAtFree(S, &x0[3 * i], &xf[3 * i], own ? own->n : NULL, &c));
     c.gap0  = d;
     c.mu    = pairs->mu[p];
     c.owner = rank;
@@ -496,15 +499,17 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
       Surface        *Sf     = NULL;
       FCVertexNormal *vn     = NULL;
       PetscInt        nvn    = 0;
-      PetscBool       atfree = PETSC_FALSE;
+      PetscBool       atfree = PETSC_FALSE, lies = PETSC_FALSE;
       if (FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S) &&
           (pairs->shape_points || pairs->facing)) {
         PetscCall(SurfaceBuild(comm, P, pairs, &Sf));
         if (pairs->facing) PetscCall(VertexNormals(Sf->n, Sf->tri, &nvn, &vn));
       }
       if (Sf && pairs->shape_points) PetscCall(FCCollisionRoundedFollows(S, Sf, pairs, &atfree));
+      if (atfree && !FCBodyHasSmoothShape(S)) PetscCall(FCCollisionCylinderLies(S, Sf, pairs, &lies));
       PetscCall(PointsAgainstShape(P, S, ipts, ishp, p, nvn, vn, atfree, pairs, rank, set));
-      if (Sf && pairs->shape_points) PetscCall(FCCollisionShapePoints(S, P, ishp, ipts, Sf, p, pairs, rank, set));
+      if (Sf && pairs->shape_points)
+        PetscCall(FCCollisionShapePoints(S, P, ishp, ipts, Sf, atfree, lies, p, pairs, rank, set));
       if (Sf) PetscCall(FCSurfaceDestroy(&Sf));
       PetscCall(PetscFree(vn));
     }

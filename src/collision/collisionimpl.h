@@ -72,8 +72,8 @@ PETSC_INTERN PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody S
 /* shapepoints.c: the points of bounded shape Sh (body ish) against the surface S of FE body F
    (body ife), -contact_shape_points */
 PETSC_INTERN PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S,
-                                                   PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
-                                                   FCContactSet *);
+                                                   PetscBool follows, PetscBool lies, PetscInt pair,
+                                                   const FCContactPairs *, PetscMPIInt rank, FCContactSet *);
 
 /* shapepoints.c: whether the surface points of rounded shape Sh against the FE surface S (and the FE vertices'
    contacts with it) are taken after the free motion (-contact_rounded_surface exact, and the shape's core follows its
@@ -90,7 +90,7 @@ PETSC_INTERN PetscErrorCode FCCollisionPictureLandings(FCBody Sh, Surface *S, co
                                                        void *ctx);
 
 /* roundedsurface.c: the points of the FE surface S (of body ife) nearest the core of the sphere or capsule Sh (body
-   ish), taken after the free motion, and a sphere's picture points behind them, dormant (rank 0) */
+   ish), taken after the free motion, and the FE points a sphere's picture points land on (rank 0) */
 PETSC_INTERN PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife, Surface *S,
                                                         PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
                                                         FCContactSet *);
@@ -153,7 +153,10 @@ PETSC_INTERN PetscErrorCode FCGoldenMinimum(PetscErrorCode (*f)(PetscReal t, voi
    coordinate: a contact's sort key */
 PETSC_INTERN void FCReferencePoint(PetscInt nv, const PetscReal Xv[][3], const PetscReal w[], PetscReal X[3]);
 /* qsort/bsearch order of records that start with a point (3 reals): lexicographic in x, y, z */
-PETSC_INTERN int FCComparePoint(const void *, const void *);
+PETSC_INTERN int  FCComparePoint(const void *, const void *);
+PETSC_INTERN void FCCylinderSideDistance(const PetscReal a[3], const PetscReal u[3], PetscReal L, PetscReal r,
+                                         const PetscReal y[3], const PetscReal nv[3], PetscReal *d, PetscReal n[3],
+                                         PetscBool *side);
 /* Whether the ray x + s dir, s > 0, crosses triangle (a, b, c) (Moeller-Trumbore) */
 PETSC_INTERN PetscBool FCRayHitsTriangle(const PetscReal x[3], const PetscReal dir[3], const PetscReal a[3],
                                          const PetscReal b[3], const PetscReal c[3]);

@@ -186,3 +186,28 @@ PetscErrorCode FCGoldenMinimum(PetscErrorCode (*f)(PetscReal, void *, PetscReal 
   *t = 0.5 * (lo + hi);
   PetscFunctionReturn(0);
 }
+
+/* The distance from world point y to the side of a cylinder of radius r whose axis runs from a along the unit vector
+   u for a length L, where y is against the side: its foot on the axis within the segment, and, given the outward
+   normal nv of the surface y lies on, that surface facing the side more than an end face (|nv . radial| >= |nv . u|:
+   a surface under a cylinder lying on it, where a point just inside a rim is as near the end face); without nv, y
+   outside the radius or nearer the side than either end face. *side false otherwise (the shape's own distance decides:
+   an end face, a rim, the axis) */
+void FCCylinderSideDistance(const PetscReal a[3], const PetscReal u[3], PetscReal L, PetscReal r, const PetscReal y[3],
+                            const PetscReal nv[3], PetscReal *d, PetscReal n[3], PetscBool *side)
+{
+  PetscReal v[3], s, l;
+
+  for (int i = 0; i < 3; i++) v[i] = y[i] - a[i];
+  s = FCDot(v, u);
+  for (int i = 0; i < 3; i++) v[i] -= s * u[i];
+  l     = PetscSqrtReal(FCDot(v, v));
+  *side = (PetscBool)(s >= 0.0 && s <= L && l > 0.0);
+  if (*side && nv)
+    *side = (PetscBool)(PetscAbsReal(FCDot(nv, v)) >= l * PetscAbsReal(FCDot(nv, u)));
+  else if (*side)
+    *side = (PetscBool)(l >= r || r - l <= PetscMin(s, L - s));
+  if (!*side) return;
+  *d = l - r;
+  for (int i = 0; i < 3; i++) n[i] = v[i] / l;
+}

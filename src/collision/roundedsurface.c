@@ -102,28 +102,32 @@ static PetscErrorCode CorePoints(PetscInt ncore, const PetscReal core[2][3], con
   PetscFunctionReturn(0);
 }
 
-/* A cylinder's side over the triangle with vertices at T (outward normal nt): the axis points (world) whose feet on
-   the triangle's plane are the ends of the part of the axis' foot that lies on the triangle (where it enters and
-   leaves the triangle, or an end of the axis over it). Their nearest points on the triangle are then the points
-   under the side line where it crosses the triangle's edges, and its ends: the FE points a cylinder lying on the
-   surface presses (its rims, the ends of that line, are its picture's points). None where the axis is steeper than
-   60 degrees to the plane (the cylinder stands on a rim or an end: its picture's points). */
-static void SidePoints(const PetscReal core[2][3], const PetscReal T[3][3], const PetscReal nt[3], PetscReal c[3][3],
-                       PetscInt *n)
+/* A cylinder's side over the triangle with vertices at T (reference positions Xr, outward normal nt): the axis points
+   (world) whose feet on the triangle's plane are the ends of the part of the axis' foot that lies on the triangle, so
+   that their nearest points on the triangle are the points under the side's lowest line where it crosses the
+   triangle's edges, and its ends over the triangle: the FE points a cylinder lying on the surface presses. A crossing
+   is recomputed from its edge alone (the axis' point nearest the edge, its ends in reference order), so that the two
+   triangles of the edge find the same point to the bit. The line's ends are kept where their feet on the plane stay
+   within the end faces (a tilted axis: a foot beyond the lower rim is not under the side). None where the triangle
+   has no area or the axis is steeper than 30 degrees to its plane (the cylinder stands on a rim or an end: its
+   picture's points). */
+static void SidePoints(const PetscReal core[2][3], PetscReal r, const PetscReal T[3][3], const PetscReal Xr[3][3],
+                       const PetscReal nt[3], PetscReal c[3][3], PetscInt *n)
 {
-  PetscReal ab[3], lab, tin, tout, inset;
+  PetscReal ab[3], lab, tin, tout, inset, tilt;
+  int       ein = -1, eout = -1;
 
   *n = 0;
   for (int i = 0; i < 3; i++) ab[i] = core[1][i] - core[0][i];
-  lab = PetscSqrtReal(FCDot(ab, ab));
-  if (lab == 0.0 || PetscAbsReal(FCDot(ab, nt)) > 0.5 * lab) return;
-  /* the line's ends a hair inside the rims: their feet on the axis within the segment (the side's distance,
-   * ShapeDistance) */
-  inset = 1e-6;
+  lab  = PetscSqrtReal(FCDot(ab, ab));
+  tilt = PetscAbsReal(FCDot(ab, nt));
+  if (lab == 0.0 || FCDot(nt, nt) == 0.0 || tilt > 0.5 * lab) return;
+  /* the axis tilted by alpha to the plane: the foot of its lower end lies r tan(alpha) beyond the end face; keep the
+     line's ends inside by that, and a hair more */
+  inset = 1e-6 + r * tilt / (lab * PetscSqrtReal(lab * lab - tilt * tilt));
   tin   = inset;
   tout  = 1.0 - inset;
-  for (int e = 0; e < 3;
-       e++) { /* the foot a' + t (b' - a') on the inner side of edge e: m . (a' - v_e) + t m . ab >= 0 */
+  for (int e = 0; e < 3; e++) { /* the foot a' + t ab' on the inner side of edge e: m . (a' - v_e) + t m . ab >= 0 */
     PetscReal ed[3], m[3], oc[3], a0[3], num, den;
     for (int i = 0; i < 3; i++) {
       ed[i] = T[(e + 1) % 3][i] - T[e][i];
@@ -137,12 +141,30 @@ static void SidePoints(const PetscReal core[2][3], const PetscReal T[3][3], cons
     den = FCDot(m, ab);
     if (den == 0.0) {
       if (num < 0.0) return;
-    } else if (den > 0.0)
-      tin = PetscMax(tin, -num / den);
-    else
-      tout = PetscMin(tout, -num / den);
+    } else if (den > 0.0) {
+      if (-num / den > tin) {
+        tin = -num / den;
+        ein = e;
+      }
+    } else if (-num / den < tout) {
+      tout = -num / den;
+      eout = e;
+    }
   }
   if (tin > tout) return;
+  for (int k = 0; k < 2; k++) { /* a crossing from its edge alone */
+    int       e = k ? eout : ein, a, b;
+    PetscReal sa, se, *t = k ? &tout : &tin;
+    if (e < 0) continue;
+    a = e;
+    b = (e + 1) % 3;
+    if (FCComparePoint(Xr[a], Xr[b]) > 0) {
+      a = b;
+      b = e;
+    }
+    (void)FCClosestSegmentSegment(core[0], core[1], T[a], T[b], &sa, &se);
+    *t = PetscMin(1.0 - inset, PetscMax(inset, sa));
+  }
   for (int i = 0; i < 3; i++) c[0][i] = core[0][i] + tin * ab[i];
   *n = 1;
   if (tout > tin) {
@@ -161,40 +183,28 @@ typedef struct {
 typedef struct {
   FCBody                Sh;
   PetscInt              ish, ife, pair;
-  PetscReal             r;       /* radius */
-  PetscBool             side;    /* a cylinder's side: the distance to its axis' line, less r */
-  PetscReal             axis[3]; /* the cylinder's axis after the free motion (unit, world) */
+  PetscReal             r;        /* radius */
+  PetscBool             side;     /* a cylinder: its side's own distance where the side is nearest */
+  PetscReal             axis0[3]; /* the cylinder's axis after the free motion: its start (world), */
+  PetscReal             axis[3];  /* direction (unit) */
+  PetscReal             len;      /* and length */
   const FCContactPairs *pairs;
   PetscMPIInt           rank;
   FCContactSet         *set;
 } Across;
 
-/* The shape's distance at the world point y after the free motion and its normal there; on a cylinder's side (A->side:
-   y's foot on the axis within the segment, SidePoints) the side's own, whose normal stays radial at the rims where the
-   end faces are as near */
-static PetscErrorCode ShapeDistance(const Across *A, const PetscReal cb[3], const PetscReal y[3], PetscReal *d,
+/* The shape's distance at the world point y (on a triangle of outward normal nt) after the free motion and its
+   normal there; where y is against a cylinder's side (FCCylinderSideDistance), the side's own, whose normal stays
+   radial at the rims, where the end faces are as near */
+static PetscErrorCode ShapeDistance(const Across *A, const PetscReal y[3], const PetscReal nt[3], PetscReal *d,
                                     PetscReal n[3])
 {
+  PetscBool side = PETSC_FALSE;
   PetscReal cf[3];
 
   PetscFunctionBegin;
-  if (!A->side) {
-    PetscCall(FCBodyShapeDistance(A->Sh, FC_AT_FREE, y, d, n, cf));
-    PetscFunctionReturn(0);
-  }
-  {
-    FCProximity q = {0};
-    PetscReal   c[3], v[3], l;
-    for (int i = 0; i < 3; i++) q.r[i] = cb[i];
-    PetscCall(FCBodyProximityPosition(A->Sh, &q, FC_AT_FREE, c));
-    for (int i = 0; i < 3; i++) v[i] = y[i] - c[i];
-    l = FCDot(v, A->axis);
-    for (int i = 0; i < 3; i++) v[i] -= l * A->axis[i];
-    l = PetscSqrtReal(FCDot(v, v));
-    PetscCheck(l > 0.0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Body '%s': a point on its axis", A->Sh->name);
-    *d = l - A->r;
-    for (int i = 0; i < 3; i++) n[i] = v[i] / l;
-  }
+  if (A->side) FCCylinderSideDistance(A->axis0, A->axis, A->len, A->r, y, nt, d, n, &side);
+  if (!side) PetscCall(FCBodyShapeDistance(A->Sh, FC_AT_FREE, y, d, n, cf));
   PetscFunctionReturn(0);
 }
 
@@ -208,14 +218,15 @@ static PetscErrorCode ShapeDistance(const Across *A, const PetscReal cb[3], cons
 static PetscErrorCode AddSurfacePoint(const Across *A, const FCSurfaceTriangle *T, const PetscReal bw[3],
                                       const PetscReal X[3], const PetscReal cb[3])
 {
-  PetscReal   bcp[3], yf[3], d0 = 0.0, df, interp = 0.0, n[3], p2[3], core[3];
+  PetscReal   bcp[3], yf[3], d0 = 0.0, df, interp = 0.0, n[3], p2[3], core[3], nt[3];
   FCProximity tp = {0}, q = {0};
   FCContact   c;
 
   PetscFunctionBegin;
   FCCollisionTrianglePoint(T, bw, &tp, yf);
   for (int i = 0; i < 3; i++) bcp[i] = bw[0] * T->x0[0][i] + bw[1] * T->x0[1][i] + bw[2] * T->x0[2][i];
-  PetscCall(ShapeDistance(A, cb, yf, &df, n));
+  FCTriangleNormal(T->xf, nt);
+  PetscCall(ShapeDistance(A, yf, nt, &df, n));
   for (int a = 0; a < 3; a++) {
     PetscReal da, na[3], ca[3];
     if (bw[a] == 0.0) continue;
@@ -265,39 +276,24 @@ static PetscErrorCode AddSurfacePoint(const Across *A, const FCSurfaceTriangle *
 
 typedef struct {
   const Across *A;
-  PetscInt      ncore;
-  PetscReal     fr[2][3]; /* the core after the free motion (world) */
+  PetscReal     fr[3]; /* the sphere's centre after the free motion (world) */
 } BehindCtx;
 
-/* Behind the exact points of a sphere, the FE points its picture's points land on, as the same kind of
-   contact (taken after the free motion, where the shape dips between the triangle's vertices), dormant: woken
-   only where the step's motion leaves one inside (a soft body dragged by a turning finger deforms where the free
-   motion did not say). The core point of each is the core's nearest to its FE point after the free motion. */
+/* Beside the exact points of a sphere, the FE points its picture's points land on, as the same kind of contact
+   (taken after the free motion, where the shape dips between the triangle's vertices): where the free motion is a
+   poor guess of where the surface goes (a soft body dragged by a turning finger), they hold it where the exact
+   points, taken there, do not. */
 static PetscErrorCode PicturePointBehind(const FCSurfaceTriangle *T, const PetscReal bw[3], const PetscReal bcp[3],
                                          const PetscReal X[3], void *ctx, PetscBool *made)
 {
-  BehindCtx    *B     = (BehindCtx *)ctx;
-  const Across *A     = B->A;
-  PetscInt      first = A->set->n;
-  PetscReal     yf[3], cw[3], cb[3], t = 0.0;
-  FCProximity   tp        = {0};
-  const PetscReal(*fr)[3] = B->fr;
+  BehindCtx    *B = (BehindCtx *)ctx;
+  const Across *A = B->A;
+  PetscReal     cb[3];
 
   PetscFunctionBegin;
   *made = PETSC_TRUE;
-  FCCollisionTrianglePoint(T, bw, &tp, yf);
-  if (B->ncore == 2) { /* the segment's point nearest the FE point */
-    PetscReal ab[3], ay[3];
-    for (int k = 0; k < 3; k++) {
-      ab[k] = fr[1][k] - fr[0][k];
-      ay[k] = yf[k] - fr[0][k];
-    }
-    t = PetscMin(1.0, PetscMax(0.0, FCDot(ay, ab) / FCDot(ab, ab)));
-  }
-  for (int k = 0; k < 3; k++) cw[k] = B->ncore == 2 ? fr[0][k] + t * (fr[1][k] - fr[0][k]) : fr[0][k];
-  PetscCall(FCBodyToBodyFrame(A->Sh, FC_AT_FREE, cw, PETSC_FALSE, cb));
+  PetscCall(FCBodyToBodyFrame(A->Sh, FC_AT_FREE, B->fr, PETSC_FALSE, cb));
   PetscCall(AddSurfacePoint(A, T, bw, X, cb));
-  for (PetscInt k = first; k < A->set->n; k++) A->set->c[k].dormant = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
 
@@ -349,7 +345,7 @@ PetscErrorCode FCCollisionCylinderLies(FCBody Sh, Surface *S, const FCContactPai
     PetscReal                c[3][3], nt[3];
     PetscInt                 np;
     FCTriangleNormal(T->xf, nt);
-    SidePoints(fr, T->xf, nt, c, &np);
+    SidePoints(fr, r, T->xf, T->X, nt, c, &np);
     for (PetscInt j = 0; j < np; j++)
       if (TriangleDistance(T->xf, c[j]) <= grow) *lies = PETSC_TRUE;
   }
@@ -367,10 +363,11 @@ PetscErrorCode FCCollisionCylinderLies(FCBody Sh, Surface *S, const FCContactPai
    Here: whether, at any point of the surface nearest the core after the free motion and within the alarm distance,
    the free motion of the FE point alone (the core after the free motion) turns the shape's normal by theta with
    r (1 - cos theta) above -contact_intersection_depth; or whether the shape's own free motion takes it deeper into
-   the surface than the alarm distance: an impact, after which the shape does not end near its free pose either (a
-   ball dropped onto the membrane: the first step's contacts taken there, deep in it, made a problem the contact solver
-   did not converge on within its budget). The caller (shapepoints.c) then takes the shape's picture points,
-   linearized at the start of the step. From the gathered surface and the shape's pose: the same on every rank. */
+   the surface than the alarm distance: an impact, after which the shape does not end near its free pose either, and
+   the contacts taken there, deep inside, make a nearly singular problem (a cylinder whose end face touches the
+   surface counts so too: its end's centre is on the surface). The caller (shapepoints.c) then takes the shape's
+   picture points, linearized at the start of the step. From the gathered surface and the shape's pose: the same on
+   every rank. */
 PetscErrorCode FCCollisionRoundedSurfaceTurns(FCBody Sh, Surface *S, const FCContactPairs *pairs, PetscBool *turns)
 {
   PetscInt  ncore, nc = 0, *cand;
@@ -427,12 +424,14 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
 {
   PetscInt   ncore, nc = 0, nedge = 0, *cand;
   PetscReal  core[2][3], now[2][3], fr[2][3], lo[3], hi[3], grow;
+  PetscInt   first;
   EdgePoint *edge;
   Across     A    = {0};
   PetscBool  flat = PETSC_FALSE;
 
   PetscFunctionBegin;
   if (rank) PetscFunctionReturn(0);
+  first = set->n;
   FCBodyGetShapeCore(Sh, &ncore, core, &A.r, &flat);
   PetscCheck(ncore > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Body '%s' has no rounded shape", Sh->name);
   A.Sh    = Sh;
@@ -445,10 +444,12 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
   grow    = A.r + pairs->distance;
   PetscCall(CoreBox(Sh, ncore, core, grow, now, fr, lo, hi));
   if (flat) { /* a cylinder: its side */
-    PetscReal l = 0.0;
-    for (int i = 0; i < 3; i++) A.axis[i] = fr[1][i] - fr[0][i];
-    l = PetscSqrtReal(FCDot(A.axis, A.axis));
-    for (int i = 0; i < 3; i++) A.axis[i] /= l;
+    for (int i = 0; i < 3; i++) {
+      A.axis0[i] = fr[0][i];
+      A.axis[i]  = fr[1][i] - fr[0][i];
+    }
+    A.len = PetscSqrtReal(FCDot(A.axis, A.axis));
+    for (int i = 0; i < 3; i++) A.axis[i] /= A.len;
     A.side = PETSC_TRUE;
   }
   PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * S->n + 1, &edge));
@@ -463,7 +464,7 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
     PetscInt  np;
     FCTriangleNormal(x, nt);
     if (flat)
-      SidePoints(fr, x, nt, c, &np);
+      SidePoints(fr, A.r, x, T->X, nt, c, &np);
     else
       PetscCall(CorePoints(ncore, fr, x, c, &np));
     for (PetscInt j = 0; j < np; j++) {
@@ -504,11 +505,29 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
     e = f;
   }
   PetscCall(PetscFree2(cand, edge));
+  if (flat && set->n - first > 2) { /* a cylinder's line: its two extreme points awake, those between dormant */
+    PetscInt  lo = first, hi = first;
+    PetscReal slo = PETSC_MAX_REAL, shi = -PETSC_MAX_REAL;
+    for (PetscInt k = first; k < set->n; k++) {
+      PetscReal v[3], sk;
+      for (int i = 0; i < 3; i++) v[i] = set->c[k].pfree[1][i] - A.axis0[i];
+      sk = FCDot(v, A.axis);
+      if (sk < slo) {
+        slo = sk;
+        lo  = k;
+      }
+      if (sk > shi) {
+        shi = sk;
+        hi  = k;
+      }
+    }
+    for (PetscInt k = first; k < set->n; k++) set->c[k].dormant = (PetscBool)(k != lo && k != hi);
+  }
   /* (a capsule lying on a face: its picture's points along the line of contact, woken by the step's
-     linearization, made the problem rank-deficient enough to stall 2 of 100 solves of tests/test_rolling.py) */
+     linearization, made the problem rank-deficient: so not for a capsule) */
   if (ncore == 1) {
-    BehindCtx B = {&A, ncore, {{0}}};
-    for (int i = 0; i < 3; i++) B.fr[0][i] = fr[0][i];
+    BehindCtx B = {&A, {0}};
+    for (int i = 0; i < 3; i++) B.fr[i] = fr[0][i];
     PetscCall(FCCollisionPictureLandings(Sh, S, pairs, PicturePointBehind, &B));
   }
   PetscFunctionReturn(0);

@@ -173,14 +173,11 @@ static PetscErrorCode CoreFollows(FCBody Sh, Surface *S, const FCContactPairs *p
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
-                                      const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscBool follows,
+                                      PetscBool lies, PetscInt pair, const FCContactPairs *pairs, PetscMPIInt rank,
+                                      FCContactSet *set)
 {
-  PetscBool follows = PETSC_FALSE, lies = PETSC_FALSE;
-
   PetscFunctionBegin;
-  PetscCall(CoreFollows(Sh, S, pairs, &follows));
-  if (follows && !FCBodyHasSmoothShape(Sh)) PetscCall(FCCollisionCylinderLies(Sh, S, pairs, &lies));
   if (follows)
     PetscCall(FCCollisionRoundedOnSurface(Sh, ish, ife, S, pair, pairs, rank, set));
   else if (FCBodyHasSmoothShape(Sh)) {
