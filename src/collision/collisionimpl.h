@@ -69,6 +69,13 @@ PETSC_INTERN PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody S
                                                               Surface *S, PetscInt nvn, const FCVertexNormal *vn,
                                                               PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
                                                               FCContactSet *);
+/* pointshape.c: the candidate points of P (an FE body's owned boundary vertices, a shape's picture points, body ipts)
+   against the signed distance of the shape of S (body ishp); vn: the vertex normals of an FE P's surface
+   (-contact_facing), or NULL; atfree: an FE P against a rounded S whose surface points are taken after the free
+   motion (FCCollisionRoundedFollows), its vertices' contacts too */
+PETSC_INTERN PetscErrorCode FCCollisionPointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, PetscInt ishp, PetscInt p,
+                                                          PetscInt nvn, const FCVertexNormal *vn, PetscBool atfree,
+                                                          const FCContactPairs *, PetscMPIInt rank, FCContactSet *);
 /* shapepoints.c: the points of bounded shape Sh (body ish) against the surface S of FE body F
    (body ife), -contact_shape_points */
 PETSC_INTERN PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S,

@@ -297,11 +297,13 @@ static PetscErrorCode PicturePointBehind(const FCSurfaceTriangle *T, const Petsc
   PetscFunctionReturn(0);
 }
 
-/* The box the core of Sh sweeps over the step (now and after the free motion), grown by grow */
-static PetscErrorCode CoreBox(FCBody Sh, PetscInt ncore, const PetscReal core[2][3], PetscReal grow,
-                              PetscReal now[2][3], PetscReal fr[2][3], PetscReal lo[3], PetscReal hi[3])
+/* The core of Sh after the free motion (fr, world) and the triangles of S near it: those of the box the core sweeps
+   over the step (now and after the free motion), grown by grow; *cand (S->n + 1 entries) to be freed */
+static PetscErrorCode NearTriangles(FCBody Sh, Surface *S, PetscInt ncore, const PetscReal core[2][3], PetscReal grow,
+                                    PetscReal fr[2][3], PetscInt **cand, PetscInt *nc)
 {
   FCProximity q = {0};
+  PetscReal   now[2][3], lo[3], hi[3];
 
   PetscFunctionBegin;
   for (PetscInt k = 0; k < ncore; k++) {
@@ -317,6 +319,12 @@ static PetscErrorCode CoreBox(FCBody Sh, PetscInt ncore, const PetscReal core[2]
       hi[i] = PetscMax(hi[i], PetscMax(now[k][i], fr[k][i]) + grow);
     }
   }
+  PetscCall(PetscMalloc1(S->n + 1, cand));
+  *nc = 0;
+  if (S->stamp)
+    FCSurfaceQueryBox(S, lo, hi, *cand, nc);
+  else
+    for (PetscInt t = 0; t < S->n; t++) (*cand)[(*nc)++] = t;
   PetscFunctionReturn(0);
 }
 
@@ -326,7 +334,7 @@ static PetscErrorCode CoreBox(FCBody Sh, PetscInt ncore, const PetscReal core[2]
 PetscErrorCode FCCollisionCylinderLies(FCBody Sh, Surface *S, const FCContactPairs *pairs, PetscBool *lies)
 {
   PetscInt  ncore, nc = 0, *cand;
-  PetscReal core[2][3], now[2][3], fr[2][3], lo[3], hi[3], grow, r;
+  PetscReal core[2][3], fr[2][3], grow, r;
   PetscBool flat = PETSC_FALSE;
 
   PetscFunctionBegin;
@@ -334,12 +342,7 @@ PetscErrorCode FCCollisionCylinderLies(FCBody Sh, Surface *S, const FCContactPai
   FCBodyGetShapeCore(Sh, &ncore, core, &r, &flat);
   if (ncore != 2 || !flat) PetscFunctionReturn(0);
   grow = r + pairs->distance;
-  PetscCall(CoreBox(Sh, ncore, core, grow, now, fr, lo, hi));
-  PetscCall(PetscMalloc1(S->n + 1, &cand));
-  if (S->stamp)
-    FCSurfaceQueryBox(S, lo, hi, cand, &nc);
-  else
-    for (PetscInt t = 0; t < S->n; t++) cand[nc++] = t;
+  PetscCall(NearTriangles(Sh, S, ncore, core, grow, fr, &cand, &nc));
   for (PetscInt k = 0; k < nc && !*lies; k++) {
     const FCSurfaceTriangle *T = &S->tri[cand[k]];
     PetscReal                c[3][3], nt[3];
@@ -371,8 +374,7 @@ PetscErrorCode FCCollisionCylinderLies(FCBody Sh, Surface *S, const FCContactPai
 PetscErrorCode FCCollisionRoundedSurfaceTurns(FCBody Sh, Surface *S, const FCContactPairs *pairs, PetscBool *turns)
 {
   PetscInt  ncore, nc = 0, *cand;
-  PetscReal core[2][3], now[2][3], fr[2][3], lo[3], hi[3], grow, r,
-      tol        = PetscMax(pairs->intersection_depth, PETSC_SMALL);
+  PetscReal core[2][3], fr[2][3], grow, r, tol = PetscMax(pairs->intersection_depth, PETSC_SMALL);
   PetscBool flat = PETSC_FALSE;
 
   PetscFunctionBegin;
@@ -380,12 +382,7 @@ PetscErrorCode FCCollisionRoundedSurfaceTurns(FCBody Sh, Surface *S, const FCCon
   FCBodyGetShapeCore(Sh, &ncore, core, &r, &flat);
   if (ncore <= 0) PetscFunctionReturn(0);
   grow = r + pairs->distance;
-  PetscCall(CoreBox(Sh, ncore, core, grow, now, fr, lo, hi));
-  PetscCall(PetscMalloc1(S->n + 1, &cand));
-  if (S->stamp)
-    FCSurfaceQueryBox(S, lo, hi, cand, &nc);
-  else
-    for (PetscInt t = 0; t < S->n; t++) cand[nc++] = t;
+  PetscCall(NearTriangles(Sh, S, ncore, core, grow, fr, &cand, &nc));
   for (PetscInt k = 0; k < nc && !*turns; k++) {
     const FCSurfaceTriangle *T = &S->tri[cand[k]];
     PetscReal                c[3][3];
@@ -423,7 +420,7 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
                                            const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
   PetscInt   ncore, nc = 0, nedge = 0, *cand;
-  PetscReal  core[2][3], now[2][3], fr[2][3], lo[3], hi[3], grow;
+  PetscReal  core[2][3], fr[2][3], grow;
   PetscInt   first;
   EdgePoint *edge;
   Across     A    = {0};
@@ -442,7 +439,7 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
   A.rank  = rank;
   A.set   = set;
   grow    = A.r + pairs->distance;
-  PetscCall(CoreBox(Sh, ncore, core, grow, now, fr, lo, hi));
+  PetscCall(NearTriangles(Sh, S, ncore, core, grow, fr, &cand, &nc));
   if (flat) { /* a cylinder: its side */
     for (int i = 0; i < 3; i++) {
       A.axis0[i] = fr[0][i];
@@ -452,11 +449,7 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
     for (int i = 0; i < 3; i++) A.axis[i] /= A.len;
     A.side = PETSC_TRUE;
   }
-  PetscCall(PetscMalloc2(S->n + 1, &cand, 3 * S->n + 1, &edge));
-  if (S->stamp)
-    FCSurfaceQueryBox(S, lo, hi, cand, &nc);
-  else
-    for (PetscInt t = 0; t < S->n; t++) cand[nc++] = t;
+  PetscCall(PetscMalloc1(3 * S->n + 1, &edge));
   for (PetscInt k = 0; k < nc; k++) {
     const FCSurfaceTriangle *T = &S->tri[cand[k]];
     const PetscReal(*x)[3]     = T->xf;
@@ -504,7 +497,8 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
       PetscCall(AddSurfacePoint(&A, &S->tri[edge[first].tri], edge[first].w, edge[first].X, edge[first].cb));
     e = f;
   }
-  PetscCall(PetscFree2(cand, edge));
+  PetscCall(PetscFree(cand));
+  PetscCall(PetscFree(edge));
   if (flat && set->n - first > 2) { /* a cylinder's line: its two extreme points awake, those between dormant */
     PetscInt  lo = first, hi = first;
     PetscReal slo = PETSC_MAX_REAL, shi = -PETSC_MAX_REAL;

@@ -1,0 +1,124 @@
+/* The candidate points of one body against the signed distance of another body's analytic shape (called by
+   FCCollisionDetect, collision.c) */
+#include "collisionimpl.h"
+
+/* The contact of FE vertex x0 -> xf (prox: its proximity) against the rounded shape S (-contact_rounded_surface exact,
+   the shape's surface points taken after the free motion: FCCollisionRoundedFollows), taken as the surface points of
+   roundedsurface.c are: the normal the shape's at the vertex after the free motion, the shape's point the one along
+   it from the core's nearest point at the start (no moment about the core), the gap the solver starts from the
+   shape's exact distance after the free motion (qcurv). Linearized at the start instead, the contact of a vertex
+   just ahead of a rolling ball or cylinder is the plane tangent to the shape there, which the shape's forward motion
+   runs into: a vertical kick and a brake at each vertex it rolls over. */
+static PetscErrorCode VertexAtFree(FCBody S, const PetscReal x0[3], const PetscReal xf[3], const PetscReal nv[3],
+                                   FCContact *c)
+{
+  PetscInt    ncore;
+  PetscReal   core[2][3], r, df, cpf[3], cw[3], cb[3], p2[3], dfree[3];
+  PetscBool   flat;
+  FCProximity q = {0};
+
+  PetscFunctionBegin;
+  FCBodyGetShapeCore(S, &ncore, core, &r, &flat);
+  PetscCall(FCBodyShapeDistance(S, FC_AT_FREE, xf, &df, c->n, cpf));
+  { /* the core's point nearest the vertex after the free motion (body frame) */
+    PetscReal fr[2][3], t = 0.0;
+    for (PetscInt k = 0; k < ncore; k++) {
+      for (int i = 0; i < 3; i++) q.r[i] = core[k][i];
+      PetscCall(FCBodyProximityPosition(S, &q, FC_AT_FREE, fr[k]));
+    }
+    if (ncore == 2) {
+      PetscReal ab[3], ay[3];
+      for (int i = 0; i < 3; i++) {
+        ab[i] = fr[1][i] - fr[0][i];
+        ay[i] = xf[i] - fr[0][i];
+      }
+      t = FCDot(ay, ab) / FCDot(ab, ab);
+      if (flat) { /* a cylinder: where its side is nearest, the side's own distance (its normal radial at the rims,
+                     where the end faces are as near and sideways) */
+        PetscReal L = PetscSqrtReal(FCDot(ab, ab)), u[3], ds, ns[3];
+        PetscBool side;
+        for (int i = 0; i < 3; i++) u[i] = ab[i] / L;
+        FCCylinderSideDistance(fr[0], u, L, r, xf, nv, &ds, ns, &side);
+        if (side) {
+          df = ds;
+          for (int i = 0; i < 3; i++) c->n[i] = ns[i];
+        }
+      }
+      t = PetscMin(1.0, PetscMax(0.0, t));
+    }
+    for (int i = 0; i < 3; i++) cw[i] = ncore == 2 ? fr[0][i] + t * (fr[1][i] - fr[0][i]) : fr[0][i];
+    PetscCall(FCBodyToBodyFrame(S, FC_AT_FREE, cw, PETSC_FALSE, cb));
+  }
+  for (int i = 0; i < 3; i++) q.r[i] = cb[i];
+  PetscCall(FCBodyProximityPosition(S, &q, FC_AT_NOW, p2));
+  for (int i = 0; i < 3; i++) p2[i] += r * c->n[i];
+  PetscCall(FCBodyToBodyFrame(S, FC_AT_NOW, p2, PETSC_FALSE, c->prox[1].r));
+  for (int i = 0; i < 3; i++) {
+    c->p0[0][i]    = x0[i];
+    c->pfree[0][i] = xf[i];
+  }
+  PetscCall(FCBodyProximityPosition(S, &c->prox[1], FC_AT_START, c->p0[1]));
+  PetscCall(FCBodyProximityPosition(S, &c->prox[1], FC_AT_FREE, c->pfree[1]));
+  for (int i = 0; i < 3; i++) dfree[i] = c->pfree[0][i] - c->pfree[1][i];
+  c->qcurv = df - FCDot(c->n, dfree);
+  PetscFunctionReturn(0);
+}
+
+/* The candidate points of P (an FE body's owned boundary vertices, a shape's picture points)
+   against the signed distance of the shape of S. With vn (-contact_facing; the vertex normals of
+   an FE P's surface), a vertex outside the shape whose closest point's normal is within 75 degrees
+   of square to its own (|n . n_v| < FC_FACING_COS: a box's side face or rim seen by a slab vertex
+   just ahead of the box as it slides) is not a contact: a constraint along that normal would be a
+   wall across the sliding motion; a vertex that then moves inside is taken by the face it entered
+   under. (A vertex whose surface faces away from the shape, n . n_v > 0 beyond that band, belongs to
+   a body the shape has crossed, a discrete step into a thin plate: it keeps its contact, which holds
+   it on the side it is on.) */
+PetscErrorCode FCCollisionPointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, PetscInt ishp, PetscInt p, PetscInt nvn,
+                                             const FCVertexNormal *vn, PetscBool atfree, const FCContactPairs *pairs,
+                                             PetscMPIInt rank, FCContactSet *set)
+{
+  PetscInt     n;
+  FCProximity *prox;
+  PetscReal   *x0, *xf, *key, tau = FCCCDThreshold(pairs->distance);
+
+  PetscFunctionBegin;
+  PetscCall(FCBodyGetContactPoints(P, &n, &prox, &x0, &xf, &key));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscReal             d, nrm[3], cpb[3];
+    FCContact             c;
+    const FCVertexNormal *own;
+    PetscCall(FCBodyShapeDistance(S, FC_AT_NOW, &x0[3 * i], &d, nrm, cpb));
+    own = NULL; /* the vertex's own outward normal (with -contact_facing) */
+    if (vn && prox[i].nv == 1) {
+      FCVertexNormal key1;
+      for (int k = 0; k < 3; k++) key1.X[k] = prox[i].X[0][k];
+      own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), FCComparePoint);
+    }
+    if (own && d > 0.0 && PetscAbsReal(FCDot(nrm, own->n)) < FC_FACING_COS) continue;
+    if (d >= pairs->distance) { /* continuous: a speculative contact if the motion reaches the shape */
+      PetscBool hit = PETSC_FALSE;
+      if (pairs->continuous) PetscCall(FCCCDPointShape(S, &x0[3 * i], &xf[3 * i], d, tau, &hit));
+      if (!hit) continue;
+    }
+    PetscCall(PetscMemzero(&c, sizeof(c)));
+    c.pair    = p;
+    c.body[0] = ipts;
+    c.body[1] = ishp;
+    c.prox[0] = prox[i];
+    for (int k = 0; k < 3; k++) {
+      c.prox[1].r[k] = cpb[k];
+      c.key[k]       = key[3 * i + k];
+      c.n[k]         = nrm[k];
+      c.p0[0][k]     = x0[3 * i + k];
+      c.pfree[0][k]  = xf[3 * i + k];
+    }
+    PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_START, c.p0[1]));
+    PetscCall(FCBodyProximityPosition(S, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+    if (atfree) PetscCall(VertexAtFree(S, &x0[3 * i], &xf[3 * i], own ? own->n : NULL, &c));
+    c.gap0  = d;
+    c.mu    = pairs->mu[p];
+    c.owner = rank;
+    PetscCall(FCContactSetAdd(set, &c));
+  }
+  PetscFunctionReturn(0);
+}
