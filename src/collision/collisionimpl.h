@@ -82,6 +82,14 @@ PETSC_INTERN PetscErrorCode FCCollisionShapePoints(FCBody Sh, FCBody F, PetscInt
                                                    PetscBool follows, PetscBool lies, PetscInt pair,
                                                    const FCContactPairs *, PetscMPIInt rank, FCContactSet *);
 
+/* shapepoints.c: the contact of the FE material point tp (key X, at bcp now and yf after the free motion) of body ife
+   against the shape of body ish (its point r1, body frame), normal n, start gap gap0 */
+PETSC_INTERN PetscErrorCode FCCollisionSurfaceShapeContact(FCBody Sh, PetscInt ish, PetscInt ife, PetscInt pair,
+                                                           const FCContactPairs *, PetscMPIInt rank,
+                                                           const FCProximity *tp, const PetscReal X[3],
+                                                           const PetscReal bcp[3], const PetscReal yf[3],
+                                                           const PetscReal n[3], const PetscReal r1[3], PetscReal gap0,
+                                                           FCContact *c);
 /* shapepoints.c: whether the surface points of rounded shape Sh against the FE surface S (and the FE vertices'
    contacts with it) are taken after the free motion (-contact_rounded_surface exact, and the shape's core follows its
    free motion: no impact, no surface turning its normal); the same on every rank */

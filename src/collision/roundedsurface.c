@@ -218,7 +218,7 @@ static PetscErrorCode ShapeDistance(const Across *A, const PetscReal y[3], const
 static PetscErrorCode AddSurfacePoint(const Across *A, const FCSurfaceTriangle *T, const PetscReal bw[3],
                                       const PetscReal X[3], const PetscReal cb[3])
 {
-  PetscReal   bcp[3], yf[3], d0 = 0.0, df, interp = 0.0, n[3], p2[3], core[3], nt[3];
+  PetscReal   bcp[3], yf[3], d0 = 0.0, df, interp = 0.0, n[3], p2[3], core[3], nt[3], r1[3];
   FCProximity tp = {0}, q = {0};
   FCContact   c;
 
@@ -242,34 +242,17 @@ static PetscErrorCode AddSurfacePoint(const Across *A, const FCSurfaceTriangle *
     PetscCall(FCBodyShapeDistance(A->Sh, FC_AT_NOW, T->x0[a], &da, na, ca));
     d0 += bw[a] * da;
   }
-  PetscCall(PetscMemzero(&c, sizeof(c)));
   for (int i = 0; i < 3; i++) q.r[i] = cb[i];
   PetscCall(FCBodyProximityPosition(A->Sh, &q, FC_AT_NOW, core));
   for (int i = 0; i < 3; i++) p2[i] = core[i] + A->r * n[i];
-  PetscCall(FCBodyToBodyFrame(A->Sh, FC_AT_NOW, p2, PETSC_FALSE, c.prox[1].r));
-  c.qcurv   = df; /* minus n . d_free, below */
-  c.pair    = A->pair;
-  c.body[0] = A->ife;
-  c.body[1] = A->ish;
-  c.prox[0] = tp;
-  for (int k = 0; k < 3; k++) {
-    c.prox[0].r[k] = X[k];
-    c.key[k]       = X[k];
-    c.n[k]         = n[k];
-    c.p0[0][k]     = bcp[k];
-    c.pfree[0][k]  = yf[k];
-  }
-  PetscCall(FCBodyProximityPosition(A->Sh, &c.prox[1], FC_AT_START, c.p0[1]));
-  PetscCall(FCBodyProximityPosition(A->Sh, &c.prox[1], FC_AT_FREE, c.pfree[1]));
+  PetscCall(FCBodyToBodyFrame(A->Sh, FC_AT_NOW, p2, PETSC_FALSE, r1));
+  PetscCall(FCCollisionSurfaceShapeContact(A->Sh, A->ish, A->ife, A->pair, A->pairs, A->rank, &tp, X, bcp, yf, n, r1,
+                                           d0, &c));
   {
     PetscReal dfree[3];
     for (int k = 0; k < 3; k++) dfree[k] = c.pfree[0][k] - c.pfree[1][k];
-    c.qcurv -= FCDot(n, dfree);
+    c.qcurv = df - FCDot(n, dfree);
   }
-  c.side2 = FC_SIDE_SHAPE;
-  c.gap0  = d0;
-  c.mu    = A->pairs->mu[A->pair];
-  c.owner = A->rank;
   PetscCall(FCContactSetAdd(A->set, &c));
   PetscFunctionReturn(0);
 }

@@ -58,6 +58,34 @@ PetscErrorCode FCCollisionPictureLandings(FCBody Sh, Surface *S, const FCContact
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCCollisionSurfaceShapeContact(FCBody Sh, PetscInt ish, PetscInt ife, PetscInt pair,
+                                              const FCContactPairs *pairs, PetscMPIInt rank, const FCProximity *tp,
+                                              const PetscReal X[3], const PetscReal bcp[3], const PetscReal yf[3],
+                                              const PetscReal n[3], const PetscReal r1[3], PetscReal gap0, FCContact *c)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscMemzero(c, sizeof(*c)));
+  c->pair    = pair;
+  c->body[0] = ife;
+  c->body[1] = ish;
+  c->prox[0] = *tp;
+  for (int k = 0; k < 3; k++) {
+    c->prox[0].r[k] = X[k];
+    c->prox[1].r[k] = r1[k];
+    c->key[k]       = X[k];
+    c->n[k]         = n[k];
+    c->p0[0][k]     = bcp[k];
+    c->pfree[0][k]  = yf[k];
+  }
+  PetscCall(FCBodyProximityPosition(Sh, &c->prox[1], FC_AT_START, c->p0[1]));
+  PetscCall(FCBodyProximityPosition(Sh, &c->prox[1], FC_AT_FREE, c->pfree[1]));
+  c->side2 = FC_SIDE_SHAPE;
+  c->gap0  = gap0;
+  c->mu    = pairs->mu[pair];
+  c->owner = rank;
+  PetscFunctionReturn(0);
+}
+
 typedef struct {
   FCBody                Sh;
   PetscInt              ish, ife, pair;
@@ -101,25 +129,8 @@ static PetscErrorCode PicturePointOnSurface(const FCSurfaceTriangle *T, const Pe
     if (!hit) PetscFunctionReturn(0);
   }
   *made = PETSC_TRUE;
-  PetscCall(PetscMemzero(&c, sizeof(c)));
-  c.pair    = P->pair;
-  c.body[0] = P->ife;
-  c.body[1] = P->ish;
-  c.prox[0] = tp;
-  for (int k = 0; k < 3; k++) {
-    c.prox[0].r[k] = X[k];
-    c.prox[1].r[k] = cpb[k];
-    c.key[k]       = X[k];
-    c.n[k]         = nrm[k];
-    c.p0[0][k]     = bcp[k];
-    c.pfree[0][k]  = yf[k];
-  }
-  PetscCall(FCBodyProximityPosition(P->Sh, &c.prox[1], FC_AT_START, c.p0[1]));
-  PetscCall(FCBodyProximityPosition(P->Sh, &c.prox[1], FC_AT_FREE, c.pfree[1]));
-  c.side2 = FC_SIDE_SHAPE;
-  c.gap0  = d;
-  c.mu    = pairs->mu[P->pair];
-  c.owner = P->rank;
+  PetscCall(
+      FCCollisionSurfaceShapeContact(P->Sh, P->ish, P->ife, P->pair, pairs, P->rank, &tp, X, bcp, yf, nrm, cpb, d, &c));
   PetscCall(FCContactSetAdd(P->set, &c));
   PetscFunctionReturn(0);
 }
