@@ -82,6 +82,7 @@ cases = [
     ("inverted: unknown value", opts(cube_inverted="maybe"), "-cube_inverted"),
     ("unknown contact solver", opts(contact_solver="lu"), "-contact_solver"),
     ("Newton steps < 1", opts(contact_solver="newton", contact_newton_max_it="0"), "-contact_newton_max_it"),
+    ("unknown Newton LU", opts(contact_solver="newton", contact_newton_lu="qr"), "-contact_newton_lu"),
     ("surface not closed", opts(cube_dm_plex_filename="tests/data/nonmanifold.msh"), "not closed"),
     # PETSc 3.18's gmsh reader faults on these (docs/reliability.md): a clear error, exit 1
     ("mesh that crashes PETSc's reader", opts(cube_dm_plex_filename="tools/fuzz/petsc-gmsh-crashes/v22_node_tag_0.msh"), "malformed"),

@@ -65,15 +65,17 @@ for h5 in sorted(B.glob.glob(os.path.join(B.SRC, "*.hdf5"))):
             % (name, o["residual"], o["sweeps"], o["converged"], e_np))
 
 # -contact_solver newton on every problem PGS solves
-def newton(h5, sol):
+def newton(h5, sol, extra=()):
     exe = os.environ.get("FCLIB_SOLVE", os.path.join(B.ROOT, "build", "fclib_solve"))
-    out = subprocess.run([exe, "-problem", h5, "-pgs_tol", str(tol), "-pgs_max_it", str(max_it), "-contact_solver", "newton",
-                          "-contact_newton_max_it", "1000", "-solution", sol], capture_output=True, text=True, timeout=600,
-                         check=True).stdout.split()
+    res = subprocess.run([exe, "-problem", h5, "-pgs_tol", str(tol), "-pgs_max_it", str(max_it), "-contact_solver", "newton",
+                          "-contact_newton_max_it", "1000", "-solution", sol] + list(extra), capture_output=True, text=True,
+                         timeout=600, check=True)
+    out = [w for line in res.stdout.splitlines() if line.startswith("problem") for w in line.split()]
     d = dict(zip(out[0::2], out[1::2]))
     with B.h5py.File(sol, "r") as f:
         r = f["r"][:]
-    return dict(sweeps=int(d["sweeps"]), residual=float(d["residual"]), converged=d["converged"] == "1", r=r)
+    lu = "sparse" if "sparse LU" in res.stdout else "dense" if "dense LU" in res.stdout else None
+    return dict(sweeps=int(d["sweeps"]), residual=float(d["residual"]), converged=d["converged"] == "1", r=r, lu=lu)
 
 
 for h5 in sorted(B.glob.glob(os.path.join(conv, "*.h5"))):
@@ -89,4 +91,16 @@ for h5 in sorted(B.glob.glob(os.path.join(conv, "*.h5"))):
         ok = ok and o["sweeps"] < 100
     c.check(ok, "%s, -contact_solver newton: %.2e (numpy %.2e) in %d sweeps and Newton steps (PGS: %d sweeps)" % (
         name, o["residual"], e_np, o["sweeps"], p["sweeps"]))
+# the Newton step's two factorizations (-contact_newton_lu, src/contact/newton_jacobian.c): auto picks MUMPS'
+# sparse LU on a large block-sparse W and LAPACK's dense LU on a small one; each converges on both kinds
+for name, want in (("Capsules-i101-404", "sparse"), ("FrictionContactProblem00727", "sparse"), ("OneObject-i1028-138.hdf5", "dense")):
+    h5 = os.path.join(conv, name + ".h5")
+    Wd, q, mu, d = B.load_h5(h5)
+    a = newton(h5, os.path.join(TMP, name + ".lu.h5"), ["-info", ":sys"])
+    c.check(a["lu"] == want, "%s: -contact_newton_lu auto factors H with the %s LU (it chose %s)" % (name, want, a["lu"]))
+    for lu in ("dense", "sparse"):
+        o = newton(h5, os.path.join(TMP, name + "." + lu + ".h5"), ["-contact_newton_lu", lu])
+        e_np = B.natural_map_error(Wd, q, mu, o["r"], d)
+        c.check(o["converged"] and e_np <= tol * (1 + 1e-6), "%s, -contact_newton_lu %s: %.2e (numpy %.2e) in %d sweeps and "
+                "Newton steps" % (name, lu, o["residual"], e_np, o["sweeps"]))
 c.done()

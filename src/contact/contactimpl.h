@@ -21,7 +21,17 @@ struct _p_FCContactSolver {
   PetscInt                type;          /* -contact_solver: 0 auto, 1 pgs, 2 newton (pgs.c) */
   PetscInt                newton_max_it; /* -contact_newton_max_it */
   PetscBool               giveup;        /* the sweeps stop once their rate says max_it will not do (auto) */
+  PetscInt                newton_lu;     /* -contact_newton_lu (FCNewtonLU) */
 };
+
+/* newton_jacobian.c: the generalized Jacobian H = A + B W of a Newton step and its factorization */
+typedef enum { FC_NEWTON_LU_AUTO, FC_NEWTON_LU_DENSE, FC_NEWTON_LU_SPARSE } FCNewtonLU;
+typedef struct _n_FCNewtonJacobian *FCNewtonJacobian;
+PETSC_INTERN PetscErrorCode         FCNewtonJacobianCreate(FCContactProblem, FCNewtonLU, FCNewtonJacobian *);
+/* Solve (A + B W + reg I) dr = rhs in place; *ok false where the factorization failed */
+PETSC_INTERN PetscErrorCode FCNewtonJacobianSolve(FCNewtonJacobian, const PetscReal A[], const PetscReal B[],
+                                                  PetscReal reg, PetscReal rhs[], PetscBool *ok);
+PETSC_INTERN PetscErrorCode FCNewtonJacobianDestroy(FCNewtonJacobian *);
 
 struct _p_FCContactProblem {
   PetscInt   nc, n;     /* contacts, rows                                  */
@@ -96,8 +106,10 @@ PETSC_INTERN PetscErrorCode FCContactSolverNewton(FCContactSolver, FCContactProb
 PETSC_INTERN PetscErrorCode FCContactSolverAuto(FCContactSolver, FCContactProblem, PetscReal[]);
 /* newton.c: nonsmooth Newton on the Alart-Curnier function of a whole problem, on this rank; r in:
    the warm start, out: the forces; its = Newton steps taken, residual as FCContactProblemResidual */
-PETSC_INTERN PetscErrorCode FCContactSolveNewton(FCContactProblem, PetscReal tol, PetscInt max_it, PetscReal r[],
-                                                 PetscInt *its, PetscReal *residual);
+PETSC_INTERN PetscErrorCode FCContactSolveNewton(FCContactProblem, FCNewtonLU, PetscReal tol, PetscInt max_it,
+                                                 PetscReal r[], PetscInt *its, PetscReal *residual);
+/* y = W x (a whole W on this rank) */
+PETSC_INTERN PetscErrorCode FCContactProblemMult(FCContactProblem, const PetscReal x[], PetscReal y[]);
 /* pgs_split.c: the sweeps split over the ranks of comm (-pgs_ranks split), dense W only; r in:
    the warm start (the same on every rank), out: the forces (the same on every rank). With
    giveup, the sweeps stop early, unconverged, once their rate of convergence says they would not

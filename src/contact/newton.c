@@ -1,19 +1,31 @@
 /* Nonsmooth Newton on FC(W, q, mu) (-contact_solver newton): the Alart-Curnier function of the 3D
-   Coulomb law (Alart & Curnier 1991; Siconos' FC3D_NSN_AC), per contact with rho = d / tr(W_ii)
-   and x_N = r_N - rho u_N, y = r_T - rho u_T, R = mu max(0, x_N):
+   Coulomb law (Alart & Curnier 1991; Siconos' FC3D_NSN_AC), per contact with rho = 1 / lambda_max(W_ii)
+   (Siconos' default) and x_N = r_N - rho u_N, y = r_T - rho u_T, R = mu max(0, x_N):
        Phi_N = r_N - max(0, x_N)
        Phi_T = r_T - P_{disc of radius R}(y)
    with u = W r + q. Phi(r) = 0 exactly at the solutions of the Coulomb problem (the same as those
    of De Saxce's cone complementarity the natural-map residual measures). A Newton step solves
-   H dr = -Phi with H = A + B W, A and B the block-diagonal generalized derivatives of Phi in r and
-   u (d x d per contact: stick, slide or open), by a dense LU (LAPACK getrf/getrs) of the whole
-   n x n H. Globalization: backtracking (Armijo) on psi = |Phi|^2 / 2 along dr, whose slope is
-   -2 psi for the Newton direction. Stops on the natural-map residual / ||q|| <= tol, the test of
-   the sweeps (pgs.c), or after max_it Newton steps, or when three steps in a row are short (the
-   line search failed or took less than 1/64 of the step: Newton is not converging from there; the
-   caller sweeps, pgs.c). A dormant contact (FCContactProblemSetDormant) keeps r_i = 0 (Phi_i = r_i). */
+   (H + reg I) dr = -Phi with H = A + B W, A and B the block-diagonal generalized derivatives of Phi
+   in r and u (d x d per contact: stick, slide or open), factored by newton_jacobian.c (dense or
+   sparse LU); reg, 1e-8 at first, stands against the singular W of redundant contacts.
+   Globalization: backtracking (Armijo) on psi = |Phi|^2 / 2 along dr, whose slope is -2 psi for the
+   Newton direction; where no step along dr lowers psi (a kink between the contacts' states), the
+   full step is taken, as Siconos does. Three steps in a row without descent or shorter than 1/64
+   make a stall: Newton goes on from the best iterate with reg ten times larger (the step then
+   leaves the null space of a degenerate H alone), up to 1e-4, and after that stops. Stops on the
+   natural-map residual / ||q|| <= tol, the test of the sweeps (pgs.c), or after max_it Newton
+   steps; returns the iterate of the lowest residual met (the caller sweeps from it if it is above
+   tol). A dormant contact (FCContactProblemSetDormant) keeps r_i = 0 (Phi_i = r_i). */
 #include "contactimpl.h"
 #include <petscblaslapack.h>
+
+/* Newton stalls after FC_NEWTON_STALE steps in a row shorter than FC_NEWTON_SHORT (or without descent): then
+   the regularization of H grows tenfold, from the best iterate, up to FC_NEWTON_REG_MAX, and after that the
+   solver stops (the caller sweeps) */
+#define FC_NEWTON_STALE 3
+#define FC_NEWTON_SHORT (1.0 / 64)
+#define FC_NEWTON_REG_MIN 1e-8
+#define FC_NEWTON_REG_MAX 1e-4
 
 /* Phi_i and its derivatives A_i (in r_i) and B_i (in u_i), d x d row-major */
 static void ACBlock(PetscInt d, PetscReal mu, PetscReal rho, const PetscReal r[], const PetscReal u[], PetscReal phi[],
@@ -82,13 +94,35 @@ static PetscReal Merit(FCContactProblem p, const PetscReal rho[], const PetscRea
   return psi;
 }
 
-PetscErrorCode FCContactSolveNewton(FCContactProblem p, PetscReal tol, PetscInt max_it, PetscReal r[], PetscInt *its,
-                                    PetscReal *residual)
+/* rho_i = 1 / lambda_max(W_ii) (Siconos' default for FC3D_NSN_AC), by power iteration on the d x d block */
+static PetscReal SpectralRho(FCContactProblem p, PetscInt i)
 {
-  PetscInt      n = p->n, nc = p->nc, fails = 0;
-  PetscReal     reg = 1e-8;
-  PetscReal    *W, *u, *phi, *A, *B, *H, *dr, *wdr, *rt, *ut, *rho, psi;
-  PetscBLASInt *piv, bn, one = 1, info;
+  PetscInt  d = p->dim[i];
+  PetscReal Wii[9], x[3] = {1.0, 1.0, 1.0}, lam = 0.0;
+
+  FCContactProblemDiagonalBlock(p, i, Wii);
+  for (PetscInt it = 0; it < 40; it++) {
+    PetscReal y[3], nn = 0.0;
+    for (PetscInt a = 0; a < d; a++) {
+      y[a] = 0.0;
+      for (PetscInt b = 0; b < d; b++) y[a] += Wii[a * d + b] * x[b];
+      nn += y[a] * y[a];
+    }
+    nn = PetscSqrtReal(nn);
+    if (!(nn > 0.0)) break;
+    lam = nn;
+    for (PetscInt a = 0; a < d; a++) x[a] = y[a] / nn;
+  }
+  return lam > 0.0 ? 1.0 / lam : 1.0;
+}
+
+PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonLU lu, PetscReal tol, PetscInt max_it, PetscReal r[],
+                                    PetscInt *its, PetscReal *residual)
+{
+  PetscInt         n = p->n, nc = p->nc, stale = 0;
+  PetscReal        reg = FC_NEWTON_REG_MIN, best;
+  PetscReal       *u, *phi, *A, *B, *dr, *wdr, *rt, *ut, *rho, *rbest, psi;
+  FCNewtonJacobian J;
 
   PetscFunctionBegin;
   *its = 0;
@@ -106,46 +140,22 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, PetscReal tol, PetscInt 
     PetscCall(PetscFree(u));
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscBLASIntCast(n, &bn));
-  PetscCall(FCContactProblemGetDenseW(p, &W));
-  PetscCall(PetscMalloc4(n, &phi, 9 * nc, &A, 9 * nc, &B, (size_t)n * n, &H));
-  PetscCall(PetscMalloc6(n, &dr, n, &wdr, n, &rt, n, &ut, nc, &rho, n, &piv));
-  for (PetscInt i = 0; i < nc; i++) {
-    PetscReal Wii[9], tr = 0.0;
-    FCContactProblemDiagonalBlock(p, i, Wii);
-    for (PetscInt a = 0; a < p->dim[i]; a++) tr += Wii[a * p->dim[i] + a];
-    rho[i] = tr > 0.0 ? p->dim[i] / tr : 1.0;
-  }
-  psi = Merit(p, rho, r, u, phi, A, B);
-  while (*residual > tol && *its < max_it && fails < 3) {
+  PetscCall(FCNewtonJacobianCreate(p, lu, &J));
+  PetscCall(PetscMalloc4(n, &phi, 9 * nc, &A, 9 * nc, &B, n, &rbest));
+  PetscCall(PetscMalloc5(n, &dr, n, &wdr, n, &rt, n, &ut, nc, &rho));
+  for (PetscInt i = 0; i < nc; i++) rho[i] = SpectralRho(p, i);
+  psi  = Merit(p, rho, r, u, phi, A, B);
+  best = *residual;
+  PetscCall(PetscArraycpy(rbest, r, n));
+  while (best > tol && *its < max_it && stale < FC_NEWTON_STALE) {
     PetscReal t = 1.0, psit = psi;
-    PetscBool accepted = PETSC_FALSE;
-    /* H (row-major) = A + B W, row by row of each contact */
-    for (PetscInt i = 0; i < nc; i++) {
-      PetscInt d = p->dim[i], o = p->off[i];
-      for (PetscInt k = 0; k < d; k++) {
-        PetscReal *h = &H[(size_t)(o + k) * n];
-        for (PetscInt j = 0; j < n; j++) h[j] = 0.0;
-        for (PetscInt a = 0; a < d; a++) {
-          PetscReal        b = B[9 * i + k * d + a];
-          const PetscReal *w = &W[(size_t)(o + a) * n];
-          if (b != 0.0)
-            for (PetscInt j = 0; j < n; j++) h[j] += b * w[j];
-        }
-        for (PetscInt a = 0; a < d; a++) h[o + a] += A[9 * i + k * d + a];
-        h[o + k] += reg; /* redundant contacts make W, and H with it, singular */
-      }
-    }
+    PetscBool accepted = PETSC_FALSE, ok;
     for (PetscInt k = 0; k < n; k++) dr[k] = -phi[k];
-    /* row-major H is H^T column-major: solve H^T^T dr = -Phi with getrs "T" */
-    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, H, &bn, piv, &info));
-    if (info == 0) PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("T", &bn, &one, H, &bn, piv, dr, &bn, &info));
-    if (info != 0) { /* a singular H: a step along -Phi, the line search decides */
+    PetscCall(FCNewtonJacobianSolve(J, A, B, reg, dr, &ok));
+    if (!ok) /* a singular H: a step along -Phi, the line search decides */
       for (PetscInt k = 0; k < n; k++) dr[k] = -phi[k];
-    }
-    PetscCallBLAS("BLASgemv",
-                  BLASgemv_("T", &bn, &bn, &(PetscScalar){1.0}, W, &bn, dr, &one, &(PetscScalar){0.0}, wdr, &one));
-    for (PetscInt ls = 0; ls < 30; ls++, t *= 0.5) {
+    PetscCall(FCContactProblemMult(p, dr, wdr));
+    for (PetscInt ls = 0; ls < 20; ls++, t *= 0.5) {
       for (PetscInt k = 0; k < n; k++) {
         rt[k] = r[k] + t * dr[k];
         ut[k] = u[k] + t * wdr[k];
@@ -156,24 +166,45 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, PetscReal tol, PetscInt 
         break;
       }
     }
-    fails = accepted && t >= 1.0 / 64 ? 0 : fails + 1; /* a short step: Newton is not converging here */
+    if (!accepted) { /* no descent of |Phi| along dr (a kink between the contacts' states): the full step */
+      t = 1.0;
+      for (PetscInt k = 0; k < n; k++) {
+        rt[k] = r[k] + dr[k];
+        ut[k] = u[k] + wdr[k];
+      }
+    }
     PetscCall(PetscArraycpy(r, rt, n));
     PetscCall(PetscArraycpy(u, ut, n));
     (*its)++;
     if (*its % 8 == 0) PetscCall(FCContactProblemVelocity(p, r, u)); /* against the drift of u += t W dr */
     psi       = Merit(p, rho, r, u, phi, A, B);
     *residual = FCContactProblemResidualFromVelocity(p, r, u);
-    PetscCall(PetscInfo(NULL, "Newton step %" PetscInt_FMT ": step length %g%s, |Phi| %g, residual %g\n", *its,
-                        (double)t, accepted ? "" : " (line search failed)", (double)PetscSqrtReal(2.0 * psi),
-                        (double)*residual));
     PetscCheck(!PetscIsInfOrNanReal(*residual), PETSC_COMM_SELF, PETSC_ERR_FP,
                "Contact solver (Newton) diverged (NaN residual) after %" PetscInt_FMT " iterations", *its);
+    stale = accepted && t >= FC_NEWTON_SHORT ? 0 : stale + 1;
+    if (*residual < best) {
+      best = *residual;
+      PetscCall(PetscArraycpy(rbest, r, n));
+    }
+    if (stale >= FC_NEWTON_STALE && reg < FC_NEWTON_REG_MAX) { /* stalled: from the best iterate, more regularized */
+      reg *= 10.0;
+      stale = 0;
+      PetscCall(PetscArraycpy(r, rbest, n));
+      PetscCall(FCContactProblemVelocity(p, r, u));
+      psi = Merit(p, rho, r, u, phi, A, B);
+      PetscCall(
+          PetscInfo(NULL, "Newton stalled at residual %g: on with the regularization %g\n", (double)best, (double)reg));
+    }
+    PetscCall(PetscInfo(NULL, "Newton step %" PetscInt_FMT ": step length %g%s, |Phi| %g, residual %g\n", *its,
+                        (double)t, accepted ? "" : " (no descent: full step)", (double)PetscSqrtReal(2.0 * psi),
+                        (double)*residual));
   }
+  PetscCall(PetscArraycpy(r, rbest, n));
   PetscCall(FCContactProblemVelocity(p, r, u));
   *residual = FCContactProblemResidualFromVelocity(p, r, u);
-  PetscCall(PetscFree4(phi, A, B, H));
-  PetscCall(PetscFree6(dr, wdr, rt, ut, rho, piv));
-  PetscCall(PetscFree(W));
+  PetscCall(FCNewtonJacobianDestroy(&J));
+  PetscCall(PetscFree4(phi, A, B, rbest));
+  PetscCall(PetscFree5(dr, wdr, rt, ut, rho));
   PetscCall(PetscFree(u));
   PetscFunctionReturn(0);
 }
@@ -203,8 +234,8 @@ PetscErrorCode FCContactSolverNewton(FCContactSolver s, FCContactProblem p, Pets
     if (s->converged || total >= max_it) break;
     before = s->residual;
     PetscCall(PetscArraycpy(rs, r, p->n));
-    PetscCall(
-        FCContactSolveNewton(p, s->tol, PetscMin(s->newton_max_it - newton, max_it - total), r, &its, &s->residual));
+    PetscCall(FCContactSolveNewton(p, (FCNewtonLU)s->newton_lu, s->tol,
+                                   PetscMin(s->newton_max_it - newton, max_it - total), r, &its, &s->residual));
     newton += its;
     total += its;
     if (s->residual > before) { /* worse than the sweeps left it: back to their iterate */

@@ -122,9 +122,14 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
                               "The contact solver: sweeps then Newton where they stall, projected Gauss-Seidel, or "
                               "nonsmooth Newton",
                               NULL, SolverTypes, 3, SolverTypes[s->type], &s->type, NULL));
-  if (s->type != SOLVER_PGS)
+  if (s->type != SOLVER_PGS) {
+    const char *lus[] = {"auto", "dense", "sparse"};
     PetscCall(FCOptionsInt(PetscOptionsObject, "-contact_newton_max_it",
                            "Newton steps at most (-contact_solver auto or newton)", &s->newton_max_it, NULL));
+    PetscCall(PetscOptionsEList("-contact_newton_lu",
+                                "The LU of a Newton step: by W's fill, LAPACK's dense LU, or MUMPS' sparse LU", NULL,
+                                lus, 3, lus[s->newton_lu], &s->newton_lu, NULL));
+  }
   PetscCall(PetscOptionsString("-pgs_dump_problem", "Write a contact problem to this FCLIB file", NULL, s->dump,
                                s->dump, sizeof(s->dump), NULL));
   if (s->dump[0]) {

@@ -250,6 +250,8 @@ PetscErrorCode FCContactProblemGetSizes(FCContactProblem p, PetscInt *nc, PetscI
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode MultAdd(FCContactProblem, const PetscReal[], PetscReal[]);
+
 /* u = W r + q (dense: one BLAS gemv) */
 PetscErrorCode FCContactProblemVelocity(FCContactProblem p, const PetscReal r[], PetscReal u[])
 {
@@ -259,6 +261,24 @@ PetscErrorCode FCContactProblemVelocity(FCContactProblem p, const PetscReal r[],
     PetscFunctionReturn(0);
   }
   PetscCall(PetscArraycpy(u, p->q, p->n));
+  PetscCall(MultAdd(p, r, u));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCContactProblemMult(FCContactProblem p, const PetscReal x[], PetscReal y[])
+{
+  PetscFunctionBegin;
+  PetscCheck(p->rowcomm == MPI_COMM_NULL, PETSC_COMM_SELF, PETSC_ERR_SUP,
+             "A contact problem held by block rows has no whole W here (FCContactProblemGatherWhole)");
+  PetscCall(PetscArrayzero(y, p->n));
+  PetscCall(MultAdd(p, x, y));
+  PetscFunctionReturn(0);
+}
+
+/* u += W r, W whole on this rank */
+static PetscErrorCode MultAdd(FCContactProblem p, const PetscReal r[], PetscReal u[])
+{
+  PetscFunctionBegin;
   if (p->Wd) { /* row-major W is W^T column-major: u += (W^T)^T r */
     PetscBLASInt n, one = 1;
     PetscScalar  alpha = 1.0, beta = 1.0;
