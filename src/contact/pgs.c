@@ -49,8 +49,8 @@
                            converge on (the last linearization of the step), for a bug report
      -contact_solver auto|pgs|newton
                            pgs: the sweeps above; newton: rounds of sweeps, then nonsmooth Newton
-                           steps on the Alart-Curnier function from their iterate, with a dense LU
-                           of its n x n Jacobian and a line search (newton.c), for ill-conditioned
+                           steps on the Alart-Curnier function from their iterate, with an LU of
+                           its n x n Jacobian and a line search (newton.c), for ill-conditioned
                            problems where the sweeps stall (mass and stiffness ratios); the same
                            residual and tolerance (-pgs_tol); solved on rank 0 (every rank with
                            -pgs_ranks all or the fast scheme's -fast_update sweep), never split.
@@ -60,7 +60,12 @@
                            sweeps, then rank 0, on large problems). A problem the sweeps converge
                            on steadily is solved as by pgs. docs/contact-solver.md
      -contact_newton_max_it n
-                           with newton or auto: Newton steps at most (>= 1, default 300) */
+                           with newton or auto: Newton steps at most (>= 1, default 300)
+     -contact_newton_lu auto|dense|sparse
+                           with newton or auto: the LU of a Newton step, LAPACK's dense one or
+                           MUMPS' sparse one with W's block pattern; auto (default): sparse from
+                           300 rows on where W's nonzero blocks hold at most 20 % of it
+                           (newton_jacobian.c) */
 #include "contactimpl.h"
 
 typedef enum { PGS_AUTO, PGS_ALL, PGS_ROOT, PGS_SPLIT } PGSPlacement; /* -pgs_ranks, in this order */
