@@ -133,6 +133,24 @@ PETSC_EXTERN PetscErrorCode FCBodyFEMGetReferenceCoordinates(FCBody, Vec *);
 PETSC_EXTERN PetscErrorCode FCBodyFEMGetCounters(FCBody, PetscInt *nassembly, PetscInt *nfactorization);
 
 /* ---------------------------------------------------------------------------------------
+   Extending fecontact: a new body type, shape, material, compliance builder or constraint
+   scheme is one file with its create function (which fills the type's private structure,
+   src/<package>/) and one Register call, before the scene reads its options; the type is then
+   chosen by its option (-<body>_type, -<body>_shape, -<body>_material, -compliance_type,
+   -constraint_scheme) like the built-in ones. docs/architecture.md shows each.
+   --------------------------------------------------------------------------------------- */
+typedef struct _p_FCShape      *FCShape;
+typedef struct _p_FCMaterial   *FCMaterial;
+typedef struct _p_FCCompliance *FCCompliance;
+typedef const char             *FCComplianceType;
+typedef struct _p_FCScheme     *FCScheme;
+typedef const char             *FCSchemeType;
+PETSC_EXTERN PetscErrorCode     FCShapeRegister(const char[], PetscErrorCode (*)(FCShape));
+PETSC_EXTERN PetscErrorCode     FCMaterialRegister(const char[], PetscErrorCode (*)(FCMaterial));
+PETSC_EXTERN PetscErrorCode     FCComplianceRegister(const char[], PetscErrorCode (*)(FCCompliance));
+PETSC_EXTERN PetscErrorCode     FCSchemeRegister(const char[], PetscErrorCode (*)(FCScheme));
+
+/* ---------------------------------------------------------------------------------------
    Scene: the bodies, the time loop, the output
    --------------------------------------------------------------------------------------- */
 typedef struct _p_FCScene *FCScene;
@@ -193,7 +211,12 @@ PETSC_EXTERN PetscErrorCode FCContactLocalSolve(PetscInt dim, const PetscReal W[
 
 typedef struct _p_FCContactSolver *FCContactSolver;
 typedef const char                *FCContactSolverType;
+#define FCCONTACTSOLVERAUTO "auto"
 #define FCCONTACTSOLVERPGS "pgs"
+#define FCCONTACTSOLVERNEWTON "newton"
+/* A contact solver type (-contact_solver): one file whose create function sets the solve on one
+   rank (src/contact/contactimpl.h), and this call */
+PETSC_EXTERN PetscErrorCode FCContactSolverRegister(const char[], PetscErrorCode (*)(FCContactSolver));
 PETSC_EXTERN PetscErrorCode FCContactSolverCreate(MPI_Comm, FCContactSolver *);
 PETSC_EXTERN PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver);
 PETSC_EXTERN PetscErrorCode FCContactSolverSetTolerances(FCContactSolver, PetscReal tol, PetscInt max_it);

@@ -5,11 +5,11 @@
 
 #define FC_MAX_NAME 64
 #define FC_MAX_BODIES 256 /* bodies of a scene, and contact pairs */
-#define FC_MAX_KNOWN 256  /* the names of a type registry, for error messages */
 
-/* Adds a type to a registry and its name to `known` (src/util/registry.c) */
-PETSC_INTERN PetscErrorCode FCRegistryAdd(PetscFunctionList *, char known[], size_t len, const char name[],
-                                          void (*create)(void));
+/* The create function of `type` in a registry; an unknown type is an error naming `option` and listing the
+   registered types (src/util/registry.c). `what` names the kind of type ("body type") */
+PETSC_INTERN PetscErrorCode FCRegistryFind(MPI_Comm, PetscFunctionList, const char what[], const char option[],
+                                           const char type[], void (**create)(void));
 
 /* ---------------------------------------------------------------------------------------
    Small dense kernels (src/util/linalg.c): 3-vectors, 3x3 matrices (row-major), quaternions
@@ -47,7 +47,6 @@ PETSC_INTERN void FCTetMass(PetscReal rho, PetscReal vol, PetscBool lumped, Pets
 /* ---------------------------------------------------------------------------------------
    Materials (src/material/): one file per model, registered in FCMaterialList
    --------------------------------------------------------------------------------------- */
-typedef struct _p_FCMaterial *FCMaterial;
 struct _p_FCMaterial {
   char      type[FC_MAX_NAME];
   PetscReal young, poisson, lambda, mu;
@@ -71,13 +70,10 @@ PETSC_INTERN void              FCMaterialHooke(FCMaterial, const PetscReal H[9],
 PETSC_INTERN PetscReal         FCMaterialHookeEnergy(FCMaterial, const PetscReal H[9], PetscReal vol);
 PETSC_INTERN void FCMaterialDeformationGradient(const PetscReal x[12], const PetscReal Dminv[9], PetscReal F[9]);
 PETSC_INTERN PetscErrorCode FCMaterialDestroy(FCMaterial *);
-PETSC_INTERN PetscErrorCode FCMaterialCreate_Linear(FCMaterial);
-PETSC_INTERN PetscErrorCode FCMaterialCreate_Corotational(FCMaterial);
 
 /* ---------------------------------------------------------------------------------------
    Shapes (src/shape/): analytic geometry of rigid and kinematic bodies
    --------------------------------------------------------------------------------------- */
-typedef struct _p_FCShape *FCShape;
 struct _p_FCShape {
   char      type[FC_MAX_NAME];
   PetscReal radius, half_extents[3], length, normal[3];
@@ -102,12 +98,6 @@ PETSC_EXTERN PetscFunctionList FCShapeList;
 PETSC_INTERN PetscErrorCode    FCShapeRegisterAll(void);
 PETSC_INTERN PetscErrorCode FCShapeCreateFromOptions(MPI_Comm, const char prefix[], const char bodyname[], FCShape *);
 PETSC_INTERN PetscErrorCode FCShapeDestroy(FCShape *);
-PETSC_INTERN PetscErrorCode FCShapeCreate_Plane(FCShape);
-PETSC_INTERN PetscErrorCode FCShapeCreate_Sphere(FCShape);
-PETSC_INTERN PetscErrorCode FCShapeCreate_Box(FCShape);
-PETSC_INTERN PetscErrorCode FCShapeCreate_Capsule(FCShape);
-PETSC_INTERN PetscErrorCode FCShapeCreate_Cylinder(FCShape);
-PETSC_INTERN PetscErrorCode FCShapeCreate_Mesh(FCShape);
 
 /* ---------------------------------------------------------------------------------------
    Tetrahedral mesh of a body (src/mesh/mesh.c): reading, validation, per-cell vertex lists
@@ -379,9 +369,6 @@ PETSC_INTERN PetscErrorCode FCBodySaveFreeMotion(FCBody);
 PETSC_INTERN PetscErrorCode FCBodyRestoreFreeMotion(FCBody);
 PETSC_INTERN PetscErrorCode FCBodyAddTrialPosition(FCBody, const FCProximity *, PetscReal x[3]);
 
-PETSC_INTERN PetscErrorCode FCBodyCreate_FEM(FCBody);
-PETSC_INTERN PetscErrorCode FCBodyCreate_Rigid(FCBody);
-PETSC_INTERN PetscErrorCode FCBodyCreate_Kinematic(FCBody);
 PETSC_INTERN PetscErrorCode FCBodyRegisterAll(void);
 /* Reads the placement options of a body: -<name>_translate, _rotate, _center, _velocity,
    _angular_velocity. */
@@ -395,8 +382,6 @@ PETSC_INTERN PetscErrorCode FCBodyVisualDestroy(FCBodyVisual *);
    Compliance builders (src/compliance/): W_b = J_b A_b^-1 J_b^T of an FE body (eq. 17) and its
    correction dv += h A_b^-1 J_b^T lambda (eq. 20); one file per type, -compliance_type
    --------------------------------------------------------------------------------------- */
-typedef struct _p_FCCompliance *FCCompliance;
-typedef const char             *FCComplianceType;
 #define FCCOMPLIANCEDENSE "dense"
 #define FCCOMPLIANCESPARSE "sparse"
 #define FCCOMPLIANCESCHUR "schur"
@@ -416,7 +401,6 @@ typedef struct {
   const PetscInt *surface;
 } FCComplianceContext;
 PETSC_EXTERN PetscFunctionList FCComplianceList;
-PETSC_EXTERN PetscErrorCode    FCComplianceRegister(const char[], PetscErrorCode (*)(FCCompliance));
 PETSC_INTERN PetscErrorCode    FCComplianceRegisterAll(void);
 PETSC_INTERN PetscErrorCode    FCComplianceCreate(const FCComplianceContext *, FCCompliance *);
 PETSC_INTERN PetscErrorCode    FCComplianceSetType(FCCompliance, FCComplianceType);
@@ -517,14 +501,14 @@ typedef struct {
 
 /* FCScheme: a constraint scheme (src/scheme/), -constraint_scheme explicit|standard|fast. It owns
    the contact solver and, per step, turns the contact set into forces and corrected motions. */
-typedef struct _p_FCScheme *FCScheme;
-typedef const char         *FCSchemeType;
 #define FCSCHEMEEXPLICIT "explicit"
 #define FCSCHEMESTANDARD "standard"
 #define FCSCHEMEFAST "fast"
 PETSC_EXTERN PetscFunctionList FCSchemeList;
-PETSC_EXTERN PetscErrorCode    FCSchemeRegister(const char[], PetscErrorCode (*)(FCScheme));
 PETSC_INTERN PetscErrorCode    FCSchemeRegisterAll(void);
+/* the contact solver types (src/contact/solver.c) */
+PETSC_EXTERN PetscFunctionList FCContactSolverList;
+PETSC_INTERN PetscErrorCode    FCContactSolverRegisterAll(void);
 PETSC_INTERN PetscErrorCode    FCSchemeCreate(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCScheme *);
 PETSC_INTERN PetscErrorCode    FCSchemeSetType(FCScheme, FCSchemeType);
 PETSC_INTERN PetscErrorCode    FCSchemeSetFromOptions(FCScheme);

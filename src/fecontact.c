@@ -1,6 +1,6 @@
-/* Package registration: type registries (bodies, materials, shapes, compliance builders, schemes), the
-   METIS mesh partitioner (a PetscPartitioner type), log events, and the BLAS option
-   (-blas_gemv_forward, src/util/blas.c). */
+/* Package registration: type registries (bodies, materials, shapes, compliance builders, schemes,
+   contact solvers), the METIS mesh partitioner (a PetscPartitioner type), log events, and the BLAS
+   option (-blas_gemv_forward, src/util/blas.c). */
 #include "fcimpl.h"
 
 static PetscBool initialized = PETSC_FALSE;
@@ -20,6 +20,7 @@ PetscErrorCode FCInitializePackage(void)
   PetscCall(FCShapeRegisterAll());
   PetscCall(FCSchemeRegisterAll());
   PetscCall(FCComplianceRegisterAll());
+  PetscCall(FCContactSolverRegisterAll());
   PetscCall(FCPartitionerRegisterMetis());
   PetscCall(FCBLASSetFromOptions());
   PetscCall(PetscRegisterFinalize(FCFinalizePackage));
@@ -35,6 +36,7 @@ PetscErrorCode FCFinalizePackage(void)
   PetscCall(PetscFunctionListDestroy(&FCShapeList));
   PetscCall(PetscFunctionListDestroy(&FCSchemeList));
   PetscCall(PetscFunctionListDestroy(&FCComplianceList));
+  PetscCall(PetscFunctionListDestroy(&FCContactSolverList));
   initialized = PETSC_FALSE;
   PetscFunctionReturn(0);
 }

@@ -21,6 +21,11 @@ PetscErrorCode FCBodyRegister(const char name[], PetscErrorCode (*create)(FCBody
   PetscFunctionReturn(0);
 }
 
+/* The built-in body types: a new type is one file with its create function, declared and registered here */
+PETSC_INTERN PetscErrorCode FCBodyCreate_FEM(FCBody);
+PETSC_INTERN PetscErrorCode FCBodyCreate_Rigid(FCBody);
+PETSC_INTERN PetscErrorCode FCBodyCreate_Kinematic(FCBody);
+
 PetscErrorCode FCBodyRegisterAll(void)
 {
   PetscFunctionBegin;
@@ -61,9 +66,11 @@ PetscErrorCode FCBodySetType(FCBody body, FCBodyType type)
 
   PetscFunctionBegin;
   PetscCheck(!body->data, body->comm, PETSC_ERR_ORDER, "Body '%s' already has a type", body->name);
-  PetscCall(PetscFunctionListFind(FCBodyList, type, &create));
-  PetscCheck(create, body->comm, PETSC_ERR_USER_INPUT,
-             "Unknown body type '%s' in -%stype (known: fem, rigid, kinematic)", type, body->prefix);
+  {
+    char option[FC_MAX_NAME + 8];
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-%stype", body->prefix));
+    PetscCall(FCRegistryFind(body->comm, FCBodyList, "body type", option, type, (void (**)(void)) & create));
+  }
   PetscCall(PetscStrncpy(body->type, type, sizeof(body->type)));
   PetscCall((*create)(body));
   PetscFunctionReturn(0);

@@ -97,9 +97,10 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
   fem->lumped = !strcmp(masstype, "lumped") ? PETSC_TRUE : PETSC_FALSE;
   {
     PetscErrorCode (*create)(FCMaterial) = NULL;
-    PetscCall(PetscFunctionListFind(FCMaterialList, fem->material, &create));
-    PetscCheck(create, body->comm, PETSC_ERR_USER_INPUT,
-               "Unknown material '%s' in -%smaterial (known: linear, corotational)", fem->material, body->prefix);
+    char option[FC_MAX_NAME + 12];
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-%smaterial", body->prefix));
+    PetscCall(
+        FCRegistryFind(body->comm, FCMaterialList, "material", option, fem->material, (void (**)(void)) & create));
   }
   PetscCheck(setE, body->comm, PETSC_ERR_USER_INPUT, "FE body '%s' needs -%syoung", body->name, body->prefix);
   PetscCheck(setRho, body->comm, PETSC_ERR_USER_INPUT, "FE body '%s' needs -%sdensity", body->name, body->prefix);

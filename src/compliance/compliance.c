@@ -2,7 +2,7 @@
        W_b = J_b A_b^-1 J_b^T
    and applies the contact forces to its motion (eq. 20)
        dv_b = dv_free,b + h A_b^-1 J_b^T lambda.
-   One file per builder type, registered here (-compliance_type, default redundant):
+   One file per builder type, registered here (-compliance_type, default condensed):
      dense, sparse      dense.c        MUMPS solves with dense or sparse right-hand sides J_b^T
      schur              schur.c        Schur complement of the augmented matrix [[0, J], [J^T, A]]
      inverse, redundant inverse.c      the block of A^-1 on the contact DOFs (selected inverse)
@@ -15,13 +15,12 @@
    calls the body back. docs/architecture.md says how to add a builder. */
 #include "complianceimpl.h"
 
-PetscFunctionList FCComplianceList    = NULL;
-static char       known[FC_MAX_KNOWN] = ""; /* the registered names, for error messages */
+PetscFunctionList FCComplianceList = NULL;
 
 PetscErrorCode FCComplianceRegister(const char name[], PetscErrorCode (*create)(FCCompliance))
 {
   PetscFunctionBegin;
-  PetscCall(FCRegistryAdd(&FCComplianceList, known, sizeof(known), name, (void (*)(void))create));
+  PetscCall(PetscFunctionListAdd(&FCComplianceList, name, create));
   PetscFunctionReturn(0);
 }
 
@@ -37,7 +36,6 @@ PETSC_INTERN PetscErrorCode FCComplianceCreate_Condensed(FCCompliance);
 PetscErrorCode FCComplianceRegisterAll(void)
 {
   PetscFunctionBegin;
-  known[0] = 0;
   PetscCall(FCComplianceRegister(FCCOMPLIANCEDENSE, FCComplianceCreate_Dense));
   PetscCall(FCComplianceRegister(FCCOMPLIANCESPARSE, FCComplianceCreate_Sparse));
   PetscCall(FCComplianceRegister(FCCOMPLIANCESCHUR, FCComplianceCreate_Schur));
@@ -68,9 +66,8 @@ PetscErrorCode FCComplianceSetType(FCCompliance comp, FCComplianceType type)
   PetscFunctionBegin;
   PetscCheck(!comp->type[0], comp->ctx.comm, PETSC_ERR_ORDER, "The compliance builder of body '%s' already has a type",
              comp->ctx.name);
-  PetscCall(PetscFunctionListFind(FCComplianceList, type, &create));
-  PetscCheck(create, comp->ctx.comm, PETSC_ERR_USER_INPUT,
-             "Unknown compliance type '%s' in -compliance_type (known: %s)", type, known);
+  PetscCall(FCRegistryFind(comp->ctx.comm, FCComplianceList, "compliance type", "-compliance_type", type,
+                           (void (**)(void)) & create));
   PetscCall(PetscStrncpy(comp->type, type, sizeof(comp->type)));
   PetscCall((*create)(comp));
   PetscFunctionReturn(0);

@@ -18,10 +18,13 @@ struct _p_FCContactSolver {
   PetscBool               dumped, dump_unconverged; /* -pgs_dump_unconverged: the first unconverged problem */
   FCContactSolverUpdateFn update;                   /* after every sweep (FCContactSolverSetUpdate) */
   void                   *updatectx;
-  PetscInt                type;          /* -contact_solver: 0 auto, 1 pgs, 2 newton (pgs.c) */
-  PetscInt                newton_max_it; /* -contact_newton_max_it */
-  PetscBool               giveup;        /* the sweeps stop once their rate says max_it will not do (auto) */
-  PetscInt                newton_lu;     /* -contact_newton_lu (FCNewtonLU) */
+  char                    type[FC_MAX_NAME];                               /* -contact_solver (solver.c's registry) */
+  PetscErrorCode (*solve)(FCContactSolver, FCContactProblem, PetscReal[]); /* the type's solve on this rank */
+  PetscBool splits;                                                        /* its sweeps may be split (-pgs_ranks) */
+  PetscBool newton;        /* it takes Newton steps (-contact_newton_*) */
+  PetscInt  newton_max_it; /* -contact_newton_max_it */
+  PetscBool giveup;        /* the sweeps stop once their rate says max_it will not do (auto) */
+  PetscInt  newton_lu;     /* -contact_newton_lu (FCNewtonLU) */
 };
 
 /* newton_jacobian.c: the generalized Jacobian H = A + B W of a Newton step and its factorization */

@@ -299,3 +299,22 @@ PetscErrorCode FCContactSolverAuto(FCContactSolver s, FCContactProblem p, PetscR
   s->sweeps += sweeps;
   PetscFunctionReturn(0);
 }
+
+/* -contact_solver newton: on rank 0 (or every rank), never split */
+PetscErrorCode FCContactSolverCreate_Newton(FCContactSolver s)
+{
+  PetscFunctionBegin;
+  s->solve  = FCContactSolverNewton;
+  s->newton = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* -contact_solver auto (the default): its sweeps may be split over the ranks, as pgs' */
+PetscErrorCode FCContactSolverCreate_Auto(FCContactSolver s)
+{
+  PetscFunctionBegin;
+  s->solve  = FCContactSolverAuto;
+  s->splits = PETSC_TRUE;
+  s->newton = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}

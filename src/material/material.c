@@ -4,11 +4,22 @@
 
 PetscFunctionList FCMaterialList = NULL;
 
+/* The built-in models: a new model is one file with its create function, declared and registered here */
+PETSC_INTERN PetscErrorCode FCMaterialCreate_Linear(FCMaterial);
+PETSC_INTERN PetscErrorCode FCMaterialCreate_Corotational(FCMaterial);
+
+PetscErrorCode FCMaterialRegister(const char name[], PetscErrorCode (*create)(FCMaterial))
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFunctionListAdd(&FCMaterialList, name, create));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCMaterialRegisterAll(void)
 {
   PetscFunctionBegin;
-  PetscCall(PetscFunctionListAdd(&FCMaterialList, "linear", FCMaterialCreate_Linear));
-  PetscCall(PetscFunctionListAdd(&FCMaterialList, "corotational", FCMaterialCreate_Corotational));
+  PetscCall(FCMaterialRegister("linear", FCMaterialCreate_Linear));
+  PetscCall(FCMaterialRegister("corotational", FCMaterialCreate_Corotational));
   PetscFunctionReturn(0);
 }
 
@@ -19,9 +30,8 @@ PetscErrorCode FCMaterialCreate(const char type[], PetscReal young, PetscReal po
   FCMaterial m;
 
   PetscFunctionBegin;
-  PetscCall(PetscFunctionListFind(FCMaterialList, type, &create));
-  PetscCheck(create, PETSC_COMM_SELF, PETSC_ERR_ARG_UNKNOWN_TYPE,
-             "Unknown material type '%s' (known: linear, corotational)", type);
+  PetscCall(FCRegistryFind(PETSC_COMM_SELF, FCMaterialList, "material", "-<body>_material", type,
+                           (void (**)(void)) & create));
   PetscCall(PetscNew(&m));
   PetscCall(PetscStrncpy(m->type, type, sizeof(m->type)));
   m->young   = young;

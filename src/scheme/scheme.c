@@ -20,13 +20,12 @@
 #include "schemeimpl.h"
 #include <unistd.h>
 
-PetscFunctionList FCSchemeList        = NULL;
-static char       known[FC_MAX_KNOWN] = ""; /* the registered names, for error messages */
+PetscFunctionList FCSchemeList = NULL;
 
 PetscErrorCode FCSchemeRegister(const char name[], PetscErrorCode (*create)(FCScheme))
 {
   PetscFunctionBegin;
-  PetscCall(FCRegistryAdd(&FCSchemeList, known, sizeof(known), name, (void (*)(void))create));
+  PetscCall(PetscFunctionListAdd(&FCSchemeList, name, create));
   PetscFunctionReturn(0);
 }
 
@@ -38,7 +37,6 @@ PETSC_INTERN PetscErrorCode FCSchemeCreate_Fast(FCScheme);
 PetscErrorCode FCSchemeRegisterAll(void)
 {
   PetscFunctionBegin;
-  known[0] = 0;
   PetscCall(FCSchemeRegister(FCSCHEMEEXPLICIT, FCSchemeCreate_Explicit));
   PetscCall(FCSchemeRegister(FCSCHEMESTANDARD, FCSchemeCreate_Standard));
   PetscCall(FCSchemeRegister(FCSCHEMEFAST, FCSchemeCreate_Fast));
@@ -67,9 +65,8 @@ PetscErrorCode FCSchemeSetType(FCScheme scheme, FCSchemeType type)
 
   PetscFunctionBegin;
   PetscCheck(!scheme->type[0], scheme->comm, PETSC_ERR_ORDER, "The constraint scheme already has a type");
-  PetscCall(PetscFunctionListFind(FCSchemeList, type, &create));
-  PetscCheck(create, scheme->comm, PETSC_ERR_USER_INPUT,
-             "Unknown constraint scheme '%s' in -constraint_scheme (known: %s)", type, known);
+  PetscCall(FCRegistryFind(scheme->comm, FCSchemeList, "constraint scheme", "-constraint_scheme", type,
+                           (void (**)(void)) & create));
   PetscCall(PetscStrncpy(scheme->type, type, sizeof(scheme->type)));
   PetscCall((*create)(scheme));
   PetscFunctionReturn(0);

@@ -6,15 +6,30 @@
 
 PetscFunctionList FCShapeList = NULL;
 
+/* The built-in shapes: a new shape is one file with its create function, declared and registered here */
+PETSC_INTERN PetscErrorCode FCShapeCreate_Plane(FCShape);
+PETSC_INTERN PetscErrorCode FCShapeCreate_Sphere(FCShape);
+PETSC_INTERN PetscErrorCode FCShapeCreate_Box(FCShape);
+PETSC_INTERN PetscErrorCode FCShapeCreate_Capsule(FCShape);
+PETSC_INTERN PetscErrorCode FCShapeCreate_Cylinder(FCShape);
+PETSC_INTERN PetscErrorCode FCShapeCreate_Mesh(FCShape);
+
+PetscErrorCode FCShapeRegister(const char name[], PetscErrorCode (*create)(FCShape))
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFunctionListAdd(&FCShapeList, name, create));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCShapeRegisterAll(void)
 {
   PetscFunctionBegin;
-  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPEPLANE, FCShapeCreate_Plane));
-  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPESPHERE, FCShapeCreate_Sphere));
-  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPEBOX, FCShapeCreate_Box));
-  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPECAPSULE, FCShapeCreate_Capsule));
-  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPECYLINDER, FCShapeCreate_Cylinder));
-  PetscCall(PetscFunctionListAdd(&FCShapeList, FCSHAPEMESH, FCShapeCreate_Mesh));
+  PetscCall(FCShapeRegister(FCSHAPEPLANE, FCShapeCreate_Plane));
+  PetscCall(FCShapeRegister(FCSHAPESPHERE, FCShapeCreate_Sphere));
+  PetscCall(FCShapeRegister(FCSHAPEBOX, FCShapeCreate_Box));
+  PetscCall(FCShapeRegister(FCSHAPECAPSULE, FCShapeCreate_Capsule));
+  PetscCall(FCShapeRegister(FCSHAPECYLINDER, FCShapeCreate_Cylinder));
+  PetscCall(FCShapeRegister(FCSHAPEMESH, FCShapeCreate_Mesh));
   PetscFunctionReturn(0);
 }
 
@@ -40,9 +55,11 @@ PetscErrorCode FCShapeCreateFromOptions(MPI_Comm comm, const char prefix[], cons
   PetscOptionsEnd();
   PetscCheck(set, comm, PETSC_ERR_USER_INPUT,
              "Body '%s' needs -%sshape (plane, sphere, box, capsule, cylinder or mesh)", bodyname, prefix);
-  PetscCall(PetscFunctionListFind(FCShapeList, type, &create));
-  PetscCheck(create, comm, PETSC_ERR_USER_INPUT,
-             "Unknown shape '%s' in -%sshape (known: plane, sphere, box, capsule, cylinder, mesh)", type, prefix);
+  {
+    char option[FC_MAX_NAME + 8];
+    PetscCall(PetscSNPrintf(option, sizeof(option), "-%sshape", prefix));
+    PetscCall(FCRegistryFind(comm, FCShapeList, "shape", option, type, (void (**)(void)) & create));
+  }
   PetscCall(PetscNew(&s));
   PetscCall(PetscStrncpy(s->type, type, sizeof(s->type)));
   s->bounded = PETSC_TRUE;
