@@ -256,7 +256,7 @@ PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt i
    constraints are nearly redundant (W ill-conditioned: PGS stalls, docs/hard-cases.md).
      -contact_fe_pass2_dormant w (the default, w = 0.01): the held contact is dormant: the contact
        solver keeps it out of its sweeps and wakes it only where the solution without it leaves
-       its vertex deeper than -contact_dormant_depth inside (pgs.c, SolveLazy);
+       its vertex deeper than -contact_dormant_depth inside (solver.c, SolveLazy);
      -contact_fe_pass2_drop w: the held contact is dropped (takes precedence).
    Vertices are matched by their reference position. Runs on the gathered set, the same on every
    rank, so it keeps the order. */

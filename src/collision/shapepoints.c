@@ -136,7 +136,7 @@ static PetscErrorCode PicturePointOnSurface(const FCSurfaceTriangle *T, const Pe
 }
 
 /* The second form (a box, a cylinder): the picture points against the FE triangles as a rigid
-   mesh's vertices (FCCollisionVerticesAgainstSurface), dormant (pgs.c, SolveLazy): where the
+   mesh's vertices (FCCollisionVerticesAgainstSurface), dormant (solver.c, SolveLazy): where the
    vertices' own contacts already hold the shape, a point's row is nearly a combination of theirs
    (W nearly singular, the forces not unique); the solver takes it up only where the solution
    leaves the point deeper inside than -contact_dormant_depth */

@@ -2,7 +2,7 @@
 #pragma once
 #include "../fcimpl.h"
 
-/* The contact solver's settings and last convergence (pgs.c: options, placement, the sweeps;
+/* The contact solver's settings and last convergence (solver.c: options, placement; pgs.c: the sweeps;
    newton.c: the Newton driver) */
 struct _p_FCContactSolver {
   MPI_Comm                comm;

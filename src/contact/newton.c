@@ -209,7 +209,7 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonLU lu, PetscReal
   PetscFunctionReturn(0);
 }
 
-/* -contact_solver newton on this rank (called by pgs.c's placement): rounds of FC_NEWTON_SWEEPS sweeps (NNCG), then
+/* -contact_solver newton on this rank (called by solver.c's placement): rounds of FC_NEWTON_SWEEPS sweeps (NNCG), then
    Newton steps from their iterate (newton.c), until converged or out of budget (-pgs_max_it sweeps and Newton steps
    together, -contact_newton_max_it Newton steps). The sweeps find the contacts' states roughly, from which Newton
    converges fast, and take over where a Newton step cannot lower |Phi| (kinks, redundant contacts); a round whose

@@ -340,7 +340,7 @@ PetscErrorCode FCContactProblemResidual(FCContactProblem p, const PetscReal r[],
 
 /* Dormant contacts (mask[i], borrowed: the caller keeps it alive and reads back the contacts the
    solver woke): nearly redundant constraints that the solver adds only where the solution without
-   them leaves their normal gap below -depth (pgs.c, SolveLazy). u is a displacement here (q holds
+   them leaves their normal gap below -depth (solver.c, SolveLazy). u is a displacement here (q holds
    the gaps), so depth is a length. */
 PetscErrorCode FCContactProblemSetDormant(FCContactProblem p, PetscBool mask[], PetscReal depth)
 {

@@ -32,7 +32,7 @@
                               two constraints are nearly redundant (W nearly singular: the sweeps
                               stall, docs/hard-cases.md): it is dormant, out of the contact solver's
                               sweeps unless the solution without it leaves its vertex deeper than
-                              -contact_dormant_depth inside (src/contact/pgs.c, SolveLazy)
+                              -contact_dormant_depth inside (src/contact/solver.c, SolveLazy)
                               (w < 1; default 0.01: a weight within the deformation's noise of 0, a
                               landing point on the triangle's opposite edge, would hold the vertex in one
                               step and not in the next; < 0: every contact solved)

@@ -118,7 +118,7 @@ static PetscErrorCode RowBlock(FCScheme scheme, const FCContactSet *set, PetscBo
   *rows = PETSC_FALSE;
   *c0   = 0;
   *c1   = set->n;
-  /* -fast_update sweep: the solver calls back after every sweep, so it does not split (pgs.c) */
+  /* -fast_update sweep: the solver calls back after every sweep, so it does not split (solver.c) */
   if (!fast->host || !fast->by_rows || fast->sweep_update) PetscFunctionReturn(0);
   PetscCall(PetscMalloc1(set->n + 1, &dims));
   for (PetscInt k = 0; k < set->n; k++) {

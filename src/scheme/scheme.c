@@ -6,7 +6,7 @@
                W_k = C_k W_H C_k^T and p = p_free + h^2 W_H C_k^T lambda         (fast.c)
    recursive.c holds what the two recursive schemes share (their options, the re-linearization,
    the convergence test). This file holds what all three share: the options below, the contact
-   solver (-pgs_*, src/contact/pgs.c), the memory check, the assembly of W and its check, the
+   solver (-pgs_*, -contact_solver: src/contact/solver.c), the memory check, the assembly of W and its check, the
    correction of every body, and the check of the solver's residual. The warm start is one rule
    for all three (FCContactSetWarmStart): the previous step's world force of the same contact,
    projected on this step's frame.
