@@ -9,7 +9,7 @@
      -<body>_velocity vx,vy,vz       initial (fem, rigid) or prescribed (kinematic) velocity
      -<body>_angular_velocity wx,wy,wz   same, about the centre, rad/s
      -<body>_density rho             fem and rigid bodies (> 0)                          */
-#include "../fcimpl.h"
+#include "bodyimpl.h"
 #include <ctype.h>
 
 PetscFunctionList FCBodyList = NULL;

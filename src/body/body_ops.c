@@ -2,7 +2,7 @@
    operation of its type (FCBodyOps). Collision, schemes, output and restart go through these;
    an operation a type does not have is either a no-op (responses of bodies that take no force)
    or an error naming the body. */
-#include "../fcimpl.h"
+#include "bodyimpl.h"
 
 PetscBool FCBodyIsDeformable(FCBody body)
 {
@@ -63,6 +63,34 @@ PetscBool FCBodyHasSurfaceTriangles(FCBody body)
 PetscReal FCBodyGetMass(FCBody body)
 {
   return body->prescribed ? 0.0 : body->mass;
+}
+
+const char *FCBodyName(FCBody body)
+{
+  return body->name;
+}
+
+const char *FCBodyTypeName(FCBody body)
+{
+  return body->type;
+}
+
+PetscReal FCBodyTimeStep(FCBody body)
+{
+  return body->h;
+}
+
+void FCBodyGetGravity(FCBody body, PetscReal g[3])
+{
+  for (int d = 0; d < 3; d++) g[d] = body->gravity[d];
+}
+
+void FCBodyGetPrescribedMotion(FCBody body, PetscReal v[3], PetscReal w[3])
+{
+  for (int d = 0; d < 3; d++) {
+    v[d] = body->velocity[d];
+    w[d] = body->angular_velocity[d];
+  }
 }
 
 /* An operation the body's type lacks, asked for anyway */

@@ -6,7 +6,7 @@
      fem_rotation.c the rotation of a free co-rotational body within a step
      fem_check.c    the checks of the derived quantities (mass, energies, M, K, A) at set-up */
 #pragma once
-#include "../fcimpl.h"
+#include "bodyimpl.h"
 
 #define FC_MAX_FIXED_BOXES 8 /* -<body>_fixed_box: boxes at most */
 

@@ -1,7 +1,7 @@
 /* The pose of a body that moves rigidly (rigid and kinematic bodies): its shape, the position
    x of its centre, its orientation q (unit quaternion, body to world) and their rates. */
 #pragma once
-#include "../fcimpl.h"
+#include "bodyimpl.h"
 
 typedef struct {
   FCShape            shape;

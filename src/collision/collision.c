@@ -20,8 +20,8 @@ static PetscErrorCode Sides(FCBody a, FCBody b, PetscInt ia, PetscInt ib, PetscI
   PetscBool arigid = !afem && !FCBodyIsPrescribed(a), brigid = !bfem && !FCBodyIsPrescribed(b);
 
   PetscFunctionBegin;
-  PetscCheck(!(afem && bfem), a->comm, PETSC_ERR_SUP,
-             "Contact between two FE bodies ('%s', '%s') is not implemented yet", a->name, b->name);
+  PetscCheck(!(afem && bfem), PETSC_COMM_SELF, PETSC_ERR_SUP,
+             "Contact between two FE bodies ('%s', '%s') is not implemented yet", FCBodyName(a), FCBodyName(b));
   *ipts = ia;
   *ishp = ib;
   if (bfem || (!afem && !(arigid && FCBodyHasBoundedShape(a)) && brigid && FCBodyHasBoundedShape(b))) {
@@ -348,8 +348,8 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
                     &ishp));
     P = bodies[ipts];
     S = bodies[ishp];
-    PetscCheck(FCBodyHasShape(S), comm, PETSC_ERR_SUP, "Contact between '%s' and '%s' is not implemented yet", P->name,
-               S->name);
+    PetscCheck(FCBodyHasShape(S), comm, PETSC_ERR_SUP, "Contact between '%s' and '%s' is not implemented yet",
+               FCBodyName(P), FCBodyName(S));
     if (!FCBodyIsDeformable(P) && !FCBodyHasSurfaceTriangles(P) && !FCBodyHasSurfaceTriangles(S)) {
       /* two analytic shapes: a rounded one (sphere, capsule, cylinder) from the closest points of
          its core (smooth.c), exact where one is smooth; two boxes face to face by their separating
@@ -403,7 +403,7 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
      src/scheme/recursive.c). An ordinary contact (d < v h) is unchanged. */
   for (PetscInt k = 0; k < set->n; k++) {
     FCContact *c = &set->c[k];
-    c->slack     = PetscMax(0.0, -c->gap0 - pairs->separation_speed * bodies[c->body[0]]->h);
+    c->slack     = PetscMax(0.0, -c->gap0 - pairs->separation_speed * FCBodyTimeStep(bodies[c->body[0]]));
   }
   PetscCall(FCContactSetFinalize(set));
   PetscFunctionReturn(0);

@@ -413,7 +413,7 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
   if (rank) PetscFunctionReturn(0);
   first = set->n;
   FCBodyGetShapeCore(Sh, &ncore, core, &A.r, &flat);
-  PetscCheck(ncore > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Body '%s' has no rounded shape", Sh->name);
+  PetscCheck(ncore > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Body '%s' has no rounded shape", FCBodyName(Sh));
   A.Sh    = Sh;
   A.ish   = ish;
   A.ife   = ife;

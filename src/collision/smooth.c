@@ -169,7 +169,7 @@ PetscErrorCode FCCollisionRoundedShape(FCBody P, FCBody S, PetscInt ip, PetscInt
   R.ip = ip;
   R.is = is;
   FCBodyGetShapeCore(P, &R.ncore, R.core, &R.r, &R.flat);
-  PetscCheck(R.ncore > 0, P->comm, PETSC_ERR_PLIB, "Body '%s' has no rounded shape", P->name);
+  PetscCheck(R.ncore > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Body '%s' has no rounded shape", FCBodyName(P));
   if (R.ncore == 1) {
     PetscCall(CoreContacts(&R, R.core[0], -1, pair, pairs, rank, set));
     PetscFunctionReturn(0);

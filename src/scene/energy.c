@@ -38,7 +38,7 @@ static PetscReal Total(const FCEnergy *E)
 PetscErrorCode FCEnergyGuardSetUp(FCEnergyGuard *g, MPI_Comm comm, PetscInt nbodies, FCBody bodies[], PetscReal h,
                                   PetscInt nsteps, PetscReal speed)
 {
-  PetscReal lo[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[3], H = 0.0, vkin = 0.0, grav = 0.0;
+  PetscReal lo[3] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}, hi[3], H = 0.0, vkin = 0.0, grav = 0.0, gv[3];
 
   PetscFunctionBegin;
   g->E0 = g->scale = 0.0;
@@ -62,10 +62,10 @@ PetscErrorCode FCEnergyGuardSetUp(FCEnergyGuard *g, MPI_Comm comm, PetscInt nbod
   for (int d = 0; d < 3; d++) H += PetscSqr(hi[d] - lo[d]);
   H = PetscSqrtReal(H); /* the diagonal: any height the scene spans, in any direction of gravity */
   for (PetscInt i = 0; i < nbodies; i++) {
-    FCBody b = bodies[i];
-    if (!FCBodyIsPrescribed(b)) continue; /* the fastest point of a kinematic body */
-    vkin = PetscMax(vkin, PetscSqrtReal(FCDot(b->velocity, b->velocity)) +
-                              PetscSqrtReal(FCDot(b->angular_velocity, b->angular_velocity)) * H);
+    PetscReal v[3], w[3];
+    if (!FCBodyIsPrescribed(bodies[i])) continue; /* the fastest point of a kinematic body */
+    FCBodyGetPrescribedMotion(bodies[i], v, w);
+    vkin = PetscMax(vkin, PetscSqrtReal(FCDot(v, v)) + PetscSqrtReal(FCDot(w, w)) * H);
   }
   H += vkin * h * nsteps;
   speed += vkin;
@@ -81,7 +81,8 @@ PetscErrorCode FCEnergyGuardSetUp(FCEnergyGuard *g, MPI_Comm comm, PetscInt nbod
                name, (double)E.kinetic, (double)E.elastic, (double)E.gravity, (double)m, name, name, name, name);
     g->Eb0[i] = Total(&E);
     g->E0 += g->Eb0[i];
-    grav = PetscSqrtReal(FCDot(bodies[i]->gravity, bodies[i]->gravity));
+    FCBodyGetGravity(bodies[i], gv);
+    grav = PetscSqrtReal(FCDot(gv, gv));
     g->scale += PetscAbsReal(E.kinetic) + PetscAbsReal(E.elastic) + m * grav * H + 0.5 * m * speed * speed;
   }
   PetscFunctionReturn(0);

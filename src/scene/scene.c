@@ -134,7 +134,7 @@ static PetscErrorCode BodyIndex(FCScene s, const char name[], const char pair[],
   PetscFunctionBegin;
   *idx = -1;
   for (PetscInt i = 0; i < s->nbodies; i++)
-    if (!strcmp(s->bodies[i]->name, name)) *idx = i;
+    if (!strcmp(FCBodyName(s->bodies[i]), name)) *idx = i;
   PetscCheck(*idx >= 0, s->comm, PETSC_ERR_USER_INPUT,
              "Contact pair '%s' in -contact_pairs names unknown body '%s' (bodies: -scene_bodies)", pair, name);
   PetscFunctionReturn(0);
@@ -409,7 +409,7 @@ PetscErrorCode FCSceneGetBody(FCScene s, const char name[], FCBody *body)
   PetscFunctionBegin;
   *body = NULL;
   for (PetscInt i = 0; i < s->nbodies; i++)
-    if (!strcmp(s->bodies[i]->name, name)) *body = s->bodies[i];
+    if (!strcmp(FCBodyName(s->bodies[i]), name)) *body = s->bodies[i];
   PetscCheck(*body, s->comm, PETSC_ERR_USER_INPUT, "No body named '%s' in -scene_bodies", name);
   PetscFunctionReturn(0);
 }
@@ -477,8 +477,8 @@ static PetscErrorCode PrintSummary(FCScene s, PetscLogDouble wall)
     PetscCall(FCBodyGetEnergy(s->bodies[i], &E));
     PetscCall(PetscPrintf(
         s->comm, "  body %-12s %-9s centroid (%.6g, %.6g, %.6g)  energy kinetic %.6g elastic %.6g gravity %.6g\n",
-        s->bodies[i]->name, s->bodies[i]->type, (double)c[0], (double)c[1], (double)c[2], (double)E.kinetic,
-        (double)E.elastic, (double)E.gravity));
+        FCBodyName(s->bodies[i]), FCBodyTypeName(s->bodies[i]), (double)c[0], (double)c[1], (double)c[2],
+        (double)E.kinetic, (double)E.elastic, (double)E.gravity));
   }
   PetscCall(PetscPrintf(s->comm, "  output: %s (open the .xmf beside it in ParaView)\n", s->output_file));
   PetscFunctionReturn(0);

@@ -131,7 +131,7 @@ PetscErrorCode FCSchemeSolve(FCScheme scheme, PetscInt step, FCContactSet *set, 
 PetscErrorCode FCSchemeCompliance(FCScheme scheme, const FCContactSet *set, PetscReal W[], PetscBool *kept)
 {
   FCBody   *bodies = scheme->bodies;
-  PetscReal h      = scheme->nbodies ? bodies[0]->h : 0.0;
+  PetscReal h      = scheme->nbodies ? FCBodyTimeStep(bodies[0]) : 0.0;
   PetscBool same   = (PetscBool)(kept && *kept);
 
   PetscFunctionBegin;
@@ -178,8 +178,8 @@ PetscErrorCode FCSchemeCompliance(FCScheme scheme, const FCContactSet *set, Pets
               "The contact compliance W is not a compliance: W(%" PetscInt_FMT ",%" PetscInt_FMT
               ") = %g (contact %" PetscInt_FMT ", bodies '%s' and '%s'); the factorization or the -compliance_type "
               "builder failed",
-              badrow, badrow, (double)W[badrow * n + badrow], bad, bodies[set->c[bad].body[0]]->name,
-              bodies[set->c[bad].body[1]]->name);
+              badrow, badrow, (double)W[badrow * n + badrow], bad, FCBodyName(bodies[set->c[bad].body[0]]),
+              FCBodyName(bodies[set->c[bad].body[1]]));
     PetscCheck(asym <= 1e-8 * wmax, scheme->comm, PETSC_ERR_CONV_FAILED,
                "The contact compliance W is not symmetric (max |W_ij - W_ji| = %g, max W_ii = %g); the factorization "
                "or the -compliance_type builder failed",

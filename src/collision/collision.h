@@ -1,0 +1,34 @@
+/* Contact pairs and collision detection (src/collision/) */
+#pragma once
+
+#include "../body/body.h"
+
+typedef struct {
+  PetscInt n;
+  PetscInt (*body)[2]; /* scene body indices */
+  PetscReal *mu;
+  PetscReal  distance;      /* alarm distance */
+  PetscInt   passes;        /* FE-FE and FE-mesh pairs: 2 both ways, 1 first body's vertices only */
+  PetscReal  pass2_drop;    /* -contact_fe_pass2_drop: drop 2nd-pass vertices held by the 1st pass (< 0: off) */
+  PetscReal  pass2_dormant; /* -contact_fe_pass2_dormant: such contacts dormant instead (< 0: off) */
+  PetscReal  dormant_depth; /* -contact_dormant_depth: a dormant contact wakes when left deeper than this (m) */
+  PetscBool  facing;        /* -contact_facing: a vertex lands only on triangles that face its own surface */
+  PetscBool  continuous;    /* -contact_detection continuous (default) or discrete */
+  PetscBool  edges;         /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
+  PetscBool  shape_points;  /* -contact_shape_points: a bounded shape's points against an FE surface too */
+  PetscBool  rounded_exact; /* -contact_rounded_surface exact: a sphere's or capsule's nearest FE surface points */
+  PetscReal
+      separation_speed; /* -contact_separation_speed: bodies that start inside each other part at most this fast */
+  PetscReal intersection_depth;   /* a point deeper than this inside another body is an intersection */
+  PetscBool fail_on_intersection; /* -contact_fail_on_intersection: stop the run at the first one */
+} FCContactPairs;
+/* Discrete collision detection at the start of the step (after the free motion has been
+   computed, so that every contact also carries its free-motion positions) */
+PETSC_INTERN PetscErrorCode FCCollisionDetect(MPI_Comm, PetscInt nbodies, FCBody bodies[], const FCContactPairs *,
+                                              FCContactSet *);
+/* Gap, normal and d = p1 - p2 of every contact at the end of the step, on the real geometry */
+PETSC_INTERN PetscErrorCode FCCollisionEndGaps(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCContactSet *);
+/* The points inside another body at the end of the step (src/collision/intersection.c), the same
+   on every rank */
+PETSC_INTERN PetscErrorCode FCCollisionCountIntersections(MPI_Comm, PetscInt nbodies, FCBody bodies[],
+                                                          const FCContactPairs *, PetscInt *count);

@@ -1,0 +1,51 @@
+/* Compliance builders (src/compliance/): W_b = J_b A_b^-1 J_b^T of an FE body (eq. 17) and its
+   correction dv += h A_b^-1 J_b^T lambda (eq. 20); one file per type, -compliance_type */
+#pragma once
+
+#include "../contact/contact.h"
+
+#define FCCOMPLIANCEDENSE "dense"
+#define FCCOMPLIANCESPARSE "sparse"
+#define FCCOMPLIANCESCHUR "schur"
+#define FCCOMPLIANCEINVERSE "inverse"
+#define FCCOMPLIANCEREDUNDANT "redundant"
+#define FCCOMPLIANCEPRECOMPUTED "precomputed"
+#define FCCOMPLIANCECONDENSED "condensed"
+/* What a builder gets from its FE body; it never calls the body back */
+typedef struct {
+  MPI_Comm        comm;
+  const char     *name, *prefix; /* the body's, for messages */
+  Vec             u;             /* layout of the rows of A (a global state vector)            */
+  Mat             A;             /* A = M + h B + h^2 K, current with its factor              */
+  KSP             ksp;           /* the factorization of A (preonly + Cholesky)               */
+  PetscBool       linear;        /* A never changes                                           */
+  PetscInt        nsurface;      /* first global DOF of the owned non-fixed boundary vertices */
+  const PetscInt *surface;
+} FCComplianceContext;
+PETSC_EXTERN PetscFunctionList FCComplianceList;
+PETSC_INTERN PetscErrorCode    FCComplianceRegisterAll(void);
+PETSC_INTERN PetscErrorCode    FCComplianceCreate(const FCComplianceContext *, FCCompliance *);
+PETSC_INTERN PetscErrorCode    FCComplianceSetType(FCCompliance, FCComplianceType);
+PETSC_INTERN PetscErrorCode    FCComplianceSetFromOptions(FCCompliance); /* -compliance_type and the type's own */
+PETSC_INTERN PetscErrorCode    FCComplianceSetUp(FCCompliance);          /* at set-up, A at the reference state */
+PETSC_INTERN PetscErrorCode    FCComplianceFactor(FCCompliance);         /* after every change of A            */
+/* A builder that factors A itself (condensed) is the body's only factor: the body calls
+   FCComplianceFactor instead of factoring and FCComplianceSolve for its solves */
+PETSC_INTERN PetscBool      FCComplianceFactorsA(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceSolve(FCCompliance, Vec b, Vec x);
+/* a builder that warps a reference compliance needs the body's best-fit rotation before each Add */
+PETSC_INTERN PetscBool      FCComplianceUsesRotation(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceSetRotation(FCCompliance, const PetscReal R[9]);
+/* W_b = J_b A^-1 J_b^T for the contacts touching body `self`, kept for the next Add; same: it is the
+   last build's W_b on the same rows of W (a sum of the last builds still holds) */
+PETSC_INTERN PetscErrorCode FCComplianceBuild(FCCompliance, PetscInt self, const FCContactSet *, PetscBool *same);
+/* W (M x M, row-major, replicated) += J_b A^-1 J_b^T for the contacts touching body `self`: the W_b
+   of the Build just before, with the same set */
+PETSC_INTERN PetscErrorCode FCComplianceAdd(FCCompliance, PetscInt self, const FCContactSet *, PetscReal W[]);
+/* a builder whose factorization depends on the contact DOFs (condensed) takes the contacts expected
+   at its next factorization: whether it does, and the contacts */
+PETSC_INTERN PetscBool      FCComplianceUsesExpectedContacts(FCCompliance);
+PETSC_INTERN PetscErrorCode FCComplianceExpectContacts(FCCompliance, PetscInt self, const FCContactSet *);
+/* dv += h A^-1 J_b^T lambda for the J_b of the last Add */
+PETSC_INTERN PetscErrorCode FCComplianceCorrect(FCCompliance, PetscReal h, const PetscReal lambda[], Vec dv);
+PETSC_INTERN PetscErrorCode FCComplianceDestroy(FCCompliance *);

@@ -1,0 +1,28 @@
+/* Materials (src/material/): one file per model, registered in FCMaterialList */
+#pragma once
+
+#include "../element/element.h"
+
+struct _p_FCMaterial {
+  char      type[FC_MAX_NAME];
+  PetscReal young, poisson, lambda, mu;
+  PetscBool linear; /* constant stiffness: K assembled and A factored once per run */
+  /* Element internal force f (12) and tangent stiffness K (12x12) at current positions x,
+     reference positions X. Either output may be NULL. */
+  PetscErrorCode (*element)(FCMaterial, const PetscReal x[12], const PetscReal X[12], const PetscReal Dminv[9],
+                            PetscReal vol, PetscReal f[12], PetscReal K[144]);
+  /* Element elastic energy */
+  PetscErrorCode (*energy)(FCMaterial, const PetscReal x[12], const PetscReal X[12], const PetscReal Dminv[9],
+                           PetscReal vol, PetscReal *E);
+  /* Element stress (3x3, row-major, Pa) of the model's linear law: sigma = lambda tr(eps) I + 2 mu eps with
+     eps the small strain of the element (co-rotational: in the element's rotated frame, R^T F - I) */
+  PetscErrorCode (*stress)(FCMaterial, const PetscReal x[12], const PetscReal X[12], const PetscReal Dminv[9],
+                           PetscReal sigma[9]);
+};
+PETSC_EXTERN PetscFunctionList FCMaterialList;
+PETSC_INTERN PetscErrorCode    FCMaterialRegisterAll(void);
+PETSC_INTERN PetscErrorCode    FCMaterialCreate(const char type[], PetscReal young, PetscReal poisson, FCMaterial *);
+PETSC_INTERN void              FCMaterialHooke(FCMaterial, const PetscReal H[9], PetscReal sigma[9]);
+PETSC_INTERN PetscReal         FCMaterialHookeEnergy(FCMaterial, const PetscReal H[9], PetscReal vol);
+PETSC_INTERN void FCMaterialDeformationGradient(const PetscReal x[12], const PetscReal Dminv[9], PetscReal F[9]);
+PETSC_INTERN PetscErrorCode FCMaterialDestroy(FCMaterial *);
