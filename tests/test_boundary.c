@@ -10,6 +10,8 @@
    intersections with every rank's candidate list emptied, and as many as there are surface
    vertices below the plane.
    Runs on any number of ranks (ctest: 1, 2, 3, 4 and 8, oversubscribed). */
+/* a unit test of the candidate points on the partition: it reads an FE body's mesh and surface, inside src/body/ and
+ * src/collision/ */
 #include "fcimpl.h"
 #include "body/femimpl.h"
 #include "collision/collisionimpl.h"
@@ -106,7 +108,7 @@ static PetscErrorCode CountBothWays(FCBody a, FCBody b, PetscInt *full, PetscInt
   pairs.distance           = 0.01;
   pairs.passes             = 2;
   pairs.intersection_depth = 1e-4;
-  PetscCall(FCCollisionCountIntersections(PETSC_COMM_WORLD, 2, bodies, &pairs, full));
+  PetscCall(FCCollisionCountPairIntersections(PETSC_COMM_WORLD, 2, bodies, &pairs, full));
   for (int s = 0; s < 2; s++)
     if (FCBodyIsDeformable(bodies[s])) {
       FEM *fem;
@@ -114,7 +116,7 @@ static PetscErrorCode CountBothWays(FCBody a, FCBody b, PetscInt *full, PetscInt
       saved[s] = fem->nbv;
       fem->nbv = 0;
     }
-  PetscCall(FCCollisionCountIntersections(PETSC_COMM_WORLD, 2, bodies, &pairs, hidden));
+  PetscCall(FCCollisionCountPairIntersections(PETSC_COMM_WORLD, 2, bodies, &pairs, hidden));
   for (int s = 0; s < 2; s++)
     if (FCBodyIsDeformable(bodies[s])) {
       FEM *fem;

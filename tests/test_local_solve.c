@@ -7,6 +7,7 @@
    the two agree to 1e-8 relative wherever the reference's solution is one (the local problem
    with large mu and anisotropic W can have several solutions: those are counted and printed,
    each checked to be a solution); and prints the time per solve of both. */
+/* a unit test of the local solve against its grid reference, which only the contact package declares */
 #include "contact/contactimpl.h"
 
 static PetscReal Rand(PetscRandom rnd, PetscReal lo, PetscReal hi)

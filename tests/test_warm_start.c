@@ -4,7 +4,8 @@
    on three contacts: one whose normal turned (the force keeps its world direction and magnitude,
    not its frame components), one whose frame did not move (the components carry over to
    round-off), one that is new; and a frictionless contact, which keeps only the normal part. */
-#include "fcimpl.h"
+/* a unit test of the contact package: its header, not the public API, declares the contact set */
+#include "contact/contact.h"
 
 static FCContact Contact(PetscInt pair, PetscReal key, PetscReal nx, PetscReal mu)
 {

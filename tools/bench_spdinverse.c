@@ -5,6 +5,7 @@
      bench_spdinverse [-sizes 500,1000,1500,2000,3000] [-repeat 3]
    Prints per n the best of the repeats of each, their ratios to the host, the floor (the host time
    divided by the number of ranks) and ||Sigma C - I||_max of each result. */
+/* times the condensed builder's inverse of Sigma, private to the compliance package */
 #include "../src/compliance/complianceimpl.h"
 #include <petscblaslapack.h>
 

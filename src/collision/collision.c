@@ -292,8 +292,8 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], const FCContactPairs *pairs,
-                                 FCContactSet *set)
+PetscErrorCode FCCollisionDetectPairs(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], const FCContactPairs *pairs,
+                                      FCContactSet *set)
 {
   PetscMPIInt rank;
 
@@ -409,7 +409,7 @@ PetscErrorCode FCCollisionDetect(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCCollisionEndGaps(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCContactSet *set)
+PetscErrorCode FCCollisionEndGapsOf(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCContactSet *set)
 {
   PetscMPIInt rank;
   PetscReal  *g;  /* per contact: gap, end normal (3), d = p1 - p2 (3), p1 (3) */

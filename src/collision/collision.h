@@ -24,11 +24,23 @@ typedef struct {
 } FCContactPairs;
 /* Discrete collision detection at the start of the step (after the free motion has been
    computed, so that every contact also carries its free-motion positions) */
-PETSC_INTERN PetscErrorCode FCCollisionDetect(MPI_Comm, PetscInt nbodies, FCBody bodies[], const FCContactPairs *,
-                                              FCContactSet *);
+PETSC_INTERN PetscErrorCode FCCollisionDetectPairs(MPI_Comm, PetscInt nbodies, FCBody bodies[], const FCContactPairs *,
+                                                   FCContactSet *);
 /* Gap, normal and d = p1 - p2 of every contact at the end of the step, on the real geometry */
-PETSC_INTERN PetscErrorCode FCCollisionEndGaps(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCContactSet *);
+PETSC_INTERN PetscErrorCode FCCollisionEndGapsOf(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCContactSet *);
 /* The points inside another body at the end of the step (src/collision/intersection.c), the same
    on every rank */
-PETSC_INTERN PetscErrorCode FCCollisionCountIntersections(MPI_Comm, PetscInt nbodies, FCBody bodies[],
-                                                          const FCContactPairs *, PetscInt *count);
+PETSC_INTERN PetscErrorCode FCCollisionCountPairIntersections(MPI_Comm, PetscInt nbodies, FCBody bodies[],
+                                                              const FCContactPairs *, PetscInt *count);
+
+/* FCCollision (src/collision/pairs.c): the scene's contact pairs and detection options, read from the
+   options database, and the step's detection on them */
+typedef struct _p_FCCollision     *FCCollision;
+PETSC_INTERN PetscErrorCode        FCCollisionCreate(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCCollision *);
+PETSC_INTERN PetscErrorCode        FCCollisionSetFromOptions(FCCollision);
+PETSC_INTERN const FCContactPairs *FCCollisionGetPairs(FCCollision);
+/* the contacts of the step (continuous: as -contact_detection says; PETSC_FALSE: at the start positions only) */
+PETSC_INTERN PetscErrorCode FCCollisionDetect(FCCollision, PetscBool continuous, FCContactSet *);
+PETSC_INTERN PetscErrorCode FCCollisionEndGaps(FCCollision, FCContactSet *);
+PETSC_INTERN PetscErrorCode FCCollisionCountIntersections(FCCollision, PetscInt *count);
+PETSC_INTERN PetscErrorCode FCCollisionDestroy(FCCollision *);

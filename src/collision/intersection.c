@@ -270,8 +270,8 @@ static PetscErrorCode PointsInShape(PetscInt n, const PetscReal x[], FCBody B, P
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCCollisionCountIntersections(MPI_Comm comm, PetscInt nbodies, FCBody bodies[],
-                                             const FCContactPairs *pairs, PetscInt *count)
+PetscErrorCode FCCollisionCountPairIntersections(MPI_Comm comm, PetscInt nbodies, FCBody bodies[],
+                                                 const FCContactPairs *pairs, PetscInt *count)
 {
   PetscInt local = 0;
 

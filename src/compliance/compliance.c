@@ -220,7 +220,7 @@ PetscErrorCode FCComplianceContactDofs(FCCompliance comp, PetscInt *ns_, PetscIn
 /* W_b += the part of J_S C J_S^T from column j of C = (A^-1)_SS (Ccol: C(:, j) in the order of
    S): T = (J_S C)(:, j), then W_b(b, a) += T(a) J_S(b, j); T is ncols of work. W_b is symmetric,
    so the term of (a, b) goes to (b, a): a row of W_b, contiguous, where the column took a stride of
-   ncols per entry (on the 36k box, 480 contacts: 6e6 scattered writes a step) */
+   ncols per entry */
 void FCComplianceAddColumn(PetscInt ncols, PetscInt ns, const PetscInt cptr[], const PetscInt crow[],
                            const PetscReal cval[], PetscInt j, const PetscScalar Ccol[], PetscReal T[], PetscReal Wb[])
 {
@@ -238,7 +238,7 @@ void FCComplianceAddColumn(PetscInt ncols, PetscInt ns, const PetscInt cptr[], c
    each; then W_b(a, b) = sum over row b of J_T of q at its columns. J_T by rows comes from its
    columns by one transposition. Per row, 2 passes of nt and ncols over data that stays in cache,
    where FCComplianceAddColumn cleared and scattered into a work vector of ncols for every column
-   of C (the 36k box, 1440 contact rows: 10.3-10.4 ms, the CondensedWb event of -log_view on 1 rank) */
+   of C */
 PetscErrorCode FCComplianceAddCongruence(PetscInt ncols, PetscInt nt, const PetscInt cptr[], const PetscInt crow[],
                                          const PetscReal cval[], const PetscInt pos[], PetscInt ldc,
                                          const PetscReal C[], PetscReal Wb[])

@@ -14,9 +14,9 @@
        linear: a body that starts in contact is factored once in its first step;
      - at a factorization, S = the DOFs of the last step's contacts (and -compliance_condensed_ring
        rings of surface neighbours around them; one ring at least after a step that missed): an
-       unchanged contact set reuses the analysis (ordering and symbolic factorization). S costs:
-       on a cube resting on a whole face, the Schur factorization takes 1.8x the flops of a plain
-       one (docs/benchmarks.md), each ring of neighbours more;
+       unchanged contact set reuses the analysis (ordering and symbolic factorization). S costs
+       flops: the Schur factorization takes more than a plain one (docs/benchmarks.md), each ring
+       of neighbours more;
      - a contact on a DOF outside S (the first contact of a body, a contact set that moved) is a
        miss: S grows by the new DOFs and a ring around them and A, unchanged, is factored again in
        the same step (counted; -info prints it);
@@ -24,8 +24,7 @@
    A linear body keeps its factor as long as its contacts stay inside S: W_b then costs the dense
    products only, and not even those while J_T (the contact DOFs, rows and weights) is the last
    build's: a body resting on a kinematic shape reuses its W_b (every rank keeps a copy, (3m)^2
-   values; bf6eaaa:docs/scaling-history.md measures what it saves; the "CondensedWb" event counts the
-   builds that compute).
+   values; the "CondensedWb" event counts the builds that compute).
    Options:
      -compliance_condensed_ring k   rings of surface neighbours around the contact DOFs in S (k >= 0,
                                     default 0: S is exactly the last step's contact DOFs)
@@ -33,15 +32,14 @@
                                     where C = Sigma^-1 is formed: LAPACK on rank 0 (host, the
                                     default), ScaLAPACK over every rank of the body, or the host's
                                     Cholesky factor and each rank's block of columns of its inverse
-                                    (columns). All the same on 1 rank (spdinverse.c; measured in
-                                    bf6eaaa:docs/scaling-history.md)
+                                    (columns). All the same on 1 rank (spdinverse.c; docs/scaling.md)
      -compliance_condensed_balance k
                                     k top levels of the nested dissection of the interior are
                                     bisections balanced in the vertex count and in the count of
                                     vertices next to S at once (default 0: METIS_NodeND alone), so
                                     that MUMPS' two top subtrees, on different ranks, share the
-                                    fronts that S widens (schurfactor.c, Dissect; measured in
-                                    bf6eaaa:docs/scaling-history.md: a more even flop split, not a faster step) */
+                                    fronts that S widens (schurfactor.c, Dissect: a more even flop
+                                    split, not a faster step) */
 #include "complianceimpl.h"
 
 typedef struct {
@@ -314,8 +312,7 @@ static PetscErrorCode Expect_Condensed(FCCompliance comp)
     cd->built = (PetscBool)(cd->nT > 0);
     /* the ring of margin only where the factor lasts (a linear A): a body that refactors every step
        chooses S again from its first step's contacts, so a ring would only widen the first Schur
-       block (the co-rotational 17.5k cube: 1176 DOFs, not 972, 15 % more flops) and cost a second
-       analysis in step 2 */
+       block and cost a second analysis in step 2 */
     cd->missed = (PetscBool)(cd->built && comp->ctx.linear);
   }
   PetscFunctionReturn(0);
@@ -359,7 +356,7 @@ PetscErrorCode FCComplianceCreate_Condensed(FCCompliance comp)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&cd));
-  cd->inverse              = FC_SPD_INVERSE_HOST; /* measured: bf6eaaa:docs/scaling-history.md */
+  cd->inverse              = FC_SPD_INVERSE_HOST; /* docs/options.md */
   comp->data               = cd;
   comp->factors            = PETSC_TRUE;
   comp->keepswb            = PETSC_TRUE; /* Build_Condensed keeps W_b while it holds */

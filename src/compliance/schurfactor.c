@@ -281,7 +281,7 @@ static PetscErrorCode Induced(const idx_t xadj[], const idx_t adj[], idx_t n, co
    to that face as across it; cut parallel, one half holds every front that S's variables widen,
    and MUMPS, which maps the two halves to different ranks, gives one rank most of the flops
    (-info prints the split). Balanced, the split is closer to even, but the step is not faster
-   (measured in bf6eaaa:docs/scaling-history.md), so it is not the default. */
+   (docs/scaling.md), so it is not the default. */
 #define V(i) (vtx ? vtx[i] : (i))
 static PetscErrorCode Dissect(FCSchurFactor f, const idx_t xadj[], const idx_t adj[], const idx_t touch[], idx_t n,
                               const idx_t vtx[], PetscInt levels, idx_t loc[], idx_t order[], idx_t *no)

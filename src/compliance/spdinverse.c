@@ -13,9 +13,8 @@
                 narrowest).
 
    Both take Sigma's upper triangle (column-major, ns x ns, on the host) and leave the whole
-   symmetric C in the same array. host is the default (-compliance_condensed_inverse): on 2 ranks
-   neither split paid in the solver, where rank 1 comes late from its share of MUMPS'
-   factorization (the measurements: bf6eaaa:docs/scaling-history.md). */
+   symmetric C in the same array. host is the default (-compliance_condensed_inverse): where rank 1
+   comes late from its share of MUMPS' factorization, a split does not pay (docs/scaling.md). */
 #include "complianceimpl.h"
 #include <petscblaslapack.h>
 

@@ -48,9 +48,8 @@ static PetscErrorCode BlockVelocity(FCContactProblem p, PetscInt lo, PetscInt hi
 }
 
 /* u_b += W_b,other dr: the off-block columns of the block's rows, [0, lo) and [hi, n), as two BLAS
-   gemv on W^T (row-major W seen column-major). A hand loop here was a chain of dependent adds
-   (no reassociation without -ffast-math): the 36k box's problem took 0.064 s split on 2 ranks
-   with it, 0.033 s with gemv (tools/fclib_solve -dense -pgs_ranks split, docs/contact-solver.md) */
+   gemv on W^T (row-major W seen column-major): a hand loop would be a chain of dependent adds
+   (no reassociation without -ffast-math), which gemv is not */
 static PetscErrorCode AddOffBlock(FCContactProblem p, PetscInt lo, PetscInt hi, const PetscReal dr[], PetscReal ub[])
 {
   PetscBLASInt n, nb, m0, m1, one = 1;

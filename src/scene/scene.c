@@ -18,65 +18,9 @@
                               with the new step (step k at t_restart + (k - step_restart) h)
      -energy_growth_limit g   stop a run whose total energy grows by more than g times the energy the
                               scene can receive (>= 0, default 10; 0: off; src/scene/energy.c)
-     -contact_pairs a:b,c:d   pairs of bodies that may touch (none: no collision work at all)
-     -contact_mu m[,m2,...]   Coulomb friction, one value or one per pair (>= 0; 0 = frictionless,
-                              one constraint row per contact; default 0)
-     -contact_distance d      alarm distance: points closer than d are contacts (>= 0, default 0.01 m)
-     -contact_fe_passes 1|2   pairs of two meshed bodies: 2 = the vertices of each against the other's
-                              surface (nothing crosses either surface; the contacts the two passes
-                              duplicate are made dormant, below); 1 = the first body's vertices against
-                              the second's surface only (default 2)
-     -contact_fe_pass2_dormant w  with 2 passes: a second-pass contact (a vertex of the second body
-                              against the first's surface) whose vertex has a barycentric weight > w in
-                              a first-pass contact of the same pair is held by the first pass, and the
-                              two constraints are nearly redundant (W nearly singular: the sweeps
-                              stall, docs/hard-cases.md): it is dormant, out of the contact solver's
-                              sweeps unless the solution without it leaves its vertex deeper than
-                              -contact_dormant_depth inside (src/contact/solver.c, SolveLazy)
-                              (w < 1; default 0.01: a weight within the deformation's noise of 0, a
-                              landing point on the triangle's opposite edge, would hold the vertex in one
-                              step and not in the next; < 0: every contact solved)
-     -contact_dormant_depth d  that depth (>= 0, default 1e-5 m: a tenth of the end-of-step
-                              intersection check's -contact_intersection_depth); also for the dormant
-                              corner contacts of -contact_shape_points
-     -contact_fe_pass2_drop w  as -contact_fe_pass2_dormant, but the held contact is dropped (takes
-                              precedence; w < 1, default -1: off; lets a vertex in where the first pass
-                              does not hold it, docs/hard-cases.md)
-     -contact_facing 1|0      a vertex of a meshed body lands only on a triangle that faces its own
-                              surface (triangle normal . vertex normal <= -cos 75 degrees; default 1),
-                              and an FE vertex is no contact of a bounded shape whose normal there is
-                              within 75 degrees of square to its own: where two bodies' side faces are
-                              flush, a rim vertex is otherwise nearest to the other body's side face,
-                              and the two passes then make pairs of opposed constraints on the same
-                              motion (docs/hard-cases.md); a slab vertex ahead of a sliding body is
-                              otherwise a contact against its leading side face, a wall
-     -contact_detection continuous|discrete   continuous (default): a point whose motion over the step
-                              (start to free-motion end) reaches the other side is a contact too, with
-                              its start-of-step gap and normal, so nothing passes through a thin body
-                              in one step; discrete: only points within -contact_distance at the start
-     -contact_edge_edge 1|0   pairs of two meshed bodies: contacts between their sharp edges where the
-                              edges cross (src/collision/edges.c; default 1); 0: vertices against
-                              triangles only
-     -contact_shape_points 1|0  an FE body and a bounded analytic shape (sphere, box, capsule,
-                              cylinder): the shape's points (its picture's vertices) against the FE
-                              surface triangles too, besides the FE vertices against the shape: a
-                              shape smaller than the elements, a corner or a sphere's cap pressed
-                              into an FE face between its vertices (default 1; src/collision/
-                              shapepoints.c); 0: the FE vertices against the shape only
-     -contact_rounded_surface exact|picture  with shape points, a sphere or a capsule against an FE
-                              surface: the points of the surface nearest its core, taken after the free
-                              motion (default; src/collision/roundedsurface.c: it rolls without
-                              braking), or its picture's points where they land (shapepoints.c: it
-                              rolls as its picture's polyhedron, docs/validation.md)
-     -contact_separation_speed v  bodies that start a step inside each other are pushed apart at most
-                              this fast: a contact deeper than v h at the start may stay (depth - v h)
-                              deep at the end of the step (> 0, default 1 m/s; docs/hard-cases.md)
-     -contact_intersection_depth d  a point of a pair deeper than d inside the other body at the end of a
-                              step counts in /steps/intersections (>= 0, default 1e-4 m)
-     -contact_fail_on_intersection  stop the run at the first step that ends with an intersection
-                              (default: a warning on the progress line)
-   The options of the objects the scene creates are read where those objects live: the constraint
-   scheme and its contact solver (-constraint_scheme, -newton_*, -pgs_*, -contact_memory_limit:
+   The options of the objects the scene creates are read where those objects live: the contact
+   pairs and the detection (-contact_*: src/collision/pairs.c), the constraint scheme and its
+   contact solver (-constraint_scheme, -newton_*, -pgs_*, -contact_memory_limit:
    src/scheme/), the compliance builder of each FE body in a contact pair (-compliance_*:
    src/compliance/), each body (-<name>_*: src/body/); docs/options.md lists them all.
    One step (docs/method.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
@@ -102,12 +46,13 @@ struct _p_FCScene {
   PetscReal      phase_total[FC_PHASE_NUM];
   PetscLogDouble tmark; /* when the ranks last met at the end of a step (FCSceneStep: the wall time of a step) */
   /* contact */
-  FCContactPairs    pairs;
-  FCContactSet      set;
-  FCContactSet      previous; /* last step's contacts and forces: warm start of the scheme */
-  FCScheme          scheme;   /* owns the contact solver */
-  FCSchemeStats     stats;
-  FCContactMeasures measures;
+  FCCollision           collision; /* the contact pairs and their detection (src/collision/pairs.c) */
+  const FCContactPairs *pairs;     /* the collision's pairs and detection options */
+  FCContactSet          set;
+  FCContactSet          previous; /* last step's contacts and forces: warm start of the scheme */
+  FCScheme              scheme;   /* owns the contact solver */
+  FCSchemeStats         stats;
+  FCContactMeasures     measures;
 };
 
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
@@ -126,141 +71,6 @@ PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
   s->gravity[2] = -9.81;
   PetscCall(PetscStrncpy(s->output_file, "fecontact.h5", sizeof(s->output_file)));
   *scene = s;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode BodyIndex(FCScene s, const char name[], const char pair[], PetscInt *idx)
-{
-  PetscFunctionBegin;
-  *idx = -1;
-  for (PetscInt i = 0; i < s->nbodies; i++)
-    if (!strcmp(FCBodyName(s->bodies[i]), name)) *idx = i;
-  PetscCheck(*idx >= 0, s->comm, PETSC_ERR_USER_INPUT,
-             "Contact pair '%s' in -contact_pairs names unknown body '%s' (bodies: -scene_bodies)", pair, name);
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode ReadContactPairs(FCScene s)
-{
-  char     *pairs[FC_MAX_BODIES];
-  PetscInt  np = FC_MAX_BODIES, nmu = FC_MAX_BODIES;
-  PetscReal mu[FC_MAX_BODIES];
-  PetscBool set, setmu;
-  char      detection[16] = "continuous";
-
-  PetscFunctionBegin;
-  s->pairs.distance           = 0.01;
-  s->pairs.passes             = 2;
-  s->pairs.pass2_drop         = -1.0;
-  s->pairs.pass2_dormant      = 0.01;
-  s->pairs.dormant_depth      = 1e-5;
-  s->pairs.facing             = PETSC_TRUE;
-  s->pairs.intersection_depth = 1e-4;
-  s->pairs.edges              = PETSC_TRUE;
-  s->pairs.shape_points       = PETSC_TRUE;
-  s->pairs.separation_speed   = 1.0;
-  PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
-  PetscCall(
-      PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
-  if (set && np > 0) {
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_distance", "Alarm distance", &s->pairs.distance, NULL));
-    PetscCall(FCOptionsIntRange(PetscOptionsObject, "-contact_fe_passes",
-                                "Detection passes between two meshed bodies (1 or 2)", 1, 2, &s->pairs.passes, NULL));
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_drop",
-                            "With 2 passes: drop a second-pass contact whose vertex has a weight > w in a first-pass "
-                            "contact of the pair (< 0: keep all)",
-                            &s->pairs.pass2_drop, NULL));
-    PetscCall(
-        FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_dormant",
-                      "With 2 passes: a second-pass contact whose vertex has a weight > w in a first-pass contact "
-                      "is dormant, solved only where the solution without it leaves the vertex inside (< 0: off)",
-                      &s->pairs.pass2_dormant, NULL));
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_dormant_depth",
-                            "Depth inside the other body at which a dormant contact wakes (m)", &s->pairs.dormant_depth,
-                            NULL));
-    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_facing",
-                            "A vertex lands only on triangles that face its own surface", &s->pairs.facing, NULL));
-    PetscCall(FCOptionsRealList(PetscOptionsObject, "-contact_mu", "Friction coefficient: one value, or one per pair",
-                                FC_MAX_BODIES, mu, &nmu, &setmu));
-    PetscCall(PetscOptionsString("-contact_detection", "Contact detection: continuous or discrete", NULL, detection,
-                                 detection, sizeof(detection), NULL));
-    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_edge_edge", "Edge-edge contacts between two meshed bodies",
-                            &s->pairs.edges, NULL));
-    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_shape_points",
-                            "A bounded shape's points against the triangles of an FE body too", &s->pairs.shape_points,
-                            NULL));
-    {
-      const char *kinds[] = {"picture", "exact"};
-      PetscInt    kind    = 1;
-      PetscCall(
-          PetscOptionsEList("-contact_rounded_surface",
-                            "A sphere or a capsule against an FE surface: its picture's points or the exact nearest",
-                            NULL, kinds, 2, kinds[1], &kind, NULL));
-      s->pairs.rounded_exact = kind == 1 ? PETSC_TRUE : PETSC_FALSE;
-    }
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_separation_speed",
-                            "Largest speed at which bodies that start inside each other are pushed apart (m/s)",
-                            &s->pairs.separation_speed, NULL));
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_intersection_depth",
-                            "Depth inside another body that counts as an intersection (m)",
-                            &s->pairs.intersection_depth, NULL));
-    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_fail_on_intersection",
-                            "Stop the run at the first intersection", &s->pairs.fail_on_intersection, NULL));
-  }
-  PetscOptionsEnd();
-  if (!set || np == 0) PetscFunctionReturn(0);
-  PetscCheck(!strcmp(detection, "continuous") || !strcmp(detection, "discrete"), s->comm, PETSC_ERR_USER_INPUT,
-             "Option -contact_detection must be continuous or discrete, got '%s'", detection);
-  s->pairs.continuous = strcmp(detection, "continuous") ? PETSC_FALSE : PETSC_TRUE;
-  PetscCheck(s->pairs.separation_speed > 0.0, s->comm, PETSC_ERR_USER_INPUT,
-             "Option -contact_separation_speed must be > 0, got %g", (double)s->pairs.separation_speed);
-  PetscCheck(s->pairs.intersection_depth >= 0.0, s->comm, PETSC_ERR_USER_INPUT,
-             "Option -contact_intersection_depth must be >= 0, got %g", (double)s->pairs.intersection_depth);
-  if (!set || np == 0) PetscFunctionReturn(0);
-  if (!setmu) {
-    nmu   = 1;
-    mu[0] = 0.0;
-  }
-  PetscCheck(nmu == 1 || nmu == np, s->comm, PETSC_ERR_USER_INPUT,
-             "Option -contact_mu needs one value or one per pair (%" PetscInt_FMT " pairs), got %" PetscInt_FMT, np,
-             nmu);
-  for (PetscInt i = 0; i < nmu; i++)
-    PetscCheck(mu[i] >= 0.0 && PetscIsNormalReal(mu[i] + 1.0), s->comm, PETSC_ERR_USER_INPUT,
-               "Option -contact_mu: entry %" PetscInt_FMT " must be a finite number >= 0, got %g", i, (double)mu[i]);
-  PetscCheck(s->pairs.passes == 1 || s->pairs.passes == 2, s->comm, PETSC_ERR_USER_INPUT,
-             "Option -contact_fe_passes must be 1 or 2, got %" PetscInt_FMT, s->pairs.passes);
-  PetscCheck(s->pairs.pass2_drop < 1.0 && PetscIsNormalReal(s->pairs.pass2_drop + 2.0), s->comm, PETSC_ERR_USER_INPUT,
-             "Option -contact_fe_pass2_drop must be a finite number < 1 (a barycentric weight; < 0 keeps every "
-             "contact), got %g",
-             (double)s->pairs.pass2_drop);
-  PetscCheck(s->pairs.pass2_dormant < 1.0 && PetscIsNormalReal(s->pairs.pass2_dormant + 2.0), s->comm,
-             PETSC_ERR_USER_INPUT,
-             "Option -contact_fe_pass2_dormant must be a finite number < 1 (a barycentric weight; < 0: none dormant), "
-             "got %g",
-             (double)s->pairs.pass2_dormant);
-  PetscCheck(s->pairs.dormant_depth >= 0.0 && PetscIsNormalReal(s->pairs.dormant_depth + 1.0), s->comm,
-             PETSC_ERR_USER_INPUT, "Option -contact_dormant_depth must be a finite length >= 0, got %g",
-             (double)s->pairs.dormant_depth);
-  PetscCheck(s->pairs.distance >= 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_distance must be >= 0, got %g",
-             (double)s->pairs.distance);
-  s->pairs.n = np;
-  PetscCall(PetscMalloc2(np, &s->pairs.body, np, &s->pairs.mu));
-  for (PetscInt p = 0; p < np; p++) {
-    char *colon = strchr(pairs[p], ':');
-    PetscCheck(colon && colon != pairs[p] && colon[1], s->comm, PETSC_ERR_USER_INPUT,
-               "Contact pair '%s' in -contact_pairs must read body1:body2", pairs[p]);
-    *colon = 0;
-    PetscCall(BodyIndex(s, pairs[p], pairs[p], &s->pairs.body[p][0]));
-    PetscCall(BodyIndex(s, colon + 1, pairs[p], &s->pairs.body[p][1]));
-    PetscCheck(s->pairs.body[p][0] != s->pairs.body[p][1], s->comm, PETSC_ERR_USER_INPUT,
-               "Contact pair '%s:%s' pairs a body with itself (self-contact is not supported)", pairs[p], colon + 1);
-    PetscCheck(
-        !(FCBodyIsPrescribed(s->bodies[s->pairs.body[p][0]]) && FCBodyIsPrescribed(s->bodies[s->pairs.body[p][1]])),
-        s->comm, PETSC_ERR_USER_INPUT, "Contact pair '%s:%s' joins two kinematic bodies: nothing can respond", pairs[p],
-        colon + 1);
-    s->pairs.mu[p] = mu[nmu == 1 ? 0 : p];
-  }
-  for (PetscInt p = 0; p < np; p++) PetscCall(PetscFree(pairs[p]));
   PetscFunctionReturn(0);
 }
 
@@ -303,7 +113,9 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
     PetscCall(FCBodySetFromOptions(s->bodies[i]));
   }
   for (PetscInt i = 0; i < n; i++) PetscCall(PetscFree(names[i]));
-  PetscCall(ReadContactPairs(s));
+  PetscCall(FCCollisionCreate(s->comm, s->nbodies, s->bodies, &s->collision));
+  PetscCall(FCCollisionSetFromOptions(s->collision));
+  s->pairs = FCCollisionGetPairs(s->collision);
   PetscCall(FCEnergyGuardSetFromOptions(&s->guard, s->comm));
   PetscFunctionReturn(0);
 }
@@ -339,15 +151,13 @@ static PetscErrorCode WriteOutputStepOrClose(FCScene s)
    factored once in its first step, not a plain factorization and, at the first contacts, a second one with them. */
 static PetscErrorCode ExpectContacts(FCScene s)
 {
-  FCContactPairs pairs = s->pairs;
-  PetscBool      any   = PETSC_FALSE;
+  PetscBool any = PETSC_FALSE;
 
   PetscFunctionBegin;
   for (PetscInt i = 0; i < s->nbodies; i++) any = (PetscBool)(any || FCBodyExpectsContacts(s->bodies[i]));
   if (!any) PetscFunctionReturn(0);
-  pairs.continuous = PETSC_FALSE; /* the free motion is not known yet */
   PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
-  PetscCall(FCCollisionDetect(s->comm, s->nbodies, s->bodies, &pairs, &s->set));
+  PetscCall(FCCollisionDetect(s->collision, PETSC_FALSE, &s->set)); /* the free motion is not known yet */
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyExpectContacts(s->bodies[i], i, &s->set));
   PetscCall(FCContactSetReset(&s->set));
   PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
@@ -363,10 +173,11 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCBodySetGravity(s->bodies[i], s->gravity));
     PetscCall(FCBodySetUp(s->bodies[i]));
   }
-  if (s->pairs.n) {
+  if (s->pairs->n) {
     for (PetscInt i = 0; i < s->nbodies; i++) { /* bodies named in a contact pair: their response */
       PetscBool paired = PETSC_FALSE;
-      for (PetscInt p = 0; p < s->pairs.n; p++) paired = paired || s->pairs.body[p][0] == i || s->pairs.body[p][1] == i;
+      for (PetscInt p = 0; p < s->pairs->n; p++)
+        paired = paired || s->pairs->body[p][0] == i || s->pairs->body[p][1] == i;
       if (paired) PetscCall(FCBodySetUpContact(s->bodies[i]));
     }
     PetscCall(FCSchemeCreate(s->comm, s->nbodies, s->bodies, &s->scheme));
@@ -384,14 +195,14 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     s->t0    = s->t;
     s->step0 = s->step;
   }
-  if (s->pairs.n) PetscCall(ExpectContacts(s));
+  if (s->pairs->n) PetscCall(ExpectContacts(s));
   PetscCall(FCEnergyGuardSetUp(&s->guard, s->comm, s->nbodies, s->bodies, s->h, s->nsteps - s->step,
-                               s->pairs.n ? s->pairs.separation_speed : 0.0));
+                               s->pairs->n ? s->pairs->separation_speed : 0.0));
   PetscCall(FCOutputCreate(s->comm, s->output_file, &s->output));
   PetscCall(FCOutputSetFields(s->output, s->fields));
   { /* a failed write (collective, src/io/h5util.c) closes the file on every rank before returning */
     PetscErrorCode ierr = FCOutputWriteHeader(s->output, s->nbodies, s->bodies, s->h, s->nsteps, s->every,
-                                              s->pairs.n ? PETSC_TRUE : PETSC_FALSE);
+                                              s->pairs->n ? PETSC_TRUE : PETSC_FALSE);
     if (!ierr) ierr = WriteOutputStep(s);
     if (ierr) {
       (void)FCOutputDestroy(&s->output);
@@ -422,19 +233,19 @@ PetscErrorCode FCSceneStep(FCScene s)
 
   PetscFunctionBegin;
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyComputeFreeMotion(s->bodies[i], s->t));
-  if (s->pairs.n) {
+  if (s->pairs->n) {
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
-    PetscCall(FCCollisionDetect(s->comm, s->nbodies, s->bodies, &s->pairs, &s->set));
+    PetscCall(FCCollisionDetect(s->collision, PETSC_TRUE, &s->set));
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
     PetscCall(FCSchemeSolve(s->scheme, s->step + 1, &s->set, &s->previous, &s->stats));
     PetscCall(FCContactSetCopy(&s->set, &s->previous));
   }
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyIntegrate(s->bodies[i], s->t));
-  if (s->pairs.n) { /* accuracy of the step on the real end-of-step geometry */
+  if (s->pairs->n) { /* accuracy of the step on the real end-of-step geometry */
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
-    PetscCall(FCCollisionEndGaps(s->comm, s->nbodies, s->bodies, &s->set));
+    PetscCall(FCCollisionEndGaps(s->collision, &s->set));
     FCContactSetMeasure(&s->set, &s->measures);
-    PetscCall(FCCollisionCountIntersections(s->comm, s->nbodies, s->bodies, &s->pairs, &s->measures.intersections));
+    PetscCall(FCCollisionCountIntersections(s->collision, &s->measures.intersections));
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
   }
   s->step++;
@@ -453,7 +264,7 @@ PetscErrorCode FCSceneStep(FCScene s)
   PetscCall(FCPhaseResetTimes());
   /* the output of this step (frame and flush) is counted in the next step's row */
   PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, timing[FC_PHASE_NUM], s->nbodies, s->bodies));
-  if (s->pairs.n) {
+  if (s->pairs->n) {
     struct _FCContactSetView v = {&s->set, &s->stats, &s->measures};
     PetscCall(FCOutputRecordContacts(s->output, &v));
   }
@@ -519,15 +330,15 @@ PetscErrorCode FCSceneRun(FCScene s)
       return ierr;
     }
     PetscCall(
-        FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t, s->pairs.n ? s->measures.intersections : 0));
-    if (s->pairs.fail_on_intersection && s->measures.intersections) { /* the step's frame, then close */
+        FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t, s->pairs->n ? s->measures.intersections : 0));
+    if (s->pairs->fail_on_intersection && s->measures.intersections) { /* the step's frame, then close */
       if (s->step % s->every && s->step < s->nsteps) PetscCall(WriteOutputStepOrClose(s));
       PetscCall(FCOutputDestroy(&s->output));
       SETERRQ(s->comm, PETSC_ERR_NOT_CONVERGED,
               "step %" PetscInt_FMT " (t = %g s) ends with %" PetscInt_FMT
               " point(s) deeper than -contact_intersection_depth %g inside another body, and "
               "-contact_fail_on_intersection is set; %s is closed and holds the %" PetscInt_FMT " completed steps",
-              s->step, (double)s->t, s->measures.intersections, (double)s->pairs.intersection_depth, s->output_file,
+              s->step, (double)s->t, s->measures.intersections, (double)s->pairs->intersection_depth, s->output_file,
               s->step);
     }
     PetscCall(FCSignalsPending(s->comm, &sig));
@@ -553,7 +364,7 @@ PetscErrorCode FCSceneDestroy(FCScene *scene)
   PetscCall(FCSchemeDestroy(&(*scene)->scheme));
   PetscCall(FCContactSetDestroy(&(*scene)->set));
   PetscCall(FCContactSetDestroy(&(*scene)->previous));
-  PetscCall(PetscFree2((*scene)->pairs.body, (*scene)->pairs.mu));
+  PetscCall(FCCollisionDestroy(&(*scene)->collision));
   for (PetscInt i = 0; i < (*scene)->nbodies; i++) PetscCall(FCBodyDestroy(&(*scene)->bodies[i]));
   PetscCall(PetscFree(*scene));
   PetscCall(FCInputsReset());

@@ -1,0 +1,199 @@
+/* FCCollision: the contact pairs of a scene (-contact_pairs, -contact_mu) and the options of their
+   detection (-contact_*), read here, each described by its help string and in docs/options.md;
+   then, per step, the detection of the contacts (FCCollisionDetect, collision.c), their gaps at the
+   end of the step (FCCollisionEndGaps) and the points left inside another body
+   (FCCollisionCountIntersections, intersection.c). */
+#include "collisionimpl.h"
+
+struct _p_FCCollision {
+  MPI_Comm       comm;
+  PetscInt       nbodies;
+  FCBody        *bodies; /* the scene's, borrowed */
+  FCContactPairs pairs;
+};
+
+PetscErrorCode FCCollisionCreate(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCCollision *collision)
+{
+  FCCollision c;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&c));
+  c->comm    = comm;
+  c->nbodies = nbodies;
+  c->bodies  = bodies;
+  *collision = c;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BodyIndex(FCCollision s, const char name[], const char pair[], PetscInt *idx)
+{
+  PetscFunctionBegin;
+  *idx = -1;
+  for (PetscInt i = 0; i < s->nbodies; i++)
+    if (!strcmp(FCBodyName(s->bodies[i]), name)) *idx = i;
+  PetscCheck(*idx >= 0, s->comm, PETSC_ERR_USER_INPUT,
+             "Contact pair '%s' in -contact_pairs names unknown body '%s' (bodies: -scene_bodies)", pair, name);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCCollisionSetFromOptions(FCCollision s)
+{
+  char     *pairs[FC_MAX_BODIES];
+  PetscInt  np = FC_MAX_BODIES, nmu = FC_MAX_BODIES;
+  PetscReal mu[FC_MAX_BODIES];
+  PetscBool set, setmu;
+  char      detection[16] = "continuous";
+
+  PetscFunctionBegin;
+  s->pairs.distance           = 0.01;
+  s->pairs.passes             = 2;
+  s->pairs.pass2_drop         = -1.0;
+  s->pairs.pass2_dormant      = 0.01;
+  s->pairs.dormant_depth      = 1e-5;
+  s->pairs.facing             = PETSC_TRUE;
+  s->pairs.intersection_depth = 1e-4;
+  s->pairs.edges              = PETSC_TRUE;
+  s->pairs.shape_points       = PETSC_TRUE;
+  s->pairs.separation_speed   = 1.0;
+  PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
+  PetscCall(
+      PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
+  if (set && np > 0) {
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_distance", "Alarm distance", &s->pairs.distance, NULL));
+    PetscCall(FCOptionsIntRange(PetscOptionsObject, "-contact_fe_passes",
+                                "Detection passes between two meshed bodies (1 or 2)", 1, 2, &s->pairs.passes, NULL));
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_drop",
+                            "With 2 passes: drop a second-pass contact whose vertex has a weight > w in a first-pass "
+                            "contact of the pair (< 0: keep all)",
+                            &s->pairs.pass2_drop, NULL));
+    PetscCall(
+        FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_dormant",
+                      "With 2 passes: a second-pass contact whose vertex has a weight > w in a first-pass contact "
+                      "is dormant, solved only where the solution without it leaves the vertex inside (< 0: off)",
+                      &s->pairs.pass2_dormant, NULL));
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_dormant_depth",
+                            "Depth inside the other body at which a dormant contact wakes (m)", &s->pairs.dormant_depth,
+                            NULL));
+    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_facing",
+                            "A vertex lands only on triangles that face its own surface", &s->pairs.facing, NULL));
+    PetscCall(FCOptionsRealList(PetscOptionsObject, "-contact_mu", "Friction coefficient: one value, or one per pair",
+                                FC_MAX_BODIES, mu, &nmu, &setmu));
+    PetscCall(PetscOptionsString("-contact_detection", "Contact detection: continuous or discrete", NULL, detection,
+                                 detection, sizeof(detection), NULL));
+    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_edge_edge", "Edge-edge contacts between two meshed bodies",
+                            &s->pairs.edges, NULL));
+    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_shape_points",
+                            "A bounded shape's points against the triangles of an FE body too", &s->pairs.shape_points,
+                            NULL));
+    {
+      const char *kinds[] = {"picture", "exact"};
+      PetscInt    kind    = 1;
+      PetscCall(
+          PetscOptionsEList("-contact_rounded_surface",
+                            "A sphere or a capsule against an FE surface: its picture's points or the exact nearest",
+                            NULL, kinds, 2, kinds[1], &kind, NULL));
+      s->pairs.rounded_exact = kind == 1 ? PETSC_TRUE : PETSC_FALSE;
+    }
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_separation_speed",
+                            "Largest speed at which bodies that start inside each other are pushed apart (m/s)",
+                            &s->pairs.separation_speed, NULL));
+    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_intersection_depth",
+                            "Depth inside another body that counts as an intersection (m)",
+                            &s->pairs.intersection_depth, NULL));
+    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_fail_on_intersection",
+                            "Stop the run at the first intersection", &s->pairs.fail_on_intersection, NULL));
+  }
+  PetscOptionsEnd();
+  if (!set || np == 0) PetscFunctionReturn(0);
+  PetscCheck(!strcmp(detection, "continuous") || !strcmp(detection, "discrete"), s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_detection must be continuous or discrete, got '%s'", detection);
+  s->pairs.continuous = strcmp(detection, "continuous") ? PETSC_FALSE : PETSC_TRUE;
+  PetscCheck(s->pairs.separation_speed > 0.0, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_separation_speed must be > 0, got %g", (double)s->pairs.separation_speed);
+  PetscCheck(s->pairs.intersection_depth >= 0.0, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_intersection_depth must be >= 0, got %g", (double)s->pairs.intersection_depth);
+  if (!set || np == 0) PetscFunctionReturn(0);
+  if (!setmu) {
+    nmu   = 1;
+    mu[0] = 0.0;
+  }
+  PetscCheck(nmu == 1 || nmu == np, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_mu needs one value or one per pair (%" PetscInt_FMT " pairs), got %" PetscInt_FMT, np,
+             nmu);
+  for (PetscInt i = 0; i < nmu; i++)
+    PetscCheck(mu[i] >= 0.0 && PetscIsNormalReal(mu[i] + 1.0), s->comm, PETSC_ERR_USER_INPUT,
+               "Option -contact_mu: entry %" PetscInt_FMT " must be a finite number >= 0, got %g", i, (double)mu[i]);
+  PetscCheck(s->pairs.passes == 1 || s->pairs.passes == 2, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_fe_passes must be 1 or 2, got %" PetscInt_FMT, s->pairs.passes);
+  PetscCheck(s->pairs.pass2_drop < 1.0 && PetscIsNormalReal(s->pairs.pass2_drop + 2.0), s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_fe_pass2_drop must be a finite number < 1 (a barycentric weight; < 0 keeps every "
+             "contact), got %g",
+             (double)s->pairs.pass2_drop);
+  PetscCheck(s->pairs.pass2_dormant < 1.0 && PetscIsNormalReal(s->pairs.pass2_dormant + 2.0), s->comm,
+             PETSC_ERR_USER_INPUT,
+             "Option -contact_fe_pass2_dormant must be a finite number < 1 (a barycentric weight; < 0: none dormant), "
+             "got %g",
+             (double)s->pairs.pass2_dormant);
+  PetscCheck(s->pairs.dormant_depth >= 0.0 && PetscIsNormalReal(s->pairs.dormant_depth + 1.0), s->comm,
+             PETSC_ERR_USER_INPUT, "Option -contact_dormant_depth must be a finite length >= 0, got %g",
+             (double)s->pairs.dormant_depth);
+  PetscCheck(s->pairs.distance >= 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_distance must be >= 0, got %g",
+             (double)s->pairs.distance);
+  s->pairs.n = np;
+  PetscCall(PetscMalloc2(np, &s->pairs.body, np, &s->pairs.mu));
+  for (PetscInt p = 0; p < np; p++) {
+    char *colon = strchr(pairs[p], ':');
+    PetscCheck(colon && colon != pairs[p] && colon[1], s->comm, PETSC_ERR_USER_INPUT,
+               "Contact pair '%s' in -contact_pairs must read body1:body2", pairs[p]);
+    *colon = 0;
+    PetscCall(BodyIndex(s, pairs[p], pairs[p], &s->pairs.body[p][0]));
+    PetscCall(BodyIndex(s, colon + 1, pairs[p], &s->pairs.body[p][1]));
+    PetscCheck(s->pairs.body[p][0] != s->pairs.body[p][1], s->comm, PETSC_ERR_USER_INPUT,
+               "Contact pair '%s:%s' pairs a body with itself (self-contact is not supported)", pairs[p], colon + 1);
+    PetscCheck(
+        !(FCBodyIsPrescribed(s->bodies[s->pairs.body[p][0]]) && FCBodyIsPrescribed(s->bodies[s->pairs.body[p][1]])),
+        s->comm, PETSC_ERR_USER_INPUT, "Contact pair '%s:%s' joins two kinematic bodies: nothing can respond", pairs[p],
+        colon + 1);
+    s->pairs.mu[p] = mu[nmu == 1 ? 0 : p];
+  }
+  for (PetscInt p = 0; p < np; p++) PetscCall(PetscFree(pairs[p]));
+  PetscFunctionReturn(0);
+}
+
+const FCContactPairs *FCCollisionGetPairs(FCCollision c)
+{
+  return &c->pairs;
+}
+
+PetscErrorCode FCCollisionDetect(FCCollision c, PetscBool continuous, FCContactSet *set)
+{
+  FCContactPairs pairs = c->pairs;
+
+  PetscFunctionBegin;
+  pairs.continuous = (PetscBool)(pairs.continuous && continuous);
+  PetscCall(FCCollisionDetectPairs(c->comm, c->nbodies, c->bodies, &pairs, set));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCCollisionEndGaps(FCCollision c, FCContactSet *set)
+{
+  PetscFunctionBegin;
+  PetscCall(FCCollisionEndGapsOf(c->comm, c->nbodies, c->bodies, set));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCCollisionCountIntersections(FCCollision c, PetscInt *count)
+{
+  PetscFunctionBegin;
+  PetscCall(FCCollisionCountPairIntersections(c->comm, c->nbodies, c->bodies, &c->pairs, count));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCCollisionDestroy(FCCollision *c)
+{
+  PetscFunctionBegin;
+  if (!*c) PetscFunctionReturn(0);
+  PetscCall(PetscFree2((*c)->pairs.body, (*c)->pairs.mu));
+  PetscCall(PetscFree(*c));
+  PetscFunctionReturn(0);
+}
