@@ -4,178 +4,60 @@
    per-cell vertex lists in a positively oriented order and placed reference coordinates. */
 #include "../fcimpl.h"
 #include <petscsf.h>
-#include <sys/stat.h>
-#include <signal.h>
-#include <unistd.h>
 
-/* PETSc 3.18's gmsh reader trusts a file's counts and indices and can crash on a malformed one
-   (tools/fuzz/petsc-gmsh-crashes, docs/reliability.md). While it reads, a memory fault ends the
-   run with a line naming the file instead of a crash report: the message is prepared before, and
-   the handler only writes it and exits (async-signal-safe). */
-static char             reader_message[2 * PETSC_MAX_PATH_LEN];
-static size_t           reader_message_len;
-static struct sigaction reader_saved[3];
-static const int        reader_signals[3] = {SIGSEGV, SIGBUS, SIGFPE};
-
-static void ReaderFault(int sig)
+/* -<body>_petscpartitioner_type (default ptscotch; metis: src/mesh/partmetis.c), or the partition of
+   an earlier run (-<body>_partition_file: src/mesh/partreplay.c). Each cell keeps its index in the
+   mesh as read (cellOrigin: the root of the migration SF), which the output records with the rank
+   that holds it, so that a run can be replayed on the same partition */
+static PetscErrorCode Distribute(MPI_Comm comm, const char prefix[], const char bodyname[], PetscBool distribute,
+                                 FCMesh *mesh)
 {
-  (void)sig;
-  if (write(STDERR_FILENO, reader_message, reader_message_len) < 0) _exit(1);
-  _exit(1);
-}
-
-static void ReaderGuard(PetscBool on, const char fname[], const char prefix[], const char bodyname[])
-{
-  if (getenv("FECONTACT_NO_READER_GUARD")) return; /* the fuzzers watch the reader's crashes themselves */
-  if (on) {
-    struct sigaction sa;
-    snprintf(reader_message, sizeof(reader_message),
-             "fecontact: error: cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': PETSc's gmsh reader "
-             "hit a memory fault on it, the file is malformed (open it in gmsh to see where)\n",
-             fname, prefix, bodyname);
-    reader_message_len = strlen(reader_message);
-    memset(&sa, 0, sizeof(sa));
-    sa.sa_handler = ReaderFault;
-    sigemptyset(&sa.sa_mask);
-    for (int i = 0; i < 3; i++) sigaction(reader_signals[i], &sa, &reader_saved[i]);
-  } else
-    for (int i = 0; i < 3; i++) sigaction(reader_signals[i], &reader_saved[i], NULL);
-}
-
-/* PETSc 3.18's gmsh reader loops forever, at the end of the file, on a $Comments section that
-   has no $EndComments (its GmshReadSection; tools/fuzz/petsc-gmsh-crashes/v22_comments_unterminated.msh):
-   1 when the file has a "$Comments" with no "$EndComments" after it. One pass over the bytes; '$'
-   starts both words and occurs nowhere else in them, so a mismatch restarts at '$' or at 0. */
-static int UnterminatedComments(FILE *fp)
-{
-  static const char open[] = "$Comments", close[] = "$EndComments";
-  char              buf[1 << 16];
-  size_t            n, io = 0, ic = 0;
-  int               inside = 0;
-
-  while ((n = fread(buf, 1, sizeof(buf), fp)) > 0) {
-    for (size_t k = 0; k < n; k++) {
-      const char c = buf[k];
-      io           = c == open[io] ? io + 1 : (c == '$');
-      ic           = c == close[ic] ? ic + 1 : (c == '$');
-      if (io == sizeof(open) - 1) inside = 1, io = 0;
-      if (ic == sizeof(close) - 1) inside = 0, ic = 0;
-    }
-  }
-  return inside;
-}
-
-PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodyname[], FCMesh *mesh)
-{
-  char               fname[PETSC_MAX_PATH_LEN];
-  PetscBool          set;
-  PetscMPIInt        rank;
-  PetscInt           dim, readable = 1, comments = 0, bad = 0, nc;
-  PetscBool          distribute = PETSC_TRUE;
-  Vec                coords;
-  PetscSection       csec;
-  const PetscScalar *c;
+  PetscPartitioner part;
+  DM               pdm       = NULL;
+  PetscSF          migration = NULL;
+  PetscMPIInt      size;
+  PetscInt         sStart, sEnd;
 
   PetscFunctionBegin;
-  PetscCall(PetscMemzero(mesh, sizeof(*mesh)));
-  PetscCall(PetscOptionsGetString(NULL, prefix, "-dm_plex_filename", fname, sizeof(fname), &set));
-  PetscCheck(set, comm, PETSC_ERR_USER_INPUT, "Body '%s' needs a mesh: -%sdm_plex_filename <file.msh>", bodyname,
-             prefix);
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) {
-    struct stat st;
-    FILE       *fp = NULL;
-    if (stat(fname, &st) || !S_ISREG(st.st_mode) || !(fp = fopen(fname, "rb"))) readable = 0;
-    if (fp) {
-      comments = UnterminatedComments(fp);
-      fclose(fp);
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(DMPlexGetHeightStratum(mesh->dm, 0, &sStart, &sEnd));
+  if (distribute) {
+    PetscCall(DMPlexGetPartitioner(mesh->dm, &part));
+    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)part, prefix));
+    PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
+    PetscCall(PetscPartitionerSetFromOptions(part));
+    PetscCall(FCMeshPartitionReplay(mesh->dm, part, prefix, bodyname));
+    if (size > 1) PetscCall(DMPlexDistribute(mesh->dm, 0, &migration, &pdm));
+  }
+  if (pdm) {
+    PetscCall(DMDestroy(&mesh->dm));
+    mesh->dm = pdm;
+    PetscCall(PetscObjectSetName((PetscObject)mesh->dm, bodyname));
+    PetscCall(DMSetOptionsPrefix(mesh->dm, prefix));
+  }
+  PetscCall(DMPlexGetHeightStratum(mesh->dm, 0, &mesh->cStart, &mesh->cEnd));
+  PetscCall(PetscMalloc1(mesh->cEnd - mesh->cStart + 1, &mesh->cellOrigin));
+  for (PetscInt c = mesh->cStart; c < mesh->cEnd; c++) mesh->cellOrigin[c - mesh->cStart] = c - sStart;
+  if (migration) {
+    PetscInt           nleaves;
+    const PetscInt    *ilocal;
+    const PetscSFNode *iremote;
+    PetscCall(PetscSFGetGraph(migration, NULL, &nleaves, &ilocal, &iremote));
+    for (PetscInt i = 0; i < nleaves; i++) {
+      PetscInt p = ilocal ? ilocal[i] : i;
+      if (p >= mesh->cStart && p < mesh->cEnd) mesh->cellOrigin[p - mesh->cStart] = iremote[i].index - sStart;
     }
+    PetscCall(PetscSFDestroy(&migration));
   }
-  {
-    PetscInt flags[2] = {readable, comments};
-    PetscCallMPI(MPI_Bcast(flags, 2, MPIU_INT, 0, comm));
-    readable = flags[0];
-    comments = flags[1];
-  }
-  PetscCheck(readable, comm, PETSC_ERR_USER_INPUT,
-             "Cannot open mesh file '%s' given by -%sdm_plex_filename for body '%s'", fname, prefix, bodyname);
-  PetscCheck(!comments, comm, PETSC_ERR_USER_INPUT,
-             "Cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': a $Comments section has no $EndComments "
-             "(the file is truncated or malformed; PETSc's gmsh reader would not return on it)",
-             fname, prefix, bodyname);
-  { /* an input: no output may overwrite it (src/util/inputs.c) */
-    char what[256];
-    PetscCall(PetscSNPrintf(what, sizeof(what), "mesh of body '%s' (-%sdm_plex_filename)", bodyname, prefix));
-    PetscCall(FCInputsAdd(fname, what));
-  }
+  PetscFunctionReturn(0);
+}
 
-  PetscCall(DMCreate(comm, &mesh->dm));
-  PetscCall(DMSetType(mesh->dm, DMPLEX));
-  PetscCall(PetscObjectSetName((PetscObject)mesh->dm, bodyname));
-  PetscCall(DMSetOptionsPrefix(mesh->dm, prefix));
-  {
-    /* reads (on rank 0), interpolates, refines; a malformed file fails on rank 0 only, so this
-       stays an abort-class error. Not distributed here: the reader replaces the DM's data, and
-       with it the partitioner, by a default one that never sees the body's options; the mesh is
-       distributed below, by a partitioner that does (-<body>_dm_distribute, read here, is
-       restored after the read) */
-    PetscErrorCode ierr;
-    char           opt[FC_MAX_NAME + 32];
-    PetscCall(PetscOptionsGetBool(NULL, prefix, "-dm_distribute", &distribute, NULL));
-    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sdm_distribute", prefix));
-    PetscCall(PetscOptionsSetValue(NULL, opt, "0"));
-    ReaderGuard(PETSC_TRUE, fname, prefix, bodyname);
-    ierr = DMSetFromOptions(mesh->dm);
-    ReaderGuard(PETSC_FALSE, fname, prefix, bodyname);
-    PetscCall(PetscOptionsSetValue(NULL, opt, distribute ? "1" : "0"));
-    if (ierr) { /* PETSc has printed the reader's message; name the file and the option */
-      fprintf(stderr,
-              "fecontact: error: cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': not a valid or "
-              "complete gmsh file\n",
-              fname, prefix, bodyname);
-      return ierr;
-    }
-  }
-  { /* -<body>_petscpartitioner_type (default ptscotch; metis: src/mesh/partmetis.c), or the partition
-       of an earlier run (-<body>_partition_file: src/mesh/partreplay.c). Each cell keeps its index in
-       the mesh as read (cellOrigin: the root of the migration SF), which the output records with the
-       rank that holds it, so that a run can be replayed on the same partition */
-    PetscPartitioner part;
-    DM               pdm       = NULL;
-    PetscSF          migration = NULL;
-    PetscMPIInt      size;
-    PetscInt         sStart, sEnd;
-    PetscCallMPI(MPI_Comm_size(comm, &size));
-    PetscCall(DMPlexGetHeightStratum(mesh->dm, 0, &sStart, &sEnd));
-    if (distribute) {
-      PetscCall(DMPlexGetPartitioner(mesh->dm, &part));
-      PetscCall(PetscObjectSetOptionsPrefix((PetscObject)part, prefix));
-      PetscCall(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
-      PetscCall(PetscPartitionerSetFromOptions(part));
-      PetscCall(FCMeshPartitionReplay(mesh->dm, part, prefix, bodyname));
-      if (size > 1) PetscCall(DMPlexDistribute(mesh->dm, 0, &migration, &pdm));
-    }
-    if (pdm) {
-      PetscCall(DMDestroy(&mesh->dm));
-      mesh->dm = pdm;
-      PetscCall(PetscObjectSetName((PetscObject)mesh->dm, bodyname));
-      PetscCall(DMSetOptionsPrefix(mesh->dm, prefix));
-    }
-    PetscCall(DMPlexGetHeightStratum(mesh->dm, 0, &mesh->cStart, &mesh->cEnd));
-    PetscCall(PetscMalloc1(mesh->cEnd - mesh->cStart + 1, &mesh->cellOrigin));
-    for (PetscInt c = mesh->cStart; c < mesh->cEnd; c++) mesh->cellOrigin[c - mesh->cStart] = c - sStart;
-    if (migration) {
-      PetscInt           nleaves;
-      const PetscInt    *ilocal;
-      const PetscSFNode *iremote;
-      PetscCall(PetscSFGetGraph(migration, NULL, &nleaves, &ilocal, &iremote));
-      for (PetscInt i = 0; i < nleaves; i++) {
-        PetscInt p = ilocal ? ilocal[i] : i;
-        if (p >= mesh->cStart && p < mesh->cEnd) mesh->cellOrigin[p - mesh->cStart] = iremote[i].index - sStart;
-      }
-      PetscCall(PetscSFDestroy(&migration));
-    }
-  }
+/* A 3D mesh of tetrahedra only, with at least one cell */
+static PetscErrorCode CheckTetrahedra(MPI_Comm comm, const char fname[], const char bodyname[], FCMesh *mesh)
+{
+  PetscInt dim, bad = 0, nc;
+
+  PetscFunctionBegin;
   PetscCall(DMViewFromOptions(mesh->dm, NULL, "-dm_view"));
   PetscCall(DMGetDimension(mesh->dm, &dim));
   PetscCheck(dim == 3, comm, PETSC_ERR_USER_INPUT,
@@ -198,8 +80,16 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
     PetscCheck(ncg > 0, comm, PETSC_ERR_USER_INPUT, "Mesh '%s' of body '%s' has no cells", fname, bodyname);
   }
 
-  /* Vertex lists; PETSc's closure order of a tet has a negative triple product, swapping the
-     second and third vertices makes valid cells positive for the kernels in tet.c */
+  PetscFunctionReturn(0);
+}
+
+/* Vertex lists; PETSc's closure order of a tet has a negative triple product, swapping the
+   second and third vertices makes valid cells positive for the kernels in tet.c */
+static PetscErrorCode CellVertices(MPI_Comm comm, const char fname[], const char bodyname[], FCMesh *mesh)
+{
+  PetscInt bad = 0, nc = mesh->cEnd - mesh->cStart;
+
+  PetscFunctionBegin;
   PetscCall(PetscMalloc1(4 * nc, &mesh->cellVerts));
   for (PetscInt cell = mesh->cStart; cell < mesh->cEnd; cell++) {
     PetscInt *closure = NULL, n, k = 0, *cv = &mesh->cellVerts[4 * (cell - mesh->cStart)];
@@ -224,9 +114,19 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
   PetscCheck(!bad, comm, PETSC_ERR_USER_INPUT,
              "Mesh '%s' of body '%s' has a tetrahedron without 4 distinct vertices (missing or repeated node)", fname,
              bodyname);
+  PetscFunctionReturn(0);
+}
 
-  /* Reference coordinates per local vertex: 3 per vertex, and none elsewhere (a second-order
-     mesh's coordinates live on edges and cells too, and its vertices have none of their own) */
+/* Reference coordinates per local vertex: 3 per vertex, and none elsewhere (a second-order mesh's
+   coordinates live on edges and cells too, and its vertices have none of their own), finite */
+static PetscErrorCode ReferenceCoordinates(MPI_Comm comm, const char prefix[], const char fname[],
+                                           const char bodyname[], FCMesh *mesh)
+{
+  Vec                coords;
+  PetscSection       csec;
+  const PetscScalar *c;
+
+  PetscFunctionBegin;
   PetscCall(PetscMalloc2(3 * (mesh->vEnd - mesh->vStart), &mesh->X, mesh->vEnd - mesh->vStart, &mesh->owned));
   PetscCall(DMGetCoordinatesLocal(mesh->dm, &coords));
   PetscCall(DMGetCoordinateSection(mesh->dm, &csec));
@@ -281,7 +181,22 @@ PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodynam
                fname, bodyname, prefix, gfirst, (double)bad[0], (double)bad[1], (double)bad[2],
                (double)FC_MESH_MAX_COORDINATE);
   }
+  PetscFunctionReturn(0);
+}
 
+/* Read, distribute, check: the mesh of a body, with per-cell vertex lists and reference coordinates */
+PetscErrorCode FCMeshLoad(MPI_Comm comm, const char prefix[], const char bodyname[], FCMesh *mesh)
+{
+  char      fname[PETSC_MAX_PATH_LEN];
+  PetscBool distribute;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMemzero(mesh, sizeof(*mesh)));
+  PetscCall(FCMeshRead(comm, prefix, bodyname, mesh, fname, &distribute));
+  PetscCall(Distribute(comm, prefix, bodyname, distribute, mesh));
+  PetscCall(CheckTetrahedra(comm, fname, bodyname, mesh));
+  PetscCall(CellVertices(comm, fname, bodyname, mesh));
+  PetscCall(ReferenceCoordinates(comm, prefix, fname, bodyname, mesh));
   PetscCall(DMPlexGetCellNumbering(mesh->dm, &mesh->cellNumbering));
   {
     const PetscInt *gv;
@@ -461,175 +376,5 @@ PetscErrorCode FCMeshDestroy(FCMesh *mesh)
   PetscCall(PetscFree(mesh->visVert));
   PetscCall(PetscFree(mesh->cellOrigin));
   PetscCall(DMDestroy(&mesh->dm));
-  PetscFunctionReturn(0);
-}
-
-/* Boundary of the mesh on this rank: the vertices it owns that lie on a boundary face of any rank
-   (over the ranks, every boundary vertex once), and the boundary faces it holds as vertex triples
-   (local vertex indices) ordered so that (x1 - x0) x (x2 - x0) points out of the body (the fourth
-   vertex of the face's cell is behind it). */
-static int CompareEdge(const void *a, const void *b)
-{
-  const PetscInt *x = (const PetscInt *)a, *y = (const PetscInt *)b;
-  if (x[0] != y[0]) return x[0] < y[0] ? -1 : 1;
-  return x[1] < y[1] ? -1 : (x[1] > y[1] ? 1 : 0);
-}
-
-/* The boundary must be a closed surface: every edge of a boundary triangle in exactly two of
-   them (the contact detection and the outward normals rely on it). Edges in global vertex
-   numbers, gathered on rank 0. */
-static PetscErrorCode CheckClosedSurface(FCMesh *m, PetscInt nt, const PetscInt triv[])
-{
-  PetscMPIInt     rank, size, n = (PetscMPIInt)(6 * nt), *counts = NULL, *displs = NULL;
-  PetscInt       *e, *all = NULL, bad[2] = {0, 0};
-  const PetscInt *gv;
-  const char     *name;
-  MPI_Comm        comm = PetscObjectComm((PetscObject)m->dm);
-
-  PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(ISGetIndices(m->vertexNumbering, &gv));
-  PetscCall(PetscMalloc1(6 * nt + 1, &e));
-  for (PetscInt t = 0; t < nt; t++)
-    for (int a = 0; a < 3; a++) {
-      PetscInt g0 = gv[triv[3 * t + a]], g1 = gv[triv[3 * t + (a + 1) % 3]];
-      g0                   = g0 < 0 ? -(g0 + 1) : g0;
-      g1                   = g1 < 0 ? -(g1 + 1) : g1;
-      e[6 * t + 2 * a]     = PetscMin(g0, g1);
-      e[6 * t + 2 * a + 1] = PetscMax(g0, g1);
-    }
-  PetscCall(ISRestoreIndices(m->vertexNumbering, &gv));
-  if (!rank) PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
-  PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, 0, comm));
-  if (!rank) {
-    displs[0] = 0;
-    for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
-    PetscCall(PetscMalloc1(displs[size] + 1, &all));
-  }
-  PetscCallMPI(MPI_Gatherv(e, n, MPIU_INT, all, counts, displs, MPIU_INT, 0, comm));
-  if (!rank) {
-    PetscInt ne = displs[size] / 2;
-    qsort(all, ne, 2 * sizeof(PetscInt), CompareEdge);
-    for (PetscInt i = 0; i < ne && !bad[0];) {
-      PetscInt j = i;
-      while (j < ne && !CompareEdge(&all[2 * i], &all[2 * j])) j++;
-      if (j - i != 2) {
-        bad[0] = j - i;
-        bad[1] = all[2 * i];
-      }
-      i = j;
-    }
-    PetscCall(PetscFree(all));
-    PetscCall(PetscFree2(counts, displs));
-  }
-  PetscCall(PetscFree(e));
-  PetscCallMPI(MPI_Bcast(bad, 2, MPIU_INT, 0, comm));
-  PetscCall(PetscObjectGetName((PetscObject)m->dm, &name));
-  PetscCheck(!bad[0], comm, PETSC_ERR_USER_INPUT,
-             "The mesh of body '%s' has a boundary surface that is not closed: an edge at vertex %" PetscInt_FMT
-             " belongs to %" PetscInt_FMT " boundary triangles instead of 2 (tetrahedra touching along an edge only?); "
-             "contact needs a closed, manifold surface",
-             name, bad[1], bad[0]);
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode FCMeshGetBoundary(FCMesh *m, PetscInt *nbv, PetscInt **bv, PetscInt *ntri, PetscInt **triv)
-{
-  DMLabel    label;
-  PetscInt   fStart, fEnd, nv = m->vEnd - m->vStart, nt = 0, nb = 0;
-  PetscBool *isb, has;
-
-  PetscFunctionBegin;
-  PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
-  PetscCall(DMHasLabel(m->dm, "fc_boundary", &has));
-  if (!has) {
-    /* boundary faces: one cell in the whole mesh. A face on the interface between two ranks has
-       one cell on each; PETSc 3.18's DMPlexMarkBoundaryFaces marks it on its owner (the cube's
-       396 boundary triangles became 476 on 2 ranks), so the support sizes are summed over the
-       point SF here */
-    PetscSF  sf;
-    PetscInt pStart, pEnd, *supp;
-    PetscCall(DMPlexGetChart(m->dm, &pStart, &pEnd));
-    PetscCall(PetscCalloc1(pEnd - pStart, &supp));
-    for (PetscInt f = fStart; f < fEnd; f++) PetscCall(DMPlexGetSupportSize(m->dm, f, &supp[f - pStart]));
-    PetscCall(DMGetPointSF(m->dm, &sf));
-    PetscCall(PetscSFReduceBegin(sf, MPIU_INT, supp, supp, MPI_SUM));
-    PetscCall(PetscSFReduceEnd(sf, MPIU_INT, supp, supp, MPI_SUM));
-    PetscCall(PetscSFBcastBegin(sf, MPIU_INT, supp, supp, MPI_REPLACE));
-    PetscCall(PetscSFBcastEnd(sf, MPIU_INT, supp, supp, MPI_REPLACE));
-    PetscCall(DMCreateLabel(m->dm, "fc_boundary"));
-    PetscCall(DMGetLabel(m->dm, "fc_boundary", &label));
-    for (PetscInt f = fStart; f < fEnd; f++) {
-      PetscInt ls;
-      PetscCall(DMPlexGetSupportSize(m->dm, f, &ls));
-      if (supp[f - pStart] == 1 && ls == 1) PetscCall(DMLabelSetValue(label, f, 1));
-    }
-    PetscCall(PetscFree(supp));
-  } else
-    PetscCall(DMGetLabel(m->dm, "fc_boundary", &label));
-  PetscCall(PetscCalloc1(nv, &isb));
-  for (PetscInt f = fStart; f < fEnd; f++) {
-    PetscInt val;
-    PetscCall(DMLabelGetValue(label, f, &val));
-    if (val == 1) nt++;
-  }
-  PetscCall(PetscMalloc1(3 * nt + 1, triv));
-  nt = 0;
-  for (PetscInt f = fStart; f < fEnd; f++) {
-    PetscInt        val, *closure = NULL, ncl, k = 0, *tv = &(*triv)[3 * nt], cell, opp = -1;
-    const PetscInt *supp;
-    PetscReal       e1[3], e2[3], nn[3], d[3];
-    PetscCall(DMLabelGetValue(label, f, &val));
-    if (val != 1) continue;
-    PetscCall(DMPlexGetTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
-    for (PetscInt i = 0; i < ncl && k < 3; i++)
-      if (closure[2 * i] >= m->vStart && closure[2 * i] < m->vEnd) tv[k++] = closure[2 * i] - m->vStart;
-    PetscCall(DMPlexRestoreTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
-    PetscCall(DMPlexGetSupport(m->dm, f, &supp));
-    cell = supp[0] - m->cStart;
-    for (int a = 0; a < 4; a++) {
-      PetscInt v = m->cellVerts[4 * cell + a] - m->vStart;
-      if (v != tv[0] && v != tv[1] && v != tv[2]) opp = v;
-    }
-    for (int i = 0; i < 3; i++) {
-      e1[i] = m->X[3 * tv[1] + i] - m->X[3 * tv[0] + i];
-      e2[i] = m->X[3 * tv[2] + i] - m->X[3 * tv[0] + i];
-      d[i]  = m->X[3 * opp + i] - m->X[3 * tv[0] + i];
-    }
-    FCCross(e1, e2, nn);
-    if (FCDot(nn, d) > 0) {
-      PetscInt t = tv[1];
-      tv[1]      = tv[2];
-      tv[2]      = t;
-    }
-    for (int a = 0; a < 3; a++) isb[tv[a]] = PETSC_TRUE;
-    nt++;
-  }
-  { /* a vertex is on the boundary when any rank holds a boundary face through it: with overlap 0 a
-       boundary face lives only on the rank of its one cell, which need not be the vertex's owner, so
-       the marks are summed to the owner over the point SF before the ownership filter below (else a
-       vertex whose owner holds none of its faces would be nobody's candidate) */
-    PetscSF   sf;
-    PetscInt  pStart, pEnd;
-    PetscInt *mark;
-    PetscCall(DMPlexGetChart(m->dm, &pStart, &pEnd));
-    PetscCall(PetscCalloc1(pEnd - pStart, &mark));
-    for (PetscInt v = 0; v < nv; v++) mark[m->vStart + v - pStart] = isb[v];
-    PetscCall(DMGetPointSF(m->dm, &sf));
-    PetscCall(PetscSFReduceBegin(sf, MPIU_INT, mark, mark, MPI_MAX));
-    PetscCall(PetscSFReduceEnd(sf, MPIU_INT, mark, mark, MPI_MAX));
-    for (PetscInt v = 0; v < nv; v++) isb[v] = mark[m->vStart + v - pStart] ? PETSC_TRUE : PETSC_FALSE;
-    PetscCall(PetscFree(mark));
-  }
-  for (PetscInt v = 0; v < nv; v++) nb += (isb[v] && m->owned[v]);
-  PetscCall(PetscMalloc1(nb + 1, bv));
-  nb = 0;
-  for (PetscInt v = 0; v < nv; v++)
-    if (isb[v] && m->owned[v]) (*bv)[nb++] = v;
-  PetscCall(PetscFree(isb));
-  *nbv  = nb;
-  *ntri = nt;
-  PetscCall(CheckClosedSurface(m, nt, *triv));
   PetscFunctionReturn(0);
 }

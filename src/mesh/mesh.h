@@ -20,6 +20,10 @@ PETSC_INTERN PetscErrorCode FCPartitionerRegisterMetis(void);
    stays finite with room to spare */
 #define FC_MESH_MAX_COORDINATE 1e100
 PETSC_INTERN PetscErrorCode FCMeshLoad(MPI_Comm, const char prefix[], const char bodyname[], FCMesh *);
+/* src/mesh/read.c: the mesh file of -<prefix>dm_plex_filename checked and read on rank 0 into mesh->dm, not
+   distributed; fname: the file, distribute: -<prefix>dm_distribute */
+PETSC_INTERN PetscErrorCode FCMeshRead(MPI_Comm, const char prefix[], const char bodyname[], FCMesh *,
+                                       char fname[PETSC_MAX_PATH_LEN], PetscBool *distribute);
 /* src/mesh/partreplay.c: -<body>_partition_file, the partition recorded in an earlier run's output
    (/bodies/<body>/mesh/rank and cell_origin) set on the partitioner of the mesh as read (rank 0);
    nothing without the option */

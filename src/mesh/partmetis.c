@@ -153,7 +153,8 @@ static PetscErrorCode Partition_Metis(PetscPartitioner part, PetscInt nparts, Pe
                info[0]);
     part->edgeCut = info[1];
   }
-  PetscCall(PetscInfo(part, "METIS k-way: %" PetscInt_FMT " parts, edge cut %" PetscInt_FMT "\n", nparts, part->edgeCut));
+  PetscCall(
+      PetscInfo(part, "METIS k-way: %" PetscInt_FMT " parts, edge cut %" PetscInt_FMT "\n", nparts, part->edgeCut));
   PetscCallMPI(MPI_Scatterv(ga, vcount, vdisp, MPIU_INT, assignment, nl, MPIU_INT, 0, comm));
   if (!rank) {
     PetscCall(PetscFree4(vcount, vdisp, ecount, edisp));

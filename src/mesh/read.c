@@ -1,0 +1,135 @@
+/* Reading a body's mesh file: the checks before PETSc's gmsh reader sees the file (it exists, is a
+   regular file, and has no unterminated $Comments section, on which the reader would not return),
+   and a guard that turns a memory fault inside the reader into an error naming the file. The mesh
+   is read on rank 0 and not distributed (mesh.c distributes it with the body's partitioner). */
+#include "../fcimpl.h"
+#include <sys/stat.h>
+#include <signal.h>
+#include <unistd.h>
+
+/* PETSc 3.18's gmsh reader trusts a file's counts and indices and can crash on a malformed one
+   (tools/fuzz/petsc-gmsh-crashes, docs/reliability.md). While it reads, a memory fault ends the
+   run with a line naming the file instead of a crash report: the message is prepared before, and
+   the handler only writes it and exits (async-signal-safe). */
+static char             reader_message[2 * PETSC_MAX_PATH_LEN];
+static size_t           reader_message_len;
+static struct sigaction reader_saved[3];
+static const int        reader_signals[3] = {SIGSEGV, SIGBUS, SIGFPE};
+
+static void ReaderFault(int sig)
+{
+  (void)sig;
+  if (write(STDERR_FILENO, reader_message, reader_message_len) < 0) _exit(1);
+  _exit(1);
+}
+
+static void ReaderGuard(PetscBool on, const char fname[], const char prefix[], const char bodyname[])
+{
+  if (getenv("FECONTACT_NO_READER_GUARD")) return; /* the fuzzers watch the reader's crashes themselves */
+  if (on) {
+    struct sigaction sa;
+    snprintf(reader_message, sizeof(reader_message),
+             "fecontact: error: cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': PETSc's gmsh reader "
+             "hit a memory fault on it, the file is malformed (open it in gmsh to see where)\n",
+             fname, prefix, bodyname);
+    reader_message_len = strlen(reader_message);
+    memset(&sa, 0, sizeof(sa));
+    sa.sa_handler = ReaderFault;
+    sigemptyset(&sa.sa_mask);
+    for (int i = 0; i < 3; i++) sigaction(reader_signals[i], &sa, &reader_saved[i]);
+  } else
+    for (int i = 0; i < 3; i++) sigaction(reader_signals[i], &reader_saved[i], NULL);
+}
+
+/* PETSc 3.18's gmsh reader loops forever, at the end of the file, on a $Comments section that
+   has no $EndComments (its GmshReadSection; tools/fuzz/petsc-gmsh-crashes/v22_comments_unterminated.msh):
+   1 when the file has a "$Comments" with no "$EndComments" after it. One pass over the bytes; '$'
+   starts both words and occurs nowhere else in them, so a mismatch restarts at '$' or at 0. */
+static int UnterminatedComments(FILE *fp)
+{
+  static const char open[] = "$Comments", close[] = "$EndComments";
+  char              buf[1 << 16];
+  size_t            n, io = 0, ic = 0;
+  int               inside = 0;
+
+  while ((n = fread(buf, 1, sizeof(buf), fp)) > 0) {
+    for (size_t k = 0; k < n; k++) {
+      const char c = buf[k];
+      io           = c == open[io] ? io + 1 : (c == '$');
+      ic           = c == close[ic] ? ic + 1 : (c == '$');
+      if (io == sizeof(open) - 1) inside = 1, io = 0;
+      if (ic == sizeof(close) - 1) inside = 0, ic = 0;
+    }
+  }
+  return inside;
+}
+
+PetscErrorCode FCMeshRead(MPI_Comm comm, const char prefix[], const char bodyname[], FCMesh *mesh,
+                          char fname[PETSC_MAX_PATH_LEN], PetscBool *distribute)
+{
+  PetscBool   set;
+  PetscMPIInt rank;
+  PetscInt    readable = 1, comments = 0;
+
+  PetscFunctionBegin;
+  *distribute = PETSC_TRUE;
+  PetscCall(PetscOptionsGetString(NULL, prefix, "-dm_plex_filename", fname, PETSC_MAX_PATH_LEN, &set));
+  PetscCheck(set, comm, PETSC_ERR_USER_INPUT, "Body '%s' needs a mesh: -%sdm_plex_filename <file.msh>", bodyname,
+             prefix);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    struct stat st;
+    FILE       *fp = NULL;
+    if (stat(fname, &st) || !S_ISREG(st.st_mode) || !(fp = fopen(fname, "rb"))) readable = 0;
+    if (fp) {
+      comments = UnterminatedComments(fp);
+      fclose(fp);
+    }
+  }
+  {
+    PetscInt flags[2] = {readable, comments};
+    PetscCallMPI(MPI_Bcast(flags, 2, MPIU_INT, 0, comm));
+    readable = flags[0];
+    comments = flags[1];
+  }
+  PetscCheck(readable, comm, PETSC_ERR_USER_INPUT,
+             "Cannot open mesh file '%s' given by -%sdm_plex_filename for body '%s'", fname, prefix, bodyname);
+  PetscCheck(!comments, comm, PETSC_ERR_USER_INPUT,
+             "Cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': a $Comments section has no $EndComments "
+             "(the file is truncated or malformed; PETSc's gmsh reader would not return on it)",
+             fname, prefix, bodyname);
+  { /* an input: no output may overwrite it (src/util/inputs.c) */
+    char what[256];
+    PetscCall(PetscSNPrintf(what, sizeof(what), "mesh of body '%s' (-%sdm_plex_filename)", bodyname, prefix));
+    PetscCall(FCInputsAdd(fname, what));
+  }
+
+  PetscCall(DMCreate(comm, &mesh->dm));
+  PetscCall(DMSetType(mesh->dm, DMPLEX));
+  PetscCall(PetscObjectSetName((PetscObject)mesh->dm, bodyname));
+  PetscCall(DMSetOptionsPrefix(mesh->dm, prefix));
+  {
+    /* reads (on rank 0), interpolates, refines; a malformed file fails on rank 0 only, so this
+       stays an abort-class error. Not distributed here: the reader replaces the DM's data, and
+       with it the partitioner, by a default one that never sees the body's options; the mesh is
+       distributed below, by a partitioner that does (-<body>_dm_distribute, read here, is
+       restored after the read) */
+    PetscErrorCode ierr;
+    char           opt[FC_MAX_NAME + 32];
+    PetscCall(PetscOptionsGetBool(NULL, prefix, "-dm_distribute", distribute, NULL));
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sdm_distribute", prefix));
+    PetscCall(PetscOptionsSetValue(NULL, opt, "0"));
+    ReaderGuard(PETSC_TRUE, fname, prefix, bodyname);
+    ierr = DMSetFromOptions(mesh->dm);
+    ReaderGuard(PETSC_FALSE, fname, prefix, bodyname);
+    PetscCall(PetscOptionsSetValue(NULL, opt, *distribute ? "1" : "0"));
+    if (ierr) { /* PETSc has printed the reader's message; name the file and the option */
+      fprintf(stderr,
+              "fecontact: error: cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': not a valid or "
+              "complete gmsh file\n",
+              fname, prefix, bodyname);
+      return ierr;
+    }
+  }
+  PetscFunctionReturn(0);
+}
