@@ -36,75 +36,61 @@ static PetscErrorCode BodyIndex(FCCollision s, const char name[], const char pai
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCCollisionSetFromOptions(FCCollision s)
+/* The detection options (read only in a scene with contact pairs) */
+static PetscErrorCode ReadDetection(FCCollision s, PetscOptionItems *PetscOptionsObject, PetscReal mu[], PetscInt *nmu,
+                                    PetscBool *setmu, char detection[16])
 {
-  char     *pairs[FC_MAX_BODIES];
-  PetscInt  np = FC_MAX_BODIES, nmu = FC_MAX_BODIES;
-  PetscReal mu[FC_MAX_BODIES];
-  PetscBool set, setmu;
-  char      detection[16] = "continuous";
-
   PetscFunctionBegin;
-  s->pairs.distance           = 0.01;
-  s->pairs.passes             = 2;
-  s->pairs.pass2_drop         = -1.0;
-  s->pairs.pass2_dormant      = 0.01;
-  s->pairs.dormant_depth      = 1e-5;
-  s->pairs.facing             = PETSC_TRUE;
-  s->pairs.intersection_depth = 1e-4;
-  s->pairs.edges              = PETSC_TRUE;
-  s->pairs.shape_points       = PETSC_TRUE;
-  s->pairs.separation_speed   = 1.0;
-  PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
-  PetscCall(
-      PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
-  if (set && np > 0) {
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_distance", "Alarm distance", &s->pairs.distance, NULL));
-    PetscCall(FCOptionsIntRange(PetscOptionsObject, "-contact_fe_passes",
-                                "Detection passes between two meshed bodies (1 or 2)", 1, 2, &s->pairs.passes, NULL));
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_drop",
-                            "With 2 passes: drop a second-pass contact whose vertex has a weight > w in a first-pass "
-                            "contact of the pair (< 0: keep all)",
-                            &s->pairs.pass2_drop, NULL));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_distance", "Alarm distance", &s->pairs.distance, NULL));
+  PetscCall(FCOptionsIntRange(PetscOptionsObject, "-contact_fe_passes",
+                              "Detection passes between two meshed bodies (1 or 2)", 1, 2, &s->pairs.passes, NULL));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_drop",
+                          "With 2 passes: drop a second-pass contact whose vertex has a weight > w in a first-pass "
+                          "contact of the pair (< 0: keep all)",
+                          &s->pairs.pass2_drop, NULL));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_dormant",
+                          "With 2 passes: a second-pass contact whose vertex has a weight > w in a first-pass contact "
+                          "is dormant, solved only where the solution without it leaves the vertex inside (< 0: off)",
+                          &s->pairs.pass2_dormant, NULL));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_dormant_depth",
+                          "Depth inside the other body at which a dormant contact wakes (m)", &s->pairs.dormant_depth,
+                          NULL));
+  PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_facing",
+                          "A vertex lands only on triangles that face its own surface", &s->pairs.facing, NULL));
+  PetscCall(FCOptionsRealList(PetscOptionsObject, "-contact_mu", "Friction coefficient: one value, or one per pair",
+                              FC_MAX_BODIES, mu, nmu, setmu));
+  PetscCall(PetscOptionsString("-contact_detection", "Contact detection: continuous or discrete", NULL, detection,
+                               detection, 16, NULL));
+  PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_edge_edge", "Edge-edge contacts between two meshed bodies",
+                          &s->pairs.edges, NULL));
+  PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_shape_points",
+                          "A bounded shape's points against the triangles of an FE body too", &s->pairs.shape_points,
+                          NULL));
+  {
+    const char *kinds[] = {"picture", "exact"};
+    PetscInt    kind    = 1;
     PetscCall(
-        FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_dormant",
-                      "With 2 passes: a second-pass contact whose vertex has a weight > w in a first-pass contact "
-                      "is dormant, solved only where the solution without it leaves the vertex inside (< 0: off)",
-                      &s->pairs.pass2_dormant, NULL));
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_dormant_depth",
-                            "Depth inside the other body at which a dormant contact wakes (m)", &s->pairs.dormant_depth,
-                            NULL));
-    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_facing",
-                            "A vertex lands only on triangles that face its own surface", &s->pairs.facing, NULL));
-    PetscCall(FCOptionsRealList(PetscOptionsObject, "-contact_mu", "Friction coefficient: one value, or one per pair",
-                                FC_MAX_BODIES, mu, &nmu, &setmu));
-    PetscCall(PetscOptionsString("-contact_detection", "Contact detection: continuous or discrete", NULL, detection,
-                                 detection, sizeof(detection), NULL));
-    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_edge_edge", "Edge-edge contacts between two meshed bodies",
-                            &s->pairs.edges, NULL));
-    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_shape_points",
-                            "A bounded shape's points against the triangles of an FE body too", &s->pairs.shape_points,
-                            NULL));
-    {
-      const char *kinds[] = {"picture", "exact"};
-      PetscInt    kind    = 1;
-      PetscCall(
-          PetscOptionsEList("-contact_rounded_surface",
-                            "A sphere or a capsule against an FE surface: its picture's points or the exact nearest",
-                            NULL, kinds, 2, kinds[1], &kind, NULL));
-      s->pairs.rounded_exact = kind == 1 ? PETSC_TRUE : PETSC_FALSE;
-    }
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_separation_speed",
-                            "Largest speed at which bodies that start inside each other are pushed apart (m/s)",
-                            &s->pairs.separation_speed, NULL));
-    PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_intersection_depth",
-                            "Depth inside another body that counts as an intersection (m)",
-                            &s->pairs.intersection_depth, NULL));
-    PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_fail_on_intersection",
-                            "Stop the run at the first intersection", &s->pairs.fail_on_intersection, NULL));
+        PetscOptionsEList("-contact_rounded_surface",
+                          "A sphere or a capsule against an FE surface: its picture's points or the exact nearest",
+                          NULL, kinds, 2, kinds[1], &kind, NULL));
+    s->pairs.rounded_exact = kind == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
-  PetscOptionsEnd();
-  if (!set || np == 0) PetscFunctionReturn(0);
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_separation_speed",
+                          "Largest speed at which bodies that start inside each other are pushed apart (m/s)",
+                          &s->pairs.separation_speed, NULL));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_intersection_depth",
+                          "Depth inside another body that counts as an intersection (m)", &s->pairs.intersection_depth,
+                          NULL));
+  PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_fail_on_intersection", "Stop the run at the first intersection",
+                          &s->pairs.fail_on_intersection, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* Their ranges, and the friction: one value for every pair or one per pair (default 0) */
+static PetscErrorCode CheckDetection(FCCollision s, PetscInt np, PetscReal mu[], PetscInt *nmu, PetscBool setmu,
+                                     const char detection[])
+{
+  PetscFunctionBegin;
   PetscCheck(!strcmp(detection, "continuous") || !strcmp(detection, "discrete"), s->comm, PETSC_ERR_USER_INPUT,
              "Option -contact_detection must be continuous or discrete, got '%s'", detection);
   s->pairs.continuous = strcmp(detection, "continuous") ? PETSC_FALSE : PETSC_TRUE;
@@ -112,15 +98,14 @@ PetscErrorCode FCCollisionSetFromOptions(FCCollision s)
              "Option -contact_separation_speed must be > 0, got %g", (double)s->pairs.separation_speed);
   PetscCheck(s->pairs.intersection_depth >= 0.0, s->comm, PETSC_ERR_USER_INPUT,
              "Option -contact_intersection_depth must be >= 0, got %g", (double)s->pairs.intersection_depth);
-  if (!set || np == 0) PetscFunctionReturn(0);
   if (!setmu) {
-    nmu   = 1;
+    *nmu  = 1;
     mu[0] = 0.0;
   }
-  PetscCheck(nmu == 1 || nmu == np, s->comm, PETSC_ERR_USER_INPUT,
+  PetscCheck(*nmu == 1 || *nmu == np, s->comm, PETSC_ERR_USER_INPUT,
              "Option -contact_mu needs one value or one per pair (%" PetscInt_FMT " pairs), got %" PetscInt_FMT, np,
-             nmu);
-  for (PetscInt i = 0; i < nmu; i++)
+             *nmu);
+  for (PetscInt i = 0; i < *nmu; i++)
     PetscCheck(mu[i] >= 0.0 && PetscIsNormalReal(mu[i] + 1.0), s->comm, PETSC_ERR_USER_INPUT,
                "Option -contact_mu: entry %" PetscInt_FMT " must be a finite number >= 0, got %g", i, (double)mu[i]);
   PetscCheck(s->pairs.passes == 1 || s->pairs.passes == 2, s->comm, PETSC_ERR_USER_INPUT,
@@ -139,6 +124,13 @@ PetscErrorCode FCCollisionSetFromOptions(FCCollision s)
              (double)s->pairs.dormant_depth);
   PetscCheck(s->pairs.distance >= 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_distance must be >= 0, got %g",
              (double)s->pairs.distance);
+  PetscFunctionReturn(0);
+}
+
+/* The pairs "a:b" of -contact_pairs: two distinct bodies of the scene, not both kinematic */
+static PetscErrorCode SetPairs(FCCollision s, PetscInt np, char *pairs[], const PetscReal mu[], PetscInt nmu)
+{
+  PetscFunctionBegin;
   s->pairs.n = np;
   PetscCall(PetscMalloc2(np, &s->pairs.body, np, &s->pairs.mu));
   for (PetscInt p = 0; p < np; p++) {
@@ -157,6 +149,36 @@ PetscErrorCode FCCollisionSetFromOptions(FCCollision s)
     s->pairs.mu[p] = mu[nmu == 1 ? 0 : p];
   }
   for (PetscInt p = 0; p < np; p++) PetscCall(PetscFree(pairs[p]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCCollisionSetFromOptions(FCCollision s)
+{
+  char     *pairs[FC_MAX_BODIES];
+  PetscInt  np = FC_MAX_BODIES, nmu = FC_MAX_BODIES;
+  PetscReal mu[FC_MAX_BODIES];
+  PetscBool set, setmu = PETSC_FALSE;
+  char      detection[16] = "continuous";
+
+  PetscFunctionBegin;
+  s->pairs.distance           = 0.01;
+  s->pairs.passes             = 2;
+  s->pairs.pass2_drop         = -1.0;
+  s->pairs.pass2_dormant      = 0.01;
+  s->pairs.dormant_depth      = 1e-5;
+  s->pairs.facing             = PETSC_TRUE;
+  s->pairs.intersection_depth = 1e-4;
+  s->pairs.edges              = PETSC_TRUE;
+  s->pairs.shape_points       = PETSC_TRUE;
+  s->pairs.separation_speed   = 1.0;
+  PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
+  PetscCall(
+      PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
+  if (set && np > 0) PetscCall(ReadDetection(s, PetscOptionsObject, mu, &nmu, &setmu, detection));
+  PetscOptionsEnd();
+  if (!set || np == 0) PetscFunctionReturn(0);
+  PetscCall(CheckDetection(s, np, mu, &nmu, setmu, detection));
+  PetscCall(SetPairs(s, np, pairs, mu, nmu));
   PetscFunctionReturn(0);
 }
 
