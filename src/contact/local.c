@@ -287,3 +287,47 @@ PetscErrorCode FCContactLocalSolveReference(PetscInt d, const PetscReal W[], con
   PetscCall(LocalSolve(d, W, q, mu, r, residual, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
+
+/* One contact's step of a sweep (pgs.c, pgs_split.c): the local problem (W_ii, u_i - W_ii r_i) with u_i
+   its rows of u = q + W r, damped by the proximal term and relaxed by omega; r_i updated in place,
+   delta its change */
+PetscErrorCode FCContactLocalUpdate(FCContactProblem p, PetscInt i, const PetscReal ui[], PetscReal omega,
+                                    PetscReal proximal, PetscReal r[], PetscReal delta[], PetscBool *changed)
+{
+  PetscInt  d = p->dim[i], o = p->off[i];
+  PetscReal qi[3], Wi[9], ri[3], *r0 = &r[o];
+
+  PetscFunctionBegin;
+  *changed = PETSC_FALSE;
+  if (p->dormant && p->dormant[i]) {
+    for (PetscInt a = 0; a < d; a++) delta[a] = 0.0;
+    PetscFunctionReturn(0);
+  }
+  FCContactProblemDiagonalBlock(p, i, Wi);
+  for (PetscInt a = 0; a < d; a++) {
+    qi[a] = ui[a];
+    for (PetscInt b = 0; b < d; b++) qi[a] -= Wi[a * d + b] * r0[b];
+  }
+  for (PetscInt a = 0; a < d; a++) ri[a] = r0[a];
+  if (proximal > 0.0) { /* (W_ii + sigma I) r = -(q_i - sigma r_i): the same fixed points */
+    PetscReal tr = 0.0, sigma;
+    for (PetscInt a = 0; a < d; a++) tr += Wi[a * d + a];
+    sigma = proximal * tr / d;
+    for (PetscInt a = 0; a < d; a++) {
+      Wi[a * d + a] += sigma;
+      qi[a] -= sigma * r0[a];
+    }
+  }
+  PetscCall(FCContactLocalSolve(d, Wi, qi, p->mu[i], ri, NULL));
+  if (omega != 1.0) {
+    PetscReal x[3];
+    for (PetscInt a = 0; a < d; a++) x[a] = (1.0 - omega) * r0[a] + omega * ri[a];
+    FCContactProjectCone(d, p->mu[i], x, ri);
+  }
+  for (PetscInt a = 0; a < d; a++) {
+    delta[a] = ri[a] - r0[a];
+    *changed = *changed || delta[a] != 0.0;
+    r0[a]    = ri[a];
+  }
+  PetscFunctionReturn(0);
+}

@@ -12,47 +12,6 @@
 /* One sweep over the contacts, in place (eq. 19). u = q + W r is kept current: contact i's local
    problem is (W_ii, u_i - W_ii r_i), and after it u += W[:, i] (r_i^new - r_i), the rows of
    contact i in W (W symmetric: every dense W) or in W^T, read once per sweep with unit stride. */
-PetscErrorCode FCContactLocalUpdate(FCContactProblem p, PetscInt i, const PetscReal ui[], PetscReal omega,
-                                    PetscReal proximal, PetscReal r[], PetscReal delta[], PetscBool *changed)
-{
-  PetscInt  d = p->dim[i], o = p->off[i];
-  PetscReal qi[3], Wi[9], ri[3], *r0 = &r[o];
-
-  PetscFunctionBegin;
-  *changed = PETSC_FALSE;
-  if (p->dormant && p->dormant[i]) {
-    for (PetscInt a = 0; a < d; a++) delta[a] = 0.0;
-    PetscFunctionReturn(0);
-  }
-  FCContactProblemDiagonalBlock(p, i, Wi);
-  for (PetscInt a = 0; a < d; a++) {
-    qi[a] = ui[a];
-    for (PetscInt b = 0; b < d; b++) qi[a] -= Wi[a * d + b] * r0[b];
-  }
-  for (PetscInt a = 0; a < d; a++) ri[a] = r0[a];
-  if (proximal > 0.0) { /* (W_ii + sigma I) r = -(q_i - sigma r_i): the same fixed points */
-    PetscReal tr = 0.0, sigma;
-    for (PetscInt a = 0; a < d; a++) tr += Wi[a * d + a];
-    sigma = proximal * tr / d;
-    for (PetscInt a = 0; a < d; a++) {
-      Wi[a * d + a] += sigma;
-      qi[a] -= sigma * r0[a];
-    }
-  }
-  PetscCall(FCContactLocalSolve(d, Wi, qi, p->mu[i], ri, NULL));
-  if (omega != 1.0) {
-    PetscReal x[3];
-    for (PetscInt a = 0; a < d; a++) x[a] = (1.0 - omega) * r0[a] + omega * ri[a];
-    FCContactProjectCone(d, p->mu[i], x, ri);
-  }
-  for (PetscInt a = 0; a < d; a++) {
-    delta[a] = ri[a] - r0[a];
-    *changed = *changed || delta[a] != 0.0;
-    r0[a]    = ri[a];
-  }
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[], PetscReal u[])
 {
   PetscFunctionBegin;
@@ -62,6 +21,55 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
     PetscCall(FCContactLocalUpdate(p, i, &u[p->off[i]], s->omega, s->proximal, r, delta, &changed));
     if (changed) FCContactProblemAddColumns(p, i, delta, u);
   }
+  PetscFunctionReturn(0);
+}
+
+/* NNCG's state: the iterate before the sweep, the direction and W times it, the sweep's iterate */
+typedef struct {
+  PetscReal *rold, *uold, *dir, *wdir, *rsweep, *usweep, gg_old;
+} NNCG;
+
+/* NNCG: the sweep's step g = r - rold conjugated with the previous direction, r += beta dir, then back
+   into the cones with u following; restarted (dir = g) when beta > 1. moved: r left the sweep's iterate */
+static PetscErrorCode NNCGStep(FCContactProblem p, NNCG *c, PetscReal r[], PetscReal u[], PetscBool *moved)
+{
+  PetscInt  n  = p->n;
+  PetscReal gg = 0.0, beta;
+
+  PetscFunctionBegin;
+  *moved = PETSC_FALSE;
+  for (PetscInt k = 0; k < n; k++) gg += PetscSqr(r[k] - c->rold[k]);
+  beta = c->gg_old > 0.0 ? gg / c->gg_old : 2.0;
+  if (beta > 1.0) /* restart */
+    for (PetscInt k = 0; k < n; k++) {
+      c->dir[k]  = r[k] - c->rold[k];
+      c->wdir[k] = u[k] - c->uold[k];
+    }
+  else {
+    PetscCall(PetscArraycpy(c->rsweep, r, n));
+    PetscCall(PetscArraycpy(c->usweep, u, n));
+    for (PetscInt k = 0; k < n; k++) {
+      PetscReal g = r[k] - c->rold[k], wg = u[k] - c->uold[k];
+      r[k] += beta * c->dir[k];
+      u[k] += beta * c->wdir[k];
+      c->dir[k]  = beta * c->dir[k] + g;
+      c->wdir[k] = beta * c->wdir[k] + wg;
+    }
+    for (PetscInt i = 0; i < p->nc; i++) { /* back into the cones, u following */
+      PetscInt  d = p->dim[i], o = p->off[i];
+      PetscReal x[3], delta[3];
+      PetscBool changed = PETSC_FALSE;
+      for (PetscInt a = 0; a < d; a++) x[a] = r[o + a];
+      FCContactProjectCone(d, p->mu[i], x, &r[o]);
+      for (PetscInt a = 0; a < d; a++) {
+        delta[a] = r[o + a] - x[a];
+        changed  = changed || delta[a] != 0.0;
+      }
+      if (changed) FCContactProblemAddColumns(p, i, delta, u);
+    }
+    *moved = PETSC_TRUE;
+  }
+  c->gg_old = gg;
   PetscFunctionReturn(0);
 }
 
@@ -75,11 +83,23 @@ static PetscErrorCode Sweep(FCContactSolver s, FCContactProblem p, PetscReal r[]
    the rate of the residual over the last FC_PGS_EXACT sweeps says they would not converge within max_it; before, NNCG's
    restarts make the rate noisy */
 #define FC_PGS_GIVEUP 64
+/* With s->giveup, every FC_PGS_EXACT sweeps: whether the rate of the residual over them says the sweeps will not
+   reach the tolerance within max_it (checkpoint: the residual FC_PGS_EXACT sweeps before, updated) */
+static PetscBool GiveUp(FCContactSolver s, PetscReal *checkpoint)
+{
+  PetscReal rate = *checkpoint > 0.0 ? s->residual / *checkpoint : 0.0;
+  if (s->sweeps >= FC_PGS_GIVEUP && s->residual > s->tol &&
+      (rate >= 1.0 || s->sweeps + FC_PGS_EXACT * PetscLogReal(s->tol / s->residual) / PetscLogReal(rate) > s->max_it))
+    return PETSC_TRUE;
+  *checkpoint = s->residual;
+  return PETSC_FALSE;
+}
 PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
   PetscInt   n = p->n;
   PetscBool  exact;
-  PetscReal *u, *rold = NULL, *uold = NULL, *dir = NULL, *wdir = NULL, *rsweep = NULL, *usweep = NULL, gg_old = 0.0;
+  PetscReal *u;
+  NNCG       g          = {0};
   PetscReal  checkpoint = 0.0; /* the residual FC_PGS_EXACT sweeps ago (giveup) */
 
   PetscFunctionBegin;
@@ -93,61 +113,28 @@ PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, Pets
   exact       = PETSC_TRUE; /* u is W r + q, not carried */
   s->residual = FCContactProblemResidualFromVelocity(p, r, u);
   if (s->nncg)
-    PetscCall(PetscCalloc6(n + 1, &rold, n + 1, &uold, n + 1, &dir, n + 1, &wdir, n + 1, &rsweep, n + 1, &usweep));
+    PetscCall(PetscCalloc6(n + 1, &g.rold, n + 1, &g.uold, n + 1, &g.dir, n + 1, &g.wdir, n + 1, &g.rsweep, n + 1,
+                           &g.usweep));
   while (s->residual > s->tol && s->sweeps < s->max_it) {
     PetscBool moved    = PETSC_FALSE;
     PetscReal previous = s->residual;
     if (s->nncg) {
-      PetscCall(PetscArraycpy(rold, r, n));
-      PetscCall(PetscArraycpy(uold, u, n));
+      PetscCall(PetscArraycpy(g.rold, r, n));
+      PetscCall(PetscArraycpy(g.uold, u, n));
     }
     PetscCall(Sweep(s, p, r, u));
-    if (s->nncg) { /* NNCG: conjugate the sweep's step with the previous direction */
-      PetscReal gg = 0.0, beta;
-      for (PetscInt k = 0; k < n; k++) gg += PetscSqr(r[k] - rold[k]);
-      beta = gg_old > 0.0 ? gg / gg_old : 2.0;
-      if (beta > 1.0) /* restart */
-        for (PetscInt k = 0; k < n; k++) {
-          dir[k]  = r[k] - rold[k];
-          wdir[k] = u[k] - uold[k];
-        }
-      else {
-        PetscCall(PetscArraycpy(rsweep, r, n));
-        PetscCall(PetscArraycpy(usweep, u, n));
-        for (PetscInt k = 0; k < n; k++) {
-          PetscReal g = r[k] - rold[k], wg = u[k] - uold[k];
-          r[k] += beta * dir[k];
-          u[k] += beta * wdir[k];
-          dir[k]  = beta * dir[k] + g;
-          wdir[k] = beta * wdir[k] + wg;
-        }
-        for (PetscInt i = 0; i < p->nc; i++) { /* back into the cones, u following */
-          PetscInt  d = p->dim[i], o = p->off[i];
-          PetscReal x[3], delta[3];
-          PetscBool changed = PETSC_FALSE;
-          for (PetscInt a = 0; a < d; a++) x[a] = r[o + a];
-          FCContactProjectCone(d, p->mu[i], x, &r[o]);
-          for (PetscInt a = 0; a < d; a++) {
-            delta[a] = r[o + a] - x[a];
-            changed  = changed || delta[a] != 0.0;
-          }
-          if (changed) FCContactProblemAddColumns(p, i, delta, u);
-        }
-        moved = PETSC_TRUE;
-      }
-      gg_old = gg;
-    }
+    if (s->nncg) PetscCall(NNCGStep(p, &g, r, u, &moved));
     s->sweeps++;
     exact = s->sweeps % FC_PGS_EXACT == 0 ? PETSC_TRUE : PETSC_FALSE;
     if (exact) PetscCall(FCContactProblemVelocity(p, r, u));
     s->residual = FCContactProblemResidualFromVelocity(p, r, u);
     if (moved && !(s->residual < previous)) { /* the step did not pay: back to the sweep's iterate, restart */
-      PetscCall(PetscArraycpy(r, rsweep, n));
-      PetscCall(PetscArraycpy(u, usweep, n));
+      PetscCall(PetscArraycpy(r, g.rsweep, n));
+      PetscCall(PetscArraycpy(u, g.usweep, n));
       exact = PETSC_FALSE;
       for (PetscInt k = 0; k < n; k++) {
-        dir[k]  = r[k] - rold[k];
-        wdir[k] = u[k] - uold[k];
+        g.dir[k]  = r[k] - g.rold[k];
+        g.wdir[k] = u[k] - g.uold[k];
       }
       s->residual = FCContactProblemResidualFromVelocity(p, r, u);
     }
@@ -158,18 +145,11 @@ PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, Pets
         PetscCall(FCContactProblemVelocity(p, r, u));
         exact       = PETSC_TRUE;
         s->residual = FCContactProblemResidualFromVelocity(p, r, u);
-        gg_old      = 0.0; /* NNCG restarts */
+        g.gg_old    = 0.0; /* NNCG restarts */
         checkpoint  = 0.0; /* and the rate is the new problem's */
       }
     }
-    if (s->giveup && s->sweeps % FC_PGS_EXACT == 0) { /* residuals FC_PGS_EXACT sweeps apart: the sweeps still needed */
-      PetscReal rate = checkpoint > 0.0 ? s->residual / checkpoint : 0.0;
-      if (s->sweeps >= FC_PGS_GIVEUP && s->residual > s->tol &&
-          (rate >= 1.0 ||
-           s->sweeps + FC_PGS_EXACT * PetscLogReal(s->tol / s->residual) / PetscLogReal(rate) > s->max_it))
-        break;
-      checkpoint = s->residual;
-    }
+    if (s->giveup && s->sweeps % FC_PGS_EXACT == 0 && GiveUp(s, &checkpoint)) break;
     if (s->residual <= s->tol && !exact) { /* converged on the carried u: confirm on the exact one */
       PetscCall(FCContactProblemVelocity(p, r, u));
       exact       = PETSC_TRUE;
@@ -182,7 +162,7 @@ PetscErrorCode FCContactSolverSweeps(FCContactSolver s, FCContactProblem p, Pets
     PetscCall(FCContactProblemVelocity(p, r, u));
     s->residual = FCContactProblemResidualFromVelocity(p, r, u);
   }
-  if (s->nncg) PetscCall(PetscFree6(rold, uold, dir, wdir, rsweep, usweep));
+  if (s->nncg) PetscCall(PetscFree6(g.rold, g.uold, g.dir, g.wdir, g.rsweep, g.usweep));
   PetscCall(PetscFree(u));
   s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
