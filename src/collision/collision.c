@@ -292,6 +292,104 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
   PetscFunctionReturn(0);
 }
 
+/* Two meshed bodies (FE, mesh shapes): the vertices of each against the other's surface, or with
+   -contact_fe_passes 1 only the first body's vertices against the second's surface; then the sharp edges
+   of the FE body against the other's (the first body's if both are FE) */
+static PetscErrorCode MeshedPair(MPI_Comm comm, FCBody bodies[], PetscInt p, const FCContactPairs *pairs,
+                                 PetscMPIInt rank, FCContactSet *set)
+{
+  Surface        *Sf[2]  = {NULL, NULL};
+  FCVertexNormal *vn[2]  = {NULL, NULL};
+  PetscInt        nvn[2] = {0, 0};
+
+  PetscFunctionBegin;
+  for (int side = 0; side < 2; side++) {
+    FCBody b = bodies[pairs->body[p][side]];
+    if (side == 1 || pairs->passes == 2) { /* a surface some vertex lands on */
+      PetscCall(SurfaceBuild(comm, b, pairs, &Sf[side]));
+      if (pairs->facing && FCBodyIsDeformable(b))
+        PetscCall(VertexNormals(Sf[side]->n, Sf[side]->tri, &nvn[side], &vn[side]));
+    } else if (pairs->facing && FCBodyIsDeformable(b)) { /* one pass: only the normals of its vertices */
+      PetscInt           ntri;
+      FCSurfaceTriangle *tri;
+      PetscCall(FCSurfaceGather(comm, b, &ntri, &tri));
+      PetscCall(VertexNormals(ntri, tri, &nvn[side], &vn[side]));
+      PetscCall(PetscFree(tri));
+    }
+  }
+  for (int side = 0; side < pairs->passes; side++) {
+    PetscInt a = pairs->body[p][side], b2 = pairs->body[p][1 - side];
+    PetscCall(FCCollisionVerticesAgainstSurface(bodies[a], bodies[b2], a, b2, Sf[1 - side], nvn[side], vn[side], p,
+                                                pairs, rank, set));
+  }
+  for (int side = 0; side < 2; side++) {
+    if (Sf[side]) PetscCall(FCSurfaceDestroy(&Sf[side]));
+    PetscCall(PetscFree(vn[side]));
+  }
+  { /* the sharp edges: the FE body's against the other's (the first body's if both are FE) */
+    PetscInt a = pairs->body[p][0], b2 = pairs->body[p][1];
+    if (!FCBodyIsDeformable(bodies[a])) {
+      a  = pairs->body[p][1];
+      b2 = pairs->body[p][0];
+    }
+    if (pairs->edges && FCBodyIsDeformable(bodies[a]))
+      PetscCall(FCCollisionEdgeEdge(comm, bodies[a], bodies[b2], a, b2, p, pairs, set));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Two analytic shapes: a rounded one (sphere, capsule, cylinder) from the closest points of its core
+   (smooth.c), exact where one is smooth; two boxes face to face by their separating axis (boxbox.c);
+   otherwise the points of a box (its corners) against the other's distance; a box and a cylinder, or two
+   cylinders, both ways */
+static PetscErrorCode ShapePair(FCBody P, FCBody S, PetscInt ipts, PetscInt ishp, PetscInt p,
+                                const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+{
+  PetscFunctionBegin;
+  if (FCBodyHasSmoothShape(P))
+    PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
+  else if (FCBodyHasSmoothShape(S))
+    PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
+  else {
+    PetscBool done = PETSC_FALSE;
+    if (FCBodyIsBox(P) && FCBodyIsBox(S)) PetscCall(FCCollisionBoxBox(P, S, ipts, ishp, p, pairs, rank, set, &done));
+    if (done) PetscFunctionReturn(0);
+    if (FCBodyHasShapeCore(P))
+      PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
+    else
+      PetscCall(FCCollisionPointsAgainstShape(P, S, ipts, ishp, p, 0, NULL, PETSC_FALSE, pairs, rank, set));
+    if (FCBodyHasShapeCore(S)) PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* An FE body's vertices against a shape; against a bounded shape, with -contact_facing, only where the
+   shape faces their surface, and with -contact_shape_points the shape's picture points against the FE
+   surface (shapepoints.c) */
+static PetscErrorCode SurfaceShapePair(MPI_Comm comm, FCBody P, FCBody S, PetscInt ipts, PetscInt ishp, PetscInt p,
+                                       const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
+{
+  Surface        *Sf     = NULL;
+  FCVertexNormal *vn     = NULL;
+  PetscInt        nvn    = 0;
+  PetscBool       atfree = PETSC_FALSE, lies = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  if (FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S) &&
+      (pairs->shape_points || pairs->facing)) {
+    PetscCall(SurfaceBuild(comm, P, pairs, &Sf));
+    if (pairs->facing) PetscCall(VertexNormals(Sf->n, Sf->tri, &nvn, &vn));
+  }
+  if (Sf && pairs->shape_points) PetscCall(FCCollisionRoundedFollows(S, Sf, pairs, &atfree));
+  if (atfree && !FCBodyHasSmoothShape(S)) PetscCall(FCCollisionCylinderLies(S, Sf, pairs, &lies));
+  PetscCall(FCCollisionPointsAgainstShape(P, S, ipts, ishp, p, nvn, vn, atfree, pairs, rank, set));
+  if (Sf && pairs->shape_points)
+    PetscCall(FCCollisionShapePoints(S, P, ishp, ipts, Sf, atfree, lies, p, pairs, rank, set));
+  if (Sf) PetscCall(FCSurfaceDestroy(&Sf));
+  PetscCall(PetscFree(vn));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCCollisionDetectPairs(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], const FCContactPairs *pairs,
                                       FCContactSet *set)
 {
@@ -305,43 +403,7 @@ PetscErrorCode FCCollisionDetectPairs(MPI_Comm comm, PetscInt nbodies, FCBody bo
     FCBody   P, S;
 
     if (FCBodyHasSurfaceTriangles(bodies[pairs->body[p][0]]) && FCBodyHasSurfaceTriangles(bodies[pairs->body[p][1]])) {
-      /* the vertices of each body against the other's surface, or with -contact_fe_passes 1 only
-         the first body's vertices against the second's surface */
-      Surface        *Sf[2]  = {NULL, NULL};
-      FCVertexNormal *vn[2]  = {NULL, NULL};
-      PetscInt        nvn[2] = {0, 0};
-      for (int side = 0; side < 2; side++) {
-        FCBody b = bodies[pairs->body[p][side]];
-        if (side == 1 || pairs->passes == 2) { /* a surface some vertex lands on */
-          PetscCall(SurfaceBuild(comm, b, pairs, &Sf[side]));
-          if (pairs->facing && FCBodyIsDeformable(b))
-            PetscCall(VertexNormals(Sf[side]->n, Sf[side]->tri, &nvn[side], &vn[side]));
-        } else if (pairs->facing && FCBodyIsDeformable(b)) { /* one pass: only the normals of its vertices */
-          PetscInt           ntri;
-          FCSurfaceTriangle *tri;
-          PetscCall(FCSurfaceGather(comm, b, &ntri, &tri));
-          PetscCall(VertexNormals(ntri, tri, &nvn[side], &vn[side]));
-          PetscCall(PetscFree(tri));
-        }
-      }
-      for (int side = 0; side < pairs->passes; side++) {
-        PetscInt a = pairs->body[p][side], b2 = pairs->body[p][1 - side];
-        PetscCall(FCCollisionVerticesAgainstSurface(bodies[a], bodies[b2], a, b2, Sf[1 - side], nvn[side], vn[side], p,
-                                                    pairs, rank, set));
-      }
-      for (int side = 0; side < 2; side++) {
-        if (Sf[side]) PetscCall(FCSurfaceDestroy(&Sf[side]));
-        PetscCall(PetscFree(vn[side]));
-      }
-      { /* the sharp edges: the FE body's against the other's (the first body's if both are FE) */
-        PetscInt a = pairs->body[p][0], b2 = pairs->body[p][1];
-        if (!FCBodyIsDeformable(bodies[a])) {
-          a  = pairs->body[p][1];
-          b2 = pairs->body[p][0];
-        }
-        if (pairs->edges && FCBodyIsDeformable(bodies[a]))
-          PetscCall(FCCollisionEdgeEdge(comm, bodies[a], bodies[b2], a, b2, p, pairs, set));
-      }
+      PetscCall(MeshedPair(comm, bodies, p, pairs, rank, set));
       continue;
     }
     PetscCall(Sides(bodies[pairs->body[p][0]], bodies[pairs->body[p][1]], pairs->body[p][0], pairs->body[p][1], &ipts,
@@ -350,48 +412,10 @@ PetscErrorCode FCCollisionDetectPairs(MPI_Comm comm, PetscInt nbodies, FCBody bo
     S = bodies[ishp];
     PetscCheck(FCBodyHasShape(S), comm, PETSC_ERR_SUP, "Contact between '%s' and '%s' is not implemented yet",
                FCBodyName(P), FCBodyName(S));
-    if (!FCBodyIsDeformable(P) && !FCBodyHasSurfaceTriangles(P) && !FCBodyHasSurfaceTriangles(S)) {
-      /* two analytic shapes: a rounded one (sphere, capsule, cylinder) from the closest points of
-         its core (smooth.c), exact where one is smooth; two boxes face to face by their separating
-         axis (boxbox.c); otherwise the points of a box (its corners) against the other's distance; a box and a
-         cylinder, or two cylinders, both ways */
-      if (FCBodyHasSmoothShape(P))
-        PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
-      else if (FCBodyHasSmoothShape(S))
-        PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
-      else {
-        PetscBool done = PETSC_FALSE;
-        if (FCBodyIsBox(P) && FCBodyIsBox(S))
-          PetscCall(FCCollisionBoxBox(P, S, ipts, ishp, p, pairs, rank, set, &done));
-        if (done) continue;
-        if (FCBodyHasShapeCore(P))
-          PetscCall(FCCollisionRoundedShape(P, S, ipts, ishp, p, pairs, rank, set));
-        else
-          PetscCall(FCCollisionPointsAgainstShape(P, S, ipts, ishp, p, 0, NULL, PETSC_FALSE, pairs, rank, set));
-        if (FCBodyHasShapeCore(S)) PetscCall(FCCollisionRoundedShape(S, P, ishp, ipts, p, pairs, rank, set));
-      }
-      continue;
-    }
-    { /* an FE body's vertices against the shape; against a bounded shape, with -contact_facing, only
-         where the shape faces their surface, and with -contact_shape_points the shape's picture
-         points against the FE surface (shapepoints.c) */
-      Surface        *Sf     = NULL;
-      FCVertexNormal *vn     = NULL;
-      PetscInt        nvn    = 0;
-      PetscBool       atfree = PETSC_FALSE, lies = PETSC_FALSE;
-      if (FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S) &&
-          (pairs->shape_points || pairs->facing)) {
-        PetscCall(SurfaceBuild(comm, P, pairs, &Sf));
-        if (pairs->facing) PetscCall(VertexNormals(Sf->n, Sf->tri, &nvn, &vn));
-      }
-      if (Sf && pairs->shape_points) PetscCall(FCCollisionRoundedFollows(S, Sf, pairs, &atfree));
-      if (atfree && !FCBodyHasSmoothShape(S)) PetscCall(FCCollisionCylinderLies(S, Sf, pairs, &lies));
-      PetscCall(FCCollisionPointsAgainstShape(P, S, ipts, ishp, p, nvn, vn, atfree, pairs, rank, set));
-      if (Sf && pairs->shape_points)
-        PetscCall(FCCollisionShapePoints(S, P, ishp, ipts, Sf, atfree, lies, p, pairs, rank, set));
-      if (Sf) PetscCall(FCSurfaceDestroy(&Sf));
-      PetscCall(PetscFree(vn));
-    }
+    if (!FCBodyIsDeformable(P) && !FCBodyHasSurfaceTriangles(P) && !FCBodyHasSurfaceTriangles(S))
+      PetscCall(ShapePair(P, S, ipts, ishp, p, pairs, rank, set));
+    else
+      PetscCall(SurfaceShapePair(comm, P, S, ipts, ishp, p, pairs, rank, set));
   }
   PetscCall(FCContactSetGather(set, comm));
   set->dormant_depth = pairs->dormant_depth;
@@ -409,128 +433,3 @@ PetscErrorCode FCCollisionDetectPairs(MPI_Comm comm, PetscInt nbodies, FCBody bo
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCCollisionEndGapsOf(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCContactSet *set)
-{
-  PetscMPIInt rank;
-  PetscReal  *g;  /* per contact: gap, end normal (3), d = p1 - p2 (3), p1 (3) */
-  PetscReal  *xp; /* per contact: side 1's point now, where side 1 is FE and side 2 a shape */
-  PetscBool   fe = PETSC_FALSE;
-
-  PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(PetscCalloc2(10 * set->n + 1, &g, 3 * set->n + 1, &xp));
-  for (PetscInt k = 0; k < set->n; k++) { /* an FE point's vertices may lie on several ranks (a triangle */
-    FCContact *c = &set->c[k];            /* point of -contact_shape_points): summed over the ranks */
-    if (c->side2 == FC_SIDE_SHAPE && FCBodyIsDeformable(bodies[c->body[0]])) {
-      PetscCall(FCBodyAddPartialPosition(bodies[c->body[0]], &c->prox[0], &xp[3 * k]));
-      fe = PETSC_TRUE;
-    }
-  }
-  if (fe) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, xp, 3 * set->n, MPIU_REAL, MPIU_SUM, comm));
-  for (PetscInt k = 0; k < set->n; k++) {
-    FCContact *c = &set->c[k];
-    PetscReal  x[3], p2[3], cpb[3];
-    if (c->side2 != FC_SIDE_SHAPE || c->owner != rank) continue; /* triangles below */
-    if (FCBodyIsDeformable(bodies[c->body[0]]))
-      for (int d = 0; d < 3; d++) x[d] = xp[3 * k + d];
-    else
-      PetscCall(FCBodyProximityPosition(bodies[c->body[0]], &c->prox[0], FC_AT_NOW, x));
-    PetscCall(FCBodyShapeDistance(bodies[c->body[1]], FC_AT_NOW, x, &g[10 * k], &g[10 * k + 1], cpb));
-    PetscCall(FCBodyProximityPosition(bodies[c->body[1]], &c->prox[1], FC_AT_NOW, p2));
-    for (int d = 0; d < 3; d++) {
-      g[10 * k + 4 + d] = x[d] - p2[d];
-      g[10 * k + 7 + d] = x[d];
-    }
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, g, 10 * set->n, MPIU_REAL, MPIU_SUM, comm));
-  { /* contacts against FE triangles: the point and the triangle's vertices now, summed over the
-       ranks that own them; the gap is measured along the triangle's end-of-step normal */
-    PetscInt   nfe = 0, *idx;
-    PetscReal *xs;
-    for (PetscInt k = 0; k < set->n; k++) nfe += set->c[k].side2 != FC_SIDE_SHAPE;
-    PetscCall(PetscMalloc2(nfe + 1, &idx, 12 * nfe + 1, &xs));
-    PetscCall(PetscArrayzero(xs, 12 * nfe + 1));
-    nfe = 0;
-    for (PetscInt k = 0; k < set->n; k++) {
-      FCContact *c = &set->c[k];
-      if (c->side2 == FC_SIDE_SHAPE) continue;
-      idx[nfe] = k;
-      if (c->side2 == FC_SIDE_FE_EDGE) { /* the two ends of each edge */
-        for (int s = 0; s < 2; s++)
-          for (int a = 0; a < 2; a++) {
-            FCProximity v = {0};
-            v.nv          = 1;
-            v.gdof[0]     = c->prox[s].gdof[a];
-            v.w[0]        = 1.0;
-            for (int d = 0; d < 3; d++) v.X[0][d] = c->prox[s].X[a][d];
-            PetscCall(FCBodyAddPartialPosition(bodies[c->body[s]], &v, &xs[12 * nfe + 6 * s + 3 * a]));
-          }
-        nfe++;
-        continue;
-      }
-      PetscCall(FCBodyAddPartialPosition(bodies[c->body[0]], &c->prox[0], &xs[12 * nfe]));
-      for (int a = 0; a < 3 && c->side2 == FC_SIDE_FE_TRIANGLE; a++) {
-        FCProximity v = {0};
-        v.nv          = 1;
-        v.gdof[0]     = c->prox[1].gdof[a];
-        v.w[0]        = 1.0;
-        for (int d = 0; d < 3; d++) v.X[0][d] = c->prox[1].X[a][d];
-        PetscCall(FCBodyAddPartialPosition(bodies[c->body[1]], &v, &xs[12 * nfe + 3 + 3 * a]));
-      }
-      nfe++;
-    }
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, xs, 12 * nfe, MPIU_REAL, MPIU_SUM, comm));
-    for (PetscInt j = 0; j < nfe; j++) {
-      FCContact *c = &set->c[idx[j]];
-      PetscReal  tri[3][3], p2[3] = {0, 0, 0}, nrm[3], *x1 = &xs[12 * j], *gk = &g[10 * idx[j]];
-      if (c->side2 == FC_SIDE_FE_EDGE) { /* the edges' cross product, on the start normal's side */
-        PetscReal ea[3], eb[3], l;
-        for (int d = 0; d < 3; d++) {
-          ea[d] = xs[12 * j + 3 + d] - xs[12 * j + d];
-          eb[d] = xs[12 * j + 9 + d] - xs[12 * j + 6 + d];
-        }
-        FCCross(ea, eb, nrm);
-        l = PetscSqrtReal(FCDot(nrm, nrm));
-        if (FCDot(nrm, c->n) < 0) l = -l;
-        for (int d = 0; d < 3; d++) {
-          nrm[d] = l != 0 ? nrm[d] / l : c->n[d];
-          x1[d]  = c->prox[0].w[0] * xs[12 * j + d] + c->prox[0].w[1] * xs[12 * j + 3 + d];
-          p2[d]  = c->prox[1].w[0] * xs[12 * j + 6 + d] + c->prox[1].w[1] * xs[12 * j + 9 + d];
-        }
-      } else if (c->side2 == FC_SIDE_RIGID_TRIANGLE) { /* the triangle moved rigidly: rotate its normal */
-        FCProximity o = {0}, e = {0};
-        PetscReal   p0[3], pe[3];
-        FCBody      B = bodies[c->body[1]];
-        for (int d = 0; d < 3; d++) e.r[d] = c->nb[d];
-        PetscCall(FCBodyProximityPosition(B, &c->prox[1], FC_AT_NOW, p2));
-        PetscCall(FCBodyProximityPosition(B, &o, FC_AT_NOW, p0));
-        PetscCall(FCBodyProximityPosition(B, &e, FC_AT_NOW, pe));
-        for (int d = 0; d < 3; d++) nrm[d] = pe[d] - p0[d];
-      } else {
-        for (int a = 0; a < 3; a++)
-          for (int d = 0; d < 3; d++) tri[a][d] = xs[12 * j + 3 + 3 * a + d];
-        for (int a = 0; a < 3; a++)
-          for (int d = 0; d < 3; d++) p2[d] += c->prox[1].w[a] * tri[a][d];
-        FCTriangleNormal(tri, nrm);
-      }
-      for (int d = 0; d < 3; d++) {
-        gk[1 + d] = nrm[d];
-        gk[4 + d] = x1[d] - p2[d];
-        gk[7 + d] = x1[d];
-      }
-      gk[0] = FCDot(nrm, &gk[4]);
-    }
-    PetscCall(PetscFree2(idx, xs));
-  }
-  for (PetscInt k = 0; k < set->n; k++) {
-    FCContact *c = &set->c[k];
-    c->gap_end   = g[10 * k];
-    for (int d = 0; d < 3; d++) {
-      c->n_end[d] = g[10 * k + 1 + d];
-      c->d_end[d] = g[10 * k + 4 + d];
-      c->p_end[d] = g[10 * k + 7 + d];
-    }
-  }
-  PetscCall(PetscFree2(g, xp));
-  PetscFunctionReturn(0);
-}
