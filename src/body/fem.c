@@ -125,30 +125,16 @@ static PetscBool InBox(const PetscReal box[6], const PetscReal x[3])
   return PETSC_TRUE;
 }
 
-static PetscErrorCode SetUp_FEM(FCBody body)
+/* The DOF section: 3 DOFs per vertex, the vertices of -<name>_fixed_box constrained out; each vertex's
+   local and global DOF (-1: fixed) */
+static PetscErrorCode SetUpSection(FCBody body)
 {
   FEM         *fem = (FEM *)body->data;
   FCMesh      *m   = &fem->mesh;
   PetscSection s, gs;
-  PetscInt     nv, nc, nfixed = 0;
-  PetscReal    R[9], c0[3], V, J[9];
+  PetscInt     nv = m->vEnd - m->vStart, nfixed = 0;
 
   PetscFunctionBegin;
-  PetscCall(FCMeshLoad(body->comm, body->prefix, body->name, m));
-  nv = m->vEnd - m->vStart;
-  nc = m->cEnd - m->cStart;
-  PetscCall(FCMeshCheckCells(m, body->name));
-  PetscCall(FCMaterialCreate(fem->material, fem->young, fem->poisson, &fem->mat));
-
-  /* placement: rotate about the centre (default: the mesh centroid), then translate */
-  PetscCall(FCMeshComputeMassProperties(m, &V, c0, J));
-  if (!body->center_set)
-    for (int d = 0; d < 3; d++) body->center[d] = c0[d];
-  FCBodyPlacementRotation(body, R);
-  PetscCall(FCMeshTransform(m, body->center, R, body->translate));
-  for (int d = 0; d < 3; d++) body->center[d] += body->translate[d];
-
-  /* section: 3 DOFs per vertex, fixed vertices constrained out */
   PetscCall(PetscMalloc3(nv, &fem->ldof, nv, &fem->gdof, nv, &fem->fixed));
   PetscCall(PetscSectionCreate(body->comm, &s));
   PetscCall(PetscSectionSetNumFields(s, 1));
@@ -191,15 +177,18 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   }
   PetscCall(MPIU_Allreduce(&nfixed, &fem->nfixed, 1, MPIU_INT, MPI_SUM, body->comm));
 
-  /* reference data of the cells */
-  PetscCall(PetscMalloc2(9 * nc, &fem->Dminv, nc, &fem->vol));
-  for (PetscInt c = 0; c < nc; c++) {
-    PetscReal X[12], x[12];
-    FCFEMGatherElement(fem, c, NULL, X, x);
-    PetscCall(FCTetReference(X, &fem->Dminv[9 * c], &fem->vol[c]));
-  }
+  PetscFunctionReturn(0);
+}
 
-  /* state, work vectors, operators */
+/* The state, work vectors and operators, and the initial velocity v = v0 + omega x (X - c) of the free
+   vertices */
+static PetscErrorCode SetUpState(FCBody body)
+{
+  FEM     *fem = (FEM *)body->data;
+  FCMesh  *m   = &fem->mesh;
+  PetscInt nv  = m->vEnd - m->vStart;
+
+  PetscFunctionBegin;
   PetscCall(DMCreateGlobalVector(m->dm, &fem->u));
   PetscCall(PetscObjectSetName((PetscObject)fem->u, "displacement"));
   PetscCall(VecDuplicate(fem->u, &fem->v));
@@ -220,7 +209,6 @@ static PetscErrorCode SetUp_FEM(FCBody body)
                "Every vertex of body '%s' is fixed by -%sfixed_box: nothing to simulate", body->name, body->prefix);
   }
 
-  /* initial velocity v = v0 + omega x (X - c) on the free vertices */
   {
     PetscScalar *va;
     PetscInt     lo;
@@ -236,7 +224,15 @@ static PetscErrorCode SetUp_FEM(FCBody body)
     PetscCall(VecRestoreArray(fem->v, &va));
   }
 
-  /* solver: preonly + Cholesky (MUMPS) unless the options say otherwise */
+  PetscFunctionReturn(0);
+}
+
+/* The body's solver: preonly + Cholesky (MUMPS) unless its options say otherwise */
+static PetscErrorCode SetUpSolver(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
   PetscCall(KSPCreate(body->comm, &fem->ksp));
   PetscCall(KSPSetOptionsPrefix(fem->ksp, body->prefix));
   PetscCall(KSPSetType(fem->ksp, KSPPREONLY));
@@ -248,6 +244,42 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   }
   PetscCall(KSPSetFromOptions(fem->ksp));
 
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetUp_FEM(FCBody body)
+{
+  FEM      *fem = (FEM *)body->data;
+  FCMesh   *m   = &fem->mesh;
+  PetscInt  nc;
+  PetscReal R[9], c0[3], V, J[9];
+
+  PetscFunctionBegin;
+  PetscCall(FCMeshLoad(body->comm, body->prefix, body->name, m));
+  nc = m->cEnd - m->cStart;
+  PetscCall(FCMeshCheckCells(m, body->name));
+  PetscCall(FCMaterialCreate(fem->material, fem->young, fem->poisson, &fem->mat));
+
+  /* placement: rotate about the centre (default: the mesh centroid), then translate */
+  PetscCall(FCMeshComputeMassProperties(m, &V, c0, J));
+  if (!body->center_set)
+    for (int d = 0; d < 3; d++) body->center[d] = c0[d];
+  FCBodyPlacementRotation(body, R);
+  PetscCall(FCMeshTransform(m, body->center, R, body->translate));
+  for (int d = 0; d < 3; d++) body->center[d] += body->translate[d];
+
+  PetscCall(SetUpSection(body));
+
+  /* reference data of the cells */
+  PetscCall(PetscMalloc2(9 * nc, &fem->Dminv, nc, &fem->vol));
+  for (PetscInt c = 0; c < nc; c++) {
+    PetscReal X[12], x[12];
+    FCFEMGatherElement(fem, c, NULL, X, x);
+    PetscCall(FCTetReference(X, &fem->Dminv[9 * c], &fem->vol[c]));
+  }
+
+  PetscCall(SetUpState(body));
+  PetscCall(SetUpSolver(body));
   PetscCall(FCFEMAssembleMass(body));
   PetscCall(FCFEMAssembleElastic(body, fem->u, fem->fint, fem->K));
   PetscCall(FCFEMFormA(body)); /* factored at first use: by the KSP or by the compliance builder */
@@ -255,7 +287,7 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   fem->Acurrent = PETSC_TRUE;
   PetscCall(FCMeshCreateVisual(m, &body->visual));
   PetscCall(FCBodyFEMGetReferenceCoordinates(body, &fem->Xg));
-  /* boundary: owned vertices (candidate contact points) and outward triangles (mesh.c) */
+  /* boundary: owned vertices (candidate contact points) and outward triangles (src/mesh/boundary.c) */
   PetscCall(FCMeshGetBoundary(m, &fem->nbv, &fem->bv, &fem->ntri, &fem->triv));
   PetscCall(PetscMalloc1(fem->nbv + 1, &fem->surface));
   for (PetscInt i = 0; i < fem->nbv; i++)
