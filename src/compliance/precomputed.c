@@ -59,10 +59,120 @@ static PetscErrorCode SetUp_Precomputed(FCCompliance comp)
   PetscFunctionReturn(0);
 }
 
+/* The columns of C_0 = A_0^-1 of the nnew surface vertices newv (A_0^-1 [e_g e_g+1 e_g+2], by the reference
+   factor), kept on the surface rows in the cache, the same on every rank */
+static PetscErrorCode CacheColumns(FCCompliance comp, PetscInt nnew, const PetscInt newv[])
+{
+  Precomputed       *pre = (Precomputed *)comp->data;
+  PetscInt           ns3 = 3 * pre->nsurf;
+  KSP                ksp;
+  PC                 pc;
+  Mat                F, B, X;
+  PetscInt           nloc, N, lo;
+  PetscScalar       *b;
+  const PetscScalar *x;
+  PetscReal         *cols;
+
+  PetscFunctionBegin;
+  ksp = ReferenceSolver(comp);
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCFactorGetMatrix(pc, &F));
+  PetscCall(VecGetLocalSize(comp->ctx.u, &nloc));
+  PetscCall(VecGetSize(comp->ctx.u, &N));
+  PetscCall(VecGetOwnershipRange(comp->ctx.u, &lo, NULL));
+  PetscCall(MatCreateDense(comp->ctx.comm, nloc, PETSC_DECIDE, N, 3 * nnew, NULL, &B));
+  PetscCall(MatDenseGetArray(B, &b));
+  PetscCall(PetscArrayzero(b, nloc * 3 * nnew));
+  for (PetscInt j = 0; j < nnew; j++) {
+    PetscInt g = pre->surf[newv[j]];
+    if (g >= lo && g < lo + nloc)
+      for (int d = 0; d < 3; d++) b[(g - lo + d) + nloc * (3 * j + d)] = 1.0;
+  }
+  PetscCall(MatDenseRestoreArray(B, &b));
+  PetscCall(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X));
+  PetscCall(MatMatSolve(F, B, X));
+  if (pre->ncached + nnew > pre->maxcached) {
+    PetscReal *grown;
+    pre->maxcached = PetscMax(2 * pre->maxcached, pre->ncached + nnew);
+    PetscCall(PetscMalloc1(9 * pre->nsurf * pre->maxcached, &grown));
+    if (pre->ncached) PetscCall(PetscArraycpy(grown, pre->cache, 9 * pre->nsurf * pre->ncached));
+    PetscCall(PetscFree(pre->cache));
+    pre->cache = grown;
+  }
+  cols = &pre->cache[9 * pre->nsurf * pre->ncached];
+  PetscCall(PetscArrayzero(cols, 9 * pre->nsurf * nnew));
+  PetscCall(MatDenseGetArrayRead(X, &x));
+  for (PetscInt sv = 0; sv < pre->nsurf; sv++) {
+    PetscInt g = pre->surf[sv];
+    if (g < lo || g >= lo + nloc) continue;
+    for (PetscInt c = 0; c < 3 * nnew; c++)
+      for (int d = 0; d < 3; d++) cols[(3 * sv + d) + ns3 * c] = PetscRealPart(x[(g - lo + d) + nloc * c]);
+  }
+  PetscCall(MatDenseRestoreArrayRead(X, &x));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cols, 9 * pre->nsurf * nnew, MPIU_REAL, MPIU_SUM, comp->ctx.comm));
+  for (PetscInt j = 0; j < nnew; j++) pre->slot[newv[j]] = pre->ncached + j;
+  pre->ncached += nnew;
+  PetscCall(MatDestroy(&B));
+  PetscCall(MatDestroy(&X));
+  PetscFunctionReturn(0);
+}
+
+/* W_b = Co^T G Co: G = C_0 on the surface vertices the contacts touch, gathered from the cache
+   into a contiguous 3nu x 3nu block (column-major), then T = G Co and W_b = Co^T T with unit-stride
+   inner loops (the cache itself is scattered over the slots) */
+static PetscErrorCode Congruence(FCCompliance comp, const PetscInt si[], const PetscReal co[], PetscReal Wb[])
+{
+  Precomputed *pre   = (Precomputed *)comp->data;
+  PetscInt     ncols = comp->ncols, ns3 = 3 * pre->nsurf;
+  PetscInt    *u, *at, nu = 0, n3;
+  PetscReal   *G, *T;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc2(3 * ncols + 1, &u, pre->nsurf + 1, &at));
+  for (PetscInt k = 0; k < 3 * ncols; k++)
+    if (si[k] >= 0) u[nu++] = si[k];
+  PetscCall(PetscSortRemoveDupsInt(&nu, u));
+  for (PetscInt a = 0; a < nu; a++) at[u[a]] = a;
+  n3 = 3 * nu;
+  PetscCall(PetscMalloc2(n3 * n3 + 1, &G, n3 * ncols + 1, &T));
+  for (PetscInt b = 0; b < nu; b++)
+    for (int e = 0; e < 3; e++) {
+      const PetscReal *src = &pre->cache[9 * pre->nsurf * pre->slot[u[b]] + ns3 * e];
+      PetscReal       *dst = &G[n3 * (3 * b + e)];
+      for (PetscInt a = 0; a < nu; a++)
+        for (int d = 0; d < 3; d++) dst[3 * a + d] = src[3 * u[a] + d];
+    }
+  PetscCall(PetscArrayzero(T, n3 * ncols));
+  for (PetscInt j = 0; j < ncols; j++)
+    for (int vb = 0; vb < 3; vb++) {
+      if (si[3 * j + vb] < 0) continue;
+      for (int e = 0; e < 3; e++) {
+        const PetscReal c = co[9 * j + 3 * vb + e], *g = &G[n3 * (3 * at[si[3 * j + vb]] + e)];
+        PetscReal      *t = &T[n3 * j];
+        for (PetscInt r = 0; r < n3; r++) t[r] += c * g[r];
+      }
+    }
+  for (PetscInt i = 0; i < ncols; i++)
+    for (PetscInt j = 0; j < ncols; j++) {
+      const PetscReal *t = &T[n3 * j];
+      PetscReal        w = 0.0;
+      for (int va = 0; va < 3; va++) {
+        PetscInt a = si[3 * i + va];
+        if (a < 0) continue;
+        a = 3 * at[a];
+        w += co[9 * i + 3 * va] * t[a] + co[9 * i + 3 * va + 1] * t[a + 1] + co[9 * i + 3 * va + 2] * t[a + 2];
+      }
+      Wb[i * ncols + j] = w;
+    }
+  PetscCall(PetscFree2(G, T));
+  PetscCall(PetscFree2(u, at));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Build_Precomputed(FCCompliance comp, PetscInt self, const FCContactSet *set, PetscReal Wb[])
 {
   Precomputed *pre   = (Precomputed *)comp->data;
-  PetscInt     ncols = comp->ncols, *si, nnew = 0, *newv, ns3 = 3 * pre->nsurf;
+  PetscInt     ncols = comp->ncols, *si, nnew = 0, *newv;
   PetscReal   *co, Rt[9];
 
   PetscFunctionBegin;
@@ -94,99 +204,8 @@ static PetscErrorCode Build_Precomputed(FCCompliance comp, PetscInt self, const 
         }
       }
   }
-  if (nnew) { /* C_0 columns of the new vertices: A_0^-1 [e_g e_g+1 e_g+2], kept on the surface rows */
-    KSP                ksp;
-    PC                 pc;
-    Mat                F, B, X;
-    PetscInt           nloc, N, lo;
-    PetscScalar       *b;
-    const PetscScalar *x;
-    PetscReal         *cols;
-    ksp = ReferenceSolver(comp);
-    PetscCall(KSPGetPC(ksp, &pc));
-    PetscCall(PCFactorGetMatrix(pc, &F));
-    PetscCall(VecGetLocalSize(comp->ctx.u, &nloc));
-    PetscCall(VecGetSize(comp->ctx.u, &N));
-    PetscCall(VecGetOwnershipRange(comp->ctx.u, &lo, NULL));
-    PetscCall(MatCreateDense(comp->ctx.comm, nloc, PETSC_DECIDE, N, 3 * nnew, NULL, &B));
-    PetscCall(MatDenseGetArray(B, &b));
-    PetscCall(PetscArrayzero(b, nloc * 3 * nnew));
-    for (PetscInt j = 0; j < nnew; j++) {
-      PetscInt g = pre->surf[newv[j]];
-      if (g >= lo && g < lo + nloc)
-        for (int d = 0; d < 3; d++) b[(g - lo + d) + nloc * (3 * j + d)] = 1.0;
-    }
-    PetscCall(MatDenseRestoreArray(B, &b));
-    PetscCall(MatDuplicate(B, MAT_DO_NOT_COPY_VALUES, &X));
-    PetscCall(MatMatSolve(F, B, X));
-    if (pre->ncached + nnew > pre->maxcached) {
-      PetscReal *grown;
-      pre->maxcached = PetscMax(2 * pre->maxcached, pre->ncached + nnew);
-      PetscCall(PetscMalloc1(9 * pre->nsurf * pre->maxcached, &grown));
-      if (pre->ncached) PetscCall(PetscArraycpy(grown, pre->cache, 9 * pre->nsurf * pre->ncached));
-      PetscCall(PetscFree(pre->cache));
-      pre->cache = grown;
-    }
-    cols = &pre->cache[9 * pre->nsurf * pre->ncached];
-    PetscCall(PetscArrayzero(cols, 9 * pre->nsurf * nnew));
-    PetscCall(MatDenseGetArrayRead(X, &x));
-    for (PetscInt sv = 0; sv < pre->nsurf; sv++) {
-      PetscInt g = pre->surf[sv];
-      if (g < lo || g >= lo + nloc) continue;
-      for (PetscInt c = 0; c < 3 * nnew; c++)
-        for (int d = 0; d < 3; d++) cols[(3 * sv + d) + ns3 * c] = PetscRealPart(x[(g - lo + d) + nloc * c]);
-    }
-    PetscCall(MatDenseRestoreArrayRead(X, &x));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cols, 9 * pre->nsurf * nnew, MPIU_REAL, MPIU_SUM, comp->ctx.comm));
-    for (PetscInt j = 0; j < nnew; j++) pre->slot[newv[j]] = pre->ncached + j;
-    pre->ncached += nnew;
-    PetscCall(MatDestroy(&B));
-    PetscCall(MatDestroy(&X));
-  }
-  { /* W_b = Co^T G Co: G = C_0 on the surface vertices the contacts touch, gathered from the cache
-       into a contiguous 3nu x 3nu block (column-major), then T = G Co and W_b = Co^T T with unit-stride
-       inner loops (the cache itself is scattered over the slots) */
-    PetscInt  *u, *at, nu = 0, n3;
-    PetscReal *G, *T;
-    PetscCall(PetscMalloc2(3 * ncols + 1, &u, pre->nsurf + 1, &at));
-    for (PetscInt k = 0; k < 3 * ncols; k++)
-      if (si[k] >= 0) u[nu++] = si[k];
-    PetscCall(PetscSortRemoveDupsInt(&nu, u));
-    for (PetscInt a = 0; a < nu; a++) at[u[a]] = a;
-    n3 = 3 * nu;
-    PetscCall(PetscMalloc2(n3 * n3 + 1, &G, n3 * ncols + 1, &T));
-    for (PetscInt b = 0; b < nu; b++)
-      for (int e = 0; e < 3; e++) {
-        const PetscReal *src = &pre->cache[9 * pre->nsurf * pre->slot[u[b]] + ns3 * e];
-        PetscReal       *dst = &G[n3 * (3 * b + e)];
-        for (PetscInt a = 0; a < nu; a++)
-          for (int d = 0; d < 3; d++) dst[3 * a + d] = src[3 * u[a] + d];
-      }
-    PetscCall(PetscArrayzero(T, n3 * ncols));
-    for (PetscInt j = 0; j < ncols; j++)
-      for (int vb = 0; vb < 3; vb++) {
-        if (si[3 * j + vb] < 0) continue;
-        for (int e = 0; e < 3; e++) {
-          const PetscReal c = co[9 * j + 3 * vb + e], *g = &G[n3 * (3 * at[si[3 * j + vb]] + e)];
-          PetscReal      *t = &T[n3 * j];
-          for (PetscInt r = 0; r < n3; r++) t[r] += c * g[r];
-        }
-      }
-    for (PetscInt i = 0; i < ncols; i++)
-      for (PetscInt j = 0; j < ncols; j++) {
-        const PetscReal *t = &T[n3 * j];
-        PetscReal        w = 0.0;
-        for (int va = 0; va < 3; va++) {
-          PetscInt a = si[3 * i + va];
-          if (a < 0) continue;
-          a = 3 * at[a];
-          w += co[9 * i + 3 * va] * t[a] + co[9 * i + 3 * va + 1] * t[a + 1] + co[9 * i + 3 * va + 2] * t[a + 2];
-        }
-        Wb[i * ncols + j] = w;
-      }
-    PetscCall(PetscFree2(G, T));
-    PetscCall(PetscFree2(u, at));
-  }
+  if (nnew) PetscCall(CacheColumns(comp, nnew, newv));
+  PetscCall(Congruence(comp, si, co, Wb));
   PetscCall(PetscFree3(si, co, newv));
   PetscFunctionReturn(0);
 }
