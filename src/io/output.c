@@ -99,18 +99,14 @@ static size_t ReserveBytes(PetscInt nbodies, FCBody bodies[], PetscBool header)
   return bytes;
 }
 
-PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies[], PetscReal h, PetscInt nsteps,
-                                   PetscInt every, PetscBool contacts)
+/* The file's attributes (the options, version, ranks, date, time step, steps, output period) and
+   /complete = (last step, frames) safely on disk, written after each flush (FCOutputFlush): (-1, 0) until
+   the first frame is */
+static PetscErrorCode WriteAttributes(FCOutput out, PetscReal h, PetscInt nsteps, PetscInt every)
 {
-  hid_t gb, gf;
   char *opts;
 
   PetscFunctionBegin;
-  PetscCall(
-      FCH5Reserve(out->comm, out->filename, out->file, ReserveBytes(nbodies, bodies, PETSC_TRUE), "the file's header"));
-  out->nbodies = nbodies;
-  out->bodies  = bodies;
-  PetscCall(PetscCalloc1(nbodies, &out->bo));
   PetscCall(PetscOptionsGetAll(NULL, &opts));
   PetscCall(FCH5AttrString(out->file, "options", opts));
   PetscCall(PetscFree(opts));
@@ -135,8 +131,7 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     PetscCall(FCH5AttrInt(out->file, "time_steps", nsteps));
     PetscCall(FCH5AttrInt(out->file, "output_every", every));
   }
-  { /* /complete = (last step, frames) safely on disk, written after each flush (FCOutputFlush):
-       (-1, 0) until the first frame is */
+  {
     hsize_t   two[1]  = {2};
     hid_t     space   = H5Screate_simple(1, two, NULL);
     long long none[2] = {-1, 0};
@@ -146,6 +141,87 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
     FCH5Check(H5Dwrite(out->complete, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, none), "complete");
     out->laststep = -1;
   }
+  PetscFunctionReturn(0);
+}
+
+/* Body i's group: its type, initial centroid and rotation, the datasets of its records, its picture's
+   mesh (cells, reference coordinates, and the partition: each cell's rank and index in the mesh as read) */
+static PetscErrorCode WriteBodyHeader(FCOutput out, hid_t gb, PetscInt i, FCBody b)
+{
+  const FCBodyVisual *vis;
+  const char         *name;
+  FCBodyType          type;
+  BodyOut            *bo = &out->bo[i];
+  hid_t               gm;
+  hsize_t             r3[1] = {3}, r4[1] = {4}, pv[2];
+  PetscReal           c[3];
+  long long          *cells;
+
+  PetscFunctionBegin;
+  PetscCall(FCBodyGetVisual(b, &vis));
+  PetscCall(FCBodyGetName(b, &name));
+  PetscCall(FCBodyGetType(b, &type));
+  bo->group = H5Gcreate2(gb, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  PetscCall(FCH5AttrString(bo->group, "type", type));
+  PetscCall(FCBodyGetCentroid(b, c));
+  PetscCall(FCH5AttrReals(bo->group, "initial_centroid", 3, c));
+  PetscCall(FCH5CreateRows(bo->group, "centroid", H5T_NATIVE_DOUBLE, 2, r3, 256, &bo->centroid));
+  PetscCall(FCH5CreateRows(bo->group, "energy", H5T_NATIVE_DOUBLE, 2, r3, 256, &bo->energy));
+  {
+    PetscReal q[4];
+    PetscBool has;
+    PetscCall(FCBodyGetRotation(b, q, &has));
+    if (has) {
+      PetscCall(FCH5AttrReals(bo->group, "initial_rotation", 4, q));
+      PetscCall(FCH5CreateRows(bo->group, "rotation", H5T_NATIVE_DOUBLE, 2, r4, 256, &bo->rotation));
+    } else
+      bo->rotation = -1;
+  }
+  gm = H5Gcreate2(bo->group, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  PetscCall(FCH5AttrString(gm, "cell_type", vis->nvpc == 4 ? "tetrahedron" : "triangle"));
+  PetscCall(PetscMalloc1(vis->nc * vis->nvpc + 1, &cells));
+  for (PetscInt k = 0; k < vis->nc * vis->nvpc; k++) cells[k] = vis->cells[k];
+  PetscCall(FCH5WriteDistributed(gm, "cells", H5T_STD_I64LE, H5T_NATIVE_LLONG, vis->nc_global, vis->nvpc, vis->cstart,
+                                 vis->nc, cells));
+  PetscCall(PetscFree(cells));
+  PetscCall(FCH5WriteDistributed(gm, "reference", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, vis->nv_global, 3, vis->vstart,
+                                 vis->nv, vis->reference));
+  if (vis->origin) { /* the partition: the rank of each cell and its index in the mesh as read, which
+                        -<body>_partition_file replays (src/mesh/partreplay.c) */
+    PetscMPIInt rank, size;
+    PetscCallMPI(MPI_Comm_rank(out->comm, &rank));
+    PetscCallMPI(MPI_Comm_size(out->comm, &size));
+    PetscCall(PetscMalloc1(2 * vis->nc + 1, &cells));
+    for (PetscInt k = 0; k < vis->nc; k++) {
+      cells[k]           = rank;
+      cells[vis->nc + k] = vis->origin[k];
+    }
+    PetscCall(FCH5WriteDistributed(gm, "rank", H5T_STD_I64LE, H5T_NATIVE_LLONG, vis->nc_global, 0, vis->cstart, vis->nc,
+                                   cells));
+    PetscCall(FCH5WriteDistributed(gm, "cell_origin", H5T_STD_I64LE, H5T_NATIVE_LLONG, vis->nc_global, 0, vis->cstart,
+                                   vis->nc, cells + vis->nc));
+    PetscCall(FCH5AttrInt(gm, "ranks", size));
+    PetscCall(PetscFree(cells));
+  }
+  H5Gclose(gm);
+  pv[0] = vis->nv_global;
+  pv[1] = 3;
+  PetscCall(FCH5CreateRows(bo->group, "positions", H5T_NATIVE_DOUBLE, 3, pv, 1, &bo->positions));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies[], PetscReal h, PetscInt nsteps,
+                                   PetscInt every, PetscBool contacts)
+{
+  hid_t gb, gf;
+
+  PetscFunctionBegin;
+  PetscCall(
+      FCH5Reserve(out->comm, out->filename, out->file, ReserveBytes(nbodies, bodies, PETSC_TRUE), "the file's header"));
+  out->nbodies = nbodies;
+  out->bodies  = bodies;
+  PetscCall(PetscCalloc1(nbodies, &out->bo));
+  PetscCall(WriteAttributes(out, h, nsteps, every));
   PetscCall(FCOutputRecordsCreate(out, nbodies, bodies, contacts));
   gf = H5Gcreate2(out->file, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   PetscCall(FCH5CreateRows(gf, "time", H5T_NATIVE_DOUBLE, 1, NULL, 64, &out->ftime));
@@ -153,67 +229,7 @@ PetscErrorCode FCOutputWriteHeader(FCOutput out, PetscInt nbodies, FCBody bodies
   H5Gclose(gf);
 
   gb = H5Gcreate2(out->file, "bodies", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  for (PetscInt i = 0; i < nbodies; i++) {
-    FCBody              b = bodies[i];
-    const FCBodyVisual *vis;
-    const char         *name;
-    FCBodyType          type;
-    BodyOut            *bo = &out->bo[i];
-    hid_t               gm;
-    hsize_t             r3[1] = {3}, r4[1] = {4}, pv[2];
-    PetscReal           c[3];
-    long long          *cells;
-
-    PetscCall(FCBodyGetVisual(b, &vis));
-    PetscCall(FCBodyGetName(b, &name));
-    PetscCall(FCBodyGetType(b, &type));
-    bo->group = H5Gcreate2(gb, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    PetscCall(FCH5AttrString(bo->group, "type", type));
-    PetscCall(FCBodyGetCentroid(b, c));
-    PetscCall(FCH5AttrReals(bo->group, "initial_centroid", 3, c));
-    PetscCall(FCH5CreateRows(bo->group, "centroid", H5T_NATIVE_DOUBLE, 2, r3, 256, &bo->centroid));
-    PetscCall(FCH5CreateRows(bo->group, "energy", H5T_NATIVE_DOUBLE, 2, r3, 256, &bo->energy));
-    {
-      PetscReal q[4];
-      PetscBool has;
-      PetscCall(FCBodyGetRotation(b, q, &has));
-      if (has) {
-        PetscCall(FCH5AttrReals(bo->group, "initial_rotation", 4, q));
-        PetscCall(FCH5CreateRows(bo->group, "rotation", H5T_NATIVE_DOUBLE, 2, r4, 256, &bo->rotation));
-      } else
-        bo->rotation = -1;
-    }
-    gm = H5Gcreate2(bo->group, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    PetscCall(FCH5AttrString(gm, "cell_type", vis->nvpc == 4 ? "tetrahedron" : "triangle"));
-    PetscCall(PetscMalloc1(vis->nc * vis->nvpc + 1, &cells));
-    for (PetscInt k = 0; k < vis->nc * vis->nvpc; k++) cells[k] = vis->cells[k];
-    PetscCall(FCH5WriteDistributed(gm, "cells", H5T_STD_I64LE, H5T_NATIVE_LLONG, vis->nc_global, vis->nvpc, vis->cstart,
-                                   vis->nc, cells));
-    PetscCall(PetscFree(cells));
-    PetscCall(FCH5WriteDistributed(gm, "reference", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, vis->nv_global, 3, vis->vstart,
-                                   vis->nv, vis->reference));
-    if (vis->origin) { /* the partition: the rank of each cell and its index in the mesh as read, which
-                          -<body>_partition_file replays (src/mesh/partreplay.c) */
-      PetscMPIInt rank, size;
-      PetscCallMPI(MPI_Comm_rank(out->comm, &rank));
-      PetscCallMPI(MPI_Comm_size(out->comm, &size));
-      PetscCall(PetscMalloc1(2 * vis->nc + 1, &cells));
-      for (PetscInt k = 0; k < vis->nc; k++) {
-        cells[k]           = rank;
-        cells[vis->nc + k] = vis->origin[k];
-      }
-      PetscCall(FCH5WriteDistributed(gm, "rank", H5T_STD_I64LE, H5T_NATIVE_LLONG, vis->nc_global, 0, vis->cstart,
-                                     vis->nc, cells));
-      PetscCall(FCH5WriteDistributed(gm, "cell_origin", H5T_STD_I64LE, H5T_NATIVE_LLONG, vis->nc_global, 0, vis->cstart,
-                                     vis->nc, cells + vis->nc));
-      PetscCall(FCH5AttrInt(gm, "ranks", size));
-      PetscCall(PetscFree(cells));
-    }
-    H5Gclose(gm);
-    pv[0] = vis->nv_global;
-    pv[1] = 3;
-    PetscCall(FCH5CreateRows(bo->group, "positions", H5T_NATIVE_DOUBLE, 3, pv, 1, &bo->positions));
-  }
+  for (PetscInt i = 0; i < nbodies; i++) PetscCall(WriteBodyHeader(out, gb, i, bodies[i]));
   PetscCall(FCOutputFieldsCreate(out)); /* fields.c: the -output_fields datasets */
   H5Gclose(gb);
   PetscCall(FCRestartWriterCreate(out->comm, out->file, nbodies, bodies, &out->restart));

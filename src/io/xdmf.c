@@ -140,11 +140,114 @@ static void Item(FILE *fp, const char *indent, const char dims[], const char typ
 }
 
 /* Rank 0 rewrites the index from what FCXdmfAddFrame remembered */
+/* Body i's temporal collection: per frame its mesh, positions, partition and fields */
+static PetscErrorCode BodyGrid(FCOutput out, FILE *fp, const char base[], PetscInt i)
+{
+  char                dims[64], path[PETSC_MAX_PATH_LEN];
+  const FCBodyVisual *vis;
+  const char         *topo, *name;
+
+  PetscFunctionBegin;
+  PetscCall(FCBodyGetVisual(out->bodies[i], &vis));
+  PetscCall(FCBodyGetName(out->bodies[i], &name));
+  topo = vis->nvpc == 4 ? "Tetrahedron" : "Triangle";
+  fprintf(fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", name);
+  for (PetscInt k = 0; k < out->xframes; k++) {
+    fprintf(fp, "   <Grid Name=\"%s\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", name, out->xtime[k]);
+    fprintf(fp, "    <Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n", topo, vis->nc_global);
+    PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT " %" PetscInt_FMT, vis->nc_global, vis->nvpc));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/bodies/%s/mesh/cells", name));
+    Item(fp, "     ", dims, "Int", base, path);
+    fprintf(fp, "    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n");
+    PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT " 3", vis->nv_global));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/bodies/%s/positions", k, name));
+    Item(fp, "     ", dims, "Float", base, path);
+    fprintf(fp, "    </Geometry>\n");
+    if (vis->origin) { /* the partition: which rank held each cell */
+      fprintf(fp, "    <Attribute Name=\"rank\" AttributeType=\"Scalar\" Center=\"Cell\">\n");
+      PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT, vis->nc_global));
+      PetscCall(PetscSNPrintf(path, sizeof(path), "/bodies/%s/mesh/rank", name));
+      Item(fp, "     ", dims, "Int", base, path);
+      fprintf(fp, "    </Attribute>\n");
+    }
+    for (int f = 0; f < FC_FIELD_NUM; f++) {
+      PetscBool cell = FCVisualFieldIsCell((FCVisualField)f);
+      if (out->fields[i][f] < 0) continue;
+      fprintf(fp, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", FCVisualFieldNames[f],
+              cell ? "Scalar" : "Vector", cell ? "Cell" : "Node");
+      if (cell)
+        PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT, vis->nc_global));
+      else
+        PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT " 3", vis->nv_global));
+      PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/bodies/%s/%s", k, name,
+                              FCVisualFieldNames[f]));
+      Item(fp, "     ", dims, "Float", base, path);
+      fprintf(fp, "    </Attribute>\n");
+    }
+    fprintf(fp, "   </Grid>\n");
+  }
+  fprintf(fp, "  </Grid>\n");
+  PetscFunctionReturn(0);
+}
+
+/* The contact points' temporal collection: per frame the points and their forces, normal, gap, state */
+static PetscErrorCode ContactGrid(FCOutput out, FILE *fp, const char base[])
+{
+  char dims[64], path[PETSC_MAX_PATH_LEN];
+  const struct {
+    const char *name, *type, *kind;
+    int         ncomp;
+  } attr[] = {
+      {"force_world", "Float", "Vector", 3},
+      {"force_normal", "Float", "Scalar", 1},
+      {"force_tangential", "Float", "Scalar", 1},
+      {"normal", "Float", "Vector", 3},
+      {"gap", "Float", "Scalar", 1},
+      {"state", "Int", "Scalar", 1},
+  };
+
+  PetscFunctionBegin;
+  fprintf(fp, "  <Grid Name=\"contact-points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+  for (PetscInt k = 0; k < out->xframes; k++) {
+    long long n = out->xcount[k];
+    if (!n) { /* no points: an empty collection (the readers reject empty DataItems) */
+      fprintf(fp,
+              "   <Grid Name=\"contact-points\" GridType=\"Collection\" CollectionType=\"Spatial\">\n    <Time "
+              "Value=\"%.17g\"/>\n   </Grid>\n",
+              out->xtime[k]);
+      continue;
+    }
+    fprintf(fp, "   <Grid Name=\"contact-points\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", out->xtime[k]);
+    fprintf(fp, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\">\n", n);
+    PetscCall(PetscSNPrintf(dims, sizeof(dims), "%lld", n));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/contacts/vertex", k));
+    Item(fp, "     ", dims, "Int", base, path);
+    fprintf(fp, "    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n");
+    PetscCall(PetscSNPrintf(dims, sizeof(dims), "%lld 3", n));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/contacts/point_end", k));
+    Item(fp, "     ", dims, "Float", base, path);
+    fprintf(fp, "    </Geometry>\n");
+    for (size_t a = 0; a < sizeof(attr) / sizeof(attr[0]); a++) {
+      fprintf(fp, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", attr[a].name, attr[a].kind);
+      if (attr[a].ncomp == 3)
+        PetscCall(PetscSNPrintf(dims, sizeof(dims), "%lld 3", n));
+      else
+        PetscCall(PetscSNPrintf(dims, sizeof(dims), "%lld", n));
+      PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/contacts/%s", k, attr[a].name));
+      Item(fp, "     ", dims, attr[a].type, base, path);
+      fprintf(fp, "    </Attribute>\n");
+    }
+    fprintf(fp, "   </Grid>\n");
+  }
+  fprintf(fp, "  </Grid>\n");
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCXdmfWrite(FCOutput out)
 {
   FILE       *fp;
   const char *base = strrchr(out->filename, '/');
-  char        tmpname[PETSC_MAX_PATH_LEN], dims[64], path[PETSC_MAX_PATH_LEN];
+  char        tmpname[PETSC_MAX_PATH_LEN];
 
   PetscFunctionBegin;
   base = base ? base + 1 : out->filename;
@@ -152,96 +255,8 @@ PetscErrorCode FCXdmfWrite(FCOutput out)
   fp = fopen(tmpname, "w");
   PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write XDMF file '%s'", tmpname);
   fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n");
-  for (PetscInt i = 0; i < out->nbodies; i++) {
-    const FCBodyVisual *vis;
-    const char         *topo, *name;
-    PetscCall(FCBodyGetVisual(out->bodies[i], &vis));
-    PetscCall(FCBodyGetName(out->bodies[i], &name));
-    topo = vis->nvpc == 4 ? "Tetrahedron" : "Triangle";
-    fprintf(fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", name);
-    for (PetscInt k = 0; k < out->xframes; k++) {
-      fprintf(fp, "   <Grid Name=\"%s\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n", name, out->xtime[k]);
-      fprintf(fp, "    <Topology TopologyType=\"%s\" NumberOfElements=\"%" PetscInt_FMT "\">\n", topo, vis->nc_global);
-      PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT " %" PetscInt_FMT, vis->nc_global, vis->nvpc));
-      PetscCall(PetscSNPrintf(path, sizeof(path), "/bodies/%s/mesh/cells", name));
-      Item(fp, "     ", dims, "Int", base, path);
-      fprintf(fp, "    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n");
-      PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT " 3", vis->nv_global));
-      PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/bodies/%s/positions", k, name));
-      Item(fp, "     ", dims, "Float", base, path);
-      fprintf(fp, "    </Geometry>\n");
-      if (vis->origin) { /* the partition: which rank held each cell */
-        fprintf(fp, "    <Attribute Name=\"rank\" AttributeType=\"Scalar\" Center=\"Cell\">\n");
-        PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT, vis->nc_global));
-        PetscCall(PetscSNPrintf(path, sizeof(path), "/bodies/%s/mesh/rank", name));
-        Item(fp, "     ", dims, "Int", base, path);
-        fprintf(fp, "    </Attribute>\n");
-      }
-      for (int f = 0; f < FC_FIELD_NUM; f++) {
-        PetscBool cell = FCVisualFieldIsCell((FCVisualField)f);
-        if (out->fields[i][f] < 0) continue;
-        fprintf(fp, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", FCVisualFieldNames[f],
-                cell ? "Scalar" : "Vector", cell ? "Cell" : "Node");
-        if (cell)
-          PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT, vis->nc_global));
-        else
-          PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT " 3", vis->nv_global));
-        PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/bodies/%s/%s", k, name,
-                                FCVisualFieldNames[f]));
-        Item(fp, "     ", dims, "Float", base, path);
-        fprintf(fp, "    </Attribute>\n");
-      }
-      fprintf(fp, "   </Grid>\n");
-    }
-    fprintf(fp, "  </Grid>\n");
-  }
-  if (out->contacts) {
-    const struct {
-      const char *name, *type, *kind;
-      int         ncomp;
-    } attr[] = {
-        {"force_world", "Float", "Vector", 3},
-        {"force_normal", "Float", "Scalar", 1},
-        {"force_tangential", "Float", "Scalar", 1},
-        {"normal", "Float", "Vector", 3},
-        {"gap", "Float", "Scalar", 1},
-        {"state", "Int", "Scalar", 1},
-    };
-    fprintf(fp, "  <Grid Name=\"contact-points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
-    for (PetscInt k = 0; k < out->xframes; k++) {
-      long long n = out->xcount[k];
-      if (!n) { /* no points: an empty collection (the readers reject empty DataItems) */
-        fprintf(fp,
-                "   <Grid Name=\"contact-points\" GridType=\"Collection\" CollectionType=\"Spatial\">\n    <Time "
-                "Value=\"%.17g\"/>\n   </Grid>\n",
-                out->xtime[k]);
-        continue;
-      }
-      fprintf(fp, "   <Grid Name=\"contact-points\" GridType=\"Uniform\">\n    <Time Value=\"%.17g\"/>\n",
-              out->xtime[k]);
-      fprintf(fp, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\">\n", n);
-      PetscCall(PetscSNPrintf(dims, sizeof(dims), "%lld", n));
-      PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/contacts/vertex", k));
-      Item(fp, "     ", dims, "Int", base, path);
-      fprintf(fp, "    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n");
-      PetscCall(PetscSNPrintf(dims, sizeof(dims), "%lld 3", n));
-      PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/contacts/point_end", k));
-      Item(fp, "     ", dims, "Float", base, path);
-      fprintf(fp, "    </Geometry>\n");
-      for (size_t a = 0; a < sizeof(attr) / sizeof(attr[0]); a++) {
-        fprintf(fp, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", attr[a].name, attr[a].kind);
-        if (attr[a].ncomp == 3)
-          PetscCall(PetscSNPrintf(dims, sizeof(dims), "%lld 3", n));
-        else
-          PetscCall(PetscSNPrintf(dims, sizeof(dims), "%lld", n));
-        PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/contacts/%s", k, attr[a].name));
-        Item(fp, "     ", dims, attr[a].type, base, path);
-        fprintf(fp, "    </Attribute>\n");
-      }
-      fprintf(fp, "   </Grid>\n");
-    }
-    fprintf(fp, "  </Grid>\n");
-  }
+  for (PetscInt i = 0; i < out->nbodies; i++) PetscCall(BodyGrid(out, fp, base, i));
+  if (out->contacts) PetscCall(ContactGrid(out, fp, base));
   fprintf(fp, " </Domain>\n</Xdmf>\n");
   { /* a failed write (a full disk) leaves the previous index in place */
     int bad = ferror(fp), err = errno;
