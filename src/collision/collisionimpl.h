@@ -168,10 +168,17 @@ PETSC_INTERN PetscErrorCode FCGoldenMinimum(PetscErrorCode (*f)(PetscReal t, voi
    coordinate: a contact's sort key */
 PETSC_INTERN void FCReferencePoint(PetscInt nv, const PetscReal Xv[][3], const PetscReal w[], PetscReal X[3]);
 /* qsort/bsearch order of records that start with a point (3 reals): lexicographic in x, y, z */
-PETSC_INTERN int  FCComparePoint(const void *, const void *);
-PETSC_INTERN void FCCylinderSideDistance(const PetscReal a[3], const PetscReal u[3], PetscReal L, PetscReal r,
-                                         const PetscReal y[3], const PetscReal nv[3], PetscReal *d, PetscReal n[3],
-                                         PetscBool *side);
+PETSC_INTERN int FCComparePoint(const void *, const void *);
+/* The point of the triangle x (reference positions Xr) nearest the world point c: its weights w, its reference
+   position X, and 1 (a vertex), 2 (an edge: recomputed from the edge alone, the same from both its triangles) or 3
+   (the face) */
+PETSC_INTERN PetscInt FCTriangleNearestFeature(const PetscReal x[3][3], const PetscReal Xr[3][3], const PetscReal c[3],
+                                               PetscReal w[3], PetscReal X[3]);
+/* The distance from the world point x to the triangle t */
+PETSC_INTERN PetscReal FCTriangleDistance(const PetscReal t[3][3], const PetscReal x[3]);
+PETSC_INTERN void      FCCylinderSideDistance(const PetscReal a[3], const PetscReal u[3], PetscReal L, PetscReal r,
+                                              const PetscReal y[3], const PetscReal nv[3], PetscReal *d, PetscReal n[3],
+                                              PetscBool *side);
 /* Whether the ray x + s dir, s > 0, crosses triangle (a, b, c) (Moeller-Trumbore) */
 PETSC_INTERN PetscBool FCRayHitsTriangle(const PetscReal x[3], const PetscReal dir[3], const PetscReal a[3],
                                          const PetscReal b[3], const PetscReal c[3]);

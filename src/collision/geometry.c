@@ -1,4 +1,4 @@
-/* Closest-point and ray kernels of the collision detection (src/collision/collisionimpl.h). */
+/* Closest-point, triangle and ray kernels of the collision detection (src/collision/collisionimpl.h). */
 #include "collisionimpl.h"
 
 void FCClosestPointTriangle(const PetscReal p[3], const PetscReal a[3], const PetscReal b[3], const PetscReal c[3],
@@ -210,4 +210,60 @@ void FCCylinderSideDistance(const PetscReal a[3], const PetscReal u[3], PetscRea
   if (!*side) return;
   *d = l - r;
   for (int i = 0; i < 3; i++) n[i] = v[i] / l;
+}
+
+/* The point of the triangle with vertices at x (reference positions Xr) nearest the world point c: its weights w
+   and the number of them above 0 (1 a vertex, 2 an edge, 3 the face). An edge point is recomputed from the
+   edge alone, its ends in reference order, so that the two triangles of the edge give the same
+   point to the bit, and X its reference position (the key) from the edge alone too. */
+#define FC_FEATURE_EPS 1e-9
+PetscInt FCTriangleNearestFeature(const PetscReal x[3][3], const PetscReal Xr[3][3], const PetscReal c[3],
+                                  PetscReal w[3], PetscReal X[3])
+{
+  PetscReal cp[3];
+  PetscInt  nz = 0, e[3] = {0, 0, 0};
+
+  FCClosestPointTriangle(c, x[0], x[1], x[2], cp, w);
+  { /* a weight within round-off of 0 is 0: the point is on the edge or at the vertex */
+    PetscReal sum = 0.0;
+    for (int a = 0; a < 3; a++) {
+      if (w[a] < FC_FEATURE_EPS) w[a] = 0.0;
+      sum += w[a];
+    }
+    for (int a = 0; a < 3; a++) w[a] /= sum;
+  }
+  for (int a = 0; a < 3; a++)
+    if (w[a] > 0.0) e[nz++] = a;
+  if (nz == 2) {
+    PetscInt  a = e[0], b = e[1], o = 3 - a - b;
+    PetscReal ab[3], ac[3], t;
+    if (FCComparePoint(Xr[a], Xr[b]) > 0) {
+      a = e[1];
+      b = e[0];
+    }
+    for (int i = 0; i < 3; i++) {
+      ab[i] = x[b][i] - x[a][i];
+      ac[i] = c[i] - x[a][i];
+    }
+    t    = PetscMin(1.0, PetscMax(0.0, FCDot(ac, ab) / FCDot(ab, ab)));
+    w[a] = 1.0 - t;
+    w[b] = t;
+    w[o] = 0.0;
+    {
+      const PetscReal Xe[2][3] = {{Xr[a][0], Xr[a][1], Xr[a][2]}, {Xr[b][0], Xr[b][1], Xr[b][2]}}, we[2] = {1.0 - t, t};
+      FCReferencePoint(2, Xe, we, X);
+    }
+    if (t == 0.0 || t == 1.0) return 1; /* an end of the edge */
+  } else
+    FCReferencePoint(3, Xr, w, X);
+  return nz;
+}
+
+/* The distance from the world point x to the triangle with vertices at t */
+PetscReal FCTriangleDistance(const PetscReal t[3][3], const PetscReal x[3])
+{
+  PetscReal cp[3], w[3], d2 = 0.0;
+  FCClosestPointTriangle(x, t[0], t[1], t[2], cp, w);
+  for (int i = 0; i < 3; i++) d2 += PetscSqr(x[i] - cp[i]);
+  return PetscSqrtReal(d2);
 }

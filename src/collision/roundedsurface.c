@@ -6,62 +6,6 @@
    the polyhedron of its picture (each facet an impact) nor over the surface's vertices (a bump at each). */
 #include "collisionimpl.h"
 
-/* The point of the triangle with vertices at x (reference positions Xr) nearest the world point c: its weights w
-   and the number of them above 0 (1 a vertex, 2 an edge, 3 the face). An edge point is recomputed from the
-   edge alone, its ends in reference order, so that the two triangles of the edge give the same
-   point to the bit, and X its reference position (the key) from the edge alone too. */
-#define FC_FEATURE_EPS 1e-9
-static PetscInt NearestFeature(const PetscReal x[3][3], const PetscReal Xr[3][3], const PetscReal c[3], PetscReal w[3],
-                               PetscReal X[3])
-{
-  PetscReal cp[3];
-  PetscInt  nz = 0, e[3] = {0, 0, 0};
-
-  FCClosestPointTriangle(c, x[0], x[1], x[2], cp, w);
-  { /* a weight within round-off of 0 is 0: the point is on the edge or at the vertex */
-    PetscReal sum = 0.0;
-    for (int a = 0; a < 3; a++) {
-      if (w[a] < FC_FEATURE_EPS) w[a] = 0.0;
-      sum += w[a];
-    }
-    for (int a = 0; a < 3; a++) w[a] /= sum;
-  }
-  for (int a = 0; a < 3; a++)
-    if (w[a] > 0.0) e[nz++] = a;
-  if (nz == 2) {
-    PetscInt  a = e[0], b = e[1], o = 3 - a - b;
-    PetscReal ab[3], ac[3], t;
-    if (FCComparePoint(Xr[a], Xr[b]) > 0) {
-      a = e[1];
-      b = e[0];
-    }
-    for (int i = 0; i < 3; i++) {
-      ab[i] = x[b][i] - x[a][i];
-      ac[i] = c[i] - x[a][i];
-    }
-    t    = PetscMin(1.0, PetscMax(0.0, FCDot(ac, ab) / FCDot(ab, ab)));
-    w[a] = 1.0 - t;
-    w[b] = t;
-    w[o] = 0.0;
-    {
-      const PetscReal Xe[2][3] = {{Xr[a][0], Xr[a][1], Xr[a][2]}, {Xr[b][0], Xr[b][1], Xr[b][2]}}, we[2] = {1.0 - t, t};
-      FCReferencePoint(2, Xe, we, X);
-    }
-    if (t == 0.0 || t == 1.0) return 1; /* an end of the edge */
-  } else
-    FCReferencePoint(3, Xr, w, X);
-  return nz;
-}
-
-/* The distance from the world point x to the triangle with vertices at t */
-static PetscReal TriangleDistance(const PetscReal t[3][3], const PetscReal x[3])
-{
-  PetscReal cp[3], w[3], d2 = 0.0;
-  FCClosestPointTriangle(x, t[0], t[1], t[2], cp, w);
-  for (int i = 0; i < 3; i++) d2 += PetscSqr(x[i] - cp[i]);
-  return PetscSqrtReal(d2);
-}
-
 typedef struct {
   const PetscReal (*core)[3], (*T)[3];
 } CoreCtx;
@@ -73,7 +17,7 @@ static PetscErrorCode CoreAt(PetscReal t, void *ctx, PetscReal *d)
   PetscReal x[3];
 
   for (int i = 0; i < 3; i++) x[i] = cc->core[0][i] + t * (cc->core[1][i] - cc->core[0][i]);
-  *d = TriangleDistance(cc->T, x);
+  *d = FCTriangleDistance(cc->T, x);
   return 0;
 }
 
@@ -333,7 +277,7 @@ PetscErrorCode FCCollisionCylinderLies(FCBody Sh, Surface *S, const FCContactPai
     FCTriangleNormal(T->xf, nt);
     SidePoints(fr, r, T->xf, T->X, nt, c, &np);
     for (PetscInt j = 0; j < np; j++)
-      if (TriangleDistance(T->xf, c[j]) <= grow) *lies = PETSC_TRUE;
+      if (FCTriangleDistance(T->xf, c[j]) <= grow) *lies = PETSC_TRUE;
   }
   PetscCall(PetscFree(cand));
   PetscFunctionReturn(0);
@@ -399,6 +343,48 @@ PetscErrorCode FCCollisionRoundedSurfaceTurns(FCBody Sh, Surface *S, const FCCon
    closest points of the shape and the surface, which move continuously as the shape rolls (its picture's points
    would make it roll as a polyhedron). They are taken after the free motion (the caller decides: shapepoints.c,
    CoreFollows). */
+/* The edge points both triangles of their edge find, the core in front of one of them at least (not an edge of
+   the surface's far side, seen through a thin body); the edge's lowest triangle makes it, the same on any run */
+static PetscErrorCode AddEdgePoints(const Across *A, Surface *S, EdgePoint edge[], PetscInt nedge)
+{
+  PetscFunctionBegin;
+  if (nedge > 1) qsort(edge, nedge, sizeof(EdgePoint), FCComparePoint);
+  for (PetscInt e = 0; e < nedge;) {
+    PetscInt f = e + 1, first = e, front = edge[e].front;
+    while (f < nedge && !FCComparePoint(&edge[e], &edge[f])) {
+      if (edge[f].tri < edge[first].tri) first = f;
+      front = front || edge[f].front;
+      f++;
+    }
+    if (f - e >= 2 && front)
+      PetscCall(AddSurfacePoint(A, &S->tri[edge[first].tri], edge[first].w, edge[first].X, edge[first].cb));
+    e = f;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A cylinder's line of contacts (set->c[first..]): its two extreme points along the axis awake, those between
+   dormant */
+static void CylinderLine(const Across *A, FCContactSet *set, PetscInt first)
+{
+  PetscInt  lo = first, hi = first;
+  PetscReal slo = PETSC_MAX_REAL, shi = -PETSC_MAX_REAL;
+  for (PetscInt k = first; k < set->n; k++) {
+    PetscReal v[3], sk;
+    for (int i = 0; i < 3; i++) v[i] = set->c[k].pfree[1][i] - A->axis0[i];
+    sk = FCDot(v, A->axis);
+    if (sk < slo) {
+      slo = sk;
+      lo  = k;
+    }
+    if (sk > shi) {
+      shi = sk;
+      hi  = k;
+    }
+  }
+  for (PetscInt k = first; k < set->n; k++) set->c[k].dormant = (PetscBool)(k != lo && k != hi);
+}
+
 PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                            const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
@@ -446,8 +432,8 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
     for (PetscInt j = 0; j < np; j++) {
       PetscReal w[3], X[3], side[3], cb[3];
       PetscInt  nz;
-      if (TriangleDistance(x, c[j]) > grow) continue; /* too far from the shape at the end */
-      nz = NearestFeature(x, T->X, c[j], w, X);
+      if (FCTriangleDistance(x, c[j]) > grow) continue; /* too far from the shape at the end */
+      nz = FCTriangleNearestFeature(x, T->X, c[j], w, X);
       if (nz < 2) continue; /* a vertex: its own contact */
       PetscCall(FCBodyToBodyFrame(Sh, FC_AT_FREE, c[j], PETSC_FALSE, cb));
       for (int i = 0; i < 3; i++) side[i] = c[j][i] - (w[0] * x[0][i] + w[1] * x[1][i] + w[2] * x[2][i]);
@@ -466,40 +452,10 @@ PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife
       }
     }
   }
-  /* the edge points both triangles of their edge find, the core in front of one of them at least (not an edge of
-     the surface's far side, seen through a thin body) */
-  if (nedge > 1) qsort(edge, nedge, sizeof(EdgePoint), FCComparePoint);
-  for (PetscInt e = 0; e < nedge;) {
-    PetscInt f = e + 1, first = e, front = edge[e].front; /* the edge's lowest triangle makes it: the same on any run */
-    while (f < nedge && !FCComparePoint(&edge[e], &edge[f])) {
-      if (edge[f].tri < edge[first].tri) first = f;
-      front = front || edge[f].front;
-      f++;
-    }
-    if (f - e >= 2 && front)
-      PetscCall(AddSurfacePoint(&A, &S->tri[edge[first].tri], edge[first].w, edge[first].X, edge[first].cb));
-    e = f;
-  }
+  PetscCall(AddEdgePoints(&A, S, edge, nedge));
   PetscCall(PetscFree(cand));
   PetscCall(PetscFree(edge));
-  if (flat && set->n - first > 2) { /* a cylinder's line: its two extreme points awake, those between dormant */
-    PetscInt  lo = first, hi = first;
-    PetscReal slo = PETSC_MAX_REAL, shi = -PETSC_MAX_REAL;
-    for (PetscInt k = first; k < set->n; k++) {
-      PetscReal v[3], sk;
-      for (int i = 0; i < 3; i++) v[i] = set->c[k].pfree[1][i] - A.axis0[i];
-      sk = FCDot(v, A.axis);
-      if (sk < slo) {
-        slo = sk;
-        lo  = k;
-      }
-      if (sk > shi) {
-        shi = sk;
-        hi  = k;
-      }
-    }
-    for (PetscInt k = first; k < set->n; k++) set->c[k].dormant = (PetscBool)(k != lo && k != hi);
-  }
+  if (flat && set->n - first > 2) CylinderLine(&A, set, first);
   /* (a capsule lying on a face: its picture's points along the line of contact, woken by the step's
      linearization, made the problem rank-deficient: so not for a capsule) */
   if (ncore == 1) {
