@@ -76,6 +76,12 @@ typedef enum { FC_SPD_INVERSE_HOST, FC_SPD_INVERSE_SCALAPACK, FC_SPD_INVERSE_COL
 /* One MUMPS Cholesky factorization of A with a set S of DOFs ordered last (METIS nested
    dissection before them), giving C = (A^-1)_SS on rank 0 besides the solves (schurfactor.c) */
 typedef struct _FCSchurFactor *FCSchurFactor;
+/* schurorder.c: perm (1-based, MUMPS' ICNTL(7) = 1) of the N DOFs: the interior vertex blocks of A's vertex-block graph
+   (nb, gxadj, gadj) by nested dissection (balance: top levels balanced in the vertices next to S), then the ns DOFs S
+   last in their order */
+PETSC_INTERN PetscErrorCode FCSchurOrdering(const char name[], PetscInt nb, const PetscInt gxadj[],
+                                            const PetscInt gadj[], PetscInt ns, const PetscInt S[], PetscInt N,
+                                            PetscInt balance, PetscInt perm[]);
 /* distributed_inverse: C = Sigma^-1 by ScaLAPACK over the ranks, else LAPACK on rank 0;
    balance: top levels of the nested dissection bisected in balance of the vertices next to S */
 PETSC_INTERN PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSPDInverseType inverse, PetscInt balance,
