@@ -1,14 +1,6 @@
-/* FCBody: one body of the scene, of type fem, rigid or kinematic (-<body>_type). The generic
-   part holds the placement and initial motion options shared by every type:
-     -<body>_type <fem|rigid|kinematic>       required
-     -<body>_center x,y,z            point about which -rotate and -angular_velocity act
-                                     (default: the mesh centroid for FE bodies and mesh shapes,
-                                     the origin for analytic shapes, which are centred on it)
-     -<body>_rotate ax,ay,az,deg     initial rotation about the centre (axis, degrees)
-     -<body>_translate x,y,z         then a translation (the centre moves with it)
-     -<body>_velocity vx,vy,vz       initial (fem, rigid) or prescribed (kinematic) velocity
-     -<body>_angular_velocity wx,wy,wz   same, about the centre, rad/s
-     -<body>_density rho             fem and rigid bodies (> 0)                          */
+/* FCBody: one body of the scene, of type fem, rigid or kinematic (-<body>_type, a registry). The
+   generic part holds the placement and initial motion options shared by every type (-<body>_center,
+   -rotate, -translate, -velocity, -angular_velocity; help strings below and docs/options.md). */
 #include "bodyimpl.h"
 #include <ctype.h>
 

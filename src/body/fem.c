@@ -5,35 +5,10 @@
    symmetric positive definite on the free DOFs and is factored by the body's KSP (default
    preonly + Cholesky + MUMPS). A linear material's A is assembled and factored once per run.
 
-   Options (prefix <body>_):
-     -<body>_dm_plex_filename f.msh   the mesh (required); every -<body>_dm_* option applies
-     -<body>_material linear|corotational   (default linear)
-     -<body>_young E                  Young's modulus, Pa (> 0, required)
-     -<body>_poisson nu               Poisson's ratio (-1 < nu < 0.5, default 0.3)
-     -<body>_density rho              kg/m^3 (> 0, required)
-     -<body>_mass_type lumped|consistent   (default consistent)
-     -<body>_rayleigh_mass alpha      damping alpha M (>= 0, default 0)
-     -<body>_rayleigh_stiffness beta  damping beta K (>= 0, default 0)
-     -<body>_fixed_box x0,y0,z0,x1,y1,z1[,...]   vertices inside (placed coordinates) are fixed;
-                                      up to FC_MAX_FIXED_BOXES boxes, 6 numbers each
-     -<body>_inverted error|allow     error (default): the run stops at the end of a step where an
-                                      element is turned inside out (det F <= 0: a small-strain
-                                      material does not resist it, fem_state.c); allow runs on
-     -<body>_refactor_every k         co-rotational only: factor A every k steps (>= 1, default 1);
-                                      between, K and f_int are current but A^-1 is the older
-                                      factor's (a modified-Newton free motion, cheaper, less exact)
-     -<body>_rotation exact|linear    co-rotational only: exact (default) advances the body's mean
-                                      rotation within a step exactly and linearizes the elastic
-                                      force at the rotated state (fem_rotation.c), so that a
-                                      spinning body gains no energy; linear keeps eq. 2 as it is.
-                                      A body with fixed vertices always keeps eq. 2
-     -<body>_assembly coo|values      co-rotational only: how K, assembled every step, is summed
-                                      (fem_step.c): coo (default) writes the element matrices in
-                                      place and sums them through the map PETSc built once
-                                      (MatSetValuesCOO; 16 bytes per element-matrix entry kept),
-                                      values inserts them one by one (MatSetValues, no map). A
-                                      linear K is assembled once, by values
-     -<body>_ksp_type, -<body>_pc_type, -<body>_pc_factor_mat_solver_type ...   the solver */
+   Options (prefix <body>_): -dm_plex_filename and every -dm_* option, -material, -young, -poisson,
+   -density, -mass_type, -rayleigh_mass, -rayleigh_stiffness, -fixed_box, -inverted, and for a
+   co-rotational body -refactor_every, -rotation, -assembly; the solver's -ksp_*, -pc_*: each
+   described by its help string below and in docs/options.md. */
 #include "femimpl.h"
 
 static PetscErrorCode SetFromOptions_FEM(FCBody body)

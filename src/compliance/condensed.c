@@ -25,21 +25,9 @@
    products only, and not even those while J_T (the contact DOFs, rows and weights) is the last
    build's: a body resting on a kinematic shape reuses its W_b (every rank keeps a copy, (3m)^2
    values; the "CondensedWb" event counts the builds that compute).
-   Options:
-     -compliance_condensed_ring k   rings of surface neighbours around the contact DOFs in S (k >= 0,
-                                    default 0: S is exactly the last step's contact DOFs)
-     -compliance_condensed_inverse host|scalapack|columns
-                                    where C = Sigma^-1 is formed: LAPACK on rank 0 (host, the
-                                    default), ScaLAPACK over every rank of the body, or the host's
-                                    Cholesky factor and each rank's block of columns of its inverse
-                                    (columns). All the same on 1 rank (spdinverse.c; docs/scaling.md)
-     -compliance_condensed_balance k
-                                    k top levels of the nested dissection of the interior are
-                                    bisections balanced in the vertex count and in the count of
-                                    vertices next to S at once (default 0: METIS_NodeND alone), so
-                                    that MUMPS' two top subtrees, on different ranks, share the
-                                    fronts that S widens (schurfactor.c, Dissect: a more even flop
-                                    split, not a faster step) */
+   Options: -compliance_condensed_ring, -compliance_condensed_inverse (where C = Sigma^-1 is formed:
+   spdinverse.c), -compliance_condensed_balance (the top levels of the ordering: schurorder.c) (help
+   strings below; docs/options.md). */
 #include "complianceimpl.h"
 
 typedef struct {

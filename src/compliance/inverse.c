@@ -9,14 +9,8 @@
                 the partial W_b are summed. A linear A is factored once; a co-rotational one
                 again whenever the body refactors A.
    The correction does one solve with the distributed factor (compliance.c).
-   Options:
-     -compliance_inverse_block b   MUMPS' blocking factor ICNTL(27) while it computes the entries of
-                                   A^-1 (non-zero, default 256; docs/options.md has the measurement)
-     -compliance_redundant_groups k   redundant: k copies of A, each factored on size/k ranks and
-                                   computing 1/k of the columns (1 <= k <= ranks, default ranks)
-     -compliance_redundant_memory_limit b   redundant: bytes per rank a copy's factorization may
-                                   take (MUMPS' estimate after the analysis; default the memory
-                                   available at set-up divided by the ranks of the node)            */
+   Options: -compliance_inverse_block, -compliance_redundant_groups, -compliance_redundant_memory_limit
+   (help strings below; docs/options.md). */
 #include "complianceimpl.h"
 #include <unistd.h>
 

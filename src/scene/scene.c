@@ -1,30 +1,14 @@
-/* FCScene: reads the scene options, creates the bodies and owns the time loop.
-   Options:
-     -scene_bodies a,b,c      the bodies (required); each body's options use the prefix <name>_
-     -time_step h             (> 0, default 0.01 s)
-     -time_steps N            (>= 0, default 100)
-     -gravity gx,gy,gz        (default 0,0,-9.81 m/s^2)
-     -output_file f.h5        (default fecontact.h5; an XDMF index f.xmf is written beside it)
-     -output_every k          write body positions every k steps (>= 1, default 1)
-     -output_fields a,b,...   fields of each frame (src/io/fields.c, docs/output.md): displacement,
-                              velocity (every body's vertices), von_mises, energy_density (FE cells),
-                              or none (default displacement,velocity,von_mises); computed at frames only
-     -quiet                   no progress line, no summary
-     -restart f.h5            continue from the newest complete restart state of f.h5 (written at every
-                              output step: /restart in docs/output.md) up to -time_steps; the same scene
-                              options are needed; -output_file may not be f.h5 nor any other file the
-                              run reads (compared by device and inode: src/util/inputs.c). With another
-                              -time_step than the earlier run's, the run continues at the stored time
-                              with the new step (step k at t_restart + (k - step_restart) h)
-     -energy_growth_limit g   stop a run whose total energy grows by more than g times the energy the
-                              scene can receive (>= 0, default 10; 0: off; src/scene/energy.c)
-   The options of the objects the scene creates are read where those objects live: the contact
-   pairs and the detection (-contact_*: src/collision/pairs.c), the constraint scheme and its
-   contact solver (-constraint_scheme, -newton_*, -pgs_*, -contact_memory_limit:
-   src/scheme/), the compliance builder of each FE body in a contact pair (-compliance_*:
-   src/compliance/), each body (-<name>_*: src/body/); docs/options.md lists them all.
-   One step (docs/method.md, section 2): free motion of every body (eq. 5), then integration (eq. 2);
-   contact resolution slots in between. */
+/* FCScene: reads the scene options (-scene_bodies, -time_step, -time_steps, -gravity, -output_*,
+   -quiet, -restart, -energy_growth_limit: each described by its help string below and in
+   docs/options.md), creates the bodies and owns the time loop. The options of the objects the scene
+   creates are read where those objects live: the contact pairs and the detection (-contact_*:
+   src/collision/pairs.c), the constraint scheme and its contact solver (-constraint_scheme,
+   -newton_*, -pgs_*, -contact_solver, -contact_memory_limit: src/scheme/, src/contact/solver.c), the
+   compliance builder of each FE body in a contact pair (-compliance_*: src/compliance/), each body
+   (-<name>_*: src/body/). One step (docs/method.md, section 2): free motion of every body (eq. 5),
+   then integration (eq. 2); contact resolution slots in between. A restart continues from the newest
+   complete restart state of a file (docs/output.md, /restart) at its stored time, with this run's time
+   step. */
 #include "../fcimpl.h"
 #include <signal.h>
 #include <stdlib.h>

@@ -14,19 +14,9 @@
    the proximity points do not carry). The loop stops when frames and right-hand sides change by
    less than -newton_tol (0: always -newton_max_it). One correction per body at the end:
    dv = dv_free + h A^-1 H^T F.
-   Options (besides -newton_max_it and -newton_tol, recursive.c):
-     -fast_update newton|sweep   when the frames follow the forces: between contact solves, as the
-                                 paper (default), or also after every sweep of the contact solver
-                                 (beyond the paper: its closing remark; docs/accuracy.md measures it)
-     the types of W_H (dense), the frames C (sparse) and the force vectors, host by default; on a
-     GPU build -wh_mat_type seqdensecuda -frames_mat_type seqaijcusparse -contact_vec_type seqcuda
-     (docs/gpu.md)
-     -fast_wk_rows <bool>        where the contact solver splits its sweeps over the ranks
-                                 (-pgs_ranks split, or auto from -pgs_split_min_rows rows), each
-                                 rank forms and keeps only the block rows of W_k its sweeps read
-                                 (M^2 / p values, formed p ways; src/contact/problem_rows.c);
-                                 default true, host types only; false (and -fast_update sweep,
-                                 whose solver does not split): W_k whole on every rank */
+   Options (-fast_update, -fast_wk_rows, the matrix and vector types -wh_mat_type, -frames_mat_type,
+   -contact_vec_type; -newton_max_it and -newton_tol in recursive.c): their help strings below and
+   docs/options.md. */
 #include "fastimpl.h"
 
 /* A matrix (ismat) or vector type given by an option is known to this PETSc build: a CUDA type in

@@ -2,10 +2,7 @@
    of the contacts at the start of the step and its re-linearization at the proximity positions of
    a Newton iteration, and the convergence test. d = p1 - p2 per contact (world), d_free and d0 its
    values after the free motion and at the start of the step.
-   Options:
-     -newton_max_it n   Newton iterations per step (>= 1, default 5)
-     -newton_tol t      stop them when frames and right-hand sides change by less than t
-                        (>= 0, default 1e-10; 0: always newton_max_it, as the paper's Table 1) */
+   Options: -newton_max_it, -newton_tol (help strings below; docs/options.md). */
 #include "schemeimpl.h"
 
 PetscErrorCode FCSchemeRecursiveSetFromOptions(FCScheme scheme, PetscOptionItems *PetscOptionsObject)
