@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Contact candidates on every partition: for each mesh, partitioner and rank count, the FE body is
 run one step 50 m above a kinematic plane with an alarm distance of 100 m, so that every candidate
-point (an owned boundary vertex, src/mesh/mesh.c) is a contact of step 1; the contacts' points are
+point (an owned boundary vertex, src/mesh/boundary.c) is a contact of step 1; the contacts' points are
 compared with the 1-rank run's. Prints one line per mesh and partitioner and a markdown table
 (docs/partitioners.md, "Contact candidates on every partition"); exits 1 if any run differs.
 

@@ -509,7 +509,7 @@ def write_doc(a, rows):
           "(N^(2/3)), the replicated O(m^2) work grows like N^(4/3) per rank while the distributed work shrinks like "
           "N/p, and it dominates at scale. The contact solver's sweeps are split over the ranks by default "
           "(`-pgs_ranks auto`: each rank its own block of contacts, damped Jacobi between blocks, rank 0 going on "
-          "alone where the split sweeps stall: src/contact/pgs_split.c, pgs.c); their sweeps and times against the "
+          "alone where the split sweeps stall: src/contact/pgs_split.c, solver.c); their sweeps and times against the "
           "replicated solver on 1, 2 and 4 ranks, up to the 149k box's 1600 contacts, are in "
           "[docs/contact-solver.md](contact-solver.md#split-over-the-ranks) (`scripts/bench_split.py`). The mesh "
           "partitioners (ptscotch, metis, simple) are compared in [docs/partitioners.md](partitioners.md).", "",

@@ -1,5 +1,5 @@
 /* Contact candidates on every partition (issue 31). An FE body's candidate contact points are
-   its owned boundary vertices (src/mesh/mesh.c, FCMeshGetBoundary); over the ranks they must be
+   its owned boundary vertices (src/mesh/boundary.c, FCMeshGetBoundary); over the ranks they must be
    every vertex of the body's surface, each taken by exactly one rank, whatever the partition.
    Checked on the meshes that lost vertices before the boundary marks were summed to the owners
    (a coarse gmsh sphere, the 6-tet cube, the cube at lc 0.15 and 0.2) with the partitioners

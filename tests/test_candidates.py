@@ -1,6 +1,6 @@
 """The partitions that lost a boundary vertex from the contact candidates (issue 31) give the 1-rank
 answer: the contacts of every step and the final state (1e-8 relative, test_parallel.py's bound), and
-no intersection. Before the boundary marks were summed to the owners (src/mesh/mesh.c), each of these
+no intersection. Before the boundary marks were summed to the owners (src/mesh/boundary.c), each of these
 lost one vertex, which then sank through the other body unseen:
   --np 2: the cube at lc 0.15 (meshes/cube_015.msh) dropped on a plane, partitioner simple: 73
           contacts from step 20 where 1 rank has 74;

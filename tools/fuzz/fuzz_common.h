@@ -29,7 +29,7 @@ static void FuzzInitPETSc(const char *name)
   const char  *tmp    = getenv("TMPDIR");
 
   /* the fuzzer classifies crashes of PETSc's gmsh reader itself (fuzz_mesh forks a child): the
-     run-time guard of src/mesh/mesh.c, which turns them into an exit, is off here */
+     run-time guard of src/mesh/read.c, which turns them into an exit, is off here */
   setenv("FECONTACT_NO_READER_GUARD", "1", 1);
 
   snprintf(arg0, sizeof(arg0), "%s", name);
