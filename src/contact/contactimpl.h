@@ -46,7 +46,7 @@ struct _p_FCContactProblem {
   /* dense W (FCContactProblemCreateDense): n x n, row-major, borrowed from the caller, which keeps
      it alive while the problem exists; then the block CSR arrays above are NULL */
   const PetscReal *Wd;
-  /* dense W by block rows (FCContactProblemCreateDenseRows, problem_rows.c): Wd holds only the rows
+  /* dense W by block rows (FCContactProblemCreateDenseRows, problem.c): Wd holds only the rows
      [wlo, whi), those of contacts [c0, c1), this rank's block of rowcomm; whole W: MPI_COMM_NULL,
      rows [0, n) */
   MPI_Comm         rowcomm;

@@ -11,7 +11,7 @@
    can need more sweeps (docs/contact-solver.md measures both). The residual is the same natural-map residual as the
    replicated solver's, summed over the blocks (an MPI_Allreduce), so every rank stops at the same sweep with the same
    forces. Dense W only (what the schemes build), whole or held by block rows (each rank its block's,
-   problem_rows.c: the sweeps read no other); the stopping test and the exact recomputation of u every FC_PGS_EXACT
+   problem.c: the sweeps read no other); the stopping test and the exact recomputation of u every FC_PGS_EXACT
    sweeps follow the replicated solver. With giveup (-pgs_ranks auto) the exact residuals FC_SPLIT_EXACT sweeps apart
    give the rate of convergence, and the sweeps stop, unconverged, as soon as it says max_it will not be enough (the
    same decision on every rank: the residual is reduced). */

@@ -4,13 +4,8 @@
    there and the parts scattered back (at mesh load the whole graph is on rank 0 anyway: the gmsh
    reader reads there). Registered by FCPartitionerRegisterMetis (src/fecontact.c, at start-up);
    selected per body with -<body>_petscpartitioner_type metis.
-   Options (each with the body's prefix):
-     -<body>_petscpartitioner_metis_imbalance u   allowed load imbalance, max part / mean part
-                                                  (> 1, default 1.03: METIS' own default for k-way)
-     -<body>_petscpartitioner_metis_objective cut|volume   minimize the edge cut (default) or the
-                                                  total communication volume
-     -<body>_petscpartitioner_metis_seed s        METIS' random seed (default 0: a fixed seed, so
-                                                  that a run is reproducible)
+   Options (each with the body's prefix): -petscpartitioner_metis_imbalance, _objective, _seed (help
+   strings below; docs/options.md).
    Vertex weights (PETSc's vertSection, e.g. -petscpartitioner_use_vertex_weights) and target part
    sizes (targetSection) are passed to METIS as they are. */
 #include "../fcimpl.h"

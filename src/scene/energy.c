@@ -4,15 +4,12 @@
    each other (-contact_separation_speed). A total energy that grows far beyond all of that is a
    numerical blow-up (a time step too large for the contacts or the stiffness), not physics: the
    run stops there, naming the likely cause, rather than run on to an absurd end with exit status
-   0. Option:
-     -energy_growth_limit g   stop when the total energy (kinetic + elastic + gravity of every
-                              body) exceeds its value at set-up by more than g times the scene's
-                              energy scale (>= 0, default 10; 0 turns the guard off). The scale is
-                              the energy the scene could receive: the initial kinetic energy, the
-                              weight of every body over the scene's height (the bounding box of
-                              every body, widened by the distance kinematic bodies travel over the
-                              run), 1/2 m V^2 with V the fastest kinematic point plus the separation
-                              speed, and the initial elastic energy.
+   0. Option -energy_growth_limit g (help string below; docs/options.md): the run stops when the total
+   energy (kinetic + elastic + gravity of every body) exceeds its value at set-up by more than g times
+   the scene's energy scale, the energy the scene could receive: the initial kinetic energy, the weight
+   of every body over the scene's height (the bounding box of every body, widened by the distance
+   kinematic bodies travel over the run), 1/2 m V^2 with V the fastest kinematic point plus the
+   separation speed, and the initial elastic energy.
    At set-up every body's energies must also be finite (a message names the body). */
 #include "../fcimpl.h"
 

@@ -10,13 +10,8 @@
    correction of every body, and the check of the solver's residual. The warm start is one rule
    for all three (FCContactSetWarmStart): the previous step's world force of the same contact,
    projected on this step's frame.
-   Options:
-     -constraint_scheme explicit|standard|fast
-     -contact_memory_limit b  bytes the dense contact matrices of a step may take per rank (each
-                              scheme says which matrices: W, or W_H and W_k); above, the step stops
-                              with a clear error (default half the machine's memory)
-     -pgs_fail_residual r     stop the run (exit status 2, the step named) when the contact solver
-                              ends a step with a residual above r (> 0, default 1e-2)          */
+   Options: -constraint_scheme, -contact_memory_limit, -pgs_fail_residual (help strings below;
+   docs/options.md). */
 #include "schemeimpl.h"
 #include <unistd.h>
 

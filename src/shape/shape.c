@@ -33,14 +33,9 @@ PetscErrorCode FCShapeRegisterAll(void)
   PetscFunctionReturn(0);
 }
 
-/* Options (prefix <body>_):
-     -<body>_shape <plane|sphere|box|capsule|cylinder|mesh>  required for rigid and kinematic bodies
-     -<body>_radius r            sphere, capsule, cylinder (> 0)
-     -<body>_half_extents a,b,c  box (each > 0)
-     -<body>_length L            capsule (distance between the cap centres, >= 0), cylinder (> 0),
-                                 plane (side of the square drawn in pictures, default 4)
-     -<body>_normal nx,ny,nz     plane outward normal in the body frame (default 0,0,1)
-   Capsule and cylinder axes are the body-frame z axis. */
+/* Options (prefix <body>_): -shape, read here, and each shape's own (-radius, -half_extents, -length,
+   -normal) in its file: their help strings and docs/options.md. Capsule and cylinder axes are the
+   body-frame z axis. */
 PetscErrorCode FCShapeCreateFromOptions(MPI_Comm comm, const char prefix[], const char bodyname[], FCShape *shape)
 {
   char      type[FC_MAX_NAME] = "";

@@ -8,9 +8,8 @@
    large part of the solve (measured in docs/benchmarks.md, "One-column products"). Every other product goes to the next dgemm_ in the link order (the BLAS library),
    found by dlsym(RTLD_NEXT).
 
-   Option (read at package initialization, src/fecontact.c):
-     -blas_gemv_forward <bool>   compute dgemm with one column as dgemv (default true; false: every
-                                 dgemm to the BLAS library, for comparison) */
+   Option -blas_gemv_forward (read at package initialization, src/fecontact.c; its help string below and
+   docs/options.md). */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <stddef.h>
