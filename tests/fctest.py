@@ -2,6 +2,7 @@
 its HDF5 output. The executable comes from $FECONTACT (set by ctest), the repository root is the
 working directory."""
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -144,6 +145,8 @@ class Checker:
 
     def done(self):
         print("%d passed, %d failed" % (self.count - self.failed, self.failed))
+        if not self.failed:  # the run's files are kept only for a failure, to look at
+            shutil.rmtree(TMP, ignore_errors=True)
         sys.exit(1 if self.failed else 0)
 
 

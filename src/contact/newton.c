@@ -10,22 +10,25 @@
    sparse LU); reg, 1e-8 at first, stands against the singular W of redundant contacts.
    Globalization: backtracking (Armijo) on psi = |Phi|^2 / 2 along dr, whose slope is -2 psi for the
    Newton direction; where no step along dr lowers psi (a kink between the contacts' states), the
-   full step is taken, as Siconos does. Three steps in a row without descent or shorter than 1/64
-   make a stall: Newton goes on from the best iterate with reg ten times larger (the step then
-   leaves the null space of a degenerate H alone), up to 1e-4, and after that stops. Stops on the
-   natural-map residual / ||q|| <= tol, the test of the sweeps (pgs.c), or after max_it Newton
-   steps; returns the iterate of the lowest residual met (the caller sweeps from it if it is above
-   tol). A dormant contact (FCContactProblemSetDormant) keeps r_i = 0 (Phi_i = r_i). */
+   shortest step tried is taken (a full step there, as Siconos takes, makes the iterates of a
+   degenerate problem depend on W's round-off: 1 and 2 ranks then part). Three steps in a row without
+   descent or shorter than 1/64 make a stall: Newton goes on from the best iterate with reg ten
+   times larger (the step then leaves the null space of a degenerate H alone), up to 1e-3, as long as
+   the last regularization paid (halved the best residual), and after that stops. Stops on the natural-map
+   residual / ||q|| <= tol, the test of the sweeps (pgs.c), or after max_it Newton steps; returns the iterate of the
+   lowest residual met (the caller sweeps from it if it is above tol). A dormant contact (FCContactProblemSetDormant)
+   keeps r_i = 0 (Phi_i = r_i). */
 #include "contactimpl.h"
 #include <petscblaslapack.h>
 
 /* Newton stalls after FC_NEWTON_STALE steps in a row shorter than FC_NEWTON_SHORT (or without descent): then
-   the regularization of H grows tenfold, from the best iterate, up to FC_NEWTON_REG_MAX, and after that the
-   solver stops (the caller sweeps) */
+   the regularization of H grows tenfold, from the best iterate, up to FC_NEWTON_REG_MAX while the last one
+   paid, and after that the solver stops (the caller sweeps) */
 #define FC_NEWTON_STALE 3
 #define FC_NEWTON_SHORT (1.0 / 64)
 #define FC_NEWTON_REG_MIN 1e-8
-#define FC_NEWTON_REG_MAX 1e-4
+#define FC_NEWTON_REG_MAX 1e-3
+#define FC_NEWTON_PAID 0.5 /* a regularization paid: its steps at least halved the best residual */
 
 /* Phi_i and its derivatives A_i (in r_i) and B_i (in u_i), d x d row-major */
 static void ACBlock(PetscInt d, PetscReal mu, PetscReal rho, const PetscReal r[], const PetscReal u[], PetscReal phi[],
@@ -120,7 +123,7 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonLU lu, PetscReal
                                     PetscInt *its, PetscReal *residual)
 {
   PetscInt         n = p->n, nc = p->nc, stale = 0;
-  PetscReal        reg = FC_NEWTON_REG_MIN, best;
+  PetscReal        reg = FC_NEWTON_REG_MIN, best, phase;
   PetscReal       *u, *phi, *A, *B, *dr, *wdr, *rt, *ut, *rho, *rbest, psi;
   FCNewtonJacobian J;
 
@@ -144,8 +147,9 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonLU lu, PetscReal
   PetscCall(PetscMalloc4(n, &phi, 9 * nc, &A, 9 * nc, &B, n, &rbest));
   PetscCall(PetscMalloc5(n, &dr, n, &wdr, n, &rt, n, &ut, nc, &rho));
   for (PetscInt i = 0; i < nc; i++) rho[i] = SpectralRho(p, i);
-  psi  = Merit(p, rho, r, u, phi, A, B);
-  best = *residual;
+  psi   = Merit(p, rho, r, u, phi, A, B);
+  best  = *residual;
+  phase = best; /* the best residual when the current regularization began */
   PetscCall(PetscArraycpy(rbest, r, n));
   while (best > tol && *its < max_it && stale < FC_NEWTON_STALE) {
     PetscReal t = 1.0, psit = psi;
@@ -166,13 +170,6 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonLU lu, PetscReal
         break;
       }
     }
-    if (!accepted) { /* no descent of |Phi| along dr (a kink between the contacts' states): the full step */
-      t = 1.0;
-      for (PetscInt k = 0; k < n; k++) {
-        rt[k] = r[k] + dr[k];
-        ut[k] = u[k] + wdr[k];
-      }
-    }
     PetscCall(PetscArraycpy(r, rt, n));
     PetscCall(PetscArraycpy(u, ut, n));
     (*its)++;
@@ -186,7 +183,11 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonLU lu, PetscReal
       best = *residual;
       PetscCall(PetscArraycpy(rbest, r, n));
     }
-    if (stale >= FC_NEWTON_STALE && reg < FC_NEWTON_REG_MAX) { /* stalled: from the best iterate, more regularized */
+    /* stalled: from the best iterate, more regularized, as long as the last regularization paid (the first
+       always does: it may only be too small) */
+    if (stale >= FC_NEWTON_STALE && 10.0 * reg <= FC_NEWTON_REG_MAX &&
+        (reg == FC_NEWTON_REG_MIN || best < FC_NEWTON_PAID * phase)) {
+      phase = best;
       reg *= 10.0;
       stale = 0;
       PetscCall(PetscArraycpy(r, rbest, n));
@@ -196,7 +197,7 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonLU lu, PetscReal
           PetscInfo(NULL, "Newton stalled at residual %g: on with the regularization %g\n", (double)best, (double)reg));
     }
     PetscCall(PetscInfo(NULL, "Newton step %" PetscInt_FMT ": step length %g%s, |Phi| %g, residual %g\n", *its,
-                        (double)t, accepted ? "" : " (no descent: full step)", (double)PetscSqrtReal(2.0 * psi),
+                        (double)t, accepted ? "" : " (no descent)", (double)PetscSqrtReal(2.0 * psi),
                         (double)*residual));
   }
   PetscCall(PetscArraycpy(r, rbest, n));
