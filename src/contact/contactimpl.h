@@ -107,9 +107,10 @@ PETSC_INTERN PetscErrorCode FCContactSolverNewton(FCContactSolver, FCContactProb
 /* newton.c: -contact_solver auto on this rank: the sweeps, and FCContactSolverNewton from their iterate when their
    rate says they will not converge within max_it */
 PETSC_INTERN PetscErrorCode FCContactSolverAuto(FCContactSolver, FCContactProblem, PetscReal[]);
-/* newton.c: nonsmooth Newton on the Alart-Curnier function of a whole problem, on this rank; r in:
+/* newton.c: nonsmooth Newton on the Alart-Curnier function of a whole problem, on this rank, with the Jacobian J of the
+   caller (FCNewtonJacobianCreate on the same problem); r in:
    the warm start, out: the forces; its = Newton steps taken, residual as FCContactProblemResidual */
-PETSC_INTERN PetscErrorCode FCContactSolveNewton(FCContactProblem, FCNewtonLU, PetscReal tol, PetscInt max_it,
+PETSC_INTERN PetscErrorCode FCContactSolveNewton(FCContactProblem, FCNewtonJacobian, PetscReal tol, PetscInt max_it,
                                                  PetscReal r[], PetscInt *its, PetscReal *residual);
 /* y = W x (a whole W on this rank) */
 PETSC_INTERN PetscErrorCode FCContactProblemMult(FCContactProblem, const PetscReal x[], PetscReal y[]);

@@ -19,7 +19,6 @@
    lowest residual met (the caller sweeps from it if it is above tol). A dormant contact (FCContactProblemSetDormant)
    keeps r_i = 0 (Phi_i = r_i). */
 #include "contactimpl.h"
-#include <petscblaslapack.h>
 
 /* Newton stalls after FC_NEWTON_STALE steps in a row shorter than FC_NEWTON_SHORT (or without descent): then
    the regularization of H grows tenfold, from the best iterate, up to FC_NEWTON_REG_MAX while the last one
@@ -119,13 +118,12 @@ static PetscReal SpectralRho(FCContactProblem p, PetscInt i)
   return lam > 0.0 ? 1.0 / lam : 1.0;
 }
 
-PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonLU lu, PetscReal tol, PetscInt max_it, PetscReal r[],
-                                    PetscInt *its, PetscReal *residual)
+PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonJacobian J, PetscReal tol, PetscInt max_it,
+                                    PetscReal r[], PetscInt *its, PetscReal *residual)
 {
-  PetscInt         n = p->n, nc = p->nc, stale = 0;
-  PetscReal        reg = FC_NEWTON_REG_MIN, best, phase;
-  PetscReal       *u, *phi, *A, *B, *dr, *wdr, *rt, *ut, *rho, *rbest, psi;
-  FCNewtonJacobian J;
+  PetscInt   n = p->n, nc = p->nc, stale = 0;
+  PetscReal  reg = FC_NEWTON_REG_MIN, best, phase;
+  PetscReal *u, *phi, *A, *B, *dr, *wdr, *rt, *ut, *rho, *rbest, psi;
 
   PetscFunctionBegin;
   *its = 0;
@@ -143,7 +141,6 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonLU lu, PetscReal
     PetscCall(PetscFree(u));
     PetscFunctionReturn(0);
   }
-  PetscCall(FCNewtonJacobianCreate(p, lu, &J));
   PetscCall(PetscMalloc4(n, &phi, 9 * nc, &A, 9 * nc, &B, n, &rbest));
   PetscCall(PetscMalloc5(n, &dr, n, &wdr, n, &rt, n, &ut, nc, &rho));
   for (PetscInt i = 0; i < nc; i++) rho[i] = SpectralRho(p, i);
@@ -203,7 +200,6 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonLU lu, PetscReal
   PetscCall(PetscArraycpy(r, rbest, n));
   PetscCall(FCContactProblemVelocity(p, r, u));
   *residual = FCContactProblemResidualFromVelocity(p, r, u);
-  PetscCall(FCNewtonJacobianDestroy(&J));
   PetscCall(PetscFree4(phi, A, B, rbest));
   PetscCall(PetscFree5(dr, wdr, rt, ut, rho));
   PetscCall(PetscFree(u));
@@ -221,8 +217,9 @@ PetscErrorCode FCContactSolveNewton(FCContactProblem p, FCNewtonLU lu, PetscReal
 #define FC_NEWTON_SWEEPS 20
 PetscErrorCode FCContactSolverNewton(FCContactSolver s, FCContactProblem p, PetscReal r[])
 {
-  PetscInt   max_it = s->max_it, total = 0, newton = 0, sweeps = FC_NEWTON_SWEEPS;
-  PetscReal *rs;
+  PetscInt         max_it = s->max_it, total = 0, newton = 0, sweeps = FC_NEWTON_SWEEPS;
+  PetscReal       *rs;
+  FCNewtonJacobian J = NULL; /* created at the first Newton steps, kept for the solve's later rounds */
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(p->n + 1, &rs));
@@ -235,8 +232,9 @@ PetscErrorCode FCContactSolverNewton(FCContactSolver s, FCContactProblem p, Pets
     if (s->converged || total >= max_it) break;
     before = s->residual;
     PetscCall(PetscArraycpy(rs, r, p->n));
-    PetscCall(FCContactSolveNewton(p, (FCNewtonLU)s->newton_lu, s->tol,
-                                   PetscMin(s->newton_max_it - newton, max_it - total), r, &its, &s->residual));
+    if (!J) PetscCall(FCNewtonJacobianCreate(p, (FCNewtonLU)s->newton_lu, &J)); /* its pattern analysed once */
+    PetscCall(
+        FCContactSolveNewton(p, J, s->tol, PetscMin(s->newton_max_it - newton, max_it - total), r, &its, &s->residual));
     newton += its;
     total += its;
     if (s->residual > before) { /* worse than the sweeps left it: back to their iterate */
@@ -249,6 +247,7 @@ PetscErrorCode FCContactSolverNewton(FCContactSolver s, FCContactProblem p, Pets
       PetscCall((*s->update)(s->updatectx, p, r, &changed));
       if (changed) {
         PetscReal *u;
+        PetscCall(FCNewtonJacobianDestroy(&J)); /* a new W: its pattern found again */
         PetscCall(PetscMalloc1(p->n + 1, &u));
         PetscCall(FCContactProblemVelocity(p, r, u));
         s->residual = FCContactProblemResidualFromVelocity(p, r, u);
@@ -258,6 +257,7 @@ PetscErrorCode FCContactSolverNewton(FCContactSolver s, FCContactProblem p, Pets
     s->converged = s->residual <= s->tol ? PETSC_TRUE : PETSC_FALSE;
     if (s->converged || total >= max_it) break;
   }
+  PetscCall(FCNewtonJacobianDestroy(&J));
   PetscCall(PetscFree(rs));
   s->max_it = max_it;
   s->sweeps = total;
