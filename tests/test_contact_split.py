@@ -22,6 +22,7 @@ solver on 1 rank, on bare problems run by tools/fclib_solve -dense.
   and when the problem is written (-pgs_dump_problem: the same W to 1e-14 of its largest entry);
   a rank whose block is empty (4 contacts on 5 ranks) gives the 1-rank answer (1e-8); with
   -fast_update sweep (the solver does not split) W_k stays whole.
+- Newton's sparse LU (-contact_newton_lu sparse) on N ranks gives the 1-rank motion of the 1:1e4 mass-ratio stack.
 Usage: test_contact_split.py --np N"""
 import os
 import subprocess
@@ -103,6 +104,19 @@ a, b = h5py.File(f1, "r"), h5py.File(fn, "r")
 dx = np.abs(final_state(a) - final_state(b)).max() / np.abs(final_state(a)).max()
 c.check(dx <= 1e-8, "cube_drop on %d ranks: -pgs_ranks split vs the default (root at this size), final state rel. diff %.1e <= 1e-8" % (NP, dx))
 c.check(b["steps/residual"][:].max() <= 1e-8, "cube_drop split: every step converged (max residual %.1e)" % b["steps/residual"][:].max())
+
+# the Newton step's sparse LU (-contact_newton_lu sparse: MUMPS on each rank's own copy, the problem solved on
+# rank 0 and broadcast) on N ranks: the 1-rank motion of the 1:1e4 mass-ratio stack
+f1, fn = out("newton_sparse_1.h5"), out("newton_sparse_n.h5")
+args = ["-options_file", "input/hard/mass_ratio_1e4.opts", "-time_steps", "30", "-contact_solver", "newton",
+        "-contact_newton_lu", "sparse", "-quiet"]
+run(args + ["-output_file", f1], np_=1)
+run(args + ["-output_file", fn], np_=NP)
+a, b = h5py.File(f1, "r"), h5py.File(fn, "r")
+dx = max(np.abs(a["bodies/%s/centroid" % k][:] - b["bodies/%s/centroid" % k][:]).max() for k in a["bodies"])
+c.check(dx <= 1e-10 and b["steps/residual"][:].max() <= 1e-8,
+        "mass ratio 1:1e4, -contact_newton_lu sparse on %d ranks: centroids as on 1 rank to %.1e m (<= 1e-10), every step "
+        "converged (max residual %.1e)" % (NP, dx, b["steps/residual"][:].max()))
 
 # W_k by block rows: each rank forms and keeps the rows its split sweeps read
 def flops_of(log, event):
