@@ -118,6 +118,10 @@ PETSC_EXTERN PetscErrorCode    FCBodyComputeFreeMotion(FCBody, PetscReal t);
 PETSC_EXTERN PetscErrorCode    FCBodyIntegrate(FCBody, PetscReal t);
 PETSC_EXTERN PetscErrorCode    FCBodyGetCentroid(FCBody, PetscReal[3]);
 PETSC_EXTERN PetscErrorCode    FCBodyGetRotation(FCBody, PetscReal[4], PetscBool *);
+/* constrained regions (FE bodies) and their reactions of the last step: 6 values each, the force of
+   the supports on the body and its moment about the region's centroid */
+PETSC_EXTERN PetscErrorCode FCBodyGetExternalWork(FCBody, PetscReal *);
+PETSC_EXTERN PetscErrorCode FCBodyGetReactions(FCBody, PetscInt *n, const char ***names, const PetscReal **values);
 PETSC_EXTERN PetscErrorCode    FCBodyGetEnergy(FCBody, FCEnergy *);
 PETSC_EXTERN PetscErrorCode    FCBodyGetVisual(FCBody, const FCBodyVisual **);
 PETSC_EXTERN PetscErrorCode    FCBodyGetVisualPositions(FCBody, PetscReal[]);

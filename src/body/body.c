@@ -183,6 +183,26 @@ PetscErrorCode FCBodyGetRotation(FCBody body, PetscReal q[4], PetscBool *has)
   PetscFunctionReturn(0);
 }
 
+/* The work of the body's prescribed motions and loads so far, in magnitude (0: none) */
+PetscErrorCode FCBodyGetExternalWork(FCBody body, PetscReal *w)
+{
+  PetscFunctionBegin;
+  *w = 0.0;
+  if (body->ops.getexternalwork) PetscCall((*body->ops.getexternalwork)(body, w));
+  PetscFunctionReturn(0);
+}
+
+/* The body's constrained regions and their reactions of the last step (none: n = 0) */
+PetscErrorCode FCBodyGetReactions(FCBody body, PetscInt *n, const char ***names, const PetscReal **values)
+{
+  PetscFunctionBegin;
+  *n = 0;
+  if (names) *names = NULL;
+  if (values) *values = NULL;
+  if (body->ops.getreactions) PetscCall((*body->ops.getreactions)(body, n, names, values));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCBodyGetEnergy(FCBody body, FCEnergy *E)
 {
   PetscFunctionBegin;

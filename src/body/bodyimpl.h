@@ -62,6 +62,11 @@ typedef struct {
      factorization: a body whose factorization depends on its contact DOFs prepares for them
      (set by the body at contact set-up, with `expects`) */
   PetscErrorCode (*expectcontacts)(FCBody, PetscInt self, const FCContactSet *);
+  /* optional: the constrained regions and their reactions of the last step (6 values each: the
+     supports' force on the body and its moment about the region's centroid), the same on every rank */
+  /* optional: the magnitude of the work done on the body by its prescribed motions and loads so far */
+  PetscErrorCode (*getexternalwork)(FCBody, PetscReal *);
+  PetscErrorCode (*getreactions)(FCBody, PetscInt *n, const char ***names, const PetscReal **values);
 } FCBodyOps;
 
 struct _p_FCBody {

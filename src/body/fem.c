@@ -42,6 +42,7 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
         body->prefix, FC_MAX_FIXED_BOXES, n);
     fem->nfixed_box = n / 6;
   }
+  PetscCall(FCFEMBCSetFromOptions(PetscOptionsObject, body));
   {
     const char *inv[] = {"error", "allow"};
     PetscInt    a     = fem->allow_inverted ? 1 : 0;
@@ -93,13 +94,6 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
   PetscFunctionReturn(0);
 }
 
-static PetscBool InBox(const PetscReal box[6], const PetscReal x[3])
-{
-  for (int d = 0; d < 3; d++)
-    if (x[d] < box[d] || x[d] > box[3 + d]) return PETSC_FALSE;
-  return PETSC_TRUE;
-}
-
 /* The DOF section: 3 DOFs per vertex, the vertices of -<name>_fixed_box constrained out; each vertex's
    local and global DOF (-1: fixed) */
 static PetscErrorCode SetUpSection(FCBody body)
@@ -118,10 +112,8 @@ static PetscErrorCode SetUpSection(FCBody body)
   /* chart from 0: PETSc 3.18's PetscSectionSetConstraintIndices() indexes by point, not by
      point - pStart, and rejects valid indices when the chart does not start at 0 */
   PetscCall(PetscSectionSetChart(s, 0, m->vEnd));
+  PetscCall(FCFEMBCSetUpConstraints(body)); /* fixed[] */
   for (PetscInt v = 0; v < nv; v++) {
-    fem->fixed[v] = PETSC_FALSE;
-    for (PetscInt b = 0; b < fem->nfixed_box; b++)
-      if (InBox(&fem->fixed_box[6 * b], &m->X[3 * v])) fem->fixed[v] = PETSC_TRUE;
     PetscCall(PetscSectionSetDof(s, m->vStart + v, 3));
     PetscCall(PetscSectionSetFieldDof(s, m->vStart + v, 0, 3));
     if (fem->fixed[v]) {
@@ -148,7 +140,7 @@ static PetscErrorCode SetUpSection(FCBody body)
     PetscCall(PetscSectionGetDof(gs, m->vStart + v, &gd));
     if (gd < 0) goff = -(goff + 1);
     fem->ldof[v] = off;
-    fem->gdof[v] = fem->fixed[v] ? -1 : goff;
+    fem->gdof[v] = !fem->fixed[v] ? goff : fem->cons[fem->creg[v]].moves ? -2 - fem->creg[v] : -1;
   }
   PetscCall(MPIU_Allreduce(&nfixed, &fem->nfixed, 1, MPIU_INT, MPI_SUM, body->comm));
 
@@ -181,7 +173,8 @@ static PetscErrorCode SetUpState(FCBody body)
     PetscInt nglobal;
     PetscCall(VecGetSize(fem->u, &nglobal));
     PetscCheck(nglobal > 0, body->comm, PETSC_ERR_USER_INPUT,
-               "Every vertex of body '%s' is fixed by -%sfixed_box: nothing to simulate", body->name, body->prefix);
+               "Every vertex of body '%s' is constrained (-%sfixed_box, -%sfixed, -%sdisplacement): nothing to simulate",
+               body->name, body->prefix, body->prefix, body->prefix);
   }
 
   {
@@ -254,6 +247,7 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   }
 
   PetscCall(SetUpState(body));
+  PetscCall(FCFEMBCSetUp(body));
   PetscCall(SetUpSolver(body));
   PetscCall(FCFEMAssembleMass(body));
   PetscCall(FCFEMAssembleElastic(body, fem->u, fem->fint, fem->K));
@@ -303,6 +297,7 @@ static PetscErrorCode Destroy_FEM(FCBody body)
   PetscCall(VecDestroy(&fem->uloc));
   PetscCall(VecDestroy(&fem->floc));
   PetscCall(PetscFree3(fem->ldof, fem->gdof, fem->fixed));
+  PetscCall(FCFEMBCDestroy(body));
   PetscCall(PetscFree2(fem->Dminv, fem->vol));
   PetscCall(PetscFree(fem->bv));
   PetscCall(PetscFree(fem->triv));
@@ -357,6 +352,8 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.savefree           = SaveFree_FEM;
   body->ops.restorefree        = RestoreFree_FEM;
   body->ops.trialposition      = TrialPosition_FEM;
+  body->ops.getreactions       = GetReactions_FEM;
+  body->ops.getexternalwork    = GetExternalWork_FEM;
   PetscFunctionReturn(0);
 }
 

@@ -31,9 +31,10 @@ PetscErrorCode ContactPoints_FEM(FCBody body, PetscInt *n, FCProximity **prox, P
       p->r[d]              = X;
       p->X[0][d]           = X;
       fem->bkey[3 * i + d] = X;
-      fem->bx0[3 * i + d]  = X + (g < 0 ? 0.0 : PetscRealPart(u[g - lo + d]));
-      fem->bxf[3 * i + d] =
-          fem->bx0[3 * i + d] + (g < 0 ? 0.0 : body->h * PetscRealPart(v[g - lo + d] + dv[g - lo + d]));
+      fem->bx0[3 * i + d] =
+          X + (g < 0 ? FCFEMConstrainedU(fem, fem->creg[vtx], PETSC_FALSE, d) : PetscRealPart(u[g - lo + d]));
+      fem->bxf[3 * i + d] = g < 0 ? X + FCFEMConstrainedU(fem, fem->creg[vtx], PETSC_TRUE, d)
+                                  : fem->bx0[3 * i + d] + body->h * PetscRealPart(v[g - lo + d] + dv[g - lo + d]);
       if (sh && g >= 0) fem->bxf[3 * i + d] += PetscRealPart(sh[g - lo + d]);
     }
   }
@@ -75,10 +76,12 @@ PetscErrorCode SurfaceTriangles_FEM(FCBody body, PetscInt *n, FCSurfaceTriangle 
       PetscInt vtx = fem->triv[3 * t + a], o = fem->ldof[vtx];
       T->gdof[a] = fem->gdof[vtx];
       for (int d = 0; d < 3; d++) {
-        PetscReal X = m->X[3 * vtx + d], uu = fem->fixed[vtx] ? 0.0 : PetscRealPart(u[o + d]);
+        PetscReal X = m->X[3 * vtx + d], uu = fem->fixed[vtx] ? FCFEMConstrainedU(fem, fem->creg[vtx], PETSC_FALSE, d)
+                                                              : PetscRealPart(u[o + d]);
         T->X[a][d]  = X;
         T->x0[a][d] = X + uu;
-        T->xf[a][d] = T->x0[a][d] + (fem->fixed[vtx] ? 0.0 : body->h * PetscRealPart(v[o + d] + dv[o + d]));
+        T->xf[a][d] = fem->fixed[vtx] ? X + FCFEMConstrainedU(fem, fem->creg[vtx], PETSC_TRUE, d)
+                                      : T->x0[a][d] + body->h * PetscRealPart(v[o + d] + dv[o + d]);
       }
     }
   }
@@ -113,8 +116,9 @@ static PetscErrorCode AddVertexPositions(FCBody body, const FCProximity *p, Pets
   for (PetscInt k = 0; k < p->nv; k++) {
     PetscInt g = p->gdof[k];
     if (g < 0) {
-      if (!rank)
-        for (int d = 0; d < 3; d++) x[d] += p->w[k] * p->X[k][d];
+      if (!rank) /* a constrained vertex: at its displacement now, or at the end of the step */
+        for (int d = 0; d < 3; d++)
+          x[d] += p->w[k] * (p->X[k][d] + FCFEMConstrainedU(fem, FCFEMConstrainedOfDof(g), trial, d));
       continue;
     }
     if (g < lo || g >= hi) continue;
@@ -181,8 +185,9 @@ PetscErrorCode ProximityPosition_FEM(FCBody body, const FCProximity *p, PetscInt
   for (int d = 0; d < 3; d++) x[d] = 0.0;
   for (PetscInt k = 0; k < p->nv; k++) {
     PetscInt g = p->gdof[k];
-    if (g < 0) { /* fixed vertex: it stays at its reference position */
-      for (int d = 0; d < 3; d++) x[d] += p->w[k] * p->X[k][d];
+    if (g < 0) { /* constrained vertex: at its prescribed displacement */
+      for (int d = 0; d < 3; d++)
+        x[d] += p->w[k] * (p->X[k][d] + FCFEMConstrainedU(fem, FCFEMConstrainedOfDof(g), PETSC_FALSE, d));
       continue;
     }
     PetscCheck(g >= lo && g < hi, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Proximity vertex not owned by this rank");
@@ -247,7 +252,8 @@ static PetscErrorCode BestFitRotation(FCBody body, PetscReal R[9])
     if (!m->owned[v]) continue;
     for (int d = 0; d < 3; d++) {
       X[d] = m->X[3 * v + d];
-      x[d] = X[d] + (fem->fixed[v] ? 0.0 : PetscRealPart(u[fem->gdof[v] - lo + d]));
+      x[d] = X[d] + (fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], PETSC_FALSE, d)
+                                   : PetscRealPart(u[fem->gdof[v] - lo + d]));
       s[d] += X[d];
       s[3 + d] += x[d];
     }

@@ -81,13 +81,15 @@ PetscErrorCode GetVisualPositions_FEM(FCBody body, PetscReal x[])
   for (PetscInt i = 0; i < body->visual.nv; i++) {
     PetscInt v = m->visVert[i];
     for (int d = 0; d < 3; d++)
-      x[3 * i + d] = m->X[3 * v + d] + (fem->fixed[v] ? 0.0 : PetscRealPart(ul[fem->ldof[v] + d]));
+      x[3 * i + d] = m->X[3 * v + d] + (fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], PETSC_FALSE, d)
+                                                      : PetscRealPart(ul[fem->ldof[v] + d]));
   }
   PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
   PetscFunctionReturn(0);
 }
 
-/* A vector (u or v) at the owned visual vertices, 0 on fixed vertices */
+/* A vector (u or v) at the owned visual vertices; on constrained vertices their displacement or
+   velocity over the last step */
 static PetscErrorCode VisualVertexValues(FCBody body, Vec g, PetscReal out[])
 {
   FEM               *fem = (FEM *)body->data;
@@ -101,7 +103,13 @@ static PetscErrorCode VisualVertexValues(FCBody body, Vec g, PetscReal out[])
   PetscCall(VecGetArrayRead(loc, &a));
   for (PetscInt i = 0; i < body->visual.nv; i++) {
     PetscInt v = m->visVert[i];
-    for (int d = 0; d < 3; d++) out[3 * i + d] = fem->fixed[v] ? 0.0 : PetscRealPart(a[fem->ldof[v] + d]);
+    for (int d = 0; d < 3; d++) {
+      PetscInt k     = fem->creg[v];
+      out[3 * i + d] = !fem->fixed[v]        ? PetscRealPart(a[fem->ldof[v] + d])
+                       : !fem->cons[k].moves ? 0.0
+                       : g == fem->u         ? fem->cons[k].u[d]
+                                             : fem->cons[k].v[d];
+    }
   }
   PetscCall(VecRestoreArrayRead(loc, &a));
   PetscCall(DMRestoreLocalVector(m->dm, &loc));
@@ -188,8 +196,10 @@ PetscErrorCode GetState_FEM(FCBody body, PetscReal s[])
   for (PetscInt i = 0; i < body->visual.nv; i++) {
     PetscInt vx = m->visVert[i];
     for (int d = 0; d < 3; d++) {
-      s[6 * i + d]     = fem->fixed[vx] ? 0.0 : PetscRealPart(u[fem->gdof[vx] - lo + d]);
-      s[6 * i + 3 + d] = fem->fixed[vx] ? 0.0 : PetscRealPart(v[fem->gdof[vx] - lo + d]);
+      s[6 * i + d]     = fem->fixed[vx] ? FCFEMConstrainedU(fem, fem->creg[vx], PETSC_FALSE, d)
+                                        : PetscRealPart(u[fem->gdof[vx] - lo + d]);
+      s[6 * i + 3 + d] = fem->fixed[vx] ? (fem->cons[fem->creg[vx]].moves ? fem->cons[fem->creg[vx]].v[d] : 0.0)
+                                        : PetscRealPart(v[fem->gdof[vx] - lo + d]);
     }
   }
   PetscCall(VecRestoreArrayRead(fem->u, &u));

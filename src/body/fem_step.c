@@ -232,6 +232,7 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
   Vec       vb, vk; /* the velocities that B and h^2 K act on */
 
   PetscFunctionBegin;
+  PetscCall(FCFEMBCBeginStep(body, t));
   rotate = FCFEMRotationActive(fem);
   if (rotate) {
     PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));
@@ -274,6 +275,7 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
     PetscCall(MatMult(fem->K, vk, fem->work));
     PetscCall(VecAXPY(fem->b, -h * h, fem->work));
   }
+  PetscCall(FCFEMBCAddRHS(body, fem->b));
   PetscCall(FCFEMSolveA(body, fem->b, fem->dv, "Free-motion", t));
   if (rotate) { /* dv = D + v~ - v_t */
     PetscCall(VecAXPY(fem->dv, 1.0, fem->rvt));
@@ -296,5 +298,6 @@ PetscErrorCode Integrate_FEM(FCBody body, PetscReal t)
   if (!fem->mat->linear) fem->Acurrent = PETSC_FALSE;
   fem->Rcurrent = PETSC_FALSE;
   fem->factor_age++;
+  PetscCall(FCFEMBCEndStep(body));
   PetscFunctionReturn(0);
 }

@@ -10,20 +10,55 @@
 
 #define FC_MAX_FIXED_BOXES 8 /* -<body>_fixed_box: boxes at most */
 
+#define FC_MAX_REGIONS 16 /* constraints (fixed, prescribed) and loads of a body, each at most */
+
+/* A constrained region (fem_bc.c): fixed, or moved by a table of displacement */
 typedef struct {
-  FCMesh           mesh;
-  FCMaterial       mat;
-  char             material[FC_MAX_NAME];
-  PetscReal        young, poisson, alpha, beta;
-  PetscBool        lumped, has_fixed_box;
-  PetscReal        fixed_box[6 * FC_MAX_FIXED_BOXES + 1]; /* nfixed_box boxes, 6 numbers each */
-  PetscInt         nfixed_box;
-  PetscBool        allow_inverted; /* -inverted allow: no stop at an element turned inside out */
-  PetscInt         nfixed;         /* global number of fixed vertices */
-  PetscInt        *ldof;           /* per local vertex: offset in the local vector */
-  PetscInt        *gdof;           /* per local vertex: first global DOF, -1 when fixed */
-  PetscBool       *fixed;          /* per local vertex */
-  PetscReal       *Dminv, *vol;    /* per cell */
+  char      region[256];   /* as given: a group's name or number, or box:... */
+  PetscBool moves;         /* -displacement: the table's motion; else fixed */
+  FCTable   table;         /* t -> ux, uy, uz */
+  PetscReal u[3], uf[3];   /* displacement at the start and the end of the step */
+  PetscReal v[3], v0[3];   /* velocity over this step and over the one before */
+  PetscReal reaction[6];   /* the supports' force on the body and its moment about the region's centroid */
+  PetscInt  nface, *facev; /* its boundary faces on this rank: the centroid is theirs (else its vertices') */
+} FCFEMConstraint;
+
+/* A load on a region (fem_bc.c) */
+typedef enum { FC_LOAD_FORCE, FC_LOAD_TRACTION, FC_LOAD_PRESSURE } FCLoadKind;
+typedef struct {
+  char       region[256];
+  FCLoadKind kind;
+  FCTable    table;
+  PetscInt   nface, *facev; /* boundary faces this rank holds (outward local vertex triples) */
+  PetscReal *weight;        /* force: per local vertex, its share of the total (by area, mass or count) */
+} FCFEMLoad;
+
+typedef struct {
+  FCMesh     mesh;
+  FCMaterial mat;
+  char       material[FC_MAX_NAME];
+  PetscReal  young, poisson, alpha, beta;
+  PetscBool  lumped, has_fixed_box;
+  PetscReal  fixed_box[6 * FC_MAX_FIXED_BOXES + 1]; /* nfixed_box boxes, 6 numbers each */
+  PetscInt   nfixed_box;
+  PetscBool  allow_inverted; /* -inverted allow: no stop at an element turned inside out */
+  PetscInt   nfixed;         /* global number of fixed vertices */
+  PetscInt  *ldof;           /* per local vertex: offset in the local vector */
+  PetscInt  *gdof;           /* per local vertex: first global DOF, -1 when fixed */
+  PetscBool *fixed;          /* per local vertex: constrained (fixed or prescribed) */
+  /* boundary conditions and loads (fem_bc.c) */
+  char             bcspec[5][1024]; /* -fixed, -displacement, -force, -traction, -pressure as given */
+  PetscInt         ncons, nload;
+  FCFEMConstraint  cons[FC_MAX_REGIONS];
+  FCFEMLoad        load[FC_MAX_REGIONS];
+  PetscInt        *creg;                  /* per local vertex: its constraint, -1 when free */
+  PetscInt         nccell, *ccell;        /* the cells with a constrained vertex */
+  PetscBool        moving;                /* some constraint moves */
+  Vec              fload;                 /* the loads at the end of the step */
+  const char      *rname[FC_MAX_REGIONS]; /* the constraints' regions and reactions, for the output */
+  PetscReal        rval[6 * FC_MAX_REGIONS];
+  PetscReal        extwork;     /* magnitude of the work of the prescribed motions and loads so far (energy guard) */
+  PetscReal       *Dminv, *vol; /* per cell */
   Mat              M, K, A;
   Vec              u, v, dv, b, fint, fgrav, work, uloc, floc;
   KSP              ksp;
@@ -58,7 +93,20 @@ typedef struct {
   Vec       rvt, rw, rcf;    /* v~, v - omega x r, the centrifugal force                      */
 } FEM;
 
-/* Element positions: reference X and current x = X + u (fixed vertices do not move); uloc NULL: X */
+/* The displacement of a constrained vertex (creg k) at the start of the step, or at its end */
+static inline PetscReal FCFEMConstrainedU(const FEM *fem, PetscInt k, PetscBool end, int d)
+{
+  if (k < 0 || !fem->cons[k].moves) return 0.0;
+  return end ? fem->cons[k].uf[d] : fem->cons[k].u[d];
+}
+/* The global DOF of a constrained vertex of a moving constraint k encodes k: -2 - k (fixed: -1) */
+static inline PetscInt FCFEMConstrainedOfDof(PetscInt g)
+{
+  return g <= -2 ? -2 - g : -1;
+}
+
+/* Element positions: reference X and current x = X + u (constrained vertices at their prescribed
+   displacement); uloc NULL: X */
 static inline void FCFEMGatherElement(FEM *fem, PetscInt c, const PetscScalar *uloc, PetscReal X[12], PetscReal x[12])
 {
   FCMesh *m = &fem->mesh;
@@ -66,7 +114,9 @@ static inline void FCFEMGatherElement(FEM *fem, PetscInt c, const PetscScalar *u
     PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
     for (int d = 0; d < 3; d++) {
       X[3 * a + d] = m->X[3 * v + d];
-      x[3 * a + d] = X[3 * a + d] + (fem->fixed[v] || !uloc ? 0.0 : PetscRealPart(uloc[fem->ldof[v] + d]));
+      x[3 * a + d] = X[3 * a + d] + (!uloc           ? 0.0
+                                     : fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], PETSC_FALSE, d)
+                                                     : PetscRealPart(uloc[fem->ldof[v] + d]));
     }
   }
 }
@@ -94,6 +144,16 @@ PETSC_INTERN PetscErrorCode FCFEMFactorA(FCBody); /* by the builder that owns it
 PETSC_INTERN PetscErrorCode FCFEMSolveA(FCBody, Vec b, Vec x, const char what[], PetscReal t);
 PETSC_INTERN PetscErrorCode FreeMotion_FEM(FCBody, PetscReal);
 PETSC_INTERN PetscErrorCode Integrate_FEM(FCBody, PetscReal);
+/* fem_bc.c */
+PETSC_INTERN PetscErrorCode FCFEMBCSetFromOptions(PetscOptionItems *, FCBody);
+PETSC_INTERN PetscErrorCode FCFEMBCSetUpConstraints(FCBody); /* fixed[], creg[] before the section */
+PETSC_INTERN PetscErrorCode FCFEMBCSetUp(FCBody);            /* loads and the constrained cells, after it */
+PETSC_INTERN PetscErrorCode FCFEMBCBeginStep(FCBody, PetscReal t);
+PETSC_INTERN PetscErrorCode FCFEMBCAddRHS(FCBody, Vec b);
+PETSC_INTERN PetscErrorCode FCFEMBCEndStep(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMBCDestroy(FCBody);
+PETSC_INTERN PetscErrorCode GetExternalWork_FEM(FCBody, PetscReal *);
+PETSC_INTERN PetscErrorCode GetReactions_FEM(FCBody, PetscInt *, const char ***, const PetscReal **);
 /* fem_rotation.c */
 PETSC_INTERN PetscBool      FCFEMRotationActive(FEM *);
 PETSC_INTERN PetscErrorCode FCFEMRotationPredict(FCBody);

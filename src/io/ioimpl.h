@@ -69,8 +69,12 @@ PETSC_INTERN PetscErrorCode FCRestartWriterWrite(FCRestartWriter, PetscInt step,
                                                  FCBody[], const FCContactSet *previous);
 PETSC_INTERN PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *);
 
+#define FC_MAX_REACTIONS 16
 typedef struct {
-  hid_t group, centroid, rotation, energy, positions;
+  hid_t    group, centroid, rotation, energy, positions;
+  PetscInt nreact;                /* constrained regions: /bodies/<name>/reactions/<region> */
+  hid_t    react[FC_MAX_REACTIONS];
+  double  *rreact; /* buffered rows (rank 0): 6 values per region */
 } BodyOut;
 
 /* Buffered rows of /contacts (one per contact) and of the contact columns of /steps (one per

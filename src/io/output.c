@@ -207,6 +207,21 @@ static PetscErrorCode WriteBodyHeader(FCOutput out, hid_t gb, PetscInt i, FCBody
   pv[0] = vis->nv_global;
   pv[1] = 3;
   PetscCall(FCH5CreateRows(bo->group, "positions", H5T_NATIVE_DOUBLE, 3, pv, 1, &bo->positions));
+  { /* the reactions of the constrained regions, a row per step: force, moment about the region's centroid */
+    const char **names;
+    hsize_t      six[1] = {6};
+    PetscCall(FCBodyGetReactions(b, &bo->nreact, &names, NULL));
+    PetscCheck(bo->nreact <= FC_MAX_REACTIONS, out->comm, PETSC_ERR_SUP, "Body '%s': more than %d constrained regions",
+               name, FC_MAX_REACTIONS);
+    if (bo->nreact) {
+      hid_t gr = H5Gcreate2(bo->group, "reactions", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      PetscCall(FCH5AttrString(gr, "columns", "fx,fy,fz,mx,my,mz"));
+      for (PetscInt k = 0; k < bo->nreact; k++)
+        PetscCall(FCH5CreateRows(gr, names[k], H5T_NATIVE_DOUBLE, 2, six, 256, &bo->react[k]));
+      H5Gclose(gr);
+      PetscCall(PetscMalloc1(6 * bo->nreact * out->maxrows, &bo->rreact));
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -398,6 +413,7 @@ PetscErrorCode FCOutputDestroy(FCOutput *output)
         H5Dclose(out->bo[i].energy);
         H5Dclose(out->bo[i].positions);
         if (out->bo[i].rotation >= 0) H5Dclose(out->bo[i].rotation);
+        for (PetscInt k = 0; k < out->bo[i].nreact; k++) H5Dclose(out->bo[i].react[k]);
         H5Gclose(out->bo[i].group);
       }
       H5Dclose(out->ftime);

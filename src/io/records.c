@@ -96,6 +96,14 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
     out->rtiming = c;
     out->rbody   = d;
     out->rstep   = e;
+    for (PetscInt i = 0; i < nbodies; i++) {
+      BodyOut *bo = &out->bo[i];
+      if (!bo->nreact) continue;
+      PetscCall(PetscMalloc1(6 * bo->nreact * n, &a));
+      PetscCall(PetscArraycpy(a, bo->rreact, 6 * bo->nreact * r));
+      PetscCall(PetscFree(bo->rreact));
+      bo->rreact = a;
+    }
     out->maxrows = n;
   }
   out->rtime[r] = t;
@@ -109,6 +117,12 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
     PetscCall(FCBodyGetCentroid(bodies[i], row));
     PetscCall(FCBodyGetRotation(bodies[i], row + 3, &has));
     PetscCall(FCBodyGetEnergy(bodies[i], &E));
+    if (out->bo[i].nreact) {
+      const PetscReal *R;
+      PetscInt         n;
+      PetscCall(FCBodyGetReactions(bodies[i], &n, NULL, &R));
+      PetscCall(PetscArraycpy(&out->bo[i].rreact[6 * n * r], R, 6 * n));
+    }
     row[7] = E.kinetic;
     row[8] = E.elastic;
     row[9] = E.gravity;
@@ -240,7 +254,7 @@ PetscErrorCode FCOutputRecordsFlush(FCOutput out)
   PetscFunctionBegin;
   if (n) {
     long long *steps;
-    PetscCall(PetscMalloc2(n * 4 + 1, &tmp, n, &steps));
+    PetscCall(PetscMalloc2(n * 6 + 1, &tmp, n, &steps));
     for (PetscInt r = 0; r < n; r++) steps[r] = out->rstep[r];
     PetscCall(FCH5AppendRows(out->rank, out->time, H5T_NATIVE_DOUBLE, n, out->rtime));
     PetscCall(FCH5AppendRows(out->rank, out->step, H5T_NATIVE_LLONG, n, steps));
@@ -261,6 +275,12 @@ PetscErrorCode FCOutputRecordsFlush(FCOutput out)
       for (PetscInt r = 0; r < n; r++)
         for (int k = 0; k < 3; k++) tmp[3 * r + k] = out->rbody[(r * nb + i) * 10 + 7 + k];
       PetscCall(FCH5AppendRows(out->rank, out->bo[i].energy, H5T_NATIVE_DOUBLE, n, tmp));
+      for (PetscInt k = 0; k < out->bo[i].nreact; k++) {
+        PetscInt nr = out->bo[i].nreact;
+        for (PetscInt r = 0; r < n; r++)
+          for (int j = 0; j < 6; j++) tmp[6 * r + j] = out->bo[i].rreact[6 * nr * r + 6 * k + j];
+        PetscCall(FCH5AppendRows(out->rank, out->bo[i].react[k], H5T_NATIVE_DOUBLE, n, tmp));
+      }
       if (out->bo[i].rotation >= 0) {
         for (PetscInt r = 0; r < n; r++)
           for (int k = 0; k < 4; k++) tmp[4 * r + k] = out->rbody[(r * nb + i) * 10 + 3 + k];
@@ -297,5 +317,6 @@ release:
   PetscCall(PetscFree(out->cbuf));
   PetscCall(PetscFree(out->sbuf));
   PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
+  for (PetscInt i = 0; i < out->nbodies && out->bo; i++) PetscCall(PetscFree(out->bo[i].rreact));
   PetscFunctionReturn(0);
 }

@@ -14,6 +14,39 @@ static int CompareEdge(const void *a, const void *b)
   return x[1] < y[1] ? -1 : (x[1] > y[1] ? 1 : 0);
 }
 
+/* The vertices (local indices) of face f of one cell of this rank, ordered so that
+   (x1 - x0) x (x2 - x0) points away from that cell (out of the body on a boundary face) */
+PetscErrorCode FCMeshOrientedFace(FCMesh *m, PetscInt f, PetscInt tv[3])
+{
+  PetscInt       *closure = NULL, ncl, k = 0, cell, opp = -1;
+  const PetscInt *supp;
+  PetscReal       e1[3], e2[3], nn[3], d[3];
+
+  PetscFunctionBegin;
+  PetscCall(DMPlexGetTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
+  for (PetscInt i = 0; i < ncl && k < 3; i++)
+    if (closure[2 * i] >= m->vStart && closure[2 * i] < m->vEnd) tv[k++] = closure[2 * i] - m->vStart;
+  PetscCall(DMPlexRestoreTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
+  PetscCall(DMPlexGetSupport(m->dm, f, &supp));
+  cell = supp[0] - m->cStart;
+  for (int a = 0; a < 4; a++) {
+    PetscInt v = m->cellVerts[4 * cell + a] - m->vStart;
+    if (v != tv[0] && v != tv[1] && v != tv[2]) opp = v;
+  }
+  for (int i = 0; i < 3; i++) {
+    e1[i] = m->X[3 * tv[1] + i] - m->X[3 * tv[0] + i];
+    e2[i] = m->X[3 * tv[2] + i] - m->X[3 * tv[0] + i];
+    d[i]  = m->X[3 * opp + i] - m->X[3 * tv[0] + i];
+  }
+  FCCross(e1, e2, nn);
+  if (FCDot(nn, d) > 0) {
+    PetscInt t = tv[1];
+    tv[1]      = tv[2];
+    tv[2]      = t;
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The boundary must be a closed surface: every edge of a boundary triangle in exactly two of
    them (the contact detection and the outward normals rely on it). Edges in global vertex
    numbers, gathered on rank 0. */
@@ -73,22 +106,21 @@ static PetscErrorCode CheckClosedSurface(FCMesh *m, PetscInt nt, const PetscInt 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCMeshGetBoundary(FCMesh *m, PetscInt *nbv, PetscInt **bv, PetscInt *ntri, PetscInt **triv)
+/* The label "fc_boundary" (value 1 on the boundary faces this rank holds), made at its first use.
+   A boundary face has one cell in the whole mesh. A face on the interface between two ranks has
+   one cell on each; PETSc 3.18's DMPlexMarkBoundaryFaces marks it on its owner (the cube's 396
+   boundary triangles became 476 on 2 ranks), so the support sizes are summed over the point SF */
+PetscErrorCode FCMeshBoundaryLabel(FCMesh *m, DMLabel *label)
 {
-  DMLabel    label;
-  PetscInt   fStart, fEnd, nv = m->vEnd - m->vStart, nt = 0, nb = 0;
-  PetscBool *isb, has;
+  PetscInt  fStart, fEnd;
+  PetscBool has;
 
   PetscFunctionBegin;
-  PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
   PetscCall(DMHasLabel(m->dm, "fc_boundary", &has));
   if (!has) {
-    /* boundary faces: one cell in the whole mesh. A face on the interface between two ranks has
-       one cell on each; PETSc 3.18's DMPlexMarkBoundaryFaces marks it on its owner (the cube's
-       396 boundary triangles became 476 on 2 ranks), so the support sizes are summed over the
-       point SF here */
     PetscSF  sf;
     PetscInt pStart, pEnd, *supp;
+    PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
     PetscCall(DMPlexGetChart(m->dm, &pStart, &pEnd));
     PetscCall(PetscCalloc1(pEnd - pStart, &supp));
     for (PetscInt f = fStart; f < fEnd; f++) PetscCall(DMPlexGetSupportSize(m->dm, f, &supp[f - pStart]));
@@ -98,15 +130,27 @@ PetscErrorCode FCMeshGetBoundary(FCMesh *m, PetscInt *nbv, PetscInt **bv, PetscI
     PetscCall(PetscSFBcastBegin(sf, MPIU_INT, supp, supp, MPI_REPLACE));
     PetscCall(PetscSFBcastEnd(sf, MPIU_INT, supp, supp, MPI_REPLACE));
     PetscCall(DMCreateLabel(m->dm, "fc_boundary"));
-    PetscCall(DMGetLabel(m->dm, "fc_boundary", &label));
+    PetscCall(DMGetLabel(m->dm, "fc_boundary", label));
     for (PetscInt f = fStart; f < fEnd; f++) {
       PetscInt ls;
       PetscCall(DMPlexGetSupportSize(m->dm, f, &ls));
-      if (supp[f - pStart] == 1 && ls == 1) PetscCall(DMLabelSetValue(label, f, 1));
+      if (supp[f - pStart] == 1 && ls == 1) PetscCall(DMLabelSetValue(*label, f, 1));
     }
     PetscCall(PetscFree(supp));
   } else
-    PetscCall(DMGetLabel(m->dm, "fc_boundary", &label));
+    PetscCall(DMGetLabel(m->dm, "fc_boundary", label));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCMeshGetBoundary(FCMesh *m, PetscInt *nbv, PetscInt **bv, PetscInt *ntri, PetscInt **triv)
+{
+  DMLabel    label;
+  PetscInt   fStart, fEnd, nv = m->vEnd - m->vStart, nt = 0, nb = 0;
+  PetscBool *isb;
+
+  PetscFunctionBegin;
+  PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
+  PetscCall(FCMeshBoundaryLabel(m, &label));
   PetscCall(PetscCalloc1(nv, &isb));
   for (PetscInt f = fStart; f < fEnd; f++) {
     PetscInt val;
@@ -116,32 +160,10 @@ PetscErrorCode FCMeshGetBoundary(FCMesh *m, PetscInt *nbv, PetscInt **bv, PetscI
   PetscCall(PetscMalloc1(3 * nt + 1, triv));
   nt = 0;
   for (PetscInt f = fStart; f < fEnd; f++) {
-    PetscInt        val, *closure = NULL, ncl, k = 0, *tv = &(*triv)[3 * nt], cell, opp = -1;
-    const PetscInt *supp;
-    PetscReal       e1[3], e2[3], nn[3], d[3];
+    PetscInt val, *tv = &(*triv)[3 * nt];
     PetscCall(DMLabelGetValue(label, f, &val));
     if (val != 1) continue;
-    PetscCall(DMPlexGetTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
-    for (PetscInt i = 0; i < ncl && k < 3; i++)
-      if (closure[2 * i] >= m->vStart && closure[2 * i] < m->vEnd) tv[k++] = closure[2 * i] - m->vStart;
-    PetscCall(DMPlexRestoreTransitiveClosure(m->dm, f, PETSC_TRUE, &ncl, &closure));
-    PetscCall(DMPlexGetSupport(m->dm, f, &supp));
-    cell = supp[0] - m->cStart;
-    for (int a = 0; a < 4; a++) {
-      PetscInt v = m->cellVerts[4 * cell + a] - m->vStart;
-      if (v != tv[0] && v != tv[1] && v != tv[2]) opp = v;
-    }
-    for (int i = 0; i < 3; i++) {
-      e1[i] = m->X[3 * tv[1] + i] - m->X[3 * tv[0] + i];
-      e2[i] = m->X[3 * tv[2] + i] - m->X[3 * tv[0] + i];
-      d[i]  = m->X[3 * opp + i] - m->X[3 * tv[0] + i];
-    }
-    FCCross(e1, e2, nn);
-    if (FCDot(nn, d) > 0) {
-      PetscInt t = tv[1];
-      tv[1]      = tv[2];
-      tv[2]      = t;
-    }
+    PetscCall(FCMeshOrientedFace(m, f, tv));
     for (int a = 0; a < 3; a++) isb[tv[a]] = PETSC_TRUE;
     nt++;
   }

@@ -36,4 +36,12 @@ PETSC_INTERN PetscErrorCode FCMeshComputeMassProperties(FCMesh *, PetscReal *vol
                                                         PetscReal J[9]);
 PETSC_INTERN PetscErrorCode FCMeshCreateVisual(FCMesh *, FCBodyVisual *);
 PETSC_INTERN PetscErrorCode FCMeshGetBoundary(FCMesh *, PetscInt *nbv, PetscInt **bv, PetscInt *ntri, PetscInt **triv);
+PETSC_INTERN PetscErrorCode FCMeshBoundaryLabel(FCMesh *, DMLabel *);
+PETSC_INTERN PetscErrorCode FCMeshOrientedFace(FCMesh *, PetscInt face, PetscInt tv[3]);
 PETSC_INTERN PetscErrorCode FCMeshDestroy(FCMesh *);
+/* src/mesh/region.c: a region of the mesh, "box:x0,y0,z0,x1,y1,z1" (placed coordinates) or a gmsh
+   physical group by name or number: vmark[v] = 1 on every local copy of its vertices; its boundary
+   faces this rank holds (outward local vertex triples, *nface, *facev) and its cells of this rank
+   (cmark[c] = 1), each optional (NULL); option names the option in errors */
+PETSC_INTERN PetscErrorCode FCMeshRegion(FCMesh *, const char region[], const char option[], const char bodyname[],
+                                         PetscBool vmark[], PetscInt *nface, PetscInt **facev, PetscBool cmark[]);

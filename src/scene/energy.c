@@ -9,7 +9,8 @@
    the scene's energy scale, the energy the scene could receive: the initial kinetic energy, the weight
    of every body over the scene's height (the bounding box of every body, widened by the distance
    kinematic bodies travel over the run), 1/2 m V^2 with V the fastest kinematic point plus the
-   separation speed, and the initial elastic energy.
+   separation speed, the initial elastic energy, and the work that FE bodies' prescribed displacements and
+   loads have done so far (in magnitude).
    At set-up every body's energies must also be finite (a message names the body). */
 #include "../fcimpl.h"
 
@@ -88,7 +89,7 @@ PetscErrorCode FCEnergyGuardSetUp(FCEnergyGuard *g, MPI_Comm comm, PetscInt nbod
 PetscErrorCode FCEnergyGuardCheck(FCEnergyGuard *g, MPI_Comm comm, PetscInt nbodies, FCBody bodies[], PetscInt step,
                                   PetscReal t, PetscReal h)
 {
-  PetscReal   Etot = 0.0, grow = -PETSC_MAX_REAL;
+  PetscReal   Etot = 0.0, grow = -PETSC_MAX_REAL, work = 0.0;
   PetscInt    worst = 0;
   FCEnergy    E;
   const char *name;
@@ -97,15 +98,18 @@ PetscErrorCode FCEnergyGuardCheck(FCEnergyGuard *g, MPI_Comm comm, PetscInt nbod
   PetscFunctionBegin;
   if (g->limit == 0.0 || g->reported) PetscFunctionReturn(0);
   for (PetscInt i = 0; i < nbodies; i++) {
+    PetscReal w;
     PetscCall(FCBodyGetEnergy(bodies[i], &E));
+    PetscCall(FCBodyGetExternalWork(bodies[i], &w));
     Etot += Total(&E);
+    work += w;
     if (!(Total(&E) - g->Eb0[i] <= grow)) { /* NaN counts as the largest growth */
       grow  = Total(&E) - g->Eb0[i];
       worst = i;
     }
   }
   if (PetscIsNormalReal(Etot - g->E0) || Etot == g->E0) {
-    if (Etot - g->E0 <= g->limit * g->scale) PetscFunctionReturn(0);
+    if (Etot - g->E0 <= g->limit * (g->scale + work)) PetscFunctionReturn(0);
   }
   g->reported = PETSC_TRUE;
   PetscCall(FCBodyGetName(bodies[worst], &name));
@@ -114,8 +118,10 @@ PetscErrorCode FCEnergyGuardCheck(FCEnergyGuard *g, MPI_Comm comm, PetscInt nbod
   SETERRQ(comm, PETSC_ERR_CONV_FAILED,
           "step %" PetscInt_FMT " (t = %g s): the total energy grew from %g J to %g J, more than -energy_growth_limit "
           "%g times the %g J the scene can receive (initial kinetic energy, weight over the scene's height, work of "
-          "kinematic bodies, separation of overlapping bodies); the energy of body '%s' grew most. Nothing does such "
+          "kinematic bodies, prescribed displacements and loads, separation of overlapping bodies); the energy of body "
+          "'%s' grew most. Nothing does such "
           "work: the run is blowing up numerically. Likely cause: -time_step %g too large for the contacts%s; make "
           "-time_step smaller, or raise -energy_growth_limit (0: off) if the growth is real",
-          step, (double)t, (double)g->E0, (double)Etot, (double)g->limit, (double)g->scale, name, (double)h, cause);
+          step, (double)t, (double)g->E0, (double)Etot, (double)g->limit, (double)(g->scale + work), name, (double)h,
+          cause);
 }

@@ -274,6 +274,16 @@ static PetscErrorCode PrintSummary(FCScene s, PetscLogDouble wall)
         s->comm, "  body %-12s %-9s centroid (%.6g, %.6g, %.6g)  energy kinetic %.6g elastic %.6g gravity %.6g\n",
         FCBodyName(s->bodies[i]), FCBodyTypeName(s->bodies[i]), (double)c[0], (double)c[1], (double)c[2],
         (double)E.kinetic, (double)E.elastic, (double)E.gravity));
+    {
+      const char     **names;
+      const PetscReal *R;
+      PetscInt         n;
+      PetscCall(FCBodyGetReactions(s->bodies[i], &n, &names, &R));
+      for (PetscInt k = 0; k < n; k++)
+        PetscCall(PetscPrintf(s->comm, "    reaction %-20s force (%.6g, %.6g, %.6g)  moment (%.6g, %.6g, %.6g)\n",
+                              names[k], (double)R[6 * k], (double)R[6 * k + 1], (double)R[6 * k + 2],
+                              (double)R[6 * k + 3], (double)R[6 * k + 4], (double)R[6 * k + 5]));
+    }
   }
   PetscCall(PetscPrintf(s->comm, "  output: %s (open the .xmf beside it in ParaView)\n", s->output_file));
   PetscFunctionReturn(0);

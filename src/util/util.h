@@ -69,3 +69,11 @@ PETSC_INTERN PetscErrorCode FCProgressStart(FCProgress *, PetscBool quiet);
    whatever the time since the last one, with a warning */
 PETSC_INTERN PetscErrorCode FCProgressUpdate(FCProgress *, MPI_Comm, PetscInt step, PetscInt nsteps, PetscReal t,
                                              PetscInt intersections);
+
+/* Tables of time (src/util/table.c): rows t, v_1..v_n, piecewise linear, constant outside them */
+typedef struct _p_FCTable *FCTable;
+PETSC_INTERN PetscErrorCode FCTableCreate(MPI_Comm, const char spec[], PetscInt nmin, PetscInt nmax, const char what[],
+                                          FCTable *);
+PETSC_INTERN PetscInt       FCTableColumns(FCTable);
+PETSC_INTERN void           FCTableEval(FCTable, PetscReal t, PetscReal v[]);
+PETSC_INTERN PetscErrorCode FCTableDestroy(FCTable *);

@@ -1,0 +1,529 @@
+/* FE body, boundary conditions and loads on regions (docs/scenes.md):
+     -fixed <region>[,<region>...]                 zero displacement
+     -displacement <region>=<table t,ux,uy,uz>,...  prescribed displacement of the region's vertices
+     -force <region>=<table t,fx,fy,fz>,...         total force spread over the region (area, mass or count)
+     -traction <region>=<table t,tx,ty,tz>,...      force per area on a surface region, fixed direction
+     -pressure <region>=<table t,p>,...             pressure on a surface region, positive into the body,
+                                                    along the faces' normals at the start of the step
+   A region is a gmsh physical group (name or number) or box:x0,y0,z0,x1,y1,z1 (src/mesh/region.c);
+   a table is a CSV file or t0:v;t1:v (src/util/table.c). Constrained vertices leave the unknowns
+   (fem.c, SetUpSection), so neither the free motion nor the contact correction moves them.
+
+   A prescribed motion enters the linearized step (eq. 5) through the coupling of the free DOFs f
+   with the prescribed ones p: with q* the state with p at its end-of-step displacement,
+   f_int(q_{t+h}) = f_int(q*) + K_ff h v_f, so the free rows get
+       b_f -= K_fp (h (u_p(t+h) - u_p(t)) + h beta v_p) + M_fp (dv_p + h alpha v_p)
+   (plus h K_fp u_p(t) for a linear body, whose f_int = K u sees the free DOFs only), v_p the
+   region's velocity over the step, dv_p its change from the step before. The reaction of a
+   constrained region is the force its supports exert on the body, from the rows of its vertices
+   at the end of the step: R_p = M_p a + B_p v + f_int,p - f_gravity,p, and its moment about the
+   region's centroid. */
+#include "femimpl.h"
+
+/* Splits "region=table,region=table": a region is a name, a number or box: and 6 numbers, and a
+   table's text has no '='; each pair's region and table are copied into reg[], tab[] */
+static PetscErrorCode SplitPairs(FCBody body, const char option[], const char spec[], PetscInt *n, char reg[][256],
+                                 char tab[][768])
+{
+  const char *eq[FC_MAX_REGIONS + 1], *start[FC_MAX_REGIONS + 1], *p;
+  PetscInt    k = 0;
+
+  PetscFunctionBegin;
+  for (p = strchr(spec, '='); p; p = strchr(p + 1, '=')) {
+    PetscCheck(k < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Option -%s%s: more than %d regions", body->prefix,
+               option, FC_MAX_REGIONS);
+    eq[k++] = p;
+  }
+  PetscCheck(k > 0, body->comm, PETSC_ERR_USER_INPUT, "Option -%s%s needs region=table pairs, got '%s'", body->prefix,
+             option, spec);
+  for (PetscInt i = 0; i < k; i++) { /* where each region begins */
+    const char *lo = i ? eq[i - 1] + 1 : spec, *c = eq[i], *box = NULL;
+    while (c > lo && c[-1] != ',') c--;
+    for (const char *q = lo; q + 4 <= eq[i]; q++)
+      if (!strncmp(q, "box:", 4)) box = q;
+    if (box) {
+      PetscInt commas = 0;
+      for (const char *q = box; q < eq[i]; q++) commas += *q == ',';
+      if (commas == 5) c = box;
+    }
+    PetscCheck(i == 0 || c > lo, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%s%s: no table before the region that ends at '%s'", body->prefix, option, eq[i]);
+    start[i] = c;
+  }
+  PetscCheck(start[0] == spec, body->comm, PETSC_ERR_USER_INPUT, "Option -%s%s: '%s' is not region=table,...",
+             body->prefix, option, spec);
+  start[k] = spec + strlen(spec) + 1;
+  for (PetscInt i = 0; i < k; i++) {
+    size_t lr = (size_t)(eq[i] - start[i]), lt = (size_t)(start[i + 1] - 1 - (eq[i] + 1));
+    PetscCheck(lr > 0 && lr < 256 && lt > 0 && lt < 768, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%s%s: pair %" PetscInt_FMT " of '%s' has an empty or too long region or table", body->prefix,
+               option, i + 1, spec);
+    memcpy(reg[i], start[i], lr);
+    reg[i][lr] = 0;
+    memcpy(tab[i], eq[i] + 1, lt);
+    tab[i][lt] = 0;
+  }
+  *n = k;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCFEMBCSetFromOptions(PetscOptionItems *PetscOptionsObject, FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsString("-fixed",
+                               "Regions with zero displacement: gmsh groups (name or number) or box:x0,y0,z0,x1,y1,z1",
+                               NULL, fem->bcspec[0], fem->bcspec[0], sizeof(fem->bcspec[0]), NULL));
+  PetscCall(PetscOptionsString("-displacement", "Prescribed displacement: region=table of t,ux,uy,uz[,region=table...]",
+                               NULL, fem->bcspec[1], fem->bcspec[1], sizeof(fem->bcspec[1]), NULL));
+  PetscCall(PetscOptionsString("-force", "Total force on a region: region=table of t,fx,fy,fz[,...]", NULL,
+                               fem->bcspec[2], fem->bcspec[2], sizeof(fem->bcspec[2]), NULL));
+  PetscCall(PetscOptionsString("-traction", "Force per area on a surface region: region=table of t,tx,ty,tz[,...]",
+                               NULL, fem->bcspec[3], fem->bcspec[3], sizeof(fem->bcspec[3]), NULL));
+  PetscCall(PetscOptionsString("-pressure",
+                               "Pressure on a surface region (positive into the body): region=table of t,p[,...]", NULL,
+                               fem->bcspec[4], fem->bcspec[4], sizeof(fem->bcspec[4]), NULL));
+  PetscFunctionReturn(0);
+}
+
+/* Marks the vertices of constraint k; a vertex in two constraints is an error naming both */
+static PetscErrorCode MarkConstraint(FCBody body, PetscInt k, const char option[], PetscBool *mark)
+{
+  FEM     *fem   = (FEM *)body->data;
+  FCMesh  *m     = &fem->mesh;
+  PetscInt clash = -1;
+  char     opt[FC_MAX_NAME + 32];
+
+  PetscFunctionBegin;
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s%s", body->prefix, option));
+  PetscCall(
+      FCMeshRegion(m, fem->cons[k].region, opt, body->name, mark, &fem->cons[k].nface, &fem->cons[k].facev, NULL));
+  for (PetscInt v = 0; v < m->vEnd - m->vStart; v++) {
+    if (!mark[v]) continue;
+    if (fem->creg[v] >= 0 && fem->creg[v] != k && (fem->cons[k].moves || fem->cons[fem->creg[v]].moves))
+      clash = PetscMax(clash, fem->creg[v]);
+    if (fem->creg[v] < 0 || fem->cons[k].moves) fem->creg[v] = k;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &clash, 1, MPIU_INT, MPI_MAX, body->comm));
+  PetscCheck(clash < 0, body->comm, PETSC_ERR_USER_INPUT,
+             "Body '%s': regions '%s' and '%s' share vertices, and one of them is prescribed (-%sdisplacement): a "
+             "vertex has one constraint",
+             body->name, fem->cons[clash].region, fem->cons[k].region, body->prefix);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCFEMBCSetUpConstraints(FCBody body)
+{
+  FEM       *fem = (FEM *)body->data;
+  FCMesh    *m   = &fem->mesh;
+  PetscInt   nv  = m->vEnd - m->vStart;
+  PetscBool *mark;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(nv + 1, &fem->creg));
+  PetscCall(PetscMalloc1(nv + 1, &mark));
+  for (PetscInt v = 0; v < nv; v++) fem->creg[v] = -1;
+  fem->ncons = 0;
+  for (PetscInt b = 0; b < fem->nfixed_box; b++) { /* -fixed_box: constraints named box:... */
+    const PetscReal *x = &fem->fixed_box[6 * b];
+    PetscCheck(fem->ncons < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d constraints",
+               body->name, FC_MAX_REGIONS);
+    PetscCall(PetscSNPrintf(fem->cons[fem->ncons].region, 256, "box:%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", x[0], x[1],
+                            x[2], x[3], x[4], x[5]));
+    PetscCall(MarkConstraint(body, fem->ncons++, "fixed_box", mark));
+  }
+  if (fem->bcspec[0][0]) { /* -fixed: names and boxes, comma separated */
+    char *s = fem->bcspec[0], *tok;
+    while (*s) {
+      PetscInt commas = !strncmp(s, "box:", 4) ? 6 : 1;
+      tok             = s;
+      while (*s && commas) {
+        if (*s == ',') commas--;
+        if (commas) s++;
+      }
+      PetscCheck(fem->ncons < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d constraints",
+                 body->name, FC_MAX_REGIONS);
+      PetscCall(PetscStrncpy(fem->cons[fem->ncons].region, tok, PetscMin(256, (size_t)(s - tok) + 1)));
+      PetscCall(MarkConstraint(body, fem->ncons++, "fixed", mark));
+      if (*s == ',') s++;
+    }
+  }
+  if (fem->bcspec[1][0]) { /* -displacement */
+    char     reg[FC_MAX_REGIONS][256], tab[FC_MAX_REGIONS][768], what[FC_MAX_NAME + 300];
+    PetscInt n;
+    PetscCall(SplitPairs(body, "displacement", fem->bcspec[1], &n, reg, tab));
+    for (PetscInt i = 0; i < n; i++) {
+      FCFEMConstraint *c = &fem->cons[fem->ncons];
+      PetscCheck(fem->ncons < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d constraints",
+                 body->name, FC_MAX_REGIONS);
+      PetscCall(PetscStrncpy(c->region, reg[i], sizeof(c->region)));
+      c->moves = PETSC_TRUE;
+      PetscCall(PetscSNPrintf(what, sizeof(what), "option -%sdisplacement, region %s", body->prefix, reg[i]));
+      PetscCall(FCTableCreate(body->comm, tab[i], 3, 3, what, &c->table));
+      PetscCall(MarkConstraint(body, fem->ncons++, "displacement", mark));
+      fem->moving = PETSC_TRUE;
+    }
+  }
+  for (PetscInt v = 0; v < nv; v++) fem->fixed[v] = (PetscBool)(fem->creg[v] >= 0);
+  PetscCall(PetscFree(mark));
+  PetscFunctionReturn(0);
+}
+
+/* The loads of one option (kind), their faces and per-vertex weights */
+static PetscErrorCode SetUpLoads(FCBody body, FCLoadKind kind, const char option[], const char spec[])
+{
+  FEM     *fem = (FEM *)body->data;
+  FCMesh  *m   = &fem->mesh;
+  PetscInt nv = m->vEnd - m->vStart, nc = m->cEnd - m->cStart, n;
+  char     reg[FC_MAX_REGIONS][256], tab[FC_MAX_REGIONS][768], what[FC_MAX_NAME + 300], opt[FC_MAX_NAME + 32];
+
+  PetscFunctionBegin;
+  if (!spec[0]) PetscFunctionReturn(0);
+  PetscCall(SplitPairs(body, option, spec, &n, reg, tab));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s%s", body->prefix, option));
+  for (PetscInt i = 0; i < n; i++) {
+    FCFEMLoad *L = &fem->load[fem->nload];
+    PetscBool *vmark, *cmark;
+    PetscReal  area = 0.0, tot[3] = {0, 0, 0}; /* faces' area, cells' volume, vertex count */
+    PetscCheck(fem->nload < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d loads",
+               body->name, FC_MAX_REGIONS);
+    PetscCall(PetscStrncpy(L->region, reg[i], sizeof(L->region)));
+    L->kind = kind;
+    PetscCall(PetscSNPrintf(what, sizeof(what), "option %s, region %s", opt, reg[i]));
+    PetscCall(FCTableCreate(body->comm, tab[i], kind == FC_LOAD_PRESSURE ? 1 : 3, kind == FC_LOAD_PRESSURE ? 1 : 3,
+                            what, &L->table));
+    PetscCall(PetscCalloc2(nv + 1, &vmark, nc + 1, &cmark));
+    PetscCall(PetscCalloc1(nv + 1, &L->weight));
+    PetscCall(FCMeshRegion(m, reg[i], opt, body->name, vmark, &L->nface, &L->facev, cmark));
+    for (PetscInt f = 0; f < L->nface; f++) {
+      PetscReal e1[3], e2[3], nn[3];
+      PetscInt *t = &L->facev[3 * f];
+      for (int d = 0; d < 3; d++) {
+        e1[d] = m->X[3 * t[1] + d] - m->X[3 * t[0] + d];
+        e2[d] = m->X[3 * t[2] + d] - m->X[3 * t[0] + d];
+      }
+      FCCross(e1, e2, nn);
+      area += 0.5 * PetscSqrtReal(FCDot(nn, nn));
+      for (int a = 0; a < 3; a++) L->weight[t[a]] += PetscSqrtReal(FCDot(nn, nn)) / 6.0;
+    }
+    tot[0] = area;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, tot, 1, MPIU_REAL, MPIU_SUM, body->comm));
+    PetscCheck(kind == FC_LOAD_FORCE || tot[0] > 0.0, body->comm, PETSC_ERR_USER_INPUT,
+               "Option %s: region '%s' of body '%s' has no boundary face (a surface region is needed)", opt, reg[i],
+               body->name);
+    if (kind == FC_LOAD_FORCE) { /* by area on a surface, else by mass on cells, else by count */
+      if (tot[0] <= 0.0) {
+        for (PetscInt c = 0; c < nc; c++)
+          if (cmark[c])
+            for (int a = 0; a < 4; a++) L->weight[m->cellVerts[4 * c + a] - m->vStart] += fem->vol[c] / 4.0;
+        for (PetscInt v = 0; v < nv; v++) tot[1] += L->weight[v];
+        PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tot[1], 1, MPIU_REAL, MPIU_SUM, body->comm));
+        if (tot[1] <= 0.0) {
+          for (PetscInt v = 0; v < nv; v++) L->weight[v] = (vmark[v] && m->owned[v]) ? 1.0 : 0.0;
+          for (PetscInt v = 0; v < nv; v++) tot[2] += L->weight[v];
+          PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tot[2], 1, MPIU_REAL, MPIU_SUM, body->comm));
+          PetscCheck(tot[2] > 0.0, body->comm, PETSC_ERR_USER_INPUT, "Option %s: region '%s' of body '%s' is empty",
+                     opt, reg[i], body->name);
+        }
+      }
+      for (PetscInt v = 0; v < nv; v++) L->weight[v] /= tot[0] > 0.0 ? tot[0] : tot[1] > 0.0 ? tot[1] : tot[2];
+    }
+    PetscCall(PetscFree2(vmark, cmark));
+    fem->nload++;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCFEMBCSetUp(FCBody body)
+{
+  FEM     *fem = (FEM *)body->data;
+  FCMesh  *m   = &fem->mesh;
+  PetscInt nc  = m->cEnd - m->cStart;
+
+  PetscFunctionBegin;
+  PetscCall(SetUpLoads(body, FC_LOAD_FORCE, "force", fem->bcspec[2]));
+  PetscCall(SetUpLoads(body, FC_LOAD_TRACTION, "traction", fem->bcspec[3]));
+  PetscCall(SetUpLoads(body, FC_LOAD_PRESSURE, "pressure", fem->bcspec[4]));
+  for (PetscInt l = 0; l < fem->nload; l++)
+    for (PetscInt v = 0; v < m->vEnd - m->vStart; v++)
+      if (fem->fixed[v] && fem->load[l].weight[v] != 0.0) fem->load[l].weight[v] = 0.0; /* taken by the support */
+  if (fem->nload) PetscCall(VecDuplicate(fem->u, &fem->fload));
+  PetscCall(PetscMalloc1(nc + 1, &fem->ccell));
+  fem->nccell = 0;
+  for (PetscInt c = 0; c < nc; c++) {
+    PetscBool any = PETSC_FALSE;
+    for (int a = 0; a < 4; a++) any = (PetscBool)(any || fem->fixed[m->cellVerts[4 * c + a] - m->vStart]);
+    if (any) fem->ccell[fem->nccell++] = c;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The constraints' displacements at t and t + h, their velocities, and the loads at t + h */
+PetscErrorCode FCFEMBCBeginStep(FCBody body, PetscReal t)
+{
+  FEM      *fem = (FEM *)body->data;
+  FCMesh   *m   = &fem->mesh;
+  PetscReal h   = body->h;
+
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < fem->ncons; k++) {
+    FCFEMConstraint *c = &fem->cons[k];
+    PetscReal        ub[3];
+    if (!c->moves) continue;
+    FCTableEval(c->table, t - h, ub); /* the table is held before its first row: at rest before it */
+    FCTableEval(c->table, t, c->u);
+    FCTableEval(c->table, t + h, c->uf);
+    for (int d = 0; d < 3; d++) {
+      c->v[d]  = (c->uf[d] - c->u[d]) / h;
+      c->v0[d] = t > 0.0 ? (c->u[d] - ub[d]) / h : 0.0;
+    }
+  }
+  if (fem->nload) {
+    Vec                fl;
+    PetscScalar       *f;
+    const PetscScalar *ul;
+    PetscCall(DMGetLocalVector(m->dm, &fl));
+    PetscCall(VecZeroEntries(fl));
+    PetscCall(VecGetArray(fl, &f));
+    PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
+    PetscCall(VecGetArrayRead(fem->uloc, &ul));
+    for (PetscInt l = 0; l < fem->nload; l++) {
+      FCFEMLoad *L = &fem->load[l];
+      PetscReal  val[3];
+      FCTableEval(L->table, t + h, val);
+      if (L->kind == FC_LOAD_FORCE) {
+        for (PetscInt v = 0; v < m->vEnd - m->vStart; v++)
+          if (L->weight[v] != 0.0)
+            for (int d = 0; d < 3; d++) f[fem->ldof[v] + d] += L->weight[v] * val[d];
+        continue;
+      }
+      for (PetscInt k = 0; k < L->nface; k++) { /* area / 3 to each vertex; pressure along the current normal */
+        PetscInt *tv = &L->facev[3 * k];
+        PetscReal x[9], e1[3], e2[3], an[3], load[3];
+        for (int a = 0; a < 3; a++)
+          for (int d = 0; d < 3; d++)
+            x[3 * a + d] =
+                m->X[3 * tv[a] + d] + (fem->fixed[tv[a]] ? FCFEMConstrainedU(fem, fem->creg[tv[a]], PETSC_FALSE, d)
+                                                         : PetscRealPart(ul[fem->ldof[tv[a]] + d]));
+        for (int d = 0; d < 3; d++) {
+          e1[d] = x[3 + d] - x[d];
+          e2[d] = x[6 + d] - x[d];
+        }
+        FCCross(e1, e2, an); /* twice the area times the outward normal */
+        for (int d = 0; d < 3; d++)
+          load[d] = L->kind == FC_LOAD_PRESSURE ? -val[0] * an[d] / 6.0 : val[d] * PetscSqrtReal(FCDot(an, an)) / 6.0;
+        for (int a = 0; a < 3; a++)
+          if (!fem->fixed[tv[a]])
+            for (int d = 0; d < 3; d++) f[fem->ldof[tv[a]] + d] += load[d];
+      }
+    }
+    PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
+    PetscCall(VecRestoreArray(fl, &f));
+    PetscCall(VecZeroEntries(fem->fload));
+    PetscCall(DMLocalToGlobal(m->dm, fl, ADD_VALUES, fem->fload));
+    PetscCall(DMRestoreLocalVector(m->dm, &fl));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* b += h f_load, and the coupling of the free rows with the prescribed motion (header) */
+PetscErrorCode FCFEMBCAddRHS(FCBody body, Vec b)
+{
+  FEM      *fem = (FEM *)body->data;
+  FCMesh   *m   = &fem->mesh;
+  PetscReal h   = body->h;
+
+  PetscFunctionBegin;
+  if (fem->nload) PetscCall(VecAXPY(b, h, fem->fload));
+  if (fem->moving) {
+    Vec                bl;
+    PetscScalar       *f;
+    const PetscScalar *ul;
+    PetscCall(DMGetLocalVector(m->dm, &bl));
+    PetscCall(VecZeroEntries(bl));
+    PetscCall(VecGetArray(bl, &f));
+    PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
+    PetscCall(VecGetArrayRead(fem->uloc, &ul));
+    for (PetscInt i = 0; i < fem->nccell; i++) {
+      PetscInt  c = fem->ccell[i];
+      PetscReal X[12], x[12], Ke[144], Me[144], wk[12] = {0}, wm[12] = {0};
+      PetscBool any = PETSC_FALSE;
+      for (int a = 0; a < 4; a++) {
+        PetscInt v = m->cellVerts[4 * c + a] - m->vStart, k = fem->creg[v];
+        if (k < 0 || !fem->cons[k].moves) continue;
+        any = PETSC_TRUE;
+        for (int d = 0; d < 3; d++) {
+          const FCFEMConstraint *cn = &fem->cons[k];
+          wk[3 * a + d] = h * cn->v[d] * h + h * fem->beta * cn->v[d] + (fem->mat->linear ? h * cn->u[d] : 0.0);
+          wm[3 * a + d] = (cn->v[d] - cn->v0[d]) + h * fem->alpha * cn->v[d];
+        }
+      }
+      if (!any) continue;
+      FCFEMGatherElement(fem, c, ul, X, x);
+      PetscCall((*fem->mat->element)(fem->mat, x, X, &fem->Dminv[9 * c], fem->vol[c], NULL, Ke));
+      FCTetMass(body->density, fem->vol[c], fem->lumped, Me);
+      for (int a = 0; a < 4; a++) {
+        PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
+        if (fem->fixed[v]) continue;
+        for (int r = 3 * a; r < 3 * a + 3; r++) {
+          PetscReal s = 0.0;
+          for (int j = 0; j < 12; j++) s += Ke[12 * r + j] * wk[j] + Me[12 * r + j] * wm[j];
+          f[fem->ldof[v] + r - 3 * a] -= s;
+        }
+      }
+    }
+    PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
+    PetscCall(VecRestoreArray(bl, &f));
+    PetscCall(DMLocalToGlobal(m->dm, bl, ADD_VALUES, b));
+    PetscCall(DMRestoreLocalVector(m->dm, &bl));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* After the integration: the constraints move to their end-of-step displacement, and each one's
+   reaction R_p = M_p a + B_p v + f_int,p - f_g,p (header) and its moment about the centroid of the
+   region's vertices */
+PetscErrorCode FCFEMBCEndStep(FCBody body)
+{
+  FEM               *fem = (FEM *)body->data;
+  FCMesh            *m   = &fem->mesh;
+  PetscReal          h = body->h, cen[4 * FC_MAX_REGIONS] = {0}, R[6 * FC_MAX_REGIONS] = {0};
+  const PetscScalar *ul, *vl, *dl;
+  Vec                vloc, dvloc;
+
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < fem->ncons; k++)
+    for (int d = 0; d < 3 && fem->cons[k].moves; d++) fem->cons[k].u[d] = fem->cons[k].uf[d];
+  if (fem->nload) {
+    PetscScalar w;
+    PetscCall(VecDot(fem->fload, fem->v, &w));
+    fem->extwork += PetscAbsReal(h * PetscRealPart(w));
+  }
+  if (!fem->ncons) PetscFunctionReturn(0);
+  PetscCall(DMGetLocalVector(m->dm, &vloc));
+  PetscCall(DMGetLocalVector(m->dm, &dvloc));
+  PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
+  PetscCall(DMGlobalToLocal(m->dm, fem->v, INSERT_VALUES, vloc));
+  PetscCall(DMGlobalToLocal(m->dm, fem->dv, INSERT_VALUES, dvloc));
+  PetscCall(VecGetArrayRead(fem->uloc, &ul));
+  PetscCall(VecGetArrayRead(vloc, &vl));
+  PetscCall(VecGetArrayRead(dvloc, &dl));
+  for (PetscInt k = 0; k < fem->ncons; k++) /* the regions' centroids: of their faces' area */
+    for (PetscInt f = 0; f < fem->cons[k].nface; f++) {
+      PetscInt *tv = &fem->cons[k].facev[3 * f];
+      PetscReal e1[3], e2[3], an[3], A;
+      for (int d = 0; d < 3; d++) {
+        e1[d] = m->X[3 * tv[1] + d] - m->X[3 * tv[0] + d];
+        e2[d] = m->X[3 * tv[2] + d] - m->X[3 * tv[0] + d];
+      }
+      FCCross(e1, e2, an);
+      A = 0.5 * PetscSqrtReal(FCDot(an, an));
+      for (int d = 0; d < 3; d++)
+        cen[4 * k + d] += A / 3.0 *
+                          (m->X[3 * tv[0] + d] + m->X[3 * tv[1] + d] + m->X[3 * tv[2] + d] +
+                           3.0 * FCFEMConstrainedU(fem, k, PETSC_FALSE, d));
+      cen[4 * k + 3] += A;
+    }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cen, 4 * fem->ncons, MPIU_REAL, MPIU_SUM, body->comm));
+  for (PetscInt k = 0; k < fem->ncons; k++) { /* no faces: of the vertices */
+    PetscReal c[4] = {0, 0, 0, 0};
+    if (cen[4 * k + 3] > 0.0) continue;
+    for (PetscInt v = 0; v < m->vEnd - m->vStart; v++) {
+      if (fem->creg[v] != k || !m->owned[v]) continue;
+      for (int d = 0; d < 3; d++) c[d] += m->X[3 * v + d] + FCFEMConstrainedU(fem, k, PETSC_FALSE, d);
+      c[3] += 1.0;
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, c, 4, MPIU_REAL, MPIU_SUM, body->comm));
+    for (int d = 0; d < 4; d++) cen[4 * k + d] = c[d];
+  }
+  for (PetscInt k = 0; k < fem->ncons; k++)
+    for (int d = 0; d < 3; d++) cen[4 * k + d] /= PetscMax(cen[4 * k + 3], 1.0);
+  for (PetscInt i = 0; i < fem->nccell; i++) {
+    PetscInt  c = fem->ccell[i];
+    PetscReal X[12], x[12], fe[12], Ke[144], Me[144], ve[12], ae[12];
+    FCFEMGatherElement(fem, c, ul, X, x);
+    for (int a = 0; a < 4; a++) {
+      PetscInt v = m->cellVerts[4 * c + a] - m->vStart, k = fem->creg[v];
+      for (int d = 0; d < 3; d++) {
+        if (k >= 0) {
+          ve[3 * a + d] = fem->cons[k].moves ? fem->cons[k].v[d] : 0.0;
+          ae[3 * a + d] = fem->cons[k].moves ? (fem->cons[k].v[d] - fem->cons[k].v0[d]) / h : 0.0;
+        } else {
+          ve[3 * a + d] = PetscRealPart(vl[fem->ldof[v] + d]);
+          ae[3 * a + d] = PetscRealPart(dl[fem->ldof[v] + d]) / h;
+        }
+      }
+    }
+    PetscCall((*fem->mat->element)(fem->mat, x, X, &fem->Dminv[9 * c], fem->vol[c], fe, Ke));
+    FCTetMass(body->density, fem->vol[c], fem->lumped, Me);
+    for (int a = 0; a < 4; a++) {
+      PetscInt  v = m->cellVerts[4 * c + a] - m->vStart, k = fem->creg[v];
+      PetscReal r[3], arm[3], mo[3];
+      if (k < 0) continue;
+      for (int d = 0; d < 3; d++) {
+        PetscInt row = 3 * a + d;
+        r[d]         = fe[row] - body->density * fem->vol[c] / 4.0 * body->gravity[d];
+        for (int j = 0; j < 12; j++)
+          r[d] += Me[12 * row + j] * (ae[j] + fem->alpha * ve[j]) + fem->beta * Ke[12 * row + j] * ve[j];
+        arm[d] = x[row] - cen[4 * k + d];
+      }
+      FCCross(arm, r, mo);
+      for (int d = 0; d < 3; d++) {
+        R[6 * k + d] += r[d];
+        R[6 * k + 3 + d] += mo[d];
+      }
+    }
+  }
+  PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
+  PetscCall(VecRestoreArrayRead(vloc, &vl));
+  PetscCall(VecRestoreArrayRead(dvloc, &dl));
+  PetscCall(DMRestoreLocalVector(m->dm, &vloc));
+  PetscCall(DMRestoreLocalVector(m->dm, &dvloc));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, R, 6 * fem->ncons, MPIU_REAL, MPIU_SUM, body->comm));
+  for (PetscInt k = 0; k < fem->ncons; k++) {
+    for (int j = 0; j < 6; j++) fem->cons[k].reaction[j] = fem->rval[6 * k + j] = R[6 * k + j];
+    if (fem->cons[k].moves) fem->extwork += PetscAbsReal(h * FCDot(R + 6 * k, fem->cons[k].v));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GetExternalWork_FEM(FCBody body, PetscReal *w)
+{
+  PetscFunctionBegin;
+  *w = ((FEM *)body->data)->extwork;
+  PetscFunctionReturn(0);
+}
+
+/* The constraints' regions and their reactions of the last step */
+PetscErrorCode GetReactions_FEM(FCBody body, PetscInt *n, const char ***names, const PetscReal **values)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < fem->ncons; k++) fem->rname[k] = fem->cons[k].region;
+  *n = fem->ncons;
+  if (names) *names = fem->rname;
+  if (values) *values = fem->rval;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCFEMBCDestroy(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < fem->ncons; k++) {
+    PetscCall(FCTableDestroy(&fem->cons[k].table));
+    PetscCall(PetscFree(fem->cons[k].facev));
+  }
+  for (PetscInt l = 0; l < fem->nload; l++) {
+    PetscCall(FCTableDestroy(&fem->load[l].table));
+    PetscCall(PetscFree(fem->load[l].facev));
+    PetscCall(PetscFree(fem->load[l].weight));
+  }
+  PetscCall(VecDestroy(&fem->fload));
+  PetscCall(PetscFree(fem->creg));
+  PetscCall(PetscFree(fem->ccell));
+  PetscFunctionReturn(0);
+}
