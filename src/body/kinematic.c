@@ -1,12 +1,18 @@
-/* Kinematic body: a shape moved by a prescribed constant twist, never solved for: it turns with
-   -<body>_angular_velocity w about -<body>_pivot c (default: its centre) and translates with
-   -<body>_velocity v:
-       x(t) = c + v t + R(w t) (x0 - c),   q(t) = exp(t w / 2) q0   (exact, no drift). */
+/* Kinematic body: a shape moved by a prescribed motion, never solved for. Either a constant twist:
+   it turns with -<body>_angular_velocity w about -<body>_pivot c (default: its centre) and
+   translates with -<body>_velocity v,
+       x(t) = c + v t + R(w t) (x0 - c),   q(t) = exp(t w / 2) q0   (exact, no drift),
+   or -<body>_trajectory, a table of t, x, y, z[, qw, qx, qy, qz] (src/util/table.c): the centre
+   piecewise linear in t and the orientation by slerp between rows (else the placement's), held
+   after the last row. Either way the contacts see the pose at the end of each step, so the
+   velocity over a step is that of the table between its two poses. */
 #include "pose.h"
 
 typedef struct {
   FCPose    pose;
   PetscReal pivot[3];
+  char      trajectory[PETSC_MAX_PATH_LEN];
+  FCTable   table; /* -trajectory */
 } Kinematic;
 
 static PetscErrorCode SetFromOptions_Kinematic(FCBody body)
@@ -18,15 +24,68 @@ static PetscErrorCode SetFromOptions_Kinematic(FCBody body)
   PetscOptionsBegin(body->comm, body->prefix, "Kinematic body options", "FCBody");
   PetscCall(FCOptionsRealArray(PetscOptionsObject, "-pivot", "Point the angular velocity turns the body about", 3,
                                k->pivot, &set));
+  PetscCall(PetscOptionsString("-trajectory", "Table of t,x,y,z[,qw,qx,qy,qz]: the centre (and orientation) over time",
+                               NULL, k->trajectory, k->trajectory, sizeof(k->trajectory), NULL));
   PetscOptionsEnd();
+  if (k->trajectory[0]) {
+    char what[FC_MAX_NAME + 32];
+    PetscBool v, w;
+    PetscCall(PetscSNPrintf(what, sizeof(what), "option -%strajectory", body->prefix));
+    PetscCall(FCTableCreate(body->comm, k->trajectory, 3, 7, what, &k->table));
+    PetscCheck(FCTableColumns(k->table) == 3 || FCTableColumns(k->table) == 7, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%strajectory: rows of t,x,y,z or t,x,y,z,qw,qx,qy,qz, got %" PetscInt_FMT " values after t",
+               body->prefix, FCTableColumns(k->table));
+    PetscCall(PetscOptionsHasName(NULL, body->prefix, "-velocity", &v));
+    PetscCall(PetscOptionsHasName(NULL, body->prefix, "-angular_velocity", &w));
+    PetscCheck(!v && !w && !set, body->comm, PETSC_ERR_USER_INPUT,
+               "Body '%s': -%strajectory gives its motion; -%svelocity, -%sangular_velocity and -%spivot cannot be "
+               "given with it",
+               body->name, body->prefix, body->prefix, body->prefix, body->prefix);
+  }
   if (!set) k->pivot[0] = PETSC_MAX_REAL; /* the centre, known after set-up */
   PetscFunctionReturn(0);
+}
+
+/* Slerp from a to b (unit quaternions), the shorter way */
+static void Slerp(const PetscReal a[4], const PetscReal b[4], PetscReal s, PetscReal q[4])
+{
+  PetscReal c = 0.0, bb[4], th, wa, wb;
+  for (int i = 0; i < 4; i++) c += a[i] * b[i];
+  for (int i = 0; i < 4; i++) bb[i] = c < 0.0 ? -b[i] : b[i];
+  c = PetscAbsReal(c);
+  if (c > 1.0 - 1e-12) {
+    wa = 1.0 - s;
+    wb = s;
+  } else {
+    th = PetscAcosReal(c);
+    wa = PetscSinReal((1.0 - s) * th) / PetscSinReal(th);
+    wb = PetscSinReal(s * th) / PetscSinReal(th);
+  }
+  for (int i = 0; i < 4; i++) q[i] = wa * a[i] + wb * bb[i];
+  FCQuatNormalize(q);
 }
 
 /* Pose at time t */
 static void PoseAt(Kinematic *k, PetscReal t, PetscReal x[3], PetscReal q[4])
 {
   FCPose   *P = &k->pose;
+  if (k->table) {
+    const PetscReal *a, *b;
+    PetscReal        s, qa[4], qb[4];
+    FCTableBracket(k->table, t, &a, &b, &s);
+    for (int d = 0; d < 3; d++) x[d] = (1.0 - s) * a[d] + s * b[d];
+    if (FCTableColumns(k->table) == 7) {
+      for (int i = 0; i < 4; i++) {
+        qa[i] = a[3 + i];
+        qb[i] = b[3 + i];
+      }
+      FCQuatNormalize(qa);
+      FCQuatNormalize(qb);
+      Slerp(qa, qb, s, q);
+    } else
+      for (int i = 0; i < 4; i++) q[i] = P->q0[i];
+    return;
+  }
   PetscReal dq[4], R[9], r[3], Rr[3], n = PetscSqrtReal(FCDot(P->w, P->w));
   FCQuatFromAxisAngle(P->w, n * t, dq);
   FCQuatMult(dq, P->q0, q);
@@ -43,6 +102,18 @@ static PetscErrorCode SetUp_Kinematic(FCBody body)
 
   PetscFunctionBegin;
   PetscCall(FCPoseSetUp(body, &k->pose));
+  if (k->table) { /* placed at the table's pose at t = 0 */
+    FCPose *P = &k->pose;
+    PoseAt(k, 0.0, P->x0, P->q0);
+    for (int d = 0; d < 3; d++) P->xf[d] = P->x[d] = P->x0[d];
+    for (int d = 0; d < 4; d++) P->qf[d] = P->q[d] = P->q0[d];
+    PetscCall(FCPoseVisualPositions(body, P, body->visual.reference));
+    for (int d = 0; d < 3; d++) { /* the fastest rates, for the energy guard's scale */
+      body->center[d]           = P->x0[d];
+      body->velocity[d]         = d ? 0.0 : FCTableMaxRate(k->table, 0, 3);
+      body->angular_velocity[d] = d || FCTableColumns(k->table) < 7 ? 0.0 : 2.0 * FCTableMaxRate(k->table, 3, 7);
+    }
+  }
   if (k->pivot[0] == PETSC_MAX_REAL)
     for (int d = 0; d < 3; d++) k->pivot[d] = k->pose.x0[d];
   { /* the pivot is a point of the body (it moves with -velocity only): in the body frame */
@@ -63,6 +134,25 @@ static PetscErrorCode Integrate_Kinematic(FCBody body, PetscReal t)
   PetscFunctionReturn(0);
 }
 
+/* A trajectory's velocity over the step [t, t + h] (the pictures' velocity field) */
+static void TrajectoryVelocity(Kinematic *k, PetscReal t, PetscReal h)
+{
+  FCPose   *P = &k->pose;
+  PetscReal x0[3], q0[4], x1[3], q1[4], qc[4], dq[4], s, a;
+  PoseAt(k, t, x0, q0);
+  PoseAt(k, t + h, x1, q1);
+  for (int d = 0; d < 3; d++) P->v[d] = (x1[d] - x0[d]) / h;
+  qc[0] = q0[0];
+  for (int d = 1; d < 4; d++) qc[d] = -q0[d];
+  FCQuatMult(q1, qc, dq);
+  if (dq[0] < 0.0)
+    for (int d = 0; d < 4; d++) dq[d] = -dq[d];
+  s = PetscSqrtReal(dq[1] * dq[1] + dq[2] * dq[2] + dq[3] * dq[3]);
+  a = 2.0 * PetscAtan2Real(s, dq[0]);
+  for (int d = 0; d < 3; d++) P->w[d] = s > 0.0 ? dq[1 + d] / s * a / h : 0.0;
+  for (int d = 0; d < 3; d++) k->pivot[d] = x1[d]; /* the centre the field is taken about, at t + h */
+}
+
 /* The pose at the end of the step, which the free motion of the others is compared with */
 static PetscErrorCode FreeMotion_Kinematic(FCBody body, PetscReal t)
 {
@@ -70,6 +160,7 @@ static PetscErrorCode FreeMotion_Kinematic(FCBody body, PetscReal t)
 
   PetscFunctionBegin;
   PoseAt(k, t + body->h, k->pose.xf, k->pose.qf);
+  if (k->table) TrajectoryVelocity(k, t, body->h);
   PetscFunctionReturn(0);
 }
 
@@ -101,6 +192,7 @@ static PetscErrorCode Destroy_Kinematic(FCBody body)
 {
   PetscFunctionBegin;
   PetscCall(FCPoseDestroy(&((Kinematic *)body->data)->pose));
+  PetscCall(FCTableDestroy(&((Kinematic *)body->data)->table));
   PetscCall(PetscFree(body->data));
   PetscFunctionReturn(0);
 }

@@ -418,6 +418,22 @@ PetscErrorCode FCCollisionDetectPairs(MPI_Comm comm, PetscInt nbodies, FCBody bo
       PetscCall(SurfaceShapePair(comm, P, S, ipts, ishp, p, pairs, rank, set));
   }
   PetscCall(FCContactSetGather(set, comm));
+  { /* a contact that neither side can move (constrained FE vertices, -<body>_fixed or -displacement,
+       against a kinematic body or other constrained vertices) is left out: the prescribed motions
+       win, and no force could act there (docs/scenes.md) */
+    PetscInt n = 0;
+    for (PetscInt k = 0; k < set->n; k++) {
+      PetscBool frozen = PETSC_TRUE;
+      for (int s = 0; s < 2; s++) {
+        const FCProximity *p = &set->c[k].prox[s];
+        if (!p->nv && !FCBodyIsPrescribed(bodies[set->c[k].body[s]])) frozen = PETSC_FALSE;
+        for (PetscInt v = 0; v < p->nv; v++)
+          if (p->gdof[v] >= 0) frozen = PETSC_FALSE;
+      }
+      if (!frozen) set->c[n++] = set->c[k];
+    }
+    set->n = n;
+  }
   set->dormant_depth = pairs->dormant_depth;
   if (pairs->passes == 2 && (pairs->pass2_drop >= 0.0 || pairs->pass2_dormant >= 0.0))
     PetscCall(HeldSecondPass(pairs, set));

@@ -142,29 +142,45 @@ PetscInt FCTableColumns(FCTable tab)
   return tab->ncol;
 }
 
-/* The values at time t: linear between rows, constant outside them */
-void FCTableEval(FCTable tab, PetscReal t, PetscReal v[])
+/* The rows around time t and where t lies between them, s in [0, 1] (outside the table: the
+   first or last row twice) */
+void FCTableBracket(FCTable tab, PetscReal t, const PetscReal **a, const PetscReal **b, PetscReal *s)
 {
   PetscInt n = tab->nrow, c = tab->ncol, lo = 0, hi = n - 1;
-  if (t <= tab->t[0] || n == 1) {
-    for (PetscInt j = 0; j < c; j++) v[j] = tab->v[j];
-    return;
-  }
-  if (t >= tab->t[n - 1]) {
-    for (PetscInt j = 0; j < c; j++) v[j] = tab->v[(n - 1) * c + j];
+  if (t <= tab->t[0] || n == 1 || t >= tab->t[n - 1]) {
+    *a = *b = &tab->v[(t <= tab->t[0] || n == 1 ? 0 : n - 1) * c];
+    *s      = 0.0;
     return;
   }
   while (hi - lo > 1) { /* t[lo] < t <= t[hi] */
     PetscInt mid = (lo + hi) / 2;
-    if (tab->t[mid] < t)
-      lo = mid;
-    else
-      hi = mid;
+    if (tab->t[mid] < t) lo = mid;
+    else hi = mid;
   }
-  {
-    PetscReal s = (t - tab->t[lo]) / (tab->t[hi] - tab->t[lo]);
-    for (PetscInt j = 0; j < c; j++) v[j] = (1.0 - s) * tab->v[lo * c + j] + s * tab->v[hi * c + j];
+  *a = &tab->v[lo * c];
+  *b = &tab->v[hi * c];
+  *s = (t - tab->t[lo]) / (tab->t[hi] - tab->t[lo]);
+}
+
+/* The values at time t: linear between rows, constant outside them */
+void FCTableEval(FCTable tab, PetscReal t, PetscReal v[])
+{
+  const PetscReal *a, *b;
+  PetscReal        s;
+  FCTableBracket(tab, t, &a, &b, &s);
+  for (PetscInt j = 0; j < tab->ncol; j++) v[j] = (1.0 - s) * a[j] + s * b[j];
+}
+
+/* The largest rate of change over the rows of the columns [j0, j1) (their norm per unit time) */
+PetscReal FCTableMaxRate(FCTable tab, PetscInt j0, PetscInt j1)
+{
+  PetscReal r = 0.0;
+  for (PetscInt k = 1; k < tab->nrow; k++) {
+    PetscReal d2 = 0.0;
+    for (PetscInt j = j0; j < j1; j++) d2 += PetscSqr(tab->v[k * tab->ncol + j] - tab->v[(k - 1) * tab->ncol + j]);
+    r = PetscMax(r, PetscSqrtReal(d2) / (tab->t[k] - tab->t[k - 1]));
   }
+  return r;
 }
 
 PetscErrorCode FCTableDestroy(FCTable *tab)
