@@ -1,0 +1,151 @@
+"""Boundary conditions, loads and reactions on regions (docs/scenes.md), against analytic solutions,
+on --np ranks:
+
+- uniaxial compression: a unit cube (nu = 0) clamped on gmsh's "zmin" with "zmax" moved down by
+  -cube_displacement to a strain of 1 %: with nu = 0 the clamps do not restrain a lateral
+  expansion, and the P1 space holds the exact linear field, so the reactions are E A eps
+  (+ on zmin, - on zmax) to round-off, their moments about the faces' centroids vanish, and the
+  elastic energy is 1/2 E eps^2 V. The same strain from a -cube_force of E A eps on "zmax" gives
+  the displacement eps L. Static solutions come from one implicit Euler step with h = 1e3 s
+  (tests/test_cantilever.py), the tables held at their last row;
+- Lame: a thick hollow sphere (a = 0.5, b = 1, E = 1e6, nu = 0.3) under -shell_pressure 1e3 on
+  "inner" (strains of 1e-4: the follower pressure's growth with the area is negligible): the mean
+  radial displacement at r = a and r = b against
+  u(r) = p a^3 / (E (b^3 - a^3)) ((1 - 2 nu) r + (1 + nu) b^3 / (2 r^2)), within 2 % on the
+  finer mesh (lc 0.05), and closer than on the coarser one (lc 0.1; the error falls as lc^2);
+- the reaction is the contact force: a rigid box rests on an FE block clamped at "zmin"; at every
+  step the block's discrete momentum balance holds, R + F_contact + m g = m (c'' + alpha c') with c
+  the block's centroid (the sum of the rows of the step's equations: the elastic forces of a linear
+  body sum to zero), to 1e-8 of m g;
+- a kinematic body follows its -trajectory table exactly (centre, and orientation by slerp);
+- a constrained region against a kinematic plane: no contact is made there (the rule of
+  docs/scenes.md) and the run converges;
+- bad input: an unknown region (the message lists the mesh's groups), a table whose time does not
+  increase, a NaN in a table, a region both fixed and prescribed, a missing table file."""
+import numpy as np
+import h5py
+from fctest import run, out, Checker, np_from_argv
+
+NP = np_from_argv()
+c = Checker("bc")
+E, H = 1e5, 1e3
+
+
+def cube(name, extra, mesh="meshes/cube_coarse.msh"):
+    f = out(name + ".h5")
+    run(["-scene_bodies", "cube", "-cube_type", "fem", "-cube_dm_plex_filename", mesh, "-cube_material", "linear",
+         "-cube_young", E, "-cube_poisson", 0, "-cube_density", 100, "-gravity", "0,0,0", "-time_step", H,
+         "-time_steps", 1, "-output_file", f, "-quiet"] + extra, NP)
+    return h5py.File(f, "r")
+
+
+# uniaxial compression by a prescribed displacement
+h = cube("compress", ["-cube_fixed", "zmin", "-cube_displacement", "zmax=0:0,0,0;1:0,0,-0.01"])
+R = h["bodies/cube/reactions"]
+bot, top = R["zmin"][-1], R["zmax"][-1]
+c.check(abs(bot[2] - E * 0.01) < 1e-6 * E * 0.01 and abs(top[2] + E * 0.01) < 1e-6 * E * 0.01,
+        "reactions E A eps = %g: zmin %.9g, zmax %.9g" % (E * 0.01, bot[2], top[2]))
+c.check(np.abs(np.r_[bot[:2], top[:2], bot[3:], top[3:]]).max() < 1e-8 * E * 0.01,
+        "no lateral force, no moment about the faces' centroids: %.1e" % np.abs(np.r_[bot[:2], top[:2], bot[3:], top[3:]]).max())
+el = h["bodies/cube/energy"][-1][1]
+c.check(abs(el - 0.5 * E * 1e-4) < 1e-6 * 0.5 * E * 1e-4, "elastic energy 1/2 E eps^2 V = 5: %.9g" % el)
+ref, pos = h["bodies/cube/mesh/reference"][:], h["bodies/cube/positions"][-1]
+ontop = np.abs(ref[:, 2] - 0.5) < 1e-9
+c.check(np.abs(pos[ontop, 2] - ref[ontop, 2] + 0.01).max() < 1e-12, "the top region is where its table puts it")
+
+# the same strain from a force on the top
+h = cube("force", ["-cube_fixed", "zmin", "-cube_force", "zmax=0:0,0,0;1:0,0,%g" % (-E * 0.01)])
+ref, pos = h["bodies/cube/mesh/reference"][:], h["bodies/cube/positions"][-1]
+uz = pos[:, 2] - ref[:, 2]
+c.check(np.abs(uz - (-0.01) * (ref[:, 2] + 0.5)).max() < 1e-6 * 0.01,
+        "a total force E A eps on zmax: u_z = -eps (z + 1/2) everywhere (%.1e)" % np.abs(uz + 0.01 * (ref[:, 2] + 0.5)).max())
+c.check(abs(h["bodies/cube/reactions/zmin"][-1][2] - E * 0.01) < 1e-6 * E * 0.01, "its reaction on zmin is the force")
+
+
+# Lame's thick sphere
+def lame(mesh):
+    f = out("lame_%s.h5" % mesh)
+    run(["-scene_bodies", "shell", "-shell_type", "fem", "-shell_dm_plex_filename", "meshes/%s.msh" % mesh,
+         "-shell_material", "linear", "-shell_young", 1e6, "-shell_poisson", 0.3, "-shell_density", 1000,
+         "-shell_pressure", "inner=0:0;1:1e3", "-gravity", "0,0,0", "-time_step", H, "-time_steps", 1,
+         "-output_file", f, "-quiet"], NP)
+    g = h5py.File(f, "r")
+    X, x = g["bodies/shell/mesh/reference"][:], g["bodies/shell/positions"][-1]
+    r = np.linalg.norm(X, axis=1)
+    ur = np.sum((x - X) * X, axis=1) / r
+    a, b, p, Ey, nu = 0.5, 1.0, 1e3, 1e6, 0.3
+    u = lambda s: p * a**3 / (Ey * (b**3 - a**3)) * ((1 - 2 * nu) * s + (1 + nu) * b**3 / (2 * s**2))
+    return [ur[np.abs(r - s) < 1e-3].mean() / u(s) - 1 for s in (a, b)]
+
+
+coarse, fine = lame("hollow_sphere"), lame("hollow_sphere_fine")
+print("Lame radial displacement error at r = a, b: lc 0.1 %+.4f %+.4f, lc 0.05 %+.4f %+.4f" % (*coarse, *fine))
+c.check(max(abs(e) for e in fine) < 0.02, "Lame: within 2%% on the finer mesh (%.4f, %.4f)" % tuple(fine))
+c.check(all(abs(f_) < abs(e) for f_, e in zip(fine, coarse)), "Lame: closer on the finer mesh")
+
+# reaction = contact force (the block's momentum balance, every step)
+f = out("rest.h5")
+alpha, g0, hstep = 2.0, 9.81, 0.01
+run(["-scene_bodies", "block,box", "-contact_pairs", "block:box", "-contact_mu", 0.3, "-time_step", hstep,
+     "-time_steps", 30, "-output_every", 1, "-output_file", f, "-quiet",
+     "-block_type", "fem", "-block_dm_plex_filename", "meshes/cube_coarse.msh", "-block_material", "linear",
+     "-block_young", 1e5, "-block_poisson", 0.3, "-block_density", 100, "-block_rayleigh_mass", alpha,
+     "-block_fixed", "zmin", "-box_type", "rigid", "-box_shape", "box", "-box_half_extents", "0.2,0.2,0.1",
+     "-box_density", 500, "-box_center", "0,0,0.6"], NP)
+h = h5py.File(f, "r")
+m = 100.0
+cz = np.r_[h["bodies/block"].attrs["initial_centroid"][2], h["bodies/block/centroid"][:, 2]]
+Rz = h["bodies/block/reactions/zmin"][:, 2]
+off, bod, Fw = h["contacts/offset"][:], h["contacts/bodies"][:], h["contacts/force_world"][:]
+Fc = []
+for s in range(len(Rz)):
+    sl = slice(off[s], off[s + 1])
+    sign = np.where(bod[sl, 0] == 0, 1.0, -1.0)  # force_world acts on side 1
+    Fc.append(np.sum(sign * Fw[sl, 2]))
+Fc = np.array(Fc)
+acc = np.r_[np.nan, (cz[2:] - 2 * cz[1:-1] + cz[:-2]) / hstep**2]
+vel = (cz[1:] - cz[:-1]) / hstep
+res = np.abs(Rz + Fc - m * g0 - m * (acc + alpha * vel))[1:] / (m * g0)
+c.check(Fc.min() < -0.5 * 0.4 * 0.4 * 0.2 * 500 * g0 and res.max() < 1e-8,
+        "reaction + contact force + weight = momentum rate at every step: %.1e of m g (box weight %.1f N, last contact "
+        "force %.1f N, reaction %.1f N)" % (res.max(), 0.4 * 0.4 * 0.2 * 500 * g0, -Fc[-1], Rz[-1]))
+
+# a keyframed kinematic body
+f = out("traj.h5")
+run(["-scene_bodies", "tool", "-tool_type", "kinematic", "-tool_shape", "sphere", "-tool_radius", 0.05,
+     "-tool_trajectory", "0:0,0,0.2,1,0,0,0;0.3:0,0,0.1,0.7071067811865476,0.7071067811865476,0,0;0.6:0.1,0,0.1,1,0,0,0",
+     "-time_step", 0.01, "-time_steps", 80, "-output_every", 10, "-output_file", f, "-quiet"], NP)
+h = h5py.File(f, "r")
+t, cen, q = h["steps/time"][:], h["bodies/tool/centroid"][:], h["bodies/tool/rotation"][:]
+want = np.array([np.interp(t, [0, 0.3, 0.6], k) for k in ([0, 0, 0.1], [0.2, 0.1, 0.1])])
+c.check(np.abs(cen[:, 0] - want[0]).max() < 1e-12 and np.abs(cen[:, 2] - want[1]).max() < 1e-12,
+        "the centre follows the table exactly (%.1e)" % max(np.abs(cen[:, 0] - want[0]).max(), np.abs(cen[:, 2] - want[1]).max()))
+k = np.argmin(np.abs(t - 0.15))
+c.check(abs(q[k][0] - np.cos(np.pi / 8)) < 1e-12 and abs(q[k][1] - np.sin(np.pi / 8)) < 1e-12,
+        "halfway between keyframes the orientation is halfway by slerp (45 degrees about x)")
+c.check(np.abs(cen[-1] - [0.1, 0, 0.1]).max() < 1e-12, "held at the last row after it")
+
+# constrained vertices against a kinematic plane: no contact there
+f = out("fixplane.h5")
+run(["-scene_bodies", "cube,ground", "-contact_pairs", "cube:ground", "-time_step", 0.01, "-time_steps", 3,
+     "-output_file", f, "-quiet", "-cube_type", "fem", "-cube_dm_plex_filename", "meshes/cube_coarse.msh",
+     "-cube_material", "linear", "-cube_young", 1e5, "-cube_density", 100, "-cube_fixed", "zmin",
+     "-cube_translate", "0,0,0.499", "-ground_type", "kinematic", "-ground_shape", "plane", "-ground_length", 3], NP)
+h = h5py.File(f, "r")
+c.check(int(h["steps/contacts"][:].max()) == 0, "a fixed region on a kinematic plane makes no contact (the rule)")
+
+# bad input
+BASE = ["-scene_bodies", "cube", "-cube_type", "fem", "-cube_dm_plex_filename", "meshes/cube_coarse.msh",
+        "-cube_young", 1e5, "-cube_density", 100, "-time_steps", 1, "-output_file", out("bad.h5")]
+bad = [(["-cube_fixed", "bottom"], "no region 'bottom'", "zmin (5)"),
+       (["-cube_displacement", "zmax=0:0,0,0;0:0,0,1"], "does not increase", "-cube_displacement"),
+       (["-cube_displacement", "zmax=0:0,0,0;1:0,nan,1"], "not a finite number", "zmax"),
+       (["-cube_fixed", "zmax", "-cube_displacement", "zmax=0:0,0,0;1:0,0,1"], "share vertices", "zmax"),
+       (["-cube_displacement", "zmax=/nonexistent.csv"], "cannot read the table file", "/nonexistent.csv"),
+       (["-cube_pressure", "body=0:0;1:1"], "no boundary face", "body")]
+for args, msg, name in bad:
+    p = run(BASE + args, NP, check=False)
+    err = p.stdout + p.stderr
+    c.check(p.returncode != 0 and msg in err and name in err and "Segmentation" not in err,
+            "%s: exit %d, '%s' naming %s" % (" ".join(args), p.returncode, msg, name))
+c.done()
