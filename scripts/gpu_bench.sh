@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # The GPU runs that docs/gpu.md lists as not yet done: host types against CUDA types with today's
 # default builder (condensed), a co-rotational body (A refactored every step) and 2 MPI ranks
-# (mpiaijcusparse). NOT RUN YET: written in a session whose task had no GPU machine after all
-# (docs/gpu.md). Run on the GPU machine from the repository root, with .gpu carried (the bundle of
+# (mpiaijcusparse); results in docs/gpu.md. Run on the GPU machine from the repository root, with .gpu carried (the bundle of
 # `scripts/gpu_build.sh build`, which packs the meshes these runs read):
 #
 #   bash scripts/gpu_bench.sh [OUTDIR]
@@ -69,7 +68,10 @@ for a, b in pairs:
         print(f"{a} vs {b}: cannot open ({e})")
         continue
     body = [k for k in fa["bodies"] if k != "ground"][0]
-    pa, pb = fa[f"bodies/{body}/positions"][-1], fb[f"bodies/{body}/positions"][-1]
+    def pos(h):  # in an order independent of the partition: by reference position
+        ref, p = h[f"bodies/{body}/mesh/reference"][:], h[f"bodies/{body}/positions"][-1]
+        return p[np.lexsort(np.round(ref, 9).T[::-1])]
+    pa, pb = pos(fa), pos(fb)
     ua = fa[f"bodies/{body}/displacement"][-1]
     Fa, Fb = fa["contacts/force"][:], fb["contacts/force"][:]
     same = Fa.shape == Fb.shape
