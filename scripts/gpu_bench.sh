@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The GPU runs that docs/gpu.md lists as not yet done: host types against CUDA types with today's
+# GPU runs: host types against CUDA types with today's
 # default builder (condensed), a co-rotational body (A refactored every step) and 2 MPI ranks
 # (mpiaijcusparse); results in docs/gpu.md. Run on the GPU machine from the repository root, with .gpu carried (the bundle of
 # `scripts/gpu_build.sh build`, which packs the meshes these runs read):
