@@ -112,6 +112,7 @@ PETSC_EXTERN PetscErrorCode    FCBodyGetType(FCBody, FCBodyType *);
 PETSC_EXTERN PetscErrorCode    FCBodyGetName(FCBody, const char **);
 PETSC_EXTERN PetscErrorCode    FCBodySetFromOptions(FCBody);
 PETSC_EXTERN PetscErrorCode    FCBodySetTimeStep(FCBody, PetscReal);
+PETSC_EXTERN PetscErrorCode    FCBodySetQuasiStatic(FCBody, PetscBool);
 PETSC_EXTERN PetscErrorCode    FCBodySetGravity(FCBody, const PetscReal[3]);
 PETSC_EXTERN PetscErrorCode    FCBodySetUp(FCBody);
 PETSC_EXTERN PetscErrorCode    FCBodyComputeFreeMotion(FCBody, PetscReal t);

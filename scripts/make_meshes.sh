@@ -37,6 +37,7 @@ MESHES=(
   "ball_5cm     sphere.geo    r 0.05 lc 0.015"
   "hollow_sphere  hollow_sphere.geo  lc 0.1"
   "hollow_sphere_fine  hollow_sphere.geo  lc 0.05"
+  "finger       finger.geo    lc 0.004"
   "slab         slab.geo      lc 0.125"
   "table1_18k   table1.geo    nx 20 ny 20 nz 15 d 0.05"
   "table1_24k   table1.geo    nx 20 ny 19 nz 21 d 0.05"

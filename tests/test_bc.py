@@ -17,6 +17,9 @@ on --np ranks:
   step the block's discrete momentum balance holds, R + F_contact + m g = m (c'' + alpha c') with c
   the block's centroid (the sum of the rows of the step's equations: the elastic forces of a linear
   body sum to zero), to 1e-8 of m g;
+- quasi-static (-time_integration static): the compression's reaction follows its ramp at every
+  step; the sphere of input/pressed.opts pressed on its block: the cap's reaction is the contact
+  force at every step; damping, an FE body held by nothing and a rigid body are refused;
 - a kinematic body follows its -trajectory table exactly (centre, and orientation by slerp);
 - a constrained region against a kinematic plane: no contact is made there (the rule of
   docs/scenes.md) and the run converges;
@@ -38,6 +41,9 @@ def cube(name, extra, mesh="meshes/cube_coarse.msh"):
          "-time_steps", 1, "-output_file", f, "-quiet"] + extra, NP)
     return h5py.File(f, "r")
 
+
+BASE0 = ["-scene_bodies", "cube", "-cube_type", "fem", "-cube_dm_plex_filename", "meshes/cube_coarse.msh",
+         "-cube_young", 1e5, "-cube_density", 100, "-time_steps", 1, "-output_file", out("bad0.h5")]
 
 # uniaxial compression by a prescribed displacement
 h = cube("compress", ["-cube_fixed", "zmin", "-cube_displacement", "zmax=0:0,0,0;1:0,0,-0.01"])
@@ -61,6 +67,30 @@ c.check(np.abs(uz - (-0.01) * (ref[:, 2] + 0.5)).max() < 1e-6 * 0.01,
         "a total force E A eps on zmax: u_z = -eps (z + 1/2) everywhere (%.1e)" % np.abs(uz + 0.01 * (ref[:, 2] + 0.5)).max())
 c.check(abs(h["bodies/cube/reactions/zmin"][-1][2] - E * 0.01) < 1e-6 * E * 0.01, "its reaction on zmin is the force")
 
+
+# quasi-static: every step is the equilibrium of its time
+h = cube("static", ["-cube_fixed", "zmin", "-cube_displacement", "zmax=0:0,0,0;0.5:0,0,-0.01", "-time_integration",
+                    "static", "-time_step", 0.1, "-time_steps", 7, "-output_every", 1])
+t, Rz = h["steps/time"][:], h["bodies/cube/reactions/zmax"][:, 2]
+want = -E * 0.01 * np.minimum(t / 0.5, 1.0)
+c.check(np.abs(Rz - want).max() < 1e-6 * E * 0.01 and np.abs(h["bodies/cube/energy"][:, 0]).max() == 0.0,
+        "static: the reaction follows the prescribed ramp at every step (%.1e N), no kinetic energy" % np.abs(Rz - want).max())
+f = out("pressed.h5")
+run(["-options_file", "input/pressed.opts", "-ball_dm_plex_filename", "meshes/hertz_sphere_1.msh",
+     "-block_dm_plex_filename", "meshes/hertz_block_1.msh", "-time_steps", 4, "-output_file", f, "-quiet"], NP)
+h = h5py.File(f, "r")
+cap = [k for k in h["bodies/ball/reactions"] if k.startswith("box:-1,-1,0.95")][0]
+Rc, off = h["bodies/ball/reactions/" + cap][:, 2], h["contacts/offset"][:]
+Fn = np.array([h["contacts/force"][off[k]:off[k + 1], 0].sum() for k in range(len(off) - 1)])
+c.check(Fn.min() > 500 and np.abs(Rc + Fn).max() < 1e-6 * Fn.max(),
+        "static contact (input/pressed.opts): the cap's reaction is the contact force at every step (%.1e relative; "
+        "%.0f N at step 4)" % (np.abs(Rc + Fn).max() / Fn.max(), Fn[-1]))
+for args, msg in [(["-cube_fixed", "zmin", "-cube_rayleigh_mass", "1"], "has no damping"), ([], "no fixed or prescribed vertex")]:
+    p = run(BASE0 + ["-time_integration", "static"] + args, NP, check=False)
+    c.check(p.returncode != 0 and msg in p.stdout + p.stderr, "static %s: '%s'" % (" ".join(map(str, args)) or "(nothing held)", msg))
+p = run(["-scene_bodies", "b", "-b_type", "rigid", "-b_shape", "sphere", "-b_radius", 1, "-b_density", 1,
+         "-time_integration", "static", "-time_steps", 1, "-output_file", out("r.h5")], NP, check=False)
+c.check(p.returncode != 0 and "no static equilibrium of its own" in p.stdout + p.stderr, "static: a rigid body is refused")
 
 # Lame's thick sphere
 def lame(mesh):

@@ -135,6 +135,17 @@ PetscErrorCode FCBodySetTimeStep(FCBody body, PetscReal h)
   PetscFunctionReturn(0);
 }
 
+/* Quasi-static analysis (-time_integration static, read by the scene): no inertia, each step the
+   equilibrium of its time; only FE and kinematic bodies take part */
+PetscErrorCode FCBodySetQuasiStatic(FCBody body, PetscBool quasistatic)
+{
+  PetscFunctionBegin;
+  PetscCheck(!body->setupcalled, body->comm, PETSC_ERR_ORDER, "Set the analysis of body '%s' before FCBodySetUp()",
+             body->name);
+  body->quasistatic = quasistatic;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCBodySetGravity(FCBody body, const PetscReal g[3])
 {
   PetscFunctionBegin;
@@ -147,6 +158,10 @@ PetscErrorCode FCBodySetUp(FCBody body)
   PetscFunctionBegin;
   if (body->setupcalled) PetscFunctionReturn(0);
   PetscCheck(body->type[0], body->comm, PETSC_ERR_ORDER, "Body '%s' has no type", body->name);
+  PetscCheck(!body->quasistatic || body->deformable || body->prescribed, body->comm, PETSC_ERR_USER_INPUT,
+             "-time_integration static: body '%s' is %s, which has no static equilibrium of its own; make it kinematic "
+             "(-%stype kinematic) or run -time_integration euler",
+             body->name, body->type, body->prefix);
   PetscCall((*body->ops.setup)(body));
   body->setupcalled = PETSC_TRUE;
   PetscFunctionReturn(0);

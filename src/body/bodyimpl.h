@@ -83,6 +83,7 @@ struct _p_FCBody {
   PetscBool setupcalled;
   PetscBool expects; /* its first factorization depends on its contacts: FCBodyExpectContacts before the free motion */
   PetscReal h, gravity[3];
+  PetscBool quasistatic; /* -time_integration static: no inertia, each step an equilibrium */
   /* placement and initial motion, common to every type */
   PetscReal    translate[3], rotate[4], center[3], velocity[3], angular_velocity[3];
   PetscBool    center_set;

@@ -172,9 +172,10 @@ static PetscErrorCode SetUpState(FCBody body)
   {
     PetscInt nglobal;
     PetscCall(VecGetSize(fem->u, &nglobal));
-    PetscCheck(nglobal > 0, body->comm, PETSC_ERR_USER_INPUT,
-               "Every vertex of body '%s' is constrained (-%sfixed_box, -%sfixed, -%sdisplacement): nothing to simulate",
-               body->name, body->prefix, body->prefix, body->prefix);
+    PetscCheck(
+        nglobal > 0, body->comm, PETSC_ERR_USER_INPUT,
+        "Every vertex of body '%s' is constrained (-%sfixed_box, -%sfixed, -%sdisplacement): nothing to simulate",
+        body->name, body->prefix, body->prefix, body->prefix);
   }
 
   {
@@ -237,6 +238,16 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   for (int d = 0; d < 3; d++) body->center[d] += body->translate[d];
 
   PetscCall(SetUpSection(body));
+  if (body->quasistatic) { /* -time_integration static */
+    PetscCheck(
+        fem->alpha == 0.0 && fem->beta == 0.0, body->comm, PETSC_ERR_USER_INPUT,
+        "-time_integration static has no damping: body '%s' cannot take -%srayleigh_mass or -%srayleigh_stiffness",
+        body->name, body->prefix, body->prefix);
+    PetscCheck(fem->nfixed > 0, body->comm, PETSC_ERR_USER_INPUT,
+               "-time_integration static: body '%s' has no fixed or prescribed vertex (-%sfixed, -%sdisplacement), so "
+               "nothing holds it in equilibrium (its stiffness is singular)",
+               body->name, body->prefix, body->prefix);
+  }
 
   /* reference data of the cells */
   PetscCall(PetscMalloc2(9 * nc, &fem->Dminv, nc, &fem->vol));

@@ -356,7 +356,7 @@ PetscErrorCode FCFEMBCAddRHS(FCBody body, Vec b)
         for (int d = 0; d < 3; d++) {
           const FCFEMConstraint *cn = &fem->cons[k];
           wk[3 * a + d] = h * cn->v[d] * h + h * fem->beta * cn->v[d] + (fem->mat->linear ? h * cn->u[d] : 0.0);
-          wm[3 * a + d] = (cn->v[d] - cn->v0[d]) + h * fem->alpha * cn->v[d];
+          wm[3 * a + d] = body->quasistatic ? 0.0 : (cn->v[d] - cn->v0[d]) + h * fem->alpha * cn->v[d];
         }
       }
       if (!any) continue;
@@ -465,7 +465,9 @@ PetscErrorCode FCFEMBCEndStep(FCBody body)
         PetscInt row = 3 * a + d;
         r[d]         = fe[row] - body->density * fem->vol[c] / 4.0 * body->gravity[d];
         for (int j = 0; j < 12; j++)
-          r[d] += Me[12 * row + j] * (ae[j] + fem->alpha * ve[j]) + fem->beta * Ke[12 * row + j] * ve[j];
+          r[d] += body->quasistatic
+                      ? 0.0
+                      : Me[12 * row + j] * (ae[j] + fem->alpha * ve[j]) + fem->beta * Ke[12 * row + j] * ve[j];
         arm[d] = x[row] - cen[4 * k + d];
       }
       FCCross(arm, r, mo);

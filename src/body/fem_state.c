@@ -49,7 +49,7 @@ PetscErrorCode GetEnergy_FEM(FCBody body, FCEnergy *E)
   }
   PetscCall(MatMult(fem->M, fem->v, fem->work));
   PetscCall(VecDot(fem->v, fem->work, &vMv));
-  E->kinetic = 0.5 * PetscRealPart(vMv);
+  E->kinetic = body->quasistatic ? 0.0 : 0.5 * PetscRealPart(vMv); /* static: v is a displacement rate */
   E->elastic = 0.0;
   PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
   PetscCall(VecGetArrayRead(fem->uloc, &ul));

@@ -57,7 +57,8 @@ PetscErrorCode FCFEMAssembleElastic(FCBody body, Vec u, Vec f, Mat K)
   PetscFunctionReturn(0);
 }
 
-/* A = (1 + h alpha) M + (h beta + h^2) K; its factor is stale until FCFEMFactorA */
+/* A = (1 + h alpha) M + (h beta + h^2) K (quasi-static: h^2 K, the step's displacement h dv solving
+   K h dv = h b / h); its factor is stale until FCFEMFactorA */
 PetscErrorCode FCFEMFormA(FCBody body)
 {
   FEM      *fem = (FEM *)body->data;
@@ -67,6 +68,12 @@ PetscErrorCode FCFEMFormA(FCBody body)
   PetscCall(FCPhaseBegin(FC_PHASE_ASSEMBLY));
   PetscCall(MatCopy(fem->K, fem->A, SAME_NONZERO_PATTERN));
   PetscCall(MatScale(fem->A, h * fem->beta + h * h));
+  if (body->quasistatic) {
+    PetscCall(MatSetOption(fem->A, MAT_SPD, PETSC_TRUE));
+    PetscCall(FCPhaseEnd(FC_PHASE_ASSEMBLY));
+    fem->factored = PETSC_FALSE;
+    PetscFunctionReturn(0);
+  }
   /* SAME: K, M and A are duplicates of one filled pattern (FCFEMCreateOperators); SUBSET takes the
      row-by-row path of MatAXPY_Basic on MPIAIJ, a cost every step */
   PetscCall(MatAXPY(fem->A, 1.0 + h * fem->alpha, fem->M, SAME_NONZERO_PATTERN));
@@ -223,7 +230,9 @@ PetscErrorCode FCFEMCreateOperators(FCBody body)
 }
 
 /* Free motion, eq. 5: A dv_free = b = h (f_g - f_int) - M (h alpha v) - K ((h beta + h^2) v); a body
-   that advances its rotation exactly takes it in the turning frame (fem_rotation.c) */
+   that advances its rotation exactly takes it in the turning frame (fem_rotation.c). Quasi-static:
+   no velocity carries over from the step before (v = 0), so b = h (f - f_int) and h dv is the
+   step's displacement */
 PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
 {
   FEM      *fem = (FEM *)body->data;
@@ -233,6 +242,7 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
 
   PetscFunctionBegin;
   PetscCall(FCFEMBCBeginStep(body, t));
+  if (body->quasistatic) PetscCall(VecZeroEntries(fem->v));
   rotate = FCFEMRotationActive(fem);
   if (rotate) {
     PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));

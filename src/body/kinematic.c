@@ -28,7 +28,7 @@ static PetscErrorCode SetFromOptions_Kinematic(FCBody body)
                                NULL, k->trajectory, k->trajectory, sizeof(k->trajectory), NULL));
   PetscOptionsEnd();
   if (k->trajectory[0]) {
-    char what[FC_MAX_NAME + 32];
+    char      what[FC_MAX_NAME + 32];
     PetscBool v, w;
     PetscCall(PetscSNPrintf(what, sizeof(what), "option -%strajectory", body->prefix));
     PetscCall(FCTableCreate(body->comm, k->trajectory, 3, 7, what, &k->table));
@@ -68,7 +68,7 @@ static void Slerp(const PetscReal a[4], const PetscReal b[4], PetscReal s, Petsc
 /* Pose at time t */
 static void PoseAt(Kinematic *k, PetscReal t, PetscReal x[3], PetscReal q[4])
 {
-  FCPose   *P = &k->pose;
+  FCPose *P = &k->pose;
   if (k->table) {
     const PetscReal *a, *b;
     PetscReal        s, qa[4], qb[4];

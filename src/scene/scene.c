@@ -14,6 +14,7 @@
 #include <stdlib.h>
 
 struct _p_FCScene {
+  PetscBool      quasistatic; /* -time_integration static */
   MPI_Comm       comm;
   PetscInt       nbodies;
   FCBody         bodies[FC_MAX_BODIES];
@@ -81,6 +82,14 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
                                "Fields of the frames: displacement,velocity,von_mises,energy_density or none", NULL,
                                fields, fields, sizeof(fields), NULL));
   PetscCall(FCOptionsBool(PetscOptionsObject, "-quiet", "No progress line and no summary", &s->quiet, NULL));
+  {
+    const char *ti[] = {"euler", "static"};
+    PetscInt    k    = s->quasistatic ? 1 : 0;
+    PetscCall(PetscOptionsEList(
+        "-time_integration", "euler: implicit Euler (eq. 5); static: no inertia, each step the equilibrium of its time",
+        NULL, ti, 2, ti[k], &k, NULL));
+    s->quasistatic = k == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(PetscOptionsString("-restart", "Continue from the last complete output step of this HDF5 file", NULL,
                                s->restart, s->restart, sizeof(s->restart), NULL));
   PetscOptionsEnd();
@@ -154,6 +163,7 @@ PetscErrorCode FCSceneSetUp(FCScene s)
   if (s->setupcalled) PetscFunctionReturn(0);
   for (PetscInt i = 0; i < s->nbodies; i++) {
     PetscCall(FCBodySetTimeStep(s->bodies[i], s->h));
+    PetscCall(FCBodySetQuasiStatic(s->bodies[i], s->quasistatic));
     PetscCall(FCBodySetGravity(s->bodies[i], s->gravity));
     PetscCall(FCBodySetUp(s->bodies[i]));
   }

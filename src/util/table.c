@@ -154,8 +154,10 @@ void FCTableBracket(FCTable tab, PetscReal t, const PetscReal **a, const PetscRe
   }
   while (hi - lo > 1) { /* t[lo] < t <= t[hi] */
     PetscInt mid = (lo + hi) / 2;
-    if (tab->t[mid] < t) lo = mid;
-    else hi = mid;
+    if (tab->t[mid] < t)
+      lo = mid;
+    else
+      hi = mid;
   }
   *a = &tab->v[lo * c];
   *b = &tab->v[hi * c];
