@@ -20,6 +20,9 @@ on --np ranks:
 - quasi-static (-time_integration static): the compression's reaction follows its ramp at every
   step; the sphere of input/pressed.opts pressed on its block: the cap's reaction is the contact
   force at every step; damping, an FE body held by nothing and a rigid body are refused;
+- an attachment (-cube_attach zmin:hand): under a turning kinematic hand, statically, the
+  co-rotational cube turns with its base as a rigid body; dynamically the region is at the hand's
+  pose at every frame; an unknown body and a rigid one are refused;
 - a kinematic body follows its -trajectory table exactly (centre, and orientation by slerp);
 - a constrained region against a kinematic plane: no contact is made there (the rule of
   docs/scenes.md) and the run converges;
@@ -154,6 +157,38 @@ k = np.argmin(np.abs(t - 0.15))
 c.check(abs(q[k][0] - np.cos(np.pi / 8)) < 1e-12 and abs(q[k][1] - np.sin(np.pi / 8)) < 1e-12,
         "halfway between keyframes the orientation is halfway by slerp (45 degrees about x)")
 c.check(np.abs(cen[-1] - [0.1, 0, 0.1]).max() < 1e-12, "held at the last row after it")
+
+# an attachment: "zmin" follows a kinematic body that turns (and, dynamically, translates)
+def attach(name, extra):
+    f = out(name + ".h5")
+    run(["-scene_bodies", "cube,hand", "-time_step", 0.01, "-time_steps", 50, "-output_every", 10, "-output_file", f,
+         "-quiet", "-cube_type", "fem", "-cube_dm_plex_filename", "meshes/cube_coarse.msh", "-cube_material",
+         "corotational", "-cube_young", 1e6, "-cube_density", 100, "-cube_attach", "zmin:hand", "-hand_type",
+         "kinematic", "-hand_shape", "sphere", "-hand_radius", 0.05, "-hand_center", "0,0,-0.6"] + extra, NP)
+    g = h5py.File(f, "r")
+    X, P, t = g["bodies/cube/mesh/reference"][:], g["bodies/cube/positions"][:], g["frames/time"][:]
+    return X, P, t
+
+
+def rigid(X, t, w, v):
+    th = w * t
+    R = np.array([[np.cos(th), -np.sin(th), 0], [np.sin(th), np.cos(th), 0], [0, 0, 1]])
+    return np.array([v * t, 0, -0.6]) + (X - [0, 0, -0.6]) @ R.T
+
+
+X, P, t = attach("attach_static", ["-time_integration", "static", "-gravity", "0,0,0", "-hand_angular_velocity", "0,0,0.2"])
+dev = max(np.abs(P[k] - rigid(X, t[k], 0.2, 0)).max() for k in range(len(t)))
+c.check(dev < 1e-5, "static, the hand turning 0.1 rad: the co-rotational cube turns with its base as a rigid body (%.1e m)" % dev)
+X, P, t = attach("attach_dyn", ["-hand_angular_velocity", "0,0,2", "-hand_velocity", "0.2,0,0", "-cube_rayleigh_mass", 5])
+base = np.abs(X[:, 2] + 0.5) < 1e-9
+dev = max(np.abs(P[k][base] - rigid(X[base], t[k], 2, 0.2)).max() for k in range(len(t)))
+c.check(dev < 1e-12, "dynamic, turning at 2 rad/s and moving: the attached region is at the hand's pose (%.1e m)" % dev)
+for extra, msg in [(["-cube_attach", "zmin:nobody"], "no other body"), (["-hand_type", "rigid", "-hand_density", 1], "kinematic body only")]:
+    p = run(["-scene_bodies", "cube,hand", "-time_steps", 1, "-output_file", out("ab.h5"), "-cube_type", "fem",
+             "-cube_dm_plex_filename", "meshes/cube_coarse.msh", "-cube_young", 1e5, "-cube_density", 100,
+             "-cube_attach", "zmin:hand", "-hand_type", "kinematic", "-hand_shape", "sphere", "-hand_radius", 0.05,
+             "-hand_center", "0,0,-0.6"] + [str(e) for e in extra], NP, check=False)
+    c.check(p.returncode != 0 and msg in p.stdout + p.stderr, "-cube_attach %s: '%s'" % (" ".join(map(str, extra)), msg))
 
 # constrained vertices against a kinematic plane: no contact there
 f = out("fixplane.h5")

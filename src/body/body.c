@@ -146,6 +146,33 @@ PetscErrorCode FCBodySetQuasiStatic(FCBody body, PetscBool quasistatic)
   PetscFunctionReturn(0);
 }
 
+/* The scene's bodies (by name, for -<name>_attach), before FCBodySetUp() */
+PetscErrorCode FCBodySetSceneBodies(FCBody body, PetscInt n, FCBody bodies[])
+{
+  PetscFunctionBegin;
+  body->nscene = n;
+  body->scene  = bodies;
+  PetscFunctionReturn(0);
+}
+
+/* The scene's time before a step (0 at set-up, the stored time at a restart) */
+PetscErrorCode FCBodySetTime(FCBody body, PetscReal t)
+{
+  PetscFunctionBegin;
+  if (body->ops.settime) PetscCall((*body->ops.settime)(body, t));
+  PetscFunctionReturn(0);
+}
+
+/* A prescribed body's pose at any time */
+PetscErrorCode FCBodyGetPoseAt(FCBody body, PetscReal t, PetscReal x[3], PetscReal q[4])
+{
+  PetscFunctionBegin;
+  PetscCheck(body->ops.poseat, body->comm, PETSC_ERR_SUP, "Body '%s' (type %s) has no prescribed pose", body->name,
+             body->type);
+  PetscCall((*body->ops.poseat)(body, t, x, q));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCBodySetGravity(FCBody body, const PetscReal g[3])
 {
   PetscFunctionBegin;

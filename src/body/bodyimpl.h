@@ -66,6 +66,10 @@ typedef struct {
      supports' force on the body and its moment about the region's centroid), the same on every rank */
   /* optional: the magnitude of the work done on the body by its prescribed motions and loads so far */
   PetscErrorCode (*getexternalwork)(FCBody, PetscReal *);
+  /* optional: a prescribed body's pose at any time t (kinematic) */
+  PetscErrorCode (*poseat)(FCBody, PetscReal t, PetscReal x[3], PetscReal q[4]);
+  /* optional: the scene's time, at set-up (0) and at a restart, before any step */
+  PetscErrorCode (*settime)(FCBody, PetscReal t);
   PetscErrorCode (*getreactions)(FCBody, PetscInt *n, const char ***names, const PetscReal **values);
 } FCBodyOps;
 
@@ -84,6 +88,8 @@ struct _p_FCBody {
   PetscBool expects; /* its first factorization depends on its contacts: FCBodyExpectContacts before the free motion */
   PetscReal h, gravity[3];
   PetscBool quasistatic; /* -time_integration static: no inertia, each step an equilibrium */
+  PetscInt  nscene;      /* the scene's bodies, for a body that refers to another (-<name>_attach) */
+  FCBody   *scene;
   /* placement and initial motion, common to every type */
   PetscReal    translate[3], rotate[4], center[3], velocity[3], angular_velocity[3];
   PetscBool    center_set;

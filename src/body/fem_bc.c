@@ -81,6 +81,8 @@ PetscErrorCode FCFEMBCSetFromOptions(PetscOptionItems *PetscOptionsObject, FCBod
                                fem->bcspec[2], fem->bcspec[2], sizeof(fem->bcspec[2]), NULL));
   PetscCall(PetscOptionsString("-traction", "Force per area on a surface region: region=table of t,tx,ty,tz[,...]",
                                NULL, fem->bcspec[3], fem->bcspec[3], sizeof(fem->bcspec[3]), NULL));
+  PetscCall(PetscOptionsString("-attach", "Regions that follow a kinematic body: region:body[,region:body...]", NULL,
+                               fem->bcspec[5], fem->bcspec[5], sizeof(fem->bcspec[5]), NULL));
   PetscCall(PetscOptionsString("-pressure",
                                "Pressure on a surface region (positive into the body): region=table of t,p[,...]", NULL,
                                fem->bcspec[4], fem->bcspec[4], sizeof(fem->bcspec[4]), NULL));
@@ -107,9 +109,9 @@ static PetscErrorCode MarkConstraint(FCBody body, PetscInt k, const char option[
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &clash, 1, MPIU_INT, MPI_MAX, body->comm));
   PetscCheck(clash < 0, body->comm, PETSC_ERR_USER_INPUT,
-             "Body '%s': regions '%s' and '%s' share vertices, and one of them is prescribed (-%sdisplacement): a "
-             "vertex has one constraint",
-             body->name, fem->cons[clash].region, fem->cons[k].region, body->prefix);
+             "Body '%s': regions '%s' and '%s' share vertices, and one of them is prescribed (-%sdisplacement or "
+             "-%sattach): a vertex has one constraint",
+             body->name, fem->cons[clash].region, fem->cons[k].region, body->prefix, body->prefix);
   PetscFunctionReturn(0);
 }
 
@@ -163,6 +165,44 @@ PetscErrorCode FCFEMBCSetUpConstraints(FCBody body)
       PetscCall(FCTableCreate(body->comm, tab[i], 3, 3, what, &c->table));
       PetscCall(MarkConstraint(body, fem->ncons++, "displacement", mark));
       fem->moving = PETSC_TRUE;
+    }
+  }
+  if (fem->bcspec[5][0]) { /* -attach region:body, comma separated (a box takes its six numbers) */
+    char *s = fem->bcspec[5], *tok;
+    while (*s) {
+      FCFEMConstraint *c      = &fem->cons[fem->ncons];
+      PetscInt         commas = !strncmp(s, "box:", 4) ? 6 : 1;
+      char             item[512], *colon;
+      FCBody           b = NULL;
+      tok                = s;
+      while (*s && commas) {
+        if (*s == ',') commas--;
+        if (commas) s++;
+      }
+      PetscCheck(fem->ncons < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d constraints",
+                 body->name, FC_MAX_REGIONS);
+      PetscCall(PetscStrncpy(item, tok, PetscMin(sizeof(item), (size_t)(s - tok) + 1)));
+      colon = strrchr(item, ':');
+      PetscCheck(colon && colon != item + 3 && colon[1], body->comm, PETSC_ERR_USER_INPUT,
+                 "Option -%sattach: '%s' is not region:body", body->prefix, item);
+      *colon = 0;
+      for (PetscInt i = 0; i < body->nscene; i++)
+        if (!strcmp(FCBodyName(body->scene[i]), colon + 1)) b = body->scene[i];
+      PetscCheck(b && b != body, body->comm, PETSC_ERR_USER_INPUT,
+                 "Option -%sattach: '%s' is no other body of -scene_bodies", body->prefix, colon + 1);
+      PetscCheck(b->ops.poseat, body->comm, PETSC_ERR_USER_INPUT,
+                 "Option -%sattach: body '%s' is %s; a region can follow a kinematic body only (its motion is given)",
+                 body->prefix, colon + 1, b->type);
+      PetscCall(PetscStrncpy(c->region, item, sizeof(c->region)));
+      PetscCall(PetscStrncpy(c->attach, colon + 1, sizeof(c->attach)));
+      c->body    = b;
+      c->moves   = PETSC_TRUE;
+      c->rotates = PETSC_TRUE;
+      for (int w = 0; w < 3; w++) FCMat3Identity(c->RR[w]); /* at rest until the first pose (FCFEMBCPoses) */
+      FCMat3Identity(c->R0T);
+      PetscCall(MarkConstraint(body, fem->ncons++, "attach", mark));
+      fem->moving = PETSC_TRUE;
+      if (*s == ',') s++;
     }
   }
   for (PetscInt v = 0; v < nv; v++) fem->fixed[v] = (PetscBool)(fem->creg[v] >= 0);
@@ -259,7 +299,39 @@ PetscErrorCode FCFEMBCSetUp(FCBody body)
   PetscFunctionReturn(0);
 }
 
-/* The constraints' displacements at t and t + h, their velocities, and the loads at t + h */
+/* The prescribed constraints' poses at t - h, t and t + h (a table is held before its first row;
+   an attachment's pose at t = 0 is its reference) */
+PetscErrorCode FCFEMBCPoses(FCBody body, PetscReal t)
+{
+  FEM      *fem = (FEM *)body->data;
+  PetscReal h   = body->h;
+
+  PetscFunctionBegin;
+  for (PetscInt k = 0; k < fem->ncons; k++) {
+    FCFEMConstraint *c = &fem->cons[k];
+    if (!c->moves) continue;
+    if (c->body) { /* the reference pose, at t = 0 */
+      PetscReal q[4], R[9];
+      PetscCall(FCBodyGetPoseAt(c->body, 0.0, c->x0, q));
+      FCQuatToMat3(q, R);
+      FCMat3Transpose(R, c->R0T);
+    }
+    for (int w = 0; w < 3; w++) {
+      PetscReal tw = t + (w - 1) * h;
+      if (c->table)
+        FCTableEval(c->table, tw, c->x[w]);
+      else {
+        PetscReal q[4], R[9];
+        PetscCall(FCBodyGetPoseAt(c->body, tw, c->x[w], q));
+        FCQuatToMat3(q, R);
+        FCMat3Mult(R, c->R0T, c->RR[w]);
+      }
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The constraints' poses of the step, and the loads at t + h */
 PetscErrorCode FCFEMBCBeginStep(FCBody body, PetscReal t)
 {
   FEM      *fem = (FEM *)body->data;
@@ -267,18 +339,7 @@ PetscErrorCode FCFEMBCBeginStep(FCBody body, PetscReal t)
   PetscReal h   = body->h;
 
   PetscFunctionBegin;
-  for (PetscInt k = 0; k < fem->ncons; k++) {
-    FCFEMConstraint *c = &fem->cons[k];
-    PetscReal        ub[3];
-    if (!c->moves) continue;
-    FCTableEval(c->table, t - h, ub); /* the table is held before its first row: at rest before it */
-    FCTableEval(c->table, t, c->u);
-    FCTableEval(c->table, t + h, c->uf);
-    for (int d = 0; d < 3; d++) {
-      c->v[d]  = (c->uf[d] - c->u[d]) / h;
-      c->v0[d] = t > 0.0 ? (c->u[d] - ub[d]) / h : 0.0;
-    }
-  }
+  PetscCall(FCFEMBCPoses(body, t));
   if (fem->nload) {
     Vec                fl;
     PetscScalar       *f;
@@ -303,9 +364,9 @@ PetscErrorCode FCFEMBCBeginStep(FCBody body, PetscReal t)
         PetscReal x[9], e1[3], e2[3], an[3], load[3];
         for (int a = 0; a < 3; a++)
           for (int d = 0; d < 3; d++)
-            x[3 * a + d] =
-                m->X[3 * tv[a] + d] + (fem->fixed[tv[a]] ? FCFEMConstrainedU(fem, fem->creg[tv[a]], PETSC_FALSE, d)
-                                                         : PetscRealPart(ul[fem->ldof[tv[a]] + d]));
+            x[3 * a + d] = m->X[3 * tv[a] + d] +
+                           (fem->fixed[tv[a]] ? FCFEMConstrainedU(fem, fem->creg[tv[a]], &m->X[3 * tv[a]], FC_BC_NOW, d)
+                                              : PetscRealPart(ul[fem->ldof[tv[a]] + d]));
         for (int d = 0; d < 3; d++) {
           e1[d] = x[3 + d] - x[d];
           e2[d] = x[6 + d] - x[d];
@@ -354,9 +415,11 @@ PetscErrorCode FCFEMBCAddRHS(FCBody body, Vec b)
         if (k < 0 || !fem->cons[k].moves) continue;
         any = PETSC_TRUE;
         for (int d = 0; d < 3; d++) {
-          const FCFEMConstraint *cn = &fem->cons[k];
-          wk[3 * a + d] = h * cn->v[d] * h + h * fem->beta * cn->v[d] + (fem->mat->linear ? h * cn->u[d] : 0.0);
-          wm[3 * a + d] = body->quasistatic ? 0.0 : (cn->v[d] - cn->v0[d]) + h * fem->alpha * cn->v[d];
+          const PetscReal *Xv = &m->X[3 * v], vp = FCFEMConstrainedV(fem, k, Xv, PETSC_FALSE, h, d),
+                          v0 = FCFEMConstrainedV(fem, k, Xv, PETSC_TRUE, h, d);
+          wk[3 * a + d]      = h * h * vp + h * fem->beta * vp +
+                          (fem->mat->linear ? h * FCFEMConstrainedU(fem, k, Xv, FC_BC_NOW, d) : 0.0);
+          wm[3 * a + d] = body->quasistatic ? 0.0 : (vp - v0) + h * fem->alpha * vp;
         }
       }
       if (!any) continue;
@@ -388,13 +451,20 @@ PetscErrorCode FCFEMBCEndStep(FCBody body)
 {
   FEM               *fem = (FEM *)body->data;
   FCMesh            *m   = &fem->mesh;
-  PetscReal          h = body->h, cen[4 * FC_MAX_REGIONS] = {0}, R[6 * FC_MAX_REGIONS] = {0};
+  PetscReal          h = body->h, cen[4 * FC_MAX_REGIONS] = {0}, R[6 * FC_MAX_REGIONS] = {0}, power = 0.0;
   const PetscScalar *ul, *vl, *dl;
+  FCFEMConstraint    old[FC_MAX_REGIONS]; /* the poses of the step, before they move on */
   Vec                vloc, dvloc;
 
   PetscFunctionBegin;
-  for (PetscInt k = 0; k < fem->ncons; k++)
-    for (int d = 0; d < 3 && fem->cons[k].moves; d++) fem->cons[k].u[d] = fem->cons[k].uf[d];
+  for (PetscInt k = 0; k < fem->ncons; k++) { /* the poses move on a step: now is the end of the step */
+    FCFEMConstraint *c = &fem->cons[k];
+    old[k]             = *c;
+    for (int w = 0; w < 2; w++) {
+      PetscCall(PetscArraycpy(c->x[w], c->x[w + 1], 3));
+      PetscCall(PetscArraycpy(c->RR[w], c->RR[w + 1], 9));
+    }
+  }
   if (fem->nload) {
     PetscScalar w;
     PetscCall(VecDot(fem->fload, fem->v, &w));
@@ -420,9 +490,8 @@ PetscErrorCode FCFEMBCEndStep(FCBody body)
       FCCross(e1, e2, an);
       A = 0.5 * PetscSqrtReal(FCDot(an, an));
       for (int d = 0; d < 3; d++)
-        cen[4 * k + d] += A / 3.0 *
-                          (m->X[3 * tv[0] + d] + m->X[3 * tv[1] + d] + m->X[3 * tv[2] + d] +
-                           3.0 * FCFEMConstrainedU(fem, k, PETSC_FALSE, d));
+        for (int a = 0; a < 3; a++)
+          cen[4 * k + d] += A / 3.0 * (m->X[3 * tv[a] + d] + FCFEMConstrainedU(fem, k, &m->X[3 * tv[a]], FC_BC_NOW, d));
       cen[4 * k + 3] += A;
     }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cen, 4 * fem->ncons, MPIU_REAL, MPIU_SUM, body->comm));
@@ -431,7 +500,7 @@ PetscErrorCode FCFEMBCEndStep(FCBody body)
     if (cen[4 * k + 3] > 0.0) continue;
     for (PetscInt v = 0; v < m->vEnd - m->vStart; v++) {
       if (fem->creg[v] != k || !m->owned[v]) continue;
-      for (int d = 0; d < 3; d++) c[d] += m->X[3 * v + d] + FCFEMConstrainedU(fem, k, PETSC_FALSE, d);
+      for (int d = 0; d < 3; d++) c[d] += m->X[3 * v + d] + FCFEMConstrainedU(fem, k, &m->X[3 * v], FC_BC_NOW, d);
       c[3] += 1.0;
     }
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, c, 4, MPIU_REAL, MPIU_SUM, body->comm));
@@ -446,9 +515,14 @@ PetscErrorCode FCFEMBCEndStep(FCBody body)
     for (int a = 0; a < 4; a++) {
       PetscInt v = m->cellVerts[4 * c + a] - m->vStart, k = fem->creg[v];
       for (int d = 0; d < 3; d++) {
-        if (k >= 0) {
-          ve[3 * a + d] = fem->cons[k].moves ? fem->cons[k].v[d] : 0.0;
-          ae[3 * a + d] = fem->cons[k].moves ? (fem->cons[k].v[d] - fem->cons[k].v0[d]) / h : 0.0;
+        if (k >= 0) { /* over the step, and its change from the step before */
+          const PetscReal *Xv = &m->X[3 * v];
+          ve[3 * a + d] =
+              (FCFEMConstraintU(&old[k], Xv, FC_BC_END, d) - FCFEMConstraintU(&old[k], Xv, FC_BC_NOW, d)) / h;
+          ae[3 * a + d] =
+              (ve[3 * a + d] -
+               (FCFEMConstraintU(&old[k], Xv, FC_BC_NOW, d) - FCFEMConstraintU(&old[k], Xv, FC_BC_BEFORE, d)) / h) /
+              h;
         } else {
           ve[3 * a + d] = PetscRealPart(vl[fem->ldof[v] + d]);
           ae[3 * a + d] = PetscRealPart(dl[fem->ldof[v] + d]) / h;
@@ -474,6 +548,7 @@ PetscErrorCode FCFEMBCEndStep(FCBody body)
       for (int d = 0; d < 3; d++) {
         R[6 * k + d] += r[d];
         R[6 * k + 3 + d] += mo[d];
+        power += r[d] * ve[3 * a + d];
       }
     }
   }
@@ -483,10 +558,10 @@ PetscErrorCode FCFEMBCEndStep(FCBody body)
   PetscCall(DMRestoreLocalVector(m->dm, &vloc));
   PetscCall(DMRestoreLocalVector(m->dm, &dvloc));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, R, 6 * fem->ncons, MPIU_REAL, MPIU_SUM, body->comm));
-  for (PetscInt k = 0; k < fem->ncons; k++) {
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &power, 1, MPIU_REAL, MPIU_SUM, body->comm));
+  fem->extwork += PetscAbsReal(h * power);
+  for (PetscInt k = 0; k < fem->ncons; k++)
     for (int j = 0; j < 6; j++) fem->cons[k].reaction[j] = fem->rval[6 * k + j] = R[6 * k + j];
-    if (fem->cons[k].moves) fem->extwork += PetscAbsReal(h * FCDot(R + 6 * k, fem->cons[k].v));
-  }
   PetscFunctionReturn(0);
 }
 

@@ -31,10 +31,10 @@ PetscErrorCode ContactPoints_FEM(FCBody body, PetscInt *n, FCProximity **prox, P
       p->r[d]              = X;
       p->X[0][d]           = X;
       fem->bkey[3 * i + d] = X;
-      fem->bx0[3 * i + d] =
-          X + (g < 0 ? FCFEMConstrainedU(fem, fem->creg[vtx], PETSC_FALSE, d) : PetscRealPart(u[g - lo + d]));
-      fem->bxf[3 * i + d] = g < 0 ? X + FCFEMConstrainedU(fem, fem->creg[vtx], PETSC_TRUE, d)
-                                  : fem->bx0[3 * i + d] + body->h * PetscRealPart(v[g - lo + d] + dv[g - lo + d]);
+      fem->bx0[3 * i + d]  = X + (g < 0 ? FCFEMConstrainedU(fem, fem->creg[vtx], &m->X[3 * vtx], FC_BC_NOW, d)
+                                        : PetscRealPart(u[g - lo + d]));
+      fem->bxf[3 * i + d]  = g < 0 ? X + FCFEMConstrainedU(fem, fem->creg[vtx], &m->X[3 * vtx], FC_BC_END, d)
+                                   : fem->bx0[3 * i + d] + body->h * PetscRealPart(v[g - lo + d] + dv[g - lo + d]);
       if (sh && g >= 0) fem->bxf[3 * i + d] += PetscRealPart(sh[g - lo + d]);
     }
   }
@@ -76,11 +76,12 @@ PetscErrorCode SurfaceTriangles_FEM(FCBody body, PetscInt *n, FCSurfaceTriangle 
       PetscInt vtx = fem->triv[3 * t + a], o = fem->ldof[vtx];
       T->gdof[a] = fem->gdof[vtx];
       for (int d = 0; d < 3; d++) {
-        PetscReal X = m->X[3 * vtx + d], uu = fem->fixed[vtx] ? FCFEMConstrainedU(fem, fem->creg[vtx], PETSC_FALSE, d)
-                                                              : PetscRealPart(u[o + d]);
+        PetscReal X = m->X[3 * vtx + d], uu = fem->fixed[vtx]
+                                                  ? FCFEMConstrainedU(fem, fem->creg[vtx], &m->X[3 * vtx], FC_BC_NOW, d)
+                                                  : PetscRealPart(u[o + d]);
         T->X[a][d]  = X;
         T->x0[a][d] = X + uu;
-        T->xf[a][d] = fem->fixed[vtx] ? X + FCFEMConstrainedU(fem, fem->creg[vtx], PETSC_TRUE, d)
+        T->xf[a][d] = fem->fixed[vtx] ? X + FCFEMConstrainedU(fem, fem->creg[vtx], &m->X[3 * vtx], FC_BC_END, d)
                                       : T->x0[a][d] + body->h * PetscRealPart(v[o + d] + dv[o + d]);
       }
     }
@@ -118,7 +119,8 @@ static PetscErrorCode AddVertexPositions(FCBody body, const FCProximity *p, Pets
     if (g < 0) {
       if (!rank) /* a constrained vertex: at its displacement now, or at the end of the step */
         for (int d = 0; d < 3; d++)
-          x[d] += p->w[k] * (p->X[k][d] + FCFEMConstrainedU(fem, FCFEMConstrainedOfDof(g), trial, d));
+          x[d] += p->w[k] * (p->X[k][d] + FCFEMConstrainedU(fem, FCFEMConstrainedOfDof(g), p->X[k],
+                                                            trial ? FC_BC_END : FC_BC_NOW, d));
       continue;
     }
     if (g < lo || g >= hi) continue;
@@ -187,7 +189,7 @@ PetscErrorCode ProximityPosition_FEM(FCBody body, const FCProximity *p, PetscInt
     PetscInt g = p->gdof[k];
     if (g < 0) { /* constrained vertex: at its prescribed displacement */
       for (int d = 0; d < 3; d++)
-        x[d] += p->w[k] * (p->X[k][d] + FCFEMConstrainedU(fem, FCFEMConstrainedOfDof(g), PETSC_FALSE, d));
+        x[d] += p->w[k] * (p->X[k][d] + FCFEMConstrainedU(fem, FCFEMConstrainedOfDof(g), p->X[k], FC_BC_NOW, d));
       continue;
     }
     PetscCheck(g >= lo && g < hi, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Proximity vertex not owned by this rank");
@@ -252,7 +254,7 @@ static PetscErrorCode BestFitRotation(FCBody body, PetscReal R[9])
     if (!m->owned[v]) continue;
     for (int d = 0; d < 3; d++) {
       X[d] = m->X[3 * v + d];
-      x[d] = X[d] + (fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], PETSC_FALSE, d)
+      x[d] = X[d] + (fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], &m->X[3 * v], FC_BC_NOW, d)
                                    : PetscRealPart(u[fem->gdof[v] - lo + d]));
       s[d] += X[d];
       s[3 + d] += x[d];

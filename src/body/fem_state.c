@@ -81,7 +81,7 @@ PetscErrorCode GetVisualPositions_FEM(FCBody body, PetscReal x[])
   for (PetscInt i = 0; i < body->visual.nv; i++) {
     PetscInt v = m->visVert[i];
     for (int d = 0; d < 3; d++)
-      x[3 * i + d] = m->X[3 * v + d] + (fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], PETSC_FALSE, d)
+      x[3 * i + d] = m->X[3 * v + d] + (fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], &m->X[3 * v], FC_BC_NOW, d)
                                                       : PetscRealPart(ul[fem->ldof[v] + d]));
   }
   PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
@@ -105,10 +105,9 @@ static PetscErrorCode VisualVertexValues(FCBody body, Vec g, PetscReal out[])
     PetscInt v = m->visVert[i];
     for (int d = 0; d < 3; d++) {
       PetscInt k     = fem->creg[v];
-      out[3 * i + d] = !fem->fixed[v]        ? PetscRealPart(a[fem->ldof[v] + d])
-                       : !fem->cons[k].moves ? 0.0
-                       : g == fem->u         ? fem->cons[k].u[d]
-                                             : fem->cons[k].v[d];
+      out[3 * i + d] = !fem->fixed[v] ? PetscRealPart(a[fem->ldof[v] + d])
+                       : g == fem->u  ? FCFEMConstrainedU(fem, k, &m->X[3 * v], FC_BC_NOW, d)
+                                      : FCFEMConstrainedV(fem, k, &m->X[3 * v], PETSC_TRUE, body->h, d);
     }
   }
   PetscCall(VecRestoreArrayRead(loc, &a));
@@ -196,9 +195,9 @@ PetscErrorCode GetState_FEM(FCBody body, PetscReal s[])
   for (PetscInt i = 0; i < body->visual.nv; i++) {
     PetscInt vx = m->visVert[i];
     for (int d = 0; d < 3; d++) {
-      s[6 * i + d]     = fem->fixed[vx] ? FCFEMConstrainedU(fem, fem->creg[vx], PETSC_FALSE, d)
+      s[6 * i + d]     = fem->fixed[vx] ? FCFEMConstrainedU(fem, fem->creg[vx], &m->X[3 * vx], FC_BC_NOW, d)
                                         : PetscRealPart(u[fem->gdof[vx] - lo + d]);
-      s[6 * i + 3 + d] = fem->fixed[vx] ? (fem->cons[fem->creg[vx]].moves ? fem->cons[fem->creg[vx]].v[d] : 0.0)
+      s[6 * i + 3 + d] = fem->fixed[vx] ? FCFEMConstrainedV(fem, fem->creg[vx], &m->X[3 * vx], PETSC_TRUE, body->h, d)
                                         : PetscRealPart(v[fem->gdof[vx] - lo + d]);
     }
   }

@@ -12,15 +12,22 @@
 
 #define FC_MAX_REGIONS 16 /* constraints (fixed, prescribed) and loads of a body, each at most */
 
-/* A constrained region (fem_bc.c): fixed, or moved by a table of displacement */
+/* A constrained region (fem_bc.c): fixed, moved by a table of displacement, or attached to a
+   kinematic body. Its vertices' displacement at t - h, t, t + h (FC_BC_BEFORE, _NOW, _END) is
+   u(X) = x[when] + RR[when] (X - x0) - X: for a table x0 = 0 and RR = I (a translation), for an
+   attachment the body's centre and RR = R(t) R(0)^T */
+enum { FC_BC_BEFORE, FC_BC_NOW, FC_BC_END };
 typedef struct {
-  char      region[256];   /* as given: a group's name or number, or box:... */
-  PetscBool moves;         /* -displacement: the table's motion; else fixed */
-  FCTable   table;         /* t -> ux, uy, uz */
-  PetscReal u[3], uf[3];   /* displacement at the start and the end of the step */
-  PetscReal v[3], v0[3];   /* velocity over this step and over the one before */
-  PetscReal reaction[6];   /* the supports' force on the body and its moment about the region's centroid */
-  PetscInt  nface, *facev; /* its boundary faces on this rank: the centroid is theirs (else its vertices') */
+  char      region[256];         /* as given: a group's name or number, or box:... */
+  PetscBool moves;               /* prescribed (a table or an attachment); else fixed */
+  FCTable   table;               /* -displacement: t -> ux, uy, uz */
+  char      attach[FC_MAX_NAME]; /* -attach: the kinematic body it follows */
+  FCBody    body;
+  PetscBool rotates;
+  PetscReal x0[3], R0T[9];     /* the attached body's pose at t = 0 (tables: 0, unused) */
+  PetscReal x[3][3], RR[3][9]; /* at t - h, t, t + h */
+  PetscReal reaction[6];       /* the supports' force on the body and its moment about the region's centroid */
+  PetscInt  nface, *facev;     /* its boundary faces on this rank: the centroid is theirs (else its vertices') */
 } FCFEMConstraint;
 
 /* A load on a region (fem_bc.c) */
@@ -47,7 +54,7 @@ typedef struct {
   PetscInt  *gdof;           /* per local vertex: first global DOF, -1 when fixed */
   PetscBool *fixed;          /* per local vertex: constrained (fixed or prescribed) */
   /* boundary conditions and loads (fem_bc.c) */
-  char             bcspec[5][1024]; /* -fixed, -displacement, -force, -traction, -pressure as given */
+  char             bcspec[6][1024]; /* -fixed, -displacement, -force, -traction, -pressure, -attach as given */
   PetscInt         ncons, nload;
   FCFEMConstraint  cons[FC_MAX_REGIONS];
   FCFEMLoad        load[FC_MAX_REGIONS];
@@ -93,11 +100,26 @@ typedef struct {
   Vec       rvt, rw, rcf;    /* v~, v - omega x r, the centrifugal force                      */
 } FEM;
 
-/* The displacement of a constrained vertex (creg k) at the start of the step, or at its end */
-static inline PetscReal FCFEMConstrainedU(const FEM *fem, PetscInt k, PetscBool end, int d)
+/* Component d of the displacement of a vertex of constraint k (-1: none) with reference X, at
+   t - h, t or t + h (when) */
+static inline PetscReal FCFEMConstraintU(const FCFEMConstraint *c, const PetscReal X[3], int when, int d)
 {
-  if (k < 0 || !fem->cons[k].moves) return 0.0;
-  return end ? fem->cons[k].uf[d] : fem->cons[k].u[d];
+  PetscReal y = 0.0;
+  if (!c->moves) return 0.0;
+  if (!c->rotates) return c->x[when][d] - c->x0[d];
+  for (int j = 0; j < 3; j++) y += c->RR[when][3 * d + j] * (X[j] - c->x0[j]);
+  return c->x[when][d] + y - X[d];
+}
+static inline PetscReal FCFEMConstrainedU(const FEM *fem, PetscInt k, const PetscReal X[3], int when, int d)
+{
+  return k < 0 ? 0.0 : FCFEMConstraintU(&fem->cons[k], X, when, d);
+}
+/* Its velocity over the step (before: over the step before) */
+static inline PetscReal FCFEMConstrainedV(const FEM *fem, PetscInt k, const PetscReal X[3], PetscBool before,
+                                          PetscReal h, int d)
+{
+  return before ? (FCFEMConstrainedU(fem, k, X, FC_BC_NOW, d) - FCFEMConstrainedU(fem, k, X, FC_BC_BEFORE, d)) / h
+                : (FCFEMConstrainedU(fem, k, X, FC_BC_END, d) - FCFEMConstrainedU(fem, k, X, FC_BC_NOW, d)) / h;
 }
 /* The global DOF of a constrained vertex of a moving constraint k encodes k: -2 - k (fixed: -1) */
 static inline PetscInt FCFEMConstrainedOfDof(PetscInt g)
@@ -115,7 +137,7 @@ static inline void FCFEMGatherElement(FEM *fem, PetscInt c, const PetscScalar *u
     for (int d = 0; d < 3; d++) {
       X[3 * a + d] = m->X[3 * v + d];
       x[3 * a + d] = X[3 * a + d] + (!uloc           ? 0.0
-                                     : fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], PETSC_FALSE, d)
+                                     : fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], &m->X[3 * v], FC_BC_NOW, d)
                                                      : PetscRealPart(uloc[fem->ldof[v] + d]));
     }
   }
@@ -148,6 +170,7 @@ PETSC_INTERN PetscErrorCode Integrate_FEM(FCBody, PetscReal);
 PETSC_INTERN PetscErrorCode FCFEMBCSetFromOptions(PetscOptionItems *, FCBody);
 PETSC_INTERN PetscErrorCode FCFEMBCSetUpConstraints(FCBody); /* fixed[], creg[] before the section */
 PETSC_INTERN PetscErrorCode FCFEMBCSetUp(FCBody);            /* loads and the constrained cells, after it */
+PETSC_INTERN PetscErrorCode FCFEMBCPoses(FCBody, PetscReal t);
 PETSC_INTERN PetscErrorCode FCFEMBCBeginStep(FCBody, PetscReal t);
 PETSC_INTERN PetscErrorCode FCFEMBCAddRHS(FCBody, Vec b);
 PETSC_INTERN PetscErrorCode FCFEMBCEndStep(FCBody);

@@ -188,6 +188,13 @@ static PetscErrorCode GetVisualField_Kinematic(FCBody body, FCVisualField field,
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode PoseAt_Kinematic(FCBody body, PetscReal t, PetscReal x[3], PetscReal q[4])
+{
+  PetscFunctionBegin;
+  PoseAt((Kinematic *)body->data, t, x, q);
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy_Kinematic(FCBody body)
 {
   PetscFunctionBegin;
@@ -221,6 +228,7 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   body->ops.partialposition    = FCPosePartialPosition;
   body->ops.trialposition      = TrialPosition_Kinematic;
   body->ops.freemotion         = FreeMotion_Kinematic;
+  body->ops.poseat             = PoseAt_Kinematic;
   body->ops.contactpoints      = FCPoseContactPoints;
   body->ops.proximityposition  = FCPoseProximityPosition;
   body->ops.shapedistance      = FCPoseShapeDistance;

@@ -164,6 +164,7 @@ PetscErrorCode FCSceneSetUp(FCScene s)
   for (PetscInt i = 0; i < s->nbodies; i++) {
     PetscCall(FCBodySetTimeStep(s->bodies[i], s->h));
     PetscCall(FCBodySetQuasiStatic(s->bodies[i], s->quasistatic));
+    PetscCall(FCBodySetSceneBodies(s->bodies[i], s->nbodies, s->bodies));
     PetscCall(FCBodySetGravity(s->bodies[i], s->gravity));
     PetscCall(FCBodySetUp(s->bodies[i]));
   }
@@ -189,6 +190,7 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     s->t0    = s->t;
     s->step0 = s->step;
   }
+  for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodySetTime(s->bodies[i], s->t));
   if (s->pairs->n) PetscCall(ExpectContacts(s));
   PetscCall(FCEnergyGuardSetUp(&s->guard, s->comm, s->nbodies, s->bodies, s->h, s->nsteps - s->step,
                                s->pairs->n ? s->pairs->separation_speed : 0.0));
