@@ -1,29 +1,24 @@
-/* FE body, boundary conditions and loads on regions (docs/scenes.md):
+/* FE body, constrained regions (docs/scenes.md):
      -fixed <region>[,<region>...]                 zero displacement
      -displacement <region>=<table t,ux,uy,uz>,...  prescribed displacement of the region's vertices
-     -force <region>=<table t,fx,fy,fz>,...         total force spread over the region (area, mass or count)
-     -traction <region>=<table t,tx,ty,tz>,...      force per area on a surface region, fixed direction
-     -pressure <region>=<table t,p>,...             pressure on a surface region, positive into the body,
-                                                    along the faces' normals at the start of the step
+     -attach <region>:<body>,...                    the region follows a kinematic body rigidly
    A region is a gmsh physical group (name or number) or box:x0,y0,z0,x1,y1,z1 (src/mesh/region.c);
    a table is a CSV file or t0:v;t1:v (src/util/table.c). Constrained vertices leave the unknowns
-   (fem.c, SetUpSection), so neither the free motion nor the contact correction moves them.
+   (fem.c, SetUpSection), so neither the free motion nor the contact correction moves them. The
+   loads (-force, -traction, -pressure) are in fem_load.c, the reactions in fem_reaction.c.
 
    A prescribed motion enters the linearized step (eq. 5) through the coupling of the free DOFs f
    with the prescribed ones p: with q* the state with p at its end-of-step displacement,
    f_int(q_{t+h}) = f_int(q*) + K_ff h v_f, so the free rows get
        b_f -= K_fp (h (u_p(t+h) - u_p(t)) + h beta v_p) + M_fp (dv_p + h alpha v_p)
    (plus h K_fp u_p(t) for a linear body, whose f_int = K u sees the free DOFs only), v_p the
-   region's velocity over the step, dv_p its change from the step before. The reaction of a
-   constrained region is the force its supports exert on the body, from the rows of its vertices
-   at the end of the step: R_p = M_p a + B_p v + f_int,p - f_gravity,p, and its moment about the
-   region's centroid. */
+   vertex's prescribed velocity over the step, dv_p its change from the step before. */
 #include "femimpl.h"
 
 /* Splits "region=table,region=table": a region is a name, a number or box: and 6 numbers, and a
    table's text has no '='; each pair's region and table are copied into reg[], tab[] */
-static PetscErrorCode SplitPairs(FCBody body, const char option[], const char spec[], PetscInt *n, char reg[][256],
-                                 char tab[][768])
+PetscErrorCode FCFEMSplitPairs(FCBody body, const char option[], const char spec[], PetscInt *n, char reg[][256],
+                               char tab[][768])
 {
   const char *eq[FC_MAX_REGIONS + 1], *start[FC_MAX_REGIONS + 1], *p;
   PetscInt    k = 0;
@@ -154,7 +149,7 @@ PetscErrorCode FCFEMBCSetUpConstraints(FCBody body)
   if (fem->bcspec[1][0]) { /* -displacement */
     char     reg[FC_MAX_REGIONS][256], tab[FC_MAX_REGIONS][768], what[FC_MAX_NAME + 300];
     PetscInt n;
-    PetscCall(SplitPairs(body, "displacement", fem->bcspec[1], &n, reg, tab));
+    PetscCall(FCFEMSplitPairs(body, "displacement", fem->bcspec[1], &n, reg, tab));
     for (PetscInt i = 0; i < n; i++) {
       FCFEMConstraint *c = &fem->cons[fem->ncons];
       PetscCheck(fem->ncons < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d constraints",
@@ -210,71 +205,6 @@ PetscErrorCode FCFEMBCSetUpConstraints(FCBody body)
   PetscFunctionReturn(0);
 }
 
-/* The loads of one option (kind), their faces and per-vertex weights */
-static PetscErrorCode SetUpLoads(FCBody body, FCLoadKind kind, const char option[], const char spec[])
-{
-  FEM     *fem = (FEM *)body->data;
-  FCMesh  *m   = &fem->mesh;
-  PetscInt nv = m->vEnd - m->vStart, nc = m->cEnd - m->cStart, n;
-  char     reg[FC_MAX_REGIONS][256], tab[FC_MAX_REGIONS][768], what[FC_MAX_NAME + 300], opt[FC_MAX_NAME + 32];
-
-  PetscFunctionBegin;
-  if (!spec[0]) PetscFunctionReturn(0);
-  PetscCall(SplitPairs(body, option, spec, &n, reg, tab));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s%s", body->prefix, option));
-  for (PetscInt i = 0; i < n; i++) {
-    FCFEMLoad *L = &fem->load[fem->nload];
-    PetscBool *vmark, *cmark;
-    PetscReal  area = 0.0, tot[3] = {0, 0, 0}; /* faces' area, cells' volume, vertex count */
-    PetscCheck(fem->nload < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d loads",
-               body->name, FC_MAX_REGIONS);
-    PetscCall(PetscStrncpy(L->region, reg[i], sizeof(L->region)));
-    L->kind = kind;
-    PetscCall(PetscSNPrintf(what, sizeof(what), "option %s, region %s", opt, reg[i]));
-    PetscCall(FCTableCreate(body->comm, tab[i], kind == FC_LOAD_PRESSURE ? 1 : 3, kind == FC_LOAD_PRESSURE ? 1 : 3,
-                            what, &L->table));
-    PetscCall(PetscCalloc2(nv + 1, &vmark, nc + 1, &cmark));
-    PetscCall(PetscCalloc1(nv + 1, &L->weight));
-    PetscCall(FCMeshRegion(m, reg[i], opt, body->name, vmark, &L->nface, &L->facev, cmark));
-    for (PetscInt f = 0; f < L->nface; f++) {
-      PetscReal e1[3], e2[3], nn[3];
-      PetscInt *t = &L->facev[3 * f];
-      for (int d = 0; d < 3; d++) {
-        e1[d] = m->X[3 * t[1] + d] - m->X[3 * t[0] + d];
-        e2[d] = m->X[3 * t[2] + d] - m->X[3 * t[0] + d];
-      }
-      FCCross(e1, e2, nn);
-      area += 0.5 * PetscSqrtReal(FCDot(nn, nn));
-      for (int a = 0; a < 3; a++) L->weight[t[a]] += PetscSqrtReal(FCDot(nn, nn)) / 6.0;
-    }
-    tot[0] = area;
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, tot, 1, MPIU_REAL, MPIU_SUM, body->comm));
-    PetscCheck(kind == FC_LOAD_FORCE || tot[0] > 0.0, body->comm, PETSC_ERR_USER_INPUT,
-               "Option %s: region '%s' of body '%s' has no boundary face (a surface region is needed)", opt, reg[i],
-               body->name);
-    if (kind == FC_LOAD_FORCE) { /* by area on a surface, else by mass on cells, else by count */
-      if (tot[0] <= 0.0) {
-        for (PetscInt c = 0; c < nc; c++)
-          if (cmark[c])
-            for (int a = 0; a < 4; a++) L->weight[m->cellVerts[4 * c + a] - m->vStart] += fem->vol[c] / 4.0;
-        for (PetscInt v = 0; v < nv; v++) tot[1] += L->weight[v];
-        PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tot[1], 1, MPIU_REAL, MPIU_SUM, body->comm));
-        if (tot[1] <= 0.0) {
-          for (PetscInt v = 0; v < nv; v++) L->weight[v] = (vmark[v] && m->owned[v]) ? 1.0 : 0.0;
-          for (PetscInt v = 0; v < nv; v++) tot[2] += L->weight[v];
-          PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &tot[2], 1, MPIU_REAL, MPIU_SUM, body->comm));
-          PetscCheck(tot[2] > 0.0, body->comm, PETSC_ERR_USER_INPUT, "Option %s: region '%s' of body '%s' is empty",
-                     opt, reg[i], body->name);
-        }
-      }
-      for (PetscInt v = 0; v < nv; v++) L->weight[v] /= tot[0] > 0.0 ? tot[0] : tot[1] > 0.0 ? tot[1] : tot[2];
-    }
-    PetscCall(PetscFree2(vmark, cmark));
-    fem->nload++;
-  }
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode FCFEMBCSetUp(FCBody body)
 {
   FEM     *fem = (FEM *)body->data;
@@ -282,9 +212,7 @@ PetscErrorCode FCFEMBCSetUp(FCBody body)
   PetscInt nc  = m->cEnd - m->cStart;
 
   PetscFunctionBegin;
-  PetscCall(SetUpLoads(body, FC_LOAD_FORCE, "force", fem->bcspec[2]));
-  PetscCall(SetUpLoads(body, FC_LOAD_TRACTION, "traction", fem->bcspec[3]));
-  PetscCall(SetUpLoads(body, FC_LOAD_PRESSURE, "pressure", fem->bcspec[4]));
+  PetscCall(FCFEMLoadsSetUp(body));
   for (PetscInt l = 0; l < fem->nload; l++)
     for (PetscInt v = 0; v < m->vEnd - m->vStart; v++)
       if (fem->fixed[v] && fem->load[l].weight[v] != 0.0) fem->load[l].weight[v] = 0.0; /* taken by the support */
@@ -334,57 +262,9 @@ PetscErrorCode FCFEMBCPoses(FCBody body, PetscReal t)
 /* The constraints' poses of the step, and the loads at t + h */
 PetscErrorCode FCFEMBCBeginStep(FCBody body, PetscReal t)
 {
-  FEM      *fem = (FEM *)body->data;
-  FCMesh   *m   = &fem->mesh;
-  PetscReal h   = body->h;
-
   PetscFunctionBegin;
   PetscCall(FCFEMBCPoses(body, t));
-  if (fem->nload) {
-    Vec                fl;
-    PetscScalar       *f;
-    const PetscScalar *ul;
-    PetscCall(DMGetLocalVector(m->dm, &fl));
-    PetscCall(VecZeroEntries(fl));
-    PetscCall(VecGetArray(fl, &f));
-    PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
-    PetscCall(VecGetArrayRead(fem->uloc, &ul));
-    for (PetscInt l = 0; l < fem->nload; l++) {
-      FCFEMLoad *L = &fem->load[l];
-      PetscReal  val[3];
-      FCTableEval(L->table, t + h, val);
-      if (L->kind == FC_LOAD_FORCE) {
-        for (PetscInt v = 0; v < m->vEnd - m->vStart; v++)
-          if (L->weight[v] != 0.0)
-            for (int d = 0; d < 3; d++) f[fem->ldof[v] + d] += L->weight[v] * val[d];
-        continue;
-      }
-      for (PetscInt k = 0; k < L->nface; k++) { /* area / 3 to each vertex; pressure along the current normal */
-        PetscInt *tv = &L->facev[3 * k];
-        PetscReal x[9], e1[3], e2[3], an[3], load[3];
-        for (int a = 0; a < 3; a++)
-          for (int d = 0; d < 3; d++)
-            x[3 * a + d] = m->X[3 * tv[a] + d] +
-                           (fem->fixed[tv[a]] ? FCFEMConstrainedU(fem, fem->creg[tv[a]], &m->X[3 * tv[a]], FC_BC_NOW, d)
-                                              : PetscRealPart(ul[fem->ldof[tv[a]] + d]));
-        for (int d = 0; d < 3; d++) {
-          e1[d] = x[3 + d] - x[d];
-          e2[d] = x[6 + d] - x[d];
-        }
-        FCCross(e1, e2, an); /* twice the area times the outward normal */
-        for (int d = 0; d < 3; d++)
-          load[d] = L->kind == FC_LOAD_PRESSURE ? -val[0] * an[d] / 6.0 : val[d] * PetscSqrtReal(FCDot(an, an)) / 6.0;
-        for (int a = 0; a < 3; a++)
-          if (!fem->fixed[tv[a]])
-            for (int d = 0; d < 3; d++) f[fem->ldof[tv[a]] + d] += load[d];
-      }
-    }
-    PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
-    PetscCall(VecRestoreArray(fl, &f));
-    PetscCall(VecZeroEntries(fem->fload));
-    PetscCall(DMLocalToGlobal(m->dm, fl, ADD_VALUES, fem->fload));
-    PetscCall(DMRestoreLocalVector(m->dm, &fl));
-  }
+  PetscCall(FCFEMLoadsAt(body, t + body->h));
   PetscFunctionReturn(0);
 }
 
@@ -441,147 +321,6 @@ PetscErrorCode FCFEMBCAddRHS(FCBody body, Vec b)
     PetscCall(DMLocalToGlobal(m->dm, bl, ADD_VALUES, b));
     PetscCall(DMRestoreLocalVector(m->dm, &bl));
   }
-  PetscFunctionReturn(0);
-}
-
-/* After the integration: the constraints move to their end-of-step displacement, and each one's
-   reaction R_p = M_p a + B_p v + f_int,p - f_g,p (header) and its moment about the centroid of the
-   region's vertices */
-PetscErrorCode FCFEMBCEndStep(FCBody body)
-{
-  FEM               *fem = (FEM *)body->data;
-  FCMesh            *m   = &fem->mesh;
-  PetscReal          h = body->h, cen[4 * FC_MAX_REGIONS] = {0}, R[6 * FC_MAX_REGIONS] = {0}, power = 0.0;
-  const PetscScalar *ul, *vl, *dl;
-  FCFEMConstraint    old[FC_MAX_REGIONS]; /* the poses of the step, before they move on */
-  Vec                vloc, dvloc;
-
-  PetscFunctionBegin;
-  for (PetscInt k = 0; k < fem->ncons; k++) { /* the poses move on a step: now is the end of the step */
-    FCFEMConstraint *c = &fem->cons[k];
-    old[k]             = *c;
-    for (int w = 0; w < 2; w++) {
-      PetscCall(PetscArraycpy(c->x[w], c->x[w + 1], 3));
-      PetscCall(PetscArraycpy(c->RR[w], c->RR[w + 1], 9));
-    }
-  }
-  if (fem->nload) {
-    PetscScalar w;
-    PetscCall(VecDot(fem->fload, fem->v, &w));
-    fem->extwork += PetscAbsReal(h * PetscRealPart(w));
-  }
-  if (!fem->ncons) PetscFunctionReturn(0);
-  PetscCall(DMGetLocalVector(m->dm, &vloc));
-  PetscCall(DMGetLocalVector(m->dm, &dvloc));
-  PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
-  PetscCall(DMGlobalToLocal(m->dm, fem->v, INSERT_VALUES, vloc));
-  PetscCall(DMGlobalToLocal(m->dm, fem->dv, INSERT_VALUES, dvloc));
-  PetscCall(VecGetArrayRead(fem->uloc, &ul));
-  PetscCall(VecGetArrayRead(vloc, &vl));
-  PetscCall(VecGetArrayRead(dvloc, &dl));
-  for (PetscInt k = 0; k < fem->ncons; k++) /* the regions' centroids: of their faces' area */
-    for (PetscInt f = 0; f < fem->cons[k].nface; f++) {
-      PetscInt *tv = &fem->cons[k].facev[3 * f];
-      PetscReal e1[3], e2[3], an[3], A;
-      for (int d = 0; d < 3; d++) {
-        e1[d] = m->X[3 * tv[1] + d] - m->X[3 * tv[0] + d];
-        e2[d] = m->X[3 * tv[2] + d] - m->X[3 * tv[0] + d];
-      }
-      FCCross(e1, e2, an);
-      A = 0.5 * PetscSqrtReal(FCDot(an, an));
-      for (int d = 0; d < 3; d++)
-        for (int a = 0; a < 3; a++)
-          cen[4 * k + d] += A / 3.0 * (m->X[3 * tv[a] + d] + FCFEMConstrainedU(fem, k, &m->X[3 * tv[a]], FC_BC_NOW, d));
-      cen[4 * k + 3] += A;
-    }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cen, 4 * fem->ncons, MPIU_REAL, MPIU_SUM, body->comm));
-  for (PetscInt k = 0; k < fem->ncons; k++) { /* no faces: of the vertices */
-    PetscReal c[4] = {0, 0, 0, 0};
-    if (cen[4 * k + 3] > 0.0) continue;
-    for (PetscInt v = 0; v < m->vEnd - m->vStart; v++) {
-      if (fem->creg[v] != k || !m->owned[v]) continue;
-      for (int d = 0; d < 3; d++) c[d] += m->X[3 * v + d] + FCFEMConstrainedU(fem, k, &m->X[3 * v], FC_BC_NOW, d);
-      c[3] += 1.0;
-    }
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, c, 4, MPIU_REAL, MPIU_SUM, body->comm));
-    for (int d = 0; d < 4; d++) cen[4 * k + d] = c[d];
-  }
-  for (PetscInt k = 0; k < fem->ncons; k++)
-    for (int d = 0; d < 3; d++) cen[4 * k + d] /= PetscMax(cen[4 * k + 3], 1.0);
-  for (PetscInt i = 0; i < fem->nccell; i++) {
-    PetscInt  c = fem->ccell[i];
-    PetscReal X[12], x[12], fe[12], Ke[144], Me[144], ve[12], ae[12];
-    FCFEMGatherElement(fem, c, ul, X, x);
-    for (int a = 0; a < 4; a++) {
-      PetscInt v = m->cellVerts[4 * c + a] - m->vStart, k = fem->creg[v];
-      for (int d = 0; d < 3; d++) {
-        if (k >= 0) { /* over the step, and its change from the step before */
-          const PetscReal *Xv = &m->X[3 * v];
-          ve[3 * a + d] =
-              (FCFEMConstraintU(&old[k], Xv, FC_BC_END, d) - FCFEMConstraintU(&old[k], Xv, FC_BC_NOW, d)) / h;
-          ae[3 * a + d] =
-              (ve[3 * a + d] -
-               (FCFEMConstraintU(&old[k], Xv, FC_BC_NOW, d) - FCFEMConstraintU(&old[k], Xv, FC_BC_BEFORE, d)) / h) /
-              h;
-        } else {
-          ve[3 * a + d] = PetscRealPart(vl[fem->ldof[v] + d]);
-          ae[3 * a + d] = PetscRealPart(dl[fem->ldof[v] + d]) / h;
-        }
-      }
-    }
-    PetscCall((*fem->mat->element)(fem->mat, x, X, &fem->Dminv[9 * c], fem->vol[c], fe, Ke));
-    FCTetMass(body->density, fem->vol[c], fem->lumped, Me);
-    for (int a = 0; a < 4; a++) {
-      PetscInt  v = m->cellVerts[4 * c + a] - m->vStart, k = fem->creg[v];
-      PetscReal r[3], arm[3], mo[3];
-      if (k < 0) continue;
-      for (int d = 0; d < 3; d++) {
-        PetscInt row = 3 * a + d;
-        r[d]         = fe[row] - body->density * fem->vol[c] / 4.0 * body->gravity[d];
-        for (int j = 0; j < 12; j++)
-          r[d] += body->quasistatic
-                      ? 0.0
-                      : Me[12 * row + j] * (ae[j] + fem->alpha * ve[j]) + fem->beta * Ke[12 * row + j] * ve[j];
-        arm[d] = x[row] - cen[4 * k + d];
-      }
-      FCCross(arm, r, mo);
-      for (int d = 0; d < 3; d++) {
-        R[6 * k + d] += r[d];
-        R[6 * k + 3 + d] += mo[d];
-        power += r[d] * ve[3 * a + d];
-      }
-    }
-  }
-  PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
-  PetscCall(VecRestoreArrayRead(vloc, &vl));
-  PetscCall(VecRestoreArrayRead(dvloc, &dl));
-  PetscCall(DMRestoreLocalVector(m->dm, &vloc));
-  PetscCall(DMRestoreLocalVector(m->dm, &dvloc));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, R, 6 * fem->ncons, MPIU_REAL, MPIU_SUM, body->comm));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &power, 1, MPIU_REAL, MPIU_SUM, body->comm));
-  fem->extwork += PetscAbsReal(h * power);
-  for (PetscInt k = 0; k < fem->ncons; k++)
-    for (int j = 0; j < 6; j++) fem->cons[k].reaction[j] = fem->rval[6 * k + j] = R[6 * k + j];
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode GetExternalWork_FEM(FCBody body, PetscReal *w)
-{
-  PetscFunctionBegin;
-  *w = ((FEM *)body->data)->extwork;
-  PetscFunctionReturn(0);
-}
-
-/* The constraints' regions and their reactions of the last step */
-PetscErrorCode GetReactions_FEM(FCBody body, PetscInt *n, const char ***names, const PetscReal **values)
-{
-  FEM *fem = (FEM *)body->data;
-
-  PetscFunctionBegin;
-  for (PetscInt k = 0; k < fem->ncons; k++) fem->rname[k] = fem->cons[k].region;
-  *n = fem->ncons;
-  if (names) *names = fem->rname;
-  if (values) *values = fem->rval;
   PetscFunctionReturn(0);
 }
 

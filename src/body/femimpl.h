@@ -4,7 +4,10 @@
      fem_state.c    centroid, energies, visual positions and fields, restart state, NaN check
      fem_contact.c  contact points, surface triangles, proximity positions, the compliance builder
      fem_rotation.c the rotation of a free co-rotational body within a step
-     fem_check.c    the checks of the derived quantities (mass, energies, M, K, A) at set-up */
+     fem_check.c    the checks of the derived quantities (mass, energies, M, K, A) at set-up
+     fem_bc.c       regions' constraints (fixed, prescribed, attached): options, set-up, poses, eq. 5's coupling
+     fem_load.c     loads on regions
+     fem_reaction.c the constrained regions' reactions */
 #pragma once
 #include "bodyimpl.h"
 
@@ -171,10 +174,16 @@ PETSC_INTERN PetscErrorCode FCFEMBCSetFromOptions(PetscOptionItems *, FCBody);
 PETSC_INTERN PetscErrorCode FCFEMBCSetUpConstraints(FCBody); /* fixed[], creg[] before the section */
 PETSC_INTERN PetscErrorCode FCFEMBCSetUp(FCBody);            /* loads and the constrained cells, after it */
 PETSC_INTERN PetscErrorCode FCFEMBCPoses(FCBody, PetscReal t);
+PETSC_INTERN PetscErrorCode FCFEMSplitPairs(FCBody, const char option[], const char spec[], PetscInt *n,
+                                            char reg[][256], char tab[][768]);
 PETSC_INTERN PetscErrorCode FCFEMBCBeginStep(FCBody, PetscReal t);
 PETSC_INTERN PetscErrorCode FCFEMBCAddRHS(FCBody, Vec b);
-PETSC_INTERN PetscErrorCode FCFEMBCEndStep(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMBCDestroy(FCBody);
+/* fem_load.c */
+PETSC_INTERN PetscErrorCode FCFEMLoadsSetUp(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMLoadsAt(FCBody, PetscReal t);
+/* fem_reaction.c */
+PETSC_INTERN PetscErrorCode FCFEMBCEndStep(FCBody);
 PETSC_INTERN PetscErrorCode GetExternalWork_FEM(FCBody, PetscReal *);
 PETSC_INTERN PetscErrorCode GetReactions_FEM(FCBody, PetscInt *, const char ***, const PetscReal **);
 /* fem_rotation.c */
