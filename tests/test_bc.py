@@ -24,6 +24,8 @@ on --np ranks:
   co-rotational cube turns with its base as a rigid body; dynamically the region is at the hand's
   pose at every frame; an unknown body and a rigid one are refused;
 - a kinematic body follows its -trajectory table exactly (centre, and orientation by slerp);
+- restart: a prescribed motion restarted at step 10 ends where the uninterrupted run does; another
+  -cube_young is refused naming it, a table with new rows is accepted;
 - a constrained region against a kinematic plane: no contact is made there (the rule of
   docs/scenes.md) and the run converges;
 - bad input: an unknown region (the message lists the mesh's groups), a table whose time does not
@@ -189,6 +191,27 @@ for extra, msg in [(["-cube_attach", "zmin:nobody"], "no other body"), (["-hand_
              "-cube_attach", "zmin:hand", "-hand_type", "kinematic", "-hand_shape", "sphere", "-hand_radius", 0.05,
              "-hand_center", "0,0,-0.6"] + [str(e) for e in extra], NP, check=False)
     c.check(p.returncode != 0 and msg in p.stdout + p.stderr, "-cube_attach %s: '%s'" % (" ".join(map(str, extra)), msg))
+
+# restart: a prescribed motion continues exactly; a changed scene is refused, a changed table is not
+RS = ["-scene_bodies", "cube", "-cube_type", "fem", "-cube_dm_plex_filename", "meshes/cube_coarse.msh", "-cube_material",
+      "corotational", "-cube_young", 1e5, "-cube_density", 100, "-cube_fixed", "zmin", "-cube_displacement",
+      "zmax=0:0,0,0;0.3:0.05,0,-0.05", "-time_step", 0.01, "-quiet"]
+full, half, rest = out("rs_full.h5"), out("rs_half.h5"), out("rs_rest.h5")
+run(RS + ["-time_steps", 20, "-output_every", 10, "-output_file", full], NP)
+run(RS + ["-time_steps", 10, "-output_every", 10, "-output_file", half], NP)
+run(RS + ["-time_steps", 20, "-output_every", 10, "-output_file", rest, "-restart", half], NP)
+a, b = h5py.File(full, "r"), h5py.File(rest, "r")
+d = np.abs(a["bodies/cube/positions"][-1] - b["bodies/cube/positions"][-1]).max() if NP == 1 else \
+    np.abs(np.sort(a["bodies/cube/positions"][-1], axis=0) - np.sort(b["bodies/cube/positions"][-1], axis=0)).max()
+r = np.abs(a["bodies/cube/reactions/zmax"][-1] - b["bodies/cube/reactions/zmax"][-1]).max()
+c.check(d < 1e-12 and r < 1e-9 * np.abs(a["bodies/cube/reactions/zmax"][-1]).max(),
+        "a restart at step 10 of a prescribed motion ends where the uninterrupted run does (%.1e m, reaction %.1e N)" % (d, r))
+p = run(RS + ["-time_steps", 20, "-output_file", out("rs_bad.h5"), "-restart", half, "-cube_young", 2e5], NP, check=False)
+c.check(p.returncode != 0 and "option -cube_young is" in p.stdout + p.stderr and "the run that wrote it" in p.stdout + p.stderr,
+        "a restart with another -cube_young is refused, naming it")
+p = run(RS[:-3] + ["-cube_displacement", "zmax=0:0,0,0;0.3:0.05,0,-0.05;1:0,0,0", "-time_step", 0.01, "-quiet", "-time_steps", 20,
+                   "-output_file", out("rs_table.h5"), "-restart", half], NP, check=False)
+c.check(p.returncode == 0, "a restart whose table continues with new rows runs (the rule)")
 
 # constrained vertices against a kinematic plane: no contact there
 f = out("fixplane.h5")

@@ -20,6 +20,8 @@ PETSC_INTERN PetscErrorCode FCOutputFlush(FCOutput);
 PETSC_INTERN PetscErrorCode FCOutputWriteRestart(FCOutput, PetscInt step, PetscReal t, PetscInt nbodies, FCBody[],
                                                  const FCContactSet *previous);
 /* Reads the newest complete restart state of a file into the bodies, previous contacts, step, t */
+/* src/io/restartcheck.c: the options that define the scene are those of the run that wrote the file */
+PETSC_INTERN PetscErrorCode FCRestartCheckScene(MPI_Comm, const char file[], PetscInt nbodies, FCBody[]);
 PETSC_INTERN PetscErrorCode FCRestartLoad(MPI_Comm, const char file[], PetscInt nbodies, FCBody[],
                                           FCContactSet *previous, PetscInt *step, PetscReal *t);
 PETSC_INTERN PetscErrorCode FCOutputDestroy(FCOutput *);

@@ -182,6 +182,7 @@ PetscErrorCode FCSceneSetUp(FCScene s)
   if (s->restart[0]) { /* an input, by identity: FCOutputCreate refuses to write over it (src/util/inputs.c) */
     PetscCall(FCInputsAdd(s->restart, "restart file (-restart)"));
     PetscCall(FCRestartLoad(s->comm, s->restart, s->nbodies, s->bodies, &s->previous, &s->step, &s->t));
+    PetscCall(FCRestartCheckScene(s->comm, s->restart, s->nbodies, s->bodies));
     PetscCheck(s->step <= s->nsteps, s->comm, PETSC_ERR_USER_INPUT,
                "-restart %s is at step %" PetscInt_FMT ", beyond -time_steps %" PetscInt_FMT, s->restart, s->step,
                s->nsteps);
