@@ -19,7 +19,8 @@ on --np ranks:
   body sum to zero), to 1e-8 of m g;
 - quasi-static (-time_integration static): the compression's reaction follows its ramp at every
   step; the sphere of input/pressed.opts pressed on its block: the cap's reaction is the contact
-  force at every step; damping, an FE body held by nothing and a rigid body are refused;
+  force at every step, and its contact_pressure field sums to that force over the vertex areas;
+  damping, an FE body held by nothing and a rigid body are refused;
 - an attachment (-cube_attach zmin:hand): under a turning kinematic hand, statically, the
   co-rotational cube turns with its base as a rigid body; dynamically the region is at the hand's
   pose at every frame; an unknown body and a rigid one are refused;
@@ -82,7 +83,8 @@ c.check(np.abs(Rz - want).max() < 1e-6 * E * 0.01 and np.abs(h["bodies/cube/ener
         "static: the reaction follows the prescribed ramp at every step (%.1e N), no kinetic energy" % np.abs(Rz - want).max())
 f = out("pressed.h5")
 run(["-options_file", "input/pressed.opts", "-ball_dm_plex_filename", "meshes/hertz_sphere_1.msh",
-     "-block_dm_plex_filename", "meshes/hertz_block_1.msh", "-time_steps", 4, "-output_file", f, "-quiet"], NP)
+     "-block_dm_plex_filename", "meshes/hertz_block_1.msh", "-time_steps", 4, "-output_file", f, "-quiet",
+     "-output_fields", "displacement,contact_pressure"], NP)
 h = h5py.File(f, "r")
 cap = [k for k in h["bodies/ball/reactions"] if k.startswith("box:-1,-1,0.95")][0]
 Rc, off = h["bodies/ball/reactions/" + cap][:, 2], h["contacts/offset"][:]
@@ -90,6 +92,26 @@ Fn = np.array([h["contacts/force"][off[k]:off[k + 1], 0].sum() for k in range(le
 c.check(Fn.min() > 500 and np.abs(Rc + Fn).max() < 1e-6 * Fn.max(),
         "static contact (input/pressed.opts): the cap's reaction is the contact force at every step (%.1e relative; "
         "%.0f N at step 4)" % (np.abs(Rc + Fn).max() / Fn.max(), Fn[-1]))
+# contact_pressure: over the vertex areas (a third of the boundary faces' at each vertex) it sums to
+# the normal contact force, and it is nonzero only on the contact patch (Hertz's radius a, give or
+# take the elements)
+cells, X = h["bodies/ball/mesh/cells"][:], h["bodies/ball/mesh/reference"][:]
+faces = np.sort(np.concatenate([cells[:, [0, 1, 2]], cells[:, [0, 1, 3]], cells[:, [0, 2, 3]], cells[:, [1, 2, 3]]]), axis=1)
+uf, cnt = np.unique(faces, axis=0, return_counts=True)
+bf = uf[cnt == 1]
+area = 0.5 * np.linalg.norm(np.cross(X[bf[:, 1]] - X[bf[:, 0]], X[bf[:, 2]] - X[bf[:, 0]]), axis=1)
+Av = np.zeros(len(X))
+for k in range(3):
+    np.add.at(Av, bf[:, k], area / 3)
+pc = h["bodies/ball/contact_pressure"][-1]
+Es = 1 / ((1 - 0.09) / 5e6 + (1 - 0.09) / 5e9)
+a_h = (3 * Fn[-1] * 0.5 / (4 * Es))**(1 / 3)
+p0 = 3 * Fn[-1] / (2 * np.pi * a_h**2)
+rmax = np.hypot(X[pc > 0, 0], X[pc > 0, 1]).max()
+c.check(abs(np.sum(pc * Av) - Fn[-1]) < 1e-8 * Fn[-1] and rmax < a_h + 2 * 0.04,
+        "contact_pressure: sum p A = the normal contact force (%.1e relative), nonzero within r = %.3f m of the axis "
+        "(Hertz's a = %.3f m, elements 0.04 m); peak %.0f Pa against Hertz's p0 %.0f Pa on this coarse mesh"
+        % (abs(np.sum(pc * Av) - Fn[-1]) / Fn[-1], rmax, a_h, pc.max(), p0))
 for args, msg in [(["-cube_fixed", "zmin", "-cube_rayleigh_mass", "1"], "has no damping"), ([], "no fixed or prescribed vertex")]:
     p = run(BASE0 + ["-time_integration", "static"] + args, NP, check=False)
     c.check(p.returncode != 0 and msg in p.stdout + p.stderr, "static %s: '%s'" % (" ".join(map(str, args)) or "(nothing held)", msg))

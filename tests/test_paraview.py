@@ -32,7 +32,7 @@ if not (shutil.which("pvbatch") and shutil.which("xvfb-run")):
           "python3-paraview, xvfb); FC_SKIP_PARAVIEW=1 skips this test")
     sys.exit(1)
 
-ALL = ["-output_fields", "displacement,velocity,von_mises,energy_density"]
+ALL = ["-output_fields", "displacement,velocity,von_mises,energy_density,contact_pressure"]
 GRASP = ["-options_file", "input/grasp_rotate.opts", "-quiet"] + ALL
 CUBE = ["-scene_bodies", "cube", "-cube_type", "fem", "-cube_dm_plex_filename", "meshes/cube_coarse.msh",
         "-cube_young", "1e5", "-cube_density", "100", "-cube_material", "corotational", "-cube_angular_velocity", "0,0,3",
@@ -78,7 +78,7 @@ def check_file(name, h5, frames_checked):
                 key = "%s/%d/%d/" % (r, i, j)
                 nc = g["mesh/cells"].shape[0]
                 same = np.array_equal(pv[key + "points"], g["positions"][k]) and int(pv[key + "ncells"]) == nc
-                for fld in ["displacement", "velocity"]:
+                for fld in ["displacement", "velocity", "contact_pressure"]:
                     if fld in g:
                         same &= np.array_equal(pv[key + "point/" + fld], g[fld][k])
                 for fld in ["von_mises", "energy_density"]:
@@ -87,7 +87,7 @@ def check_file(name, h5, frames_checked):
                 if "mesh/rank" in g:  # the partition, a cell attribute of meshed bodies
                     same &= np.array_equal(pv[key + "cell/rank"], g["mesh/rank"][:])
                 arrays = sorted(x.split("/")[-1] for x in pv.files if x.startswith(key + "point/") or x.startswith(key + "cell/"))
-                expect = sorted([x for x in ["displacement", "velocity", "von_mises", "energy_density"] if x in g] +
+                expect = sorted([x for x in ["displacement", "velocity", "contact_pressure", "von_mises", "energy_density"] if x in g] +
                                 (["rank"] if "mesh/rank" in g else []))
                 same &= arrays == expect
                 if r == "xdmf2" and len(names) > 1:

@@ -155,6 +155,16 @@ PetscErrorCode FCBodySetSceneBodies(FCBody body, PetscInt n, FCBody bodies[])
   PetscFunctionReturn(0);
 }
 
+/* The scene's contact set, whose contacts and forces are those of the last step, and this body's
+   index in the scene (for the fields that show them) */
+PetscErrorCode FCBodySetStepContacts(FCBody body, PetscInt self, const FCContactSet *set)
+{
+  PetscFunctionBegin;
+  body->self     = self;
+  body->contacts = set;
+  PetscFunctionReturn(0);
+}
+
 /* The scene's time before a step (0 at set-up, the stored time at a restart) */
 PetscErrorCode FCBodySetTime(FCBody body, PetscReal t)
 {

@@ -8,14 +8,16 @@
 /* Fields of a body's picture written at output frames (-output_fields, src/io/fields.c): point
    fields have 3 values per visual vertex, cell fields 1 value per visual cell */
 typedef enum {
-  FC_FIELD_DISPLACEMENT,   /* point: x - X (m)                                               */
-  FC_FIELD_VELOCITY,       /* point: dx/dt (m/s)                                             */
-  FC_FIELD_VON_MISES,      /* cell, FE: von Mises stress of the material's linear stress (Pa) */
-  FC_FIELD_ENERGY_DENSITY, /* cell, FE: elastic energy / reference volume (J/m^3 = Pa)        */
+  FC_FIELD_DISPLACEMENT,     /* point: x - X (m)                                               */
+  FC_FIELD_VELOCITY,         /* point: dx/dt (m/s)                                             */
+  FC_FIELD_VON_MISES,        /* cell, FE: von Mises stress of the material's linear stress (Pa) */
+  FC_FIELD_ENERGY_DENSITY,   /* cell, FE: elastic energy / reference volume (J/m^3 = Pa)        */
+  FC_FIELD_CONTACT_PRESSURE, /* point, FE: the step's normal contact force per vertex area (Pa) */
   FC_FIELD_NUM
 } FCVisualField;
 PETSC_INTERN const char *const FCVisualFieldNames[FC_FIELD_NUM];
 PETSC_INTERN PetscBool         FCVisualFieldIsCell(FCVisualField);
+PETSC_INTERN PetscBool         FCVisualFieldIsScalar(FCVisualField); /* one value (else 3) per vertex or cell */
 enum { FC_AT_START, FC_AT_FREE, FC_AT_NOW };
 
 /* What a body is, and what code outside src/body/ may ask of it (src/body/body_ops.c): no other
@@ -44,6 +46,7 @@ PETSC_INTERN void FCBodyGetPrescribedMotion(FCBody, PetscReal v[3], PetscReal w[
 PETSC_INTERN PetscErrorCode FCBodyGetStateLayout(FCBody, PetscInt *cols, PetscBool *pervertex);
 PETSC_INTERN PetscErrorCode FCBodyGetState(FCBody, PetscReal[]);
 /* A field of the body's picture (see FCBodyOps.getvisualfield); *has = PETSC_FALSE when the body has none */
+PETSC_INTERN PetscErrorCode FCBodySetStepContacts(FCBody, PetscInt self, const FCContactSet *);
 PETSC_INTERN PetscErrorCode FCBodyGetVisualField(FCBody, FCVisualField, PetscReal[], PetscBool *has);
 PETSC_INTERN PetscErrorCode FCBodySetState(FCBody, const PetscReal[]);
 /* Contact geometry (see FCBodyOps for the meaning of each) */

@@ -87,9 +87,11 @@ struct _p_FCBody {
   PetscBool setupcalled;
   PetscBool expects; /* its first factorization depends on its contacts: FCBodyExpectContacts before the free motion */
   PetscReal h, gravity[3];
-  PetscBool quasistatic; /* -time_integration static: no inertia, each step an equilibrium */
-  PetscInt  nscene;      /* the scene's bodies, for a body that refers to another (-<name>_attach) */
-  FCBody   *scene;
+  PetscBool quasistatic;        /* -time_integration static: no inertia, each step an equilibrium */
+  PetscInt  nscene;             /* the scene's bodies, for a body that refers to another (-<name>_attach) */
+  PetscInt  self;               /* its index among them */
+  const FCContactSet *contacts; /* the scene's contacts of the last step (the contact_pressure field) */
+  FCBody             *scene;
   /* placement and initial motion, common to every type */
   PetscReal    translate[3], rotate[4], center[3], velocity[3], angular_velocity[3];
   PetscBool    center_set;

@@ -339,6 +339,7 @@ PetscErrorCode FCFEMBCDestroy(FCBody body)
     PetscCall(PetscFree(fem->load[l].weight));
   }
   PetscCall(VecDestroy(&fem->fload));
+  PetscCall(VecDestroy(&fem->varea));
   PetscCall(PetscFree(fem->creg));
   PetscCall(PetscFree(fem->ccell));
   PetscFunctionReturn(0);

@@ -174,6 +174,9 @@ PetscErrorCode GetVisualField_FEM(FCBody body, FCVisualField field, PetscReal ou
   case FC_FIELD_ENERGY_DENSITY:
     PetscCall(VisualCellValues(body, field, out));
     break;
+  case FC_FIELD_CONTACT_PRESSURE:
+    PetscCall(FCFEMContactPressure(body, out));
+    break;
   default:
     *has = PETSC_FALSE;
   }
@@ -293,4 +296,64 @@ PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
           "smaller; -%sinverted allow runs on",
           body->name, (double)where[3], step, (double)all.J, (double)where[0], (double)where[1], (double)where[2],
           fem->material, body->prefix);
+}
+
+/* contact_pressure: per owned visual vertex, the normal force of the last step's contacts on it
+   (its share w_k lambda_n of each contact it is a vertex of, dormant and open contacts carrying
+   none) over its area, a third of its boundary faces' (placed reference areas); 0 on constrained
+   vertices, whose contacts the supports take */
+PetscErrorCode FCFEMContactPressure(FCBody body, PetscReal out[])
+{
+  FEM                *fem = (FEM *)body->data;
+  FCMesh             *m   = &fem->mesh;
+  const FCContactSet *set = body->contacts;
+  PetscScalar        *f;
+  const PetscScalar  *A;
+  PetscInt            lo, hi;
+
+  PetscFunctionBegin;
+  if (!fem->varea) { /* the vertex areas, once */
+    Vec          al;
+    PetscScalar *a;
+    PetscCall(VecDuplicate(fem->u, &fem->varea));
+    PetscCall(DMGetLocalVector(m->dm, &al));
+    PetscCall(VecZeroEntries(al));
+    PetscCall(VecGetArray(al, &a));
+    for (PetscInt t = 0; t < fem->ntri; t++) {
+      const PetscInt *tv = &fem->triv[3 * t];
+      PetscReal       e1[3], e2[3], n[3];
+      for (int d = 0; d < 3; d++) {
+        e1[d] = m->X[3 * tv[1] + d] - m->X[3 * tv[0] + d];
+        e2[d] = m->X[3 * tv[2] + d] - m->X[3 * tv[0] + d];
+      }
+      FCCross(e1, e2, n);
+      for (int k = 0; k < 3; k++)
+        if (!fem->fixed[tv[k]]) a[fem->ldof[tv[k]]] += PetscSqrtReal(FCDot(n, n)) / 6.0;
+    }
+    PetscCall(VecRestoreArray(al, &a));
+    PetscCall(VecZeroEntries(fem->varea));
+    PetscCall(DMLocalToGlobal(m->dm, al, ADD_VALUES, fem->varea));
+    PetscCall(DMRestoreLocalVector(m->dm, &al));
+  }
+  PetscCall(VecGetOwnershipRange(fem->work, &lo, &hi));
+  PetscCall(VecZeroEntries(fem->work));
+  PetscCall(VecGetArray(fem->work, &f));
+  for (PetscInt i = 0; set && i < set->n; i++) { /* the set is the same on every rank: each adds its own rows */
+    const FCContact *c = &set->c[i];
+    for (int s = 0; s < 2; s++) {
+      if (c->body[s] != body->self) continue;
+      for (PetscInt k = 0; k < c->prox[s].nv; k++) {
+        PetscInt g = c->prox[s].gdof[k];
+        if (g >= lo && g < hi) f[g - lo] += c->prox[s].w[k] * PetscAbsReal(c->force[0]);
+      }
+    }
+  }
+  PetscCall(VecGetArrayRead(fem->varea, &A));
+  for (PetscInt i = 0; i < body->visual.nv; i++) {
+    PetscInt v = m->visVert[i], g = fem->gdof[v];
+    out[i] = g < 0 || PetscRealPart(A[g - lo]) <= 0.0 ? 0.0 : PetscRealPart(f[g - lo] / A[g - lo]);
+  }
+  PetscCall(VecRestoreArrayRead(fem->varea, &A));
+  PetscCall(VecRestoreArray(fem->work, &f));
+  PetscFunctionReturn(0);
 }

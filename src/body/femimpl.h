@@ -61,10 +61,11 @@ typedef struct {
   PetscInt         ncons, nload;
   FCFEMConstraint  cons[FC_MAX_REGIONS];
   FCFEMLoad        load[FC_MAX_REGIONS];
-  PetscInt        *creg;                  /* per local vertex: its constraint, -1 when free */
-  PetscInt         nccell, *ccell;        /* the cells with a constrained vertex */
-  PetscBool        moving;                /* some constraint moves */
-  Vec              fload;                 /* the loads at the end of the step */
+  PetscInt        *creg;           /* per local vertex: its constraint, -1 when free */
+  PetscInt         nccell, *ccell; /* the cells with a constrained vertex */
+  PetscBool        moving;         /* some constraint moves */
+  Vec              fload;          /* the loads at the end of the step */
+  Vec              varea;          /* per DOF: a third of the boundary faces' area at the vertex (contact_pressure) */
   const char      *rname[FC_MAX_REGIONS]; /* the constraints' regions and reactions, for the output */
   PetscReal        rval[6 * FC_MAX_REGIONS];
   PetscReal        extwork;     /* magnitude of the work of the prescribed motions and loads so far (energy guard) */
@@ -194,6 +195,7 @@ PETSC_INTERN PetscErrorCode GetCentroid_FEM(FCBody, PetscReal[3]);
 PETSC_INTERN PetscErrorCode GetEnergy_FEM(FCBody, FCEnergy *);
 PETSC_INTERN PetscErrorCode GetVisualPositions_FEM(FCBody, PetscReal[]);
 PETSC_INTERN PetscErrorCode GetVisualField_FEM(FCBody, FCVisualField, PetscReal[], PetscBool *);
+PETSC_INTERN PetscErrorCode FCFEMContactPressure(FCBody, PetscReal[]);
 PETSC_INTERN PetscErrorCode GetState_FEM(FCBody, PetscReal[]);
 PETSC_INTERN PetscErrorCode SetState_FEM(FCBody, const PetscReal[]);
 PETSC_INTERN PetscErrorCode CheckState_FEM(FCBody, PetscInt);

@@ -7,11 +7,17 @@
    come from the bodies (FCBodyGetVisualField: src/body/fem_state.c, pose.c). */
 #include "ioimpl.h"
 
-const char *const FCVisualFieldNames[FC_FIELD_NUM] = {"displacement", "velocity", "von_mises", "energy_density"};
+const char *const FCVisualFieldNames[FC_FIELD_NUM] = {"displacement", "velocity", "von_mises", "energy_density",
+                                                      "contact_pressure"};
 
 PetscBool FCVisualFieldIsCell(FCVisualField f)
 {
   return f == FC_FIELD_VON_MISES || f == FC_FIELD_ENERGY_DENSITY ? PETSC_TRUE : PETSC_FALSE;
+}
+
+PetscBool FCVisualFieldIsScalar(FCVisualField f)
+{
+  return FCVisualFieldIsCell(f) || f == FC_FIELD_CONTACT_PRESSURE ? PETSC_TRUE : PETSC_FALSE;
 }
 
 /* "displacement,velocity" -> mask; "none" (alone) -> 0 */
@@ -86,7 +92,7 @@ PetscErrorCode FCOutputFieldsCreate(FCOutput out)
       {
         hsize_t rows[2] = {(hsize_t)ng, 3};
         PetscCall(FCH5CreateRows(out->bo[i].group, FCVisualFieldNames[f], H5T_NATIVE_DOUBLE,
-                                 FCVisualFieldIsCell((FCVisualField)f) ? 2 : 3, rows, 1, &out->fields[i][f]));
+                                 FCVisualFieldIsScalar((FCVisualField)f) ? 2 : 3, rows, 1, &out->fields[i][f]));
       }
     }
   PetscFunctionReturn(0);
@@ -99,7 +105,7 @@ PetscErrorCode FCOutputFieldsWrite(FCOutput out)
   for (PetscInt i = 0; i < out->nbodies; i++)
     for (int f = 0; f < FC_FIELD_NUM; f++) {
       hid_t      dset = out->fields[i][f], fspace, mspace;
-      int        cell = FCVisualFieldIsCell((FCVisualField)f), rank = cell ? 2 : 3;
+      int        rank = FCVisualFieldIsScalar((FCVisualField)f) ? 2 : 3;
       hsize_t    dims[3], start[3] = {0, 0, 0}, count[3] = {1, 0, 3};
       PetscInt   n, ng, first;
       PetscReal *v;

@@ -94,10 +94,11 @@ PetscErrorCode FCXdmfAddFrame(FCOutput out, PetscReal t)
       hsize_t     rows[2] = {(hsize_t)vis->nv_global, 3};
       const char *fname   = f < 0 ? "positions" : FCVisualFieldNames[f];
       PetscBool   cell    = f >= 0 && FCVisualFieldIsCell((FCVisualField)f);
+      PetscBool   scalar  = f >= 0 && FCVisualFieldIsScalar((FCVisualField)f);
       if (f >= 0 && out->fields[i][f] < 0) continue;
       if (cell) rows[0] = (hsize_t)vis->nc_global;
       PetscCall(PetscSNPrintf(path, sizeof(path), "/bodies/%s/%s", name, fname));
-      PetscCall(CreateView(g, fname, H5T_NATIVE_DOUBLE, path, cell ? 2 : 3, rows, (hsize_t)k, 1, -1, PETSC_TRUE));
+      PetscCall(CreateView(g, fname, H5T_NATIVE_DOUBLE, path, scalar ? 2 : 3, rows, (hsize_t)k, 1, -1, PETSC_TRUE));
     }
     H5Gclose(g);
   }
@@ -171,12 +172,14 @@ static PetscErrorCode BodyGrid(FCOutput out, FILE *fp, const char base[], PetscI
       fprintf(fp, "    </Attribute>\n");
     }
     for (int f = 0; f < FC_FIELD_NUM; f++) {
-      PetscBool cell = FCVisualFieldIsCell((FCVisualField)f);
+      PetscBool cell = FCVisualFieldIsCell((FCVisualField)f), scalar = FCVisualFieldIsScalar((FCVisualField)f);
       if (out->fields[i][f] < 0) continue;
       fprintf(fp, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", FCVisualFieldNames[f],
-              cell ? "Scalar" : "Vector", cell ? "Cell" : "Node");
+              scalar ? "Scalar" : "Vector", cell ? "Cell" : "Node");
       if (cell)
         PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT, vis->nc_global));
+      else if (scalar)
+        PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT, vis->nv_global));
       else
         PetscCall(PetscSNPrintf(dims, sizeof(dims), "%" PetscInt_FMT " 3", vis->nv_global));
       PetscCall(PetscSNPrintf(path, sizeof(path), "/xdmf/frame%" PetscInt_FMT "/bodies/%s/%s", k, name,

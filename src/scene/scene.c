@@ -165,6 +165,7 @@ PetscErrorCode FCSceneSetUp(FCScene s)
     PetscCall(FCBodySetTimeStep(s->bodies[i], s->h));
     PetscCall(FCBodySetQuasiStatic(s->bodies[i], s->quasistatic));
     PetscCall(FCBodySetSceneBodies(s->bodies[i], s->nbodies, s->bodies));
+    PetscCall(FCBodySetStepContacts(s->bodies[i], i, &s->set));
     PetscCall(FCBodySetGravity(s->bodies[i], s->gravity));
     PetscCall(FCBodySetUp(s->bodies[i]));
   }
