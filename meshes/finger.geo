@@ -11,3 +11,4 @@ e = 1e-6;
 Physical Volume("finger", 1) = {1};
 Physical Surface("base", 1) = Surface In BoundingBox{-0.01-e, -0.01-e, -e, 0.01+e, 0.01+e, e};
 Physical Surface("tip", 2) = Surface In BoundingBox{-0.01-e, -0.01-e, 0.1-e, 0.01+e, 0.01+e, 0.1+e};
+Physical Point("tip_corner", 3) = Point In BoundingBox{0.01-e, 0.01-e, 0.1-e, 0.01+e, 0.01+e, 0.1+e};

@@ -13,6 +13,7 @@ on --np ranks:
   radial displacement at r = a and r = b against
   u(r) = p a^3 / (E (b^3 - a^3)) ((1 - 2 nu) r + (1 + nu) b^3 / (2 r^2)), within 2 % on the
   finer mesh (lc 0.05), and closer than on the coarser one (lc 0.1; the error falls as lc^2);
+- a force on a Physical Point group (the finger's tip corner), statically, is the base's reaction;
 - the reaction is the contact force: a rigid box rests on an FE block clamped at "zmin"; at every
   step the block's discrete momentum balance holds, R + F_contact + m g = m (c'' + alpha c') with c
   the block's centroid (the sum of the rows of the step's equations: the elastic forces of a linear
@@ -118,6 +119,19 @@ for args, msg in [(["-cube_fixed", "zmin", "-cube_rayleigh_mass", "1"], "has no 
 p = run(["-scene_bodies", "b", "-b_type", "rigid", "-b_shape", "sphere", "-b_radius", 1, "-b_density", 1,
          "-time_integration", "static", "-time_steps", 1, "-output_file", out("r.h5")], NP, check=False)
 c.check(p.returncode != 0 and "no static equilibrium of its own" in p.stdout + p.stderr, "static: a rigid body is refused")
+
+# a Physical Point group: a force on the finger's tip corner, statically, is taken by its base
+f = out("corner.h5")
+run(["-scene_bodies", "finger", "-finger_type", "fem", "-finger_dm_plex_filename", "meshes/finger.msh", "-finger_young", 5e4,
+     "-finger_density", 1100, "-finger_fixed", "base", "-finger_force", "tip_corner=0:0,0,0;1:0.01,-0.02,0.005",
+     "-time_integration", "static", "-gravity", "0,0,0", "-time_step", 1, "-time_steps", 1, "-output_file", f, "-quiet"], NP)
+h = h5py.File(f, "r")
+R = h["bodies/finger/reactions/base"][-1]
+X, P = h["bodies/finger/mesh/reference"][:], h["bodies/finger/positions"][-1]
+moved = np.abs(P - X).max(axis=1).argmax()
+c.check(np.abs(R[:3] + [0.01, -0.02, 0.005]).max() < 1e-9 and np.abs(X[moved] - [0.01, 0.01, 0.1]).max() < 1e-12,
+        "a force on the Physical Point 'tip_corner' is taken by the base (%.1e N) and moves that vertex most" %
+        np.abs(R[:3] + [0.01, -0.02, 0.005]).max())
 
 # Lame's thick sphere
 def lame(mesh):

@@ -119,9 +119,12 @@ PetscErrorCode FCMeshRead(MPI_Comm comm, const char prefix[], const char bodynam
     PetscBool      regions;
     PetscCall(PetscOptionsGetBool(NULL, prefix, "-dm_distribute", distribute, NULL));
     /* one label per physical group, named after it (regions, src/mesh/region.c) */
-    /* (PETSc 3.18's reader reads it without the DM's prefix, and it cannot be unset) */
+    /* (PETSc 3.18's reader reads them without the DM's prefix; mark_vertices makes the labels of
+       Physical Point groups, and marks the vertices of the others too) */
     PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_use_regions", &regions));
     if (!regions) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "1"));
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-dm_plex_gmsh_mark_vertices", &regions));
+    if (!regions) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_mark_vertices", "1"));
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sdm_distribute", prefix));
     PetscCall(PetscOptionsSetValue(NULL, opt, "0"));
     ReaderGuard(PETSC_TRUE, fname, prefix, bodyname);
