@@ -2,8 +2,8 @@
 1. a failed write ends the run on every rank (no hang: every run has a time limit), with a message
    naming the file and the cause, exit status 3, and a file whose frames, step rows and restart
    state agree, from which -restart continues: a small tmpfs filled in the middle of a run (the
-   disk space reserved before HDF5 writes, and, with FECONTACT_NO_RESERVE=1, a write that fails
-   inside HDF5), and -output_file /dev/full;
+   disk space reserved before HDF5 writes, and, with FECONTACT_NO_RESERVE=1, as where fallocate is
+   not supported: the file extended sparse and the free space checked), and -output_file /dev/full;
 2. no input is overwritten: the output compared with the restart file, the meshes and the options
    files by identity (hard and symbolic links, the XDMF index);
 3. physically absurd runs stop: the energy guard, derived quantities at set-up, integer options
@@ -111,7 +111,7 @@ def disk_full(tag, env_extra):
 
 
 disk_full("space reserved", {})
-disk_full("write fails inside HDF5", {"FECONTACT_NO_RESERVE": "1"})
+disk_full("no fallocate: free space checked", {"FECONTACT_NO_RESERVE": "1"})
 expect_error("-output_file /dev/full", DROP + ["-output_file", "/dev/full"], 3, "/dev/full",
              "no space left on device")
 

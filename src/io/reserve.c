@@ -13,12 +13,16 @@
    With the file always at least EOA + the reservation long, that cannot happen; the zeros beyond
    the EOA are cut off when the file is closed (FCH5Release). Where fallocate is not supported
    (some network file systems) the file is only extended (ftruncate, sparse: nothing reserved) and
-   a failure inside HDF5 is still collective per call (FCH5Check), but may hang or leave the file
-   unclosable; a file that is not a regular file (a device) is probed by writing a byte. */
+   the file system's free space (statvfs) must hold what the writes will need beyond the blocks the
+   file has: a full disk is then still met here, unless another process fills it in between (a
+   failure inside HDF5 is collective per call, FCH5Check, but HDF5 1.10 may not survive it: a
+   hang on several ranks, a file it cannot close). A file that is not a regular file (a device) is
+   probed by writing a byte. */
 #define _GNU_SOURCE
 #include "ioimpl.h"
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 PetscErrorCode FCH5Reserve(MPI_Comm comm, const char file[], hid_t h5, size_t bytes, const char what[])
@@ -29,9 +33,8 @@ PetscErrorCode FCH5Reserve(MPI_Comm comm, const char file[], hid_t h5, size_t by
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  /* FECONTACT_NO_RESERVE=1: no reservation, as where fallocate is not supported (the tests use it
-     to reach the failure of a write inside HDF5) */
-  if (rank == 0 && !getenv("FECONTACT_NO_RESERVE")) {
+  /* FECONTACT_NO_RESERVE=1: as where fallocate is not supported (the tests use it) */
+  if (rank == 0) {
     int         fd = open(file, O_WRONLY);
     struct stat st;
     if (fd < 0 && errno == ENOENT) {
@@ -44,9 +47,15 @@ PetscErrorCode FCH5Reserve(MPI_Comm comm, const char file[], hid_t h5, size_t by
       off_t   end;
       if (h5 < 0 || H5Fget_eoa(h5, &eoa) < 0) eoa = (haddr_t)st.st_size;
       end = (off_t)(eoa + bytes);
-      if (end > st.st_size && fallocate(fd, 0, st.st_size, end - st.st_size)) {
-        if (errno == EOPNOTSUPP || errno == ENOSYS) {
-          if (ftruncate(fd, end)) {
+      if (end > st.st_size && (getenv("FECONTACT_NO_RESERVE") ? (errno = EOPNOTSUPP, -1)
+                                                              : fallocate(fd, 0, st.st_size, end - st.st_size))) {
+        if (errno == EOPNOTSUPP || errno == ENOSYS) { /* sparse, and the free space checked */
+          struct statvfs fs;
+          off_t          have = (off_t)st.st_blocks * 512;
+          if (!fstatvfs(fd, &fs) && end > have && (off_t)fs.f_bavail * (off_t)fs.f_frsize < end - have) {
+            ok  = 0;
+            err = ENOSPC;
+          } else if (ftruncate(fd, end)) {
             ok  = 0;
             err = errno;
           }
@@ -77,7 +86,7 @@ PetscErrorCode FCH5Release(MPI_Comm comm, const char file[])
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0 && !getenv("FECONTACT_NO_RESERVE")) {
+  if (rank == 0) {
     struct stat st;
     haddr_t     eoa = 0;
     hid_t       f   = stat(file, &st) || !S_ISREG(st.st_mode) ? -1 : H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
