@@ -110,12 +110,44 @@ static PetscErrorCode MarkConstraint(FCBody body, PetscInt k, const char option[
   PetscFunctionReturn(0);
 }
 
+/* The next constraint of the body, its region named (at most FC_MAX_REGIONS) */
+static PetscErrorCode NewConstraint(FCBody body, const char region[], FCFEMConstraint **c)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  PetscCheck(fem->ncons < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d constraints",
+             body->name, FC_MAX_REGIONS);
+  *c = &fem->cons[fem->ncons];
+  PetscCall(PetscStrncpy((*c)->region, region, sizeof((*c)->region)));
+  PetscFunctionReturn(0);
+}
+
+/* The next item of a comma-separated list of regions (a box takes its six numbers, and what follows
+   the sixth up to the next comma, as -attach's ":body"); *s moves past it */
+static PetscErrorCode NextItem(char **s, char item[], size_t len)
+{
+  char    *tok    = *s;
+  PetscInt commas = !strncmp(tok, "box:", 4) ? 6 : 1;
+
+  PetscFunctionBegin;
+  while (**s && commas) {
+    if (**s == ',') commas--;
+    if (commas) (*s)++;
+  }
+  PetscCall(PetscStrncpy(item, tok, PetscMin(len, (size_t)(*s - tok) + 1)));
+  if (**s == ',') (*s)++;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCFEMBCSetUpConstraints(FCBody body)
 {
-  FEM       *fem = (FEM *)body->data;
-  FCMesh    *m   = &fem->mesh;
-  PetscInt   nv  = m->vEnd - m->vStart;
-  PetscBool *mark;
+  FEM             *fem = (FEM *)body->data;
+  FCMesh          *m   = &fem->mesh;
+  PetscInt         nv  = m->vEnd - m->vStart;
+  PetscBool       *mark;
+  FCFEMConstraint *c;
+  char             item[512];
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(nv + 1, &fem->creg));
@@ -124,82 +156,53 @@ PetscErrorCode FCFEMBCSetUpConstraints(FCBody body)
   fem->ncons = 0;
   for (PetscInt b = 0; b < fem->nfixed_box; b++) { /* -fixed_box: constraints named box:... */
     const PetscReal *x = &fem->fixed_box[6 * b];
-    PetscCheck(fem->ncons < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d constraints",
-               body->name, FC_MAX_REGIONS);
-    PetscCall(PetscSNPrintf(fem->cons[fem->ncons].region, 256, "box:%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", x[0], x[1],
-                            x[2], x[3], x[4], x[5]));
+    PetscCall(PetscSNPrintf(item, sizeof(item), "box:%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", x[0], x[1], x[2], x[3], x[4],
+                            x[5]));
+    PetscCall(NewConstraint(body, item, &c));
     PetscCall(MarkConstraint(body, fem->ncons++, "fixed_box", mark));
   }
-  if (fem->bcspec[0][0]) { /* -fixed: names and boxes, comma separated */
-    char *s = fem->bcspec[0], *tok;
-    while (*s) {
-      PetscInt commas = !strncmp(s, "box:", 4) ? 6 : 1;
-      tok             = s;
-      while (*s && commas) {
-        if (*s == ',') commas--;
-        if (commas) s++;
-      }
-      PetscCheck(fem->ncons < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d constraints",
-                 body->name, FC_MAX_REGIONS);
-      PetscCall(PetscStrncpy(fem->cons[fem->ncons].region, tok, PetscMin(256, (size_t)(s - tok) + 1)));
-      PetscCall(MarkConstraint(body, fem->ncons++, "fixed", mark));
-      if (*s == ',') s++;
-    }
+  for (char *s = fem->bcspec[0]; *s;) { /* -fixed: names and boxes */
+    PetscCall(NextItem(&s, item, sizeof(item)));
+    PetscCall(NewConstraint(body, item, &c));
+    PetscCall(MarkConstraint(body, fem->ncons++, "fixed", mark));
   }
   if (fem->bcspec[1][0]) { /* -displacement */
     char     reg[FC_MAX_REGIONS][256], tab[FC_MAX_REGIONS][768], what[FC_MAX_NAME + 300];
     PetscInt n;
     PetscCall(FCFEMSplitPairs(body, "displacement", fem->bcspec[1], &n, reg, tab));
     for (PetscInt i = 0; i < n; i++) {
-      FCFEMConstraint *c = &fem->cons[fem->ncons];
-      PetscCheck(fem->ncons < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d constraints",
-                 body->name, FC_MAX_REGIONS);
-      PetscCall(PetscStrncpy(c->region, reg[i], sizeof(c->region)));
+      PetscCall(NewConstraint(body, reg[i], &c));
       c->moves = PETSC_TRUE;
       PetscCall(PetscSNPrintf(what, sizeof(what), "option -%sdisplacement, region %s", body->prefix, reg[i]));
       PetscCall(FCTableCreate(body->comm, tab[i], 3, 3, what, &c->table));
       PetscCall(MarkConstraint(body, fem->ncons++, "displacement", mark));
-      fem->moving = PETSC_TRUE;
     }
   }
-  if (fem->bcspec[5][0]) { /* -attach region:body, comma separated (a box takes its six numbers) */
-    char *s = fem->bcspec[5], *tok;
-    while (*s) {
-      FCFEMConstraint *c      = &fem->cons[fem->ncons];
-      PetscInt         commas = !strncmp(s, "box:", 4) ? 6 : 1;
-      char             item[512], *colon;
-      FCBody           b = NULL;
-      tok                = s;
-      while (*s && commas) {
-        if (*s == ',') commas--;
-        if (commas) s++;
-      }
-      PetscCheck(fem->ncons < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d constraints",
-                 body->name, FC_MAX_REGIONS);
-      PetscCall(PetscStrncpy(item, tok, PetscMin(sizeof(item), (size_t)(s - tok) + 1)));
-      colon = strrchr(item, ':');
-      PetscCheck(colon && colon != item + 3 && colon[1], body->comm, PETSC_ERR_USER_INPUT,
-                 "Option -%sattach: '%s' is not region:body", body->prefix, item);
-      *colon = 0;
-      for (PetscInt i = 0; i < body->nscene; i++)
-        if (!strcmp(FCBodyName(body->scene[i]), colon + 1)) b = body->scene[i];
-      PetscCheck(b && b != body, body->comm, PETSC_ERR_USER_INPUT,
-                 "Option -%sattach: '%s' is no other body of -scene_bodies", body->prefix, colon + 1);
-      PetscCheck(b->ops.poseat, body->comm, PETSC_ERR_USER_INPUT,
-                 "Option -%sattach: body '%s' is %s; a region can follow a kinematic body only (its motion is given)",
-                 body->prefix, colon + 1, b->type);
-      PetscCall(PetscStrncpy(c->region, item, sizeof(c->region)));
-      PetscCall(PetscStrncpy(c->attach, colon + 1, sizeof(c->attach)));
-      c->body    = b;
-      c->moves   = PETSC_TRUE;
-      c->rotates = PETSC_TRUE;
-      for (int w = 0; w < 3; w++) FCMat3Identity(c->RR[w]); /* at rest until the first pose (FCFEMBCPoses) */
-      FCMat3Identity(c->R0T);
-      PetscCall(MarkConstraint(body, fem->ncons++, "attach", mark));
-      fem->moving = PETSC_TRUE;
-      if (*s == ',') s++;
-    }
+  for (char *s = fem->bcspec[5]; *s;) { /* -attach region:body */
+    char  *colon;
+    FCBody b = NULL;
+    PetscCall(NextItem(&s, item, sizeof(item)));
+    colon = strrchr(item, ':');
+    PetscCheck(colon && colon != item + 3 && colon[1], body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%sattach: '%s' is not region:body", body->prefix, item);
+    *colon = 0;
+    for (PetscInt i = 0; i < body->nscene; i++)
+      if (!strcmp(FCBodyName(body->scene[i]), colon + 1)) b = body->scene[i];
+    PetscCheck(b && b != body, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%sattach: '%s' is no other body of -scene_bodies", body->prefix, colon + 1);
+    PetscCheck(b->ops.poseat, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%sattach: body '%s' is %s; a region can follow a kinematic body only (its motion is given)",
+               body->prefix, colon + 1, b->type);
+    PetscCall(NewConstraint(body, item, &c));
+    c->body    = b;
+    c->moves   = PETSC_TRUE;
+    c->rotates = PETSC_TRUE;
+    for (int w = 0; w < 3; w++) FCMat3Identity(c->RR[w]); /* at rest until the first pose (FCFEMBCPoses) */
+    FCMat3Identity(c->R0T);
+    PetscCall(MarkConstraint(body, fem->ncons++, "attach", mark));
   }
+  fem->moving = PETSC_FALSE;
+  for (PetscInt k = 0; k < fem->ncons; k++) fem->moving = (PetscBool)(fem->moving || fem->cons[k].moves);
   for (PetscInt v = 0; v < nv; v++) fem->fixed[v] = (PetscBool)(fem->creg[v] >= 0);
   PetscCall(PetscFree(mark));
   PetscFunctionReturn(0);
@@ -213,10 +216,6 @@ PetscErrorCode FCFEMBCSetUp(FCBody body)
 
   PetscFunctionBegin;
   PetscCall(FCFEMLoadsSetUp(body));
-  for (PetscInt l = 0; l < fem->nload; l++)
-    for (PetscInt v = 0; v < m->vEnd - m->vStart; v++)
-      if (fem->fixed[v] && fem->load[l].weight[v] != 0.0) fem->load[l].weight[v] = 0.0; /* taken by the support */
-  if (fem->nload) PetscCall(VecDuplicate(fem->u, &fem->fload));
   PetscCall(PetscMalloc1(nc + 1, &fem->ccell));
   fem->nccell = 0;
   for (PetscInt c = 0; c < nc; c++) {
@@ -238,11 +237,12 @@ PetscErrorCode FCFEMBCPoses(FCBody body, PetscReal t)
   for (PetscInt k = 0; k < fem->ncons; k++) {
     FCFEMConstraint *c = &fem->cons[k];
     if (!c->moves) continue;
-    if (c->body) { /* the reference pose, at t = 0 */
+    if (c->body && !c->referenced) { /* the reference pose, at t = 0, once (the body is set up by now) */
       PetscReal q[4], R[9];
       PetscCall(FCBodyGetPoseAt(c->body, 0.0, c->x0, q));
       FCQuatToMat3(q, R);
       FCMat3Transpose(R, c->R0T);
+      c->referenced = PETSC_TRUE;
     }
     for (int w = 0; w < 3; w++) {
       PetscReal tw = t + (w - 1) * h;

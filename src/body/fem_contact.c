@@ -31,8 +31,7 @@ PetscErrorCode ContactPoints_FEM(FCBody body, PetscInt *n, FCProximity **prox, P
       p->r[d]              = X;
       p->X[0][d]           = X;
       fem->bkey[3 * i + d] = X;
-      fem->bx0[3 * i + d]  = X + (g < 0 ? FCFEMConstrainedU(fem, fem->creg[vtx], &m->X[3 * vtx], FC_BC_NOW, d)
-                                        : PetscRealPart(u[g - lo + d]));
+      fem->bx0[3 * i + d]  = X + FCFEMOwnedU(fem, vtx, u, lo, d);
       fem->bxf[3 * i + d]  = g < 0 ? X + FCFEMConstrainedU(fem, fem->creg[vtx], &m->X[3 * vtx], FC_BC_END, d)
                                    : fem->bx0[3 * i + d] + body->h * PetscRealPart(v[g - lo + d] + dv[g - lo + d]);
       if (sh && g >= 0) fem->bxf[3 * i + d] += PetscRealPart(sh[g - lo + d]);
@@ -76,9 +75,7 @@ PetscErrorCode SurfaceTriangles_FEM(FCBody body, PetscInt *n, FCSurfaceTriangle 
       PetscInt vtx = fem->triv[3 * t + a], o = fem->ldof[vtx];
       T->gdof[a] = fem->gdof[vtx];
       for (int d = 0; d < 3; d++) {
-        PetscReal X = m->X[3 * vtx + d], uu = fem->fixed[vtx]
-                                                  ? FCFEMConstrainedU(fem, fem->creg[vtx], &m->X[3 * vtx], FC_BC_NOW, d)
-                                                  : PetscRealPart(u[o + d]);
+        PetscReal X = m->X[3 * vtx + d], uu = FCFEMLocalU(fem, vtx, u, d);
         T->X[a][d]  = X;
         T->x0[a][d] = X + uu;
         T->xf[a][d] = fem->fixed[vtx] ? X + FCFEMConstrainedU(fem, fem->creg[vtx], &m->X[3 * vtx], FC_BC_END, d)
@@ -254,8 +251,7 @@ static PetscErrorCode BestFitRotation(FCBody body, PetscReal R[9])
     if (!m->owned[v]) continue;
     for (int d = 0; d < 3; d++) {
       X[d] = m->X[3 * v + d];
-      x[d] = X[d] + (fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], &m->X[3 * v], FC_BC_NOW, d)
-                                   : PetscRealPart(u[fem->gdof[v] - lo + d]));
+      x[d] = X[d] + FCFEMOwnedU(fem, v, u, lo, d);
       s[d] += X[d];
       s[3 + d] += x[d];
     }

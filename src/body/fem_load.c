@@ -77,6 +77,10 @@ PetscErrorCode FCFEMLoadsSetUp(FCBody body)
   PetscCall(SetUpLoads(body, FC_LOAD_FORCE, "force", fem->bcspec[2]));
   PetscCall(SetUpLoads(body, FC_LOAD_TRACTION, "traction", fem->bcspec[3]));
   PetscCall(SetUpLoads(body, FC_LOAD_PRESSURE, "pressure", fem->bcspec[4]));
+  for (PetscInt l = 0; l < fem->nload; l++) /* a force on a constrained vertex is taken by the support */
+    for (PetscInt v = 0; v < fem->mesh.vEnd - fem->mesh.vStart; v++)
+      if (fem->fixed[v]) fem->load[l].weight[v] = 0.0;
+  if (fem->nload) PetscCall(VecDuplicate(fem->u, &fem->fload));
   PetscFunctionReturn(0);
 }
 
@@ -110,10 +114,7 @@ PetscErrorCode FCFEMLoadsAt(FCBody body, PetscReal t)
         PetscInt *tv = &L->facev[3 * k];
         PetscReal x[9], e1[3], e2[3], an[3], load[3];
         for (int a = 0; a < 3; a++)
-          for (int d = 0; d < 3; d++)
-            x[3 * a + d] = m->X[3 * tv[a] + d] +
-                           (fem->fixed[tv[a]] ? FCFEMConstrainedU(fem, fem->creg[tv[a]], &m->X[3 * tv[a]], FC_BC_NOW, d)
-                                              : PetscRealPart(ul[fem->ldof[tv[a]] + d]));
+          for (int d = 0; d < 3; d++) x[3 * a + d] = m->X[3 * tv[a] + d] + FCFEMLocalU(fem, tv[a], ul, d);
         for (int d = 0; d < 3; d++) {
           e1[d] = x[3 + d] - x[d];
           e2[d] = x[6 + d] - x[d];

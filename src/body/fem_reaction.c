@@ -132,7 +132,7 @@ PetscErrorCode FCFEMBCEndStep(FCBody body)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &power, 1, MPIU_REAL, MPIU_SUM, body->comm));
   fem->extwork += PetscAbsReal(h * power);
   for (PetscInt k = 0; k < fem->ncons; k++)
-    for (int j = 0; j < 6; j++) fem->cons[k].reaction[j] = fem->rval[6 * k + j] = R[6 * k + j];
+    for (int j = 0; j < 6; j++) fem->rval[6 * k + j] = R[6 * k + j];
   PetscFunctionReturn(0);
 }
 

@@ -80,9 +80,7 @@ PetscErrorCode GetVisualPositions_FEM(FCBody body, PetscReal x[])
   PetscCall(VecGetArrayRead(fem->uloc, &ul));
   for (PetscInt i = 0; i < body->visual.nv; i++) {
     PetscInt v = m->visVert[i];
-    for (int d = 0; d < 3; d++)
-      x[3 * i + d] = m->X[3 * v + d] + (fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], &m->X[3 * v], FC_BC_NOW, d)
-                                                      : PetscRealPart(ul[fem->ldof[v] + d]));
+    for (int d = 0; d < 3; d++) x[3 * i + d] = m->X[3 * v + d] + FCFEMLocalU(fem, v, ul, d);
   }
   PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
   PetscFunctionReturn(0);
@@ -198,8 +196,7 @@ PetscErrorCode GetState_FEM(FCBody body, PetscReal s[])
   for (PetscInt i = 0; i < body->visual.nv; i++) {
     PetscInt vx = m->visVert[i];
     for (int d = 0; d < 3; d++) {
-      s[6 * i + d]     = fem->fixed[vx] ? FCFEMConstrainedU(fem, fem->creg[vx], &m->X[3 * vx], FC_BC_NOW, d)
-                                        : PetscRealPart(u[fem->gdof[vx] - lo + d]);
+      s[6 * i + d]     = FCFEMOwnedU(fem, vx, u, lo, d);
       s[6 * i + 3 + d] = fem->fixed[vx] ? FCFEMConstrainedV(fem, fem->creg[vx], &m->X[3 * vx], PETSC_TRUE, body->h, d)
                                         : PetscRealPart(v[fem->gdof[vx] - lo + d]);
     }

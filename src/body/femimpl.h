@@ -21,15 +21,14 @@
    attachment the body's centre and RR = R(t) R(0)^T */
 enum { FC_BC_BEFORE, FC_BC_NOW, FC_BC_END };
 typedef struct {
-  char      region[256];         /* as given: a group's name or number, or box:... */
-  PetscBool moves;               /* prescribed (a table or an attachment); else fixed */
-  FCTable   table;               /* -displacement: t -> ux, uy, uz */
-  char      attach[FC_MAX_NAME]; /* -attach: the kinematic body it follows */
-  FCBody    body;
+  char      region[256]; /* as given: a group's name or number, or box:... */
+  PetscBool moves;       /* prescribed (a table or an attachment); else fixed */
+  FCTable   table;       /* -displacement: t -> ux, uy, uz */
+  FCBody    body;        /* -attach: the kinematic body it follows */
+  PetscBool referenced;  /* its reference pose (x0, R0T) is known */
   PetscBool rotates;
   PetscReal x0[3], R0T[9];     /* the attached body's pose at t = 0 (tables: 0, unused) */
   PetscReal x[3][3], RR[3][9]; /* at t - h, t, t + h */
-  PetscReal reaction[6];       /* the supports' force on the body and its moment about the region's centroid */
   PetscInt  nface, *facev;     /* its boundary faces on this rank: the centroid is theirs (else its vertices') */
 } FCFEMConstraint;
 
@@ -125,6 +124,19 @@ static inline PetscReal FCFEMConstrainedV(const FEM *fem, PetscInt k, const Pets
   return before ? (FCFEMConstrainedU(fem, k, X, FC_BC_NOW, d) - FCFEMConstrainedU(fem, k, X, FC_BC_BEFORE, d)) / h
                 : (FCFEMConstrainedU(fem, k, X, FC_BC_END, d) - FCFEMConstrainedU(fem, k, X, FC_BC_NOW, d)) / h;
 }
+/* Component d of the displacement now of local vertex v: its constraint's, or from the local vector
+   ul (FCFEMLocalU), or for an owned vertex from the owned rows of a global vector whose first row is
+   lo (FCFEMOwnedU) */
+static inline PetscReal FCFEMLocalU(const FEM *fem, PetscInt v, const PetscScalar *ul, int d)
+{
+  return fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], &fem->mesh.X[3 * v], FC_BC_NOW, d)
+                       : PetscRealPart(ul[fem->ldof[v] + d]);
+}
+static inline PetscReal FCFEMOwnedU(const FEM *fem, PetscInt v, const PetscScalar *u, PetscInt lo, int d)
+{
+  return fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], &fem->mesh.X[3 * v], FC_BC_NOW, d)
+                       : PetscRealPart(u[fem->gdof[v] - lo + d]);
+}
 /* The global DOF of a constrained vertex of a moving constraint k encodes k: -2 - k (fixed: -1) */
 static inline PetscInt FCFEMConstrainedOfDof(PetscInt g)
 {
@@ -140,9 +152,7 @@ static inline void FCFEMGatherElement(FEM *fem, PetscInt c, const PetscScalar *u
     PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
     for (int d = 0; d < 3; d++) {
       X[3 * a + d] = m->X[3 * v + d];
-      x[3 * a + d] = X[3 * a + d] + (!uloc           ? 0.0
-                                     : fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], &m->X[3 * v], FC_BC_NOW, d)
-                                                     : PetscRealPart(uloc[fem->ldof[v] + d]));
+      x[3 * a + d] = X[3 * a + d] + (uloc ? FCFEMLocalU(fem, v, uloc, d) : 0.0);
     }
   }
 }
