@@ -87,6 +87,10 @@ void FCBodyGetGravity(FCBody body, PetscReal g[3])
 
 void FCBodyGetPrescribedMotion(FCBody body, PetscReal v[3], PetscReal w[3])
 {
+  if (body->ops.prescribedmotion) {
+    body->ops.prescribedmotion(body, v, w);
+    return;
+  }
   for (int d = 0; d < 3; d++) {
     v[d] = body->velocity[d];
     w[d] = body->angular_velocity[d];

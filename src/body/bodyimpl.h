@@ -66,6 +66,8 @@ typedef struct {
      supports' force on the body and its moment about the region's centroid), the same on every rank */
   /* optional: the magnitude of the work done on the body by its prescribed motions and loads so far */
   PetscErrorCode (*getexternalwork)(FCBody, PetscReal *);
+  /* optional: a prescribed body's fastest velocity and angular velocity (else its initial ones) */
+  void (*prescribedmotion)(FCBody, PetscReal v[3], PetscReal w[3]);
   /* optional: a prescribed body's pose at any time t (kinematic) */
   PetscErrorCode (*poseat)(FCBody, PetscReal t, PetscReal x[3], PetscReal q[4]);
   /* optional: the scene's time, at set-up (0) and at a restart, before any step */

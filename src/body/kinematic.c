@@ -108,11 +108,7 @@ static PetscErrorCode SetUp_Kinematic(FCBody body)
     for (int d = 0; d < 3; d++) P->xf[d] = P->x[d] = P->x0[d];
     for (int d = 0; d < 4; d++) P->qf[d] = P->q[d] = P->q0[d];
     PetscCall(FCPoseVisualPositions(body, P, body->visual.reference));
-    for (int d = 0; d < 3; d++) { /* the fastest rates, for the energy guard's scale */
-      body->center[d]           = P->x0[d];
-      body->velocity[d]         = d ? 0.0 : FCTableMaxRate(k->table, 0, 3);
-      body->angular_velocity[d] = d || FCTableColumns(k->table) < 7 ? 0.0 : 2.0 * FCTableMaxRate(k->table, 3, 7);
-    }
+    for (int d = 0; d < 3; d++) body->center[d] = P->x0[d];
   }
   if (k->pivot[0] == PETSC_MAX_REAL)
     for (int d = 0; d < 3; d++) k->pivot[d] = k->pose.x0[d];
@@ -188,6 +184,18 @@ static PetscErrorCode GetVisualField_Kinematic(FCBody body, FCVisualField field,
   PetscFunctionReturn(0);
 }
 
+/* The fastest motion (the energy guard's scale): the twist, or a trajectory's fastest rows
+   (|dq/dt| = |w| / 2 for a unit quaternion) */
+static void PrescribedMotion_Kinematic(FCBody body, PetscReal v[3], PetscReal w[3])
+{
+  Kinematic *k = (Kinematic *)body->data;
+  for (int d = 0; d < 3; d++) {
+    v[d] = k->table ? (d ? 0.0 : FCTableMaxRate(k->table, 0, 3)) : body->velocity[d];
+    w[d] = k->table ? (d || FCTableColumns(k->table) < 7 ? 0.0 : 2.0 * FCTableMaxRate(k->table, 3, 7))
+                    : body->angular_velocity[d];
+  }
+}
+
 static PetscErrorCode PoseAt_Kinematic(FCBody body, PetscReal t, PetscReal x[3], PetscReal q[4])
 {
   PetscFunctionBegin;
@@ -229,6 +237,7 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   body->ops.trialposition      = TrialPosition_Kinematic;
   body->ops.freemotion         = FreeMotion_Kinematic;
   body->ops.poseat             = PoseAt_Kinematic;
+  body->ops.prescribedmotion   = PrescribedMotion_Kinematic;
   body->ops.contactpoints      = FCPoseContactPoints;
   body->ops.proximityposition  = FCPoseProximityPosition;
   body->ops.shapedistance      = FCPoseShapeDistance;
