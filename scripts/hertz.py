@@ -124,8 +124,8 @@ def measure(h5path, P, frame=-1):
     return m
 
 
-def run(args, np_=1):
-    cmd = [EXE, "-options_file", OPTS, "-quiet"] + [str(a) for a in args]
+def run(args, np_=1, opts=OPTS):
+    cmd = [EXE, "-options_file", opts, "-quiet"] + [str(a) for a in args]
     if np_ > 1:
         cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")

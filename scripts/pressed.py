@@ -3,6 +3,7 @@
 (docs/scenes.md): runs input/pressed.opts (quasi-static, the sphere's top cap moved down in 8 steps)
 on the meshes of scripts/hertz.py's levels, and for every step measures
 
+- the peak of the contact_pressure field at the last step against Hertz's p0 = 3 F / (2 pi a^2);
 - F: the cap's reaction (/bodies/ball/reactions/<cap>, the force the cap's support takes) and the sum
   of the normal contact forces of the step, which equilibrium makes equal;
 - d: the approach, as scripts/hertz.py measures it, but at depth 0.2 R below the contact point
@@ -40,11 +41,14 @@ def steps(h5path, P):
         R = H["bodies/ball/reactions/" + cap][:]
         for s in range(len(off) - 1):
             Fc = H["contacts/force"][off[s]:off[s + 1], 0].sum()
-            U = H["bodies/ball/positions"][list(H["frames/step"][:]).index(s + 1)] - X
+            fr = list(H["frames/step"][:]).index(s + 1)
+            U = H["bodies/ball/positions"][fr] - X
             z = DEPTH * P["R"]  # below the contact point
             drop = -hertz.p1_displacement(cells, X, U, P["centre"] + np.array([0, 0, z - P["R"]]))[2]
             d = drop + hertz.w_axis(P, Fc, z)
-            rows.append(dict(step=s + 1, F=-R[s, 2], Fc=Fc, d=d, FH=hertz.hertz_force(P, d), contacts=int(off[s + 1] - off[s])))
+            a_h = (3 * Fc * P["R"] / (4 * P["Estar"]))**(1.0 / 3.0)
+            rows.append(dict(step=s + 1, F=-R[s, 2], Fc=Fc, d=d, FH=hertz.hertz_force(P, d), contacts=int(off[s + 1] - off[s]),
+                             pmax=H["bodies/ball/contact_pressure"][fr].max(), p0=3 * Fc / (2 * np.pi * a_h**2)))
     return rows
 
 
@@ -56,18 +60,20 @@ def main():
     a = ap.parse_args()
     P = hertz.params(os.path.join(ROOT, "input", "hertz.opts"))
     P["centre"] = np.array([0.0, 0.0, 0.5])
-    hertz.OPTS = OPTS
     out = {}
     print("| level | step | d (mm) | d/R (%) | F cap (N) | F contacts (N) | F Hertz (N) | F / F_H - 1 | contacts |")
     print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for level in [int(x) for x in a.levels.split(",")]:
         f = os.path.join("/tmp", "pressed_%d.h5" % level)
-        hertz.run(hertz.mesh_args(level) + ["-output_file", f], a.np)
+        hertz.run(hertz.mesh_args(level) + ["-output_file", f, "-output_fields", "contact_pressure"], a.np, OPTS)
         out[level] = steps(f, P)
         for r in out[level]:
             print("| %d | %d | %.3f | %.2f | %.1f | %.1f | %.1f | %+.2f %% | %d |" % (
                 level, r["step"], 1e3 * r["d"], 100 * r["d"] / P["R"], r["F"], r["Fc"], r["FH"],
                 100 * (r["F"] / r["FH"] - 1), r["contacts"]))
+        r = out[level][-1]
+        print("| | level %d, last step: peak contact_pressure %.0f Pa against Hertz's p0 = 3 F / (2 pi a^2) = %.0f Pa | | | | | | | |"
+              % (level, r["pmax"], r["p0"]))
     if not a.no_plot:
         import matplotlib
         matplotlib.use("Agg")
