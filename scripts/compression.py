@@ -8,35 +8,29 @@ restrains the lateral expansion there, so the reaction converges to a value abov
 Usage: /usr/bin/python3 scripts/compression.py [--np N]"""
 import argparse
 import os
-import subprocess
 import sys
 
 import h5py
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXE = os.path.join(ROOT, "build", "fecontact")
+sys.path.insert(0, os.path.join(ROOT, "tests"))
+from fctest import run  # noqa: E402  (fecontact under mpirun, the environment, an error on failure)
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--np", type=int, default=1)
     a = ap.parse_args()
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
     print("| mesh | vertices | contacts | reaction / (E A eps) - 1 |")
     print("|---|---:|---:|---:|")
     for m in ["cube_coarse", "cube_medium", "cube"]:
         f = "/tmp/compression_%s.h5" % m
-        cmd = [EXE, "-scene_bodies", "cube,floor", "-contact_pairs", "cube:floor", "-contact_mu", "0", "-cube_type", "fem",
+        cmd = ["-scene_bodies", "cube,floor", "-contact_pairs", "cube:floor", "-contact_mu", "0", "-cube_type", "fem",
                "-cube_dm_plex_filename", "meshes/%s.msh" % m, "-cube_young", "1e5", "-cube_poisson", "0.3",
                "-cube_density", "100", "-cube_displacement", "zmax=0:0,0,0;1:0,0,-0.01", "-floor_type", "kinematic",
                "-floor_shape", "plane", "-floor_center", "0,0,-0.5", "-time_integration", "static", "-time_step", "0.25",
                "-time_steps", "4", "-gravity", "0,0,0", "-output_file", f, "-quiet"]
-        if a.np > 1:
-            cmd = ["mpirun", "-n", str(a.np), "--oversubscribe"] + cmd
-        p = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True)
-        if p.returncode:
-            sys.stderr.write(p.stdout + p.stderr)
-            sys.exit(p.returncode)
+        run(cmd, a.np)
         h = h5py.File(f, "r")
         R = -h["bodies/cube/reactions/zmax"][-1][2]
         print("| %s | %d | %d | %+.2f %% |" % (m, h["bodies/cube/mesh/reference"].shape[0], h["steps/contacts"][-1],

@@ -10,14 +10,14 @@ Usage: /usr/bin/python3 scripts/ironing.py [--np N] [--mesh meshes/slab.msh] [--
 Prints the Markdown table of docs/scenes.md and writes docs/ironing.png."""
 import argparse
 import os
-import subprocess
 import sys
 
 import h5py
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXE = os.path.join(ROOT, "build", "fecontact")
+sys.path.insert(0, os.path.join(ROOT, "tests"))
+from fctest import run  # noqa: E402  (fecontact under mpirun, the environment, an error on failure)
 
 
 def main():
@@ -27,14 +27,8 @@ def main():
     ap.add_argument("--no-plot", action="store_true")
     a = ap.parse_args()
     f = "/tmp/ironing_np%d.h5" % a.np
-    cmd = [EXE, "-options_file", "input/ironing.opts", "-slab_dm_plex_filename", a.mesh, "-output_file", f, "-quiet"]
-    if a.np > 1:
-        cmd = ["mpirun", "-n", str(a.np), "--oversubscribe"] + cmd
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
-    p = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True)
-    if p.returncode:
-        sys.stderr.write(p.stdout + p.stderr)
-        sys.exit(p.returncode)
+    cmd = ["-options_file", "input/ironing.opts", "-slab_dm_plex_filename", a.mesh, "-output_file", f, "-quiet"]
+    run(cmd, a.np)
     h = h5py.File(f, "r")
     t, R = h["steps/time"][:], h["bodies/slab/reactions/bottom"][:]
     n, inter = h["steps/contacts"][:], h["steps/intersections"][:]
