@@ -60,8 +60,8 @@ PetscErrorCode FCFEMBCEndStep(FCBody body)
     FCFEMConstraint *c = &fem->cons[k];
     old[k]             = *c;
     for (int w = 0; w < 2; w++) {
-      PetscCall(PetscArraycpy(c->x[w], c->x[w + 1], 3));
-      PetscCall(PetscArraycpy(c->RR[w], c->RR[w + 1], 9));
+      for (int i = 0; i < 3; i++) c->x[w][i] = c->x[w + 1][i];
+      for (int i = 0; i < 9; i++) c->RR[w][i] = c->RR[w + 1][i];
     }
   }
   if (fem->nload) {
