@@ -44,6 +44,7 @@ MESHES=(
   "table1_30k   table1.geo    nx 20 ny 20 nz 25 d 0.05"
   "table1_36k   table1.geo    nx 24 ny 20 nz 25 d 0.05"
   "cube_18      table1.geo    nx 18 ny 18 nz 18 d 0.0588235294117647"
+  "cube_18_20cm table1.geo    nx 18 ny 18 nz 18 d 0.011764705882352941"
   "thin_slab    table1.geo    nx 16 ny 16 nz 2 d 0.02"
   "small_cube   table1.geo    nx 4 ny 4 nz 4 d 0.05"
   "cube_6       table1.geo    nx 6 ny 6 nz 6 d 0.03"

@@ -244,6 +244,14 @@ PetscErrorCode FCBodyGetExternalWork(FCBody body, PetscReal *w)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCBodyGetSolverCounts(FCBody body, PetscInt *nfactor, PetscInt *nkrylov)
+{
+  PetscFunctionBegin;
+  *nfactor = *nkrylov = 0;
+  if (body->ops.getsolvercounts) PetscCall((*body->ops.getsolvercounts)(body, nfactor, nkrylov));
+  PetscFunctionReturn(0);
+}
+
 /* The body's constrained regions and their reactions of the last step (none: n = 0) */
 PetscErrorCode FCBodyGetReactions(FCBody body, PetscInt *n, const char ***names, const PetscReal **values)
 {

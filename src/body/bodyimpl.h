@@ -73,6 +73,8 @@ typedef struct {
   /* optional: the scene's time, at set-up (0) and at a restart, before any step */
   PetscErrorCode (*settime)(FCBody, PetscReal t);
   PetscErrorCode (*getreactions)(FCBody, PetscInt *n, const char ***names, const PetscReal **values);
+  /* optional: factorizations and Krylov iterations so far */
+  PetscErrorCode (*getsolvercounts)(FCBody, PetscInt *nfactor, PetscInt *nkrylov);
 } FCBodyOps;
 
 struct _p_FCBody {

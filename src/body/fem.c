@@ -7,7 +7,8 @@
 
    Options (prefix <body>_): -dm_plex_filename and every -dm_* option, -material, -young, -poisson,
    -density, -mass_type, -rayleigh_mass, -rayleigh_stiffness, -fixed_box, -inverted, and for a
-   co-rotational body -refactor_every, -rotation, -assembly; the solver's -ksp_*, -pc_*: each
+   co-rotational body -factorization (and with reuse -ksp_rtol, -ksp_max_it, -refactor_rotation,
+   -refactor_iterations, -refactor_every), -rotation, -assembly; the solver's -ksp_*, -pc_*: each
    described by its help string below and in docs/options.md. */
 #include "femimpl.h"
 
@@ -53,8 +54,33 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
   if (strcmp(fem->material, "linear")) { /* a linear A never changes: nothing to refactor or re-sum */
     const char *how[] = {"values", "coo"}, *rot[] = {"linear", "exact"};
     PetscInt    a = fem->coo ? 1 : 0, r = fem->rotation_exact ? 1 : 0;
-    PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_every", "Factor A every k steps (co-rotational)",
-                           &fem->refactor_every, NULL));
+    char fmode[FC_MAX_NAME] = "every_step";
+    if (fem->factorization == FC_FACTORIZATION_REUSE) PetscCall(PetscStrncpy(fmode, "reuse", sizeof(fmode)));
+    PetscCall(PetscOptionsString("-factorization",
+                                 "When A is factored: every_step, or reuse (CG with the last factor, warped compliance)",
+                                 NULL, fmode, fmode, sizeof(fmode), NULL));
+    PetscCheck(strcmp(fmode, "async"), body->comm, PETSC_ERR_SUP,
+               "-%sfactorization async (the factorization in the background) is not available: a second MUMPS "
+               "factorization beside the step needs MPI_THREAD_MULTIPLE or a spare rank, and on 2 cores it would "
+               "share them with the step (docs/method.md, \"When A is factored\"); use reuse",
+               body->prefix);
+    PetscCheck(!strcmp(fmode, "every_step") || !strcmp(fmode, "reuse"), body->comm, PETSC_ERR_USER_INPUT,
+               "Unknown value '%s' of -%sfactorization (known: every_step, reuse)", fmode, body->prefix);
+    fem->factorization = !strcmp(fmode, "reuse") ? FC_FACTORIZATION_REUSE : FC_FACTORIZATION_EVERY_STEP;
+    if (fem->factorization == FC_FACTORIZATION_REUSE) {
+      PetscCall(FCOptionsReal(PetscOptionsObject, "-ksp_rtol", "reuse: relative residual of the free motion's CG",
+                              &fem->ksp_rtol, NULL));
+      PetscCall(FCOptionsInt(PetscOptionsObject, "-ksp_max_it",
+                             "reuse: CG iterations after which A is factored at once", &fem->ksp_max_it, NULL));
+      PetscCall(FCOptionsReal(PetscOptionsObject, "-refactor_rotation",
+                              "reuse: factor A when a vertex turned more (rad) since the last factorization",
+                              &fem->refactor_rotation, NULL));
+      PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_iterations",
+                             "reuse: factor A after a step whose CG took more iterations", &fem->refactor_iterations,
+                             NULL));
+      PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_every",
+                             "reuse: factor A at least every k steps (0: no limit by age)", &fem->refactor_every, NULL));
+    }
     PetscCall(
         PetscOptionsEList("-assembly", "How K is summed every step (co-rotational)", NULL, how, 2, how[a], &a, NULL));
     fem->coo = a == 1 ? PETSC_TRUE : PETSC_FALSE;
@@ -66,8 +92,20 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
     fem->rotation_exact = PETSC_FALSE;
   }
   PetscOptionsEnd();
-  PetscCheck(fem->refactor_every >= 1, body->comm, PETSC_ERR_USER_INPUT,
-             "Option -%srefactor_every must be >= 1, got %" PetscInt_FMT, body->prefix, fem->refactor_every);
+  if (fem->factorization == FC_FACTORIZATION_REUSE) {
+    PetscCheck(fem->refactor_every >= 0, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%srefactor_every must be >= 0, got %" PetscInt_FMT, body->prefix, fem->refactor_every);
+    PetscCheck(fem->ksp_rtol > 0.0 && fem->ksp_rtol < 1.0, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%sksp_rtol must lie in (0, 1), got %g", body->prefix, (double)fem->ksp_rtol);
+    PetscCheck(fem->ksp_max_it >= 1, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%sksp_max_it must be >= 1, got %" PetscInt_FMT, body->prefix, fem->ksp_max_it);
+    PetscCheck(fem->refactor_iterations >= 1, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%srefactor_iterations must be >= 1, got %" PetscInt_FMT, body->prefix,
+               fem->refactor_iterations);
+    PetscCheck(fem->refactor_rotation > 0.0, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%srefactor_rotation must be > 0 (radians), got %g", body->prefix,
+               (double)fem->refactor_rotation);
+  }
   PetscCheck(!strcmp(masstype, "consistent") || !strcmp(masstype, "lumped"), body->comm, PETSC_ERR_USER_INPUT,
              "Unknown mass type '%s' in -%smass_type (known: consistent, lumped)", masstype, body->prefix);
   fem->lumped = !strcmp(masstype, "lumped") ? PETSC_TRUE : PETSC_FALSE;
@@ -265,6 +303,7 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   PetscCall(FCFEMFormA(body)); /* factored at first use: by the KSP or by the compliance builder */
   PetscCall(FCFEMCheckDerived(body));
   fem->Acurrent = PETSC_TRUE;
+  PetscCall(FCFEMScheduleSetUp(body)); /* reuse: the first step takes its operator at its state */
   PetscCall(FCMeshCreateVisual(m, &body->visual));
   PetscCall(FCBodyFEMGetReferenceCoordinates(body, &fem->Xg));
   /* boundary: owned vertices (candidate contact points) and outward triangles (src/mesh/boundary.c) */
@@ -280,12 +319,24 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   PetscFunctionReturn(0);
 }
 
+/* The body's factorizations of A (a condensed builder's misses included) and CG iterations */
+static PetscErrorCode GetSolverCounts_FEM(FCBody body, PetscInt *nfactor, PetscInt *nkrylov)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  *nfactor = fem->nfactor + (fem->comp ? FCComplianceOwnFactorizations(fem->comp) : 0);
+  *nkrylov = fem->nkrylov;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy_FEM(FCBody body)
 {
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
   PetscCall(KSPDestroy(&fem->ksp));
+  PetscCall(FCFEMScheduleDestroy(body));
   PetscCall(FCComplianceDestroy(&fem->comp));
   PetscCall(PetscFree(fem->surface));
   PetscCall(MatDestroy(&fem->M));
@@ -332,7 +383,12 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   PetscCall(PetscNew(&fem));
   PetscCall(PetscStrncpy(fem->material, "linear", sizeof(fem->material)));
   fem->poisson                 = 0.3;
-  fem->refactor_every          = 1;
+  fem->factorization           = FC_FACTORIZATION_EVERY_STEP;
+  fem->ksp_rtol                = 1e-8;
+  fem->ksp_max_it              = 50;
+  fem->refactor_rotation       = 0.1;
+  fem->refactor_iterations     = 8;
+  fem->refactor_every          = 0;
   fem->coo                     = PETSC_TRUE; /* co-rotational; a linear K is summed once, by values */
   fem->rotation_exact          = PETSC_TRUE; /* co-rotational without fixed vertices */
   body->deformable             = PETSC_TRUE;
@@ -366,6 +422,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.getreactions       = GetReactions_FEM;
   body->ops.settime            = FCFEMBCPoses;
   body->ops.getexternalwork    = GetExternalWork_FEM;
+  body->ops.getsolvercounts    = GetSolverCounts_FEM;
   PetscFunctionReturn(0);
 }
 

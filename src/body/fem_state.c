@@ -207,7 +207,7 @@ PetscErrorCode GetState_FEM(FCBody body, PetscReal s[])
 }
 
 /* The state of a restart: A of a co-rotational body is reassembled and factored at the next step,
-   as it would have been (-refactor_every 1; with k > 1 the factor's age restarts) */
+   as it would have been with -factorization every_step (reuse starts from a new factor) */
 PetscErrorCode SetState_FEM(FCBody body, const PetscReal s[])
 {
   FEM         *fem = (FEM *)body->data;
@@ -231,8 +231,8 @@ PetscErrorCode SetState_FEM(FCBody body, const PetscReal s[])
   PetscCall(VecRestoreArray(fem->v, &v));
   fem->Rcurrent = PETSC_FALSE;
   if (!fem->mat->linear) {
-    fem->Acurrent   = PETSC_FALSE;
-    fem->factor_age = fem->refactor_every;
+    fem->Acurrent      = PETSC_FALSE;
+    fem->refactor_next = PETSC_TRUE;
   }
   PetscFunctionReturn(0);
 }

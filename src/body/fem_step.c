@@ -249,13 +249,9 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
     PetscCall(FCFEMRotationPredict(body));
     PetscCall(FCPhaseEnd(FC_PHASE_FREE_MOTION));
   }
-  if (!fem->Acurrent || (rotate && !fem->factored)) { /* co-rotational: K and f_int at q_t (turned); A
-                                                         too every refactor_every steps */
-    PetscCall(FCFEMAssembleElastic(body, rotate ? fem->uhat : fem->u, fem->fint, fem->K));
-    if (fem->factor_age >= fem->refactor_every || !fem->factored) {
-      PetscCall(FCFEMFormA(body));
-      PetscCall(FCFEMFactorA(body));
-    }
+  if (!fem->Acurrent || (rotate && !fem->factored)) { /* co-rotational: the operator at q_t (turned; the first
+                                                         step's too), factored on the schedule */
+    PetscCall(FCFEMScheduleOperator(body, rotate ? fem->uhat : fem->u));
     fem->Acurrent = PETSC_TRUE;
   }
   if (!fem->factored) PetscCall(FCFEMFactorA(body)); /* the first step: factored at first use */
@@ -275,18 +271,18 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
     PetscCall(VecAXPY(fem->b, -h * fem->alpha, fem->work));
   }
   if (vb == vk) {
-    PetscCall(MatMult(fem->K, fem->v, fem->work));
+    PetscCall(FCFEMKMult(body, fem->v, fem->work));
     PetscCall(VecAXPY(fem->b, -(h * fem->beta + h * h), fem->work));
   } else {
     if (fem->beta != 0.0) {
-      PetscCall(MatMult(fem->K, vb, fem->work));
+      PetscCall(FCFEMKMult(body, vb, fem->work));
       PetscCall(VecAXPY(fem->b, -h * fem->beta, fem->work));
     }
-    PetscCall(MatMult(fem->K, vk, fem->work));
+    PetscCall(FCFEMKMult(body, vk, fem->work));
     PetscCall(VecAXPY(fem->b, -h * h, fem->work));
   }
   PetscCall(FCFEMBCAddRHS(body, fem->b));
-  PetscCall(FCFEMSolveA(body, fem->b, fem->dv, "Free-motion", t));
+  PetscCall(FCFEMScheduleSolve(body, fem->b, fem->dv, t));
   if (rotate) { /* dv = D + v~ - v_t */
     PetscCall(VecAXPY(fem->dv, 1.0, fem->rvt));
     PetscCall(VecAXPY(fem->dv, -1.0, fem->v));

@@ -5,6 +5,7 @@
      fem_contact.c  contact points, surface triangles, proximity positions, the compliance builder
      fem_rotation.c the rotation of a free co-rotational body within a step
      fem_check.c    the checks of the derived quantities (mass, energies, M, K, A) at set-up
+     fem_schedule.c when A is factored (-factorization), the matrix-free A and CG of reuse
      fem_bc.c       regions' constraints (fixed, prescribed, attached): options, set-up, poses, eq. 5's coupling
      fem_load.c     loads on regions
      fem_reaction.c the constrained regions' reactions */
@@ -42,6 +43,8 @@ typedef struct {
   PetscReal *weight;        /* force: per local vertex, its share of the total (by area, mass or count) */
 } FCFEMLoad;
 
+enum { FC_FACTORIZATION_EVERY_STEP, FC_FACTORIZATION_REUSE };
+
 typedef struct {
   FCMesh     mesh;
   FCMaterial mat;
@@ -75,8 +78,24 @@ typedef struct {
   PetscInt         nassembly, nfactor;
   PetscBool        Acurrent;       /* K and f_int belong to the current state */
   PetscBool        factored;       /* the factor of A is that of the current A */
-  PetscInt         refactor_every; /* co-rotational: factor A every k steps, reuse the older factor between */
   PetscInt         factor_age;     /* steps since A was last factored */
+  /* the factorization schedule (fem_schedule.c) */
+  PetscInt     factorization;                     /* FC_FACTORIZATION_EVERY_STEP or _REUSE */
+  PetscReal    ksp_rtol, refactor_rotation;       /* reuse: CG tolerance; the angle (rad) that refactors */
+  PetscInt     ksp_max_it, refactor_iterations;   /* reuse: CG's limit; the iterations that refactor */
+  PetscInt     refactor_every;                    /* reuse: the age (steps) that refactors, 0: none */
+  PetscInt     nkrylov;                           /* CG iterations so far */
+  PetscBool    refactor_next, fresh;              /* a factorization is due; A was factored this step */
+  PetscReal    angle, tnow;                       /* the largest vertex rotation since the last factorization */
+  Vec          state;                             /* where this step's A is linearized (u or the turned state) */
+  PetscReal   *Rcell, *Rv0, *dR;                  /* per cell its rotation; per owned vertex block R_0 and Q */
+  Vec          rcol[3], rcolloc[3], rw2;          /* the vertex rotations' sums; work */
+  Vec          xlast;                             /* the last free motion: CG's first guess */
+  Mat          Aop;                               /* today's A, matrix-free */
+  KSP          kspk;                              /* CG on Aop, preconditioned by the warped factor */
+  PetscInt     nsw, *swdof, *swperm;              /* the surface vertices of every rank (first DOFs, sorted) */
+  PetscReal   *swR, *swbuf;                       /* their Q; this rank's */
+  PetscMPIInt *swcounts, *swdispls;
   PetscBool        coo;            /* -assembly coo: K summed by MatSetValuesCOO from Kcells */
   PetscReal       *Kcells;         /* coo: the element matrices, 144 per cell, in cell order */
   PetscReal        mass;
@@ -180,6 +199,13 @@ PETSC_INTERN PetscErrorCode FCFEMFactorA(FCBody); /* by the builder that owns it
 PETSC_INTERN PetscErrorCode FCFEMSolveA(FCBody, Vec b, Vec x, const char what[], PetscReal t);
 PETSC_INTERN PetscErrorCode FreeMotion_FEM(FCBody, PetscReal);
 PETSC_INTERN PetscErrorCode Integrate_FEM(FCBody, PetscReal);
+/* fem_schedule.c */
+PETSC_INTERN PetscErrorCode FCFEMScheduleSetUp(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMScheduleSetUpContact(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMScheduleOperator(FCBody, Vec state);
+PETSC_INTERN PetscErrorCode FCFEMScheduleSolve(FCBody, Vec b, Vec x, PetscReal t);
+PETSC_INTERN PetscErrorCode FCFEMKMult(FCBody, Vec x, Vec y);
+PETSC_INTERN PetscErrorCode FCFEMScheduleDestroy(FCBody);
 /* fem_bc.c */
 PETSC_INTERN PetscErrorCode FCFEMBCSetFromOptions(PetscOptionItems *, FCBody);
 PETSC_INTERN PetscErrorCode FCFEMBCSetUpConstraints(FCBody); /* fixed[], creg[] before the section */

@@ -159,6 +159,23 @@ PetscErrorCode FCComplianceSetRotation(FCCompliance comp, const PetscReal R[9])
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCComplianceSetWarp(FCCompliance comp, PetscInt nsurf, const PetscInt sdof[], const PetscReal sQ[],
+                                   PetscInt nowned, const PetscReal oQ[])
+{
+  PetscFunctionBegin;
+  comp->wnsurf  = nsurf;
+  comp->wsdof   = sdof;
+  comp->wsQ     = sQ;
+  comp->wnowned = nowned;
+  comp->woQ     = oQ;
+  PetscFunctionReturn(0);
+}
+
+PetscInt FCComplianceOwnFactorizations(FCCompliance comp)
+{
+  return comp->nownfactor;
+}
+
 void FCComplianceDirection(const FCContact *c, PetscInt side, PetscInt a, PetscReal e[3])
 {
   const PetscReal *f = a == 0 ? c->n : (a == 1 ? c->t1 : c->t2);
@@ -319,12 +336,22 @@ static PetscErrorCode BuildJacobian(FCCompliance comp, PetscInt self, const FCCo
           comp->cols[ncols] = c->row + a;
           FCComplianceDirection(c, s, a, e);
           for (PetscInt vtx = 0; vtx < c->prox[s].nv; vtx++) {
-            PetscInt g = c->prox[s].gdof[vtx];
+            PetscInt  g = c->prox[s].gdof[vtx];
+            PetscReal ew[3];
             if (g < 0 || (g >= lo && g < lo + nloc) == (pass == 1)) continue; /* fixed, or the other pass's */
+            if (comp->wsdof) { /* the row of J Q at this vertex: (Q^T e)^T */
+              PetscInt at;
+              PetscCall(PetscFindInt(g, comp->wnsurf, comp->wsdof, &at));
+              PetscCheck(at >= 0, comp->ctx.comm, PETSC_ERR_PLIB,
+                         "Body '%s': contact DOF %" PetscInt_FMT " is not on the surface the warp knows",
+                         comp->ctx.name, g);
+              FCMat3TVec(&comp->wsQ[9 * at], e, ew);
+            } else
+              for (int d = 0; d < 3; d++) ew[d] = e[d];
             for (int d = 0; d < 3; d++, comp->nje++) {
               comp->jtr[comp->nje] = g - lo + d;
               comp->jtc[comp->nje] = ncols;
-              comp->jtv[comp->nje] = c->prox[s].w[vtx] * e[d];
+              comp->jtv[comp->nje] = c->prox[s].w[vtx] * ew[d];
             }
           }
         }
@@ -427,6 +454,15 @@ PetscErrorCode FCComplianceCorrect(FCCompliance comp, PetscReal h, const PetscRe
     PetscCall((*comp->ops.solve)(comp, comp->rhs, comp->work));
   else
     PetscCall(KSPSolve(comp->ctx.ksp, comp->rhs, comp->work));
+  if (comp->woQ) { /* Q A_0^-1 (J Q)^T h lambda */
+    PetscCall(VecGetArray(comp->work, &r));
+    for (PetscInt b = 0; b < comp->wnowned; b++) {
+      PetscReal y[3], z[3] = {PetscRealPart(r[3 * b]), PetscRealPart(r[3 * b + 1]), PetscRealPart(r[3 * b + 2])};
+      FCMat3Vec(&comp->woQ[9 * b], z, y);
+      for (int d = 0; d < 3; d++) r[3 * b + d] = y[d];
+    }
+    PetscCall(VecRestoreArray(comp->work, &r));
+  }
   PetscCall(VecAXPY(dv, 1.0, comp->work));
   PetscFunctionReturn(0);
 }

@@ -36,6 +36,15 @@ PETSC_INTERN PetscErrorCode FCComplianceSolve(FCCompliance, Vec b, Vec x);
 /* a builder that warps a reference compliance needs the body's best-fit rotation before each Add */
 PETSC_INTERN PetscBool      FCComplianceUsesRotation(FCCompliance);
 PETSC_INTERN PetscErrorCode FCComplianceSetRotation(FCCompliance, const PetscReal R[9]);
+/* A body that solves with the factor of an older A_0 (-<body>_factorization reuse) warps it: the
+   builder takes Q A_0^-1 Q^T for A^-1 in W_b and in the correction, Q block-diagonal with a
+   rotation per vertex: J_b Q in place of J_b (Q for every surface vertex of the body, nsurf of
+   them by first global DOF, sorted, on every rank), and the correction's solve turned by Q on the
+   owned vertex blocks (nowned, in the order of the layout of u). The arrays stay the caller's */
+PETSC_INTERN PetscErrorCode FCComplianceSetWarp(FCCompliance, PetscInt nsurf, const PetscInt sdof[],
+                                                const PetscReal sQ[], PetscInt nowned, const PetscReal oQ[]);
+/* Factorizations the builder did on its own (a condensed miss), so far */
+PETSC_INTERN PetscInt FCComplianceOwnFactorizations(FCCompliance);
 /* W_b = J_b A^-1 J_b^T for the contacts touching body `self`, kept for the next Add; same: it is the
    last build's W_b on the same rows of W (a sum of the last builds still holds) */
 PETSC_INTERN PetscErrorCode FCComplianceBuild(FCCompliance, PetscInt self, const FCContactSet *, PetscBool *same);

@@ -32,6 +32,11 @@ struct _p_FCCompliance {
   PetscBool           setupcalled, rotation;
   PetscBool           factors; /* the builder factors A itself: the body's only factor (FCComplianceFactorsA) */
   PetscReal           R[9];    /* the body's best-fit rotation (builders that set `rotation`) */
+  /* the warp of an older factor (FCComplianceSetWarp): NULL when A^-1 is the factor's */
+  PetscInt         wnsurf, wnowned;
+  const PetscInt  *wsdof;
+  const PetscReal *wsQ, *woQ;
+  PetscInt         nownfactor; /* factorizations the builder did on its own */
   /* J_b^T of the last Add, by entries: the first njt on owned DOFs, nje in all */
   PetscInt ncols, *cols; /* columns, and the row of W of each                   */
   /* W_b of the last build (FCComplianceBuild), added to W by FCComplianceAdd */

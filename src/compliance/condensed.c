@@ -258,6 +258,7 @@ static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FC
                         comp->ctx.name));
     PetscCall(FCSchurFactorFactor(cd->sf, comp->ctx.A));
     cd->nmiss++;
+    comp->nownfactor++;
     cd->missed = PETSC_TRUE;
   }
   cd->built = PETSC_TRUE;

@@ -103,6 +103,9 @@ struct _p_FCOutput {
   double  *rtime, *renergy, *rtiming, *rbody; /* rtiming: per row the phases, then the wall time; rbody: per row,
                                                 per body: centroid 3, quaternion 4, energy 3 */
   PetscInt *rstep;
+  long long *rsolve;              /* per row: factorizations and Krylov iterations of the step (all bodies) */
+  PetscInt   lastfactor, lastkrylov; /* the bodies' totals at the last row */
+  hid_t      s_factor, s_krylov;
   double    elast; /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt  nframes, xdmfwritten;
   hid_t     complete;         /* /complete: the last step, and the frames, that a flush has put on disk */

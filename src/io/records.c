@@ -30,6 +30,15 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
   PetscCall(FCH5CreateRows(g, "energy", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->energy));
   PetscCall(FCH5CreateRows(g, "energy_change", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->denergy));
   PetscCall(FCH5CreateRows(g, "wall_time", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->wall));
+  PetscCall(FCH5CreateRows(g, "factorizations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_factor));
+  PetscCall(FCH5CreateRows(g, "krylov_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_krylov));
+  out->lastfactor = out->lastkrylov = 0;
+  for (PetscInt i = 0; i < nbodies; i++) {
+    PetscInt nf, nk;
+    PetscCall(FCBodyGetSolverCounts(bodies[i], &nf, &nk));
+    out->lastfactor += nf;
+    out->lastkrylov += nk;
+  }
   gt = H5Gcreate2(g, "timing", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   for (int p = 0; p < FC_PHASE_NUM; p++)
     PetscCall(FCH5CreateRows(gt, FCPhaseNames[p], H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->timing[p]));
@@ -68,6 +77,7 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
     H5Gclose(gc);
   }
   out->maxrows = (PetscInt)nrow;
+  PetscCall(PetscMalloc1(2 * nrow, &out->rsolve));
   PetscCall(PetscMalloc5(nrow, &out->rtime, nrow, &out->renergy, nrow * (FC_PHASE_NUM + 1), &out->rtiming,
                          nrow * nbodies * 10 + 1, &out->rbody, nrow, &out->rstep));
   PetscFunctionReturn(0);
@@ -90,6 +100,13 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
     PetscCall(PetscArraycpy(c, out->rtiming, r * (FC_PHASE_NUM + 1)));
     PetscCall(PetscArraycpy(d, out->rbody, r * nbodies * 10));
     PetscCall(PetscArraycpy(e, out->rstep, r));
+    {
+      long long *f;
+      PetscCall(PetscMalloc1(2 * n, &f));
+      PetscCall(PetscArraycpy(f, out->rsolve, 2 * r));
+      PetscCall(PetscFree(out->rsolve));
+      out->rsolve = f;
+    }
     PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
     out->rtime   = a;
     out->renergy = b;
@@ -108,6 +125,19 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
   }
   out->rtime[r] = t;
   out->rstep[r] = step;
+  {
+    PetscInt tf = 0, tk = 0;
+    for (PetscInt i = 0; i < nbodies; i++) {
+      PetscInt nf, nk;
+      PetscCall(FCBodyGetSolverCounts(bodies[i], &nf, &nk));
+      tf += nf;
+      tk += nk;
+    }
+    out->rsolve[2 * r]     = tf - out->lastfactor;
+    out->rsolve[2 * r + 1] = tk - out->lastkrylov;
+    out->lastfactor        = tf;
+    out->lastkrylov        = tk;
+  }
   for (int p = 0; p < FC_PHASE_NUM; p++) out->rtiming[r * (FC_PHASE_NUM + 1) + p] = timing[p];
   out->rtiming[r * (FC_PHASE_NUM + 1) + FC_PHASE_NUM] = wall;
   for (PetscInt i = 0; i < nbodies; i++) {
@@ -258,6 +288,10 @@ PetscErrorCode FCOutputRecordsFlush(FCOutput out)
     for (PetscInt r = 0; r < n; r++) steps[r] = out->rstep[r];
     PetscCall(FCH5AppendRows(out->rank, out->time, H5T_NATIVE_DOUBLE, n, out->rtime));
     PetscCall(FCH5AppendRows(out->rank, out->step, H5T_NATIVE_LLONG, n, steps));
+    for (int k = 0; k < 2; k++) {
+      for (PetscInt r = 0; r < n; r++) steps[r] = out->rsolve[2 * r + k];
+      PetscCall(FCH5AppendRows(out->rank, k ? out->s_krylov : out->s_factor, H5T_NATIVE_LLONG, n, steps));
+    }
     PetscCall(FCH5AppendRows(out->rank, out->energy, H5T_NATIVE_DOUBLE, n, out->renergy));
     for (PetscInt r = 0; r < n; r++) { /* energy change over each step: a scheme adding energy shows here */
       tmp[r]     = out->renergy[r] - out->elast;
@@ -304,6 +338,8 @@ PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
   H5Dclose(out->energy);
   H5Dclose(out->denergy);
   H5Dclose(out->wall);
+  H5Dclose(out->s_factor);
+  H5Dclose(out->s_krylov);
   for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
   if (out->contacts) {
     hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,        out->c_force,
@@ -317,6 +353,7 @@ release:
   PetscCall(PetscFree(out->cbuf));
   PetscCall(PetscFree(out->sbuf));
   PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
+  PetscCall(PetscFree(out->rsolve));
   for (PetscInt i = 0; i < out->nbodies && out->bo; i++) PetscCall(PetscFree(out->bo[i].rreact));
   PetscFunctionReturn(0);
 }

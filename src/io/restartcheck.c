@@ -10,7 +10,7 @@
 /* Suffixes (after "<name>_") of body options that may differ at a restart */
 static const char *Free[] = {"ksp_",           "pc_",         "mat_",          "petscpartitioner_",
                              "partition_file", "dm_view",     "dm_plex_check", "dm_distribute",
-                             "refactor_every", "assembly",    "inverted",      "trajectory",
+                             "refactor_",      "factorization", "assembly",    "inverted",      "trajectory",
                              "displacement",   "force",       "traction",      "pressure",
                              "compliance_",    "dm_mat_type", "dm_vec_type"};
 

@@ -56,6 +56,25 @@ static PetscErrorCode Element_Corotational(FCMaterial m, const PetscReal x[12], 
   PetscFunctionReturn(0);
 }
 
+/* The rotation and, if f is not NULL, the internal force R K_e (R^T x - X) in the form of
+   FCMaterialRotatedApply (no K_e formed) */
+static PetscErrorCode Rotation_Corotational(FCMaterial m, const PetscReal x[12], const PetscReal X[12],
+                                            const PetscReal Dminv[9], PetscReal vol, PetscReal f[12], PetscReal R[9])
+{
+  PetscReal Rx[12];
+
+  PetscFunctionBegin;
+  PetscCall(Rotation(x, Dminv, R));
+  if (f) { /* R K_e (R^T x - X) = R K_e R^T (x - R X) */
+    for (int a = 0; a < 4; a++) {
+      FCMat3Vec(R, &X[3 * a], &Rx[3 * a]);
+      for (int i = 0; i < 3; i++) Rx[3 * a + i] = x[3 * a + i] - Rx[3 * a + i];
+    }
+    FCMaterialRotatedApply(m, R, Dminv, vol, Rx, f);
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The gradient of u_local = R^T x - X in the element's rotated frame: H = R^T F - I (constant over
    a P1 element), so a rigid motion has none */
 static void RotatedGradient(const PetscReal x[12], const PetscReal Dminv[9], PetscReal H[9])
@@ -100,7 +119,8 @@ PetscErrorCode FCMaterialCreate_Corotational(FCMaterial m)
 {
   PetscFunctionBegin;
   m->linear  = PETSC_FALSE;
-  m->element = Element_Corotational;
+  m->element  = Element_Corotational;
+  m->rotation = Rotation_Corotational;
   m->energy  = Energy_Corotational;
   m->stress  = Stress_Corotational;
   PetscFunctionReturn(0);

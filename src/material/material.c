@@ -72,6 +72,28 @@ void FCMaterialDeformationGradient(const PetscReal x[12], const PetscReal Dminv[
   FCMat3Mult(Ds, Dminv, F);
 }
 
+void FCMaterialRotatedApply(FCMaterial m, const PetscReal R[9], const PetscReal Dminv[9], PetscReal vol,
+                            const PetscReal x[12], PetscReal y[12])
+{
+  PetscReal G[12], H[9] = {0}, S[9], xl[3], fl[3], V = PetscAbsReal(vol), tr;
+
+  FCTetGradients(Dminv, G);
+  for (int b = 0; b < 4; b++) {
+    const PetscReal *xb = &x[3 * b];
+    for (int i = 0; i < 3; i++) xl[i] = R[i] * xb[0] + R[3 + i] * xb[1] + R[6 + i] * xb[2]; /* R^T x_b */
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) H[3 * i + j] += xl[i] * G[3 * b + j];
+  }
+  tr = H[0] + H[4] + H[8];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) S[3 * i + j] = V * (m->mu * (H[3 * i + j] + H[3 * j + i]) + (i == j ? m->lambda * tr : 0.0));
+  for (int a = 0; a < 4; a++) {
+    const PetscReal *g = &G[3 * a];
+    for (int i = 0; i < 3; i++) fl[i] = S[3 * i] * g[0] + S[3 * i + 1] * g[1] + S[3 * i + 2] * g[2];
+    for (int i = 0; i < 3; i++) y[3 * a + i] = R[3 * i] * fl[0] + R[3 * i + 1] * fl[1] + R[3 * i + 2] * fl[2];
+  }
+}
+
 PetscErrorCode FCMaterialDestroy(FCMaterial *mat)
 {
   PetscFunctionBegin;

@@ -11,6 +11,11 @@ struct _p_FCMaterial {
      reference positions X. Either output may be NULL. */
   PetscErrorCode (*element)(FCMaterial, const PetscReal x[12], const PetscReal X[12], const PetscReal Dminv[9],
                             PetscReal vol, PetscReal f[12], PetscReal K[144]);
+  /* Models whose tangent is R K_e R^T, K_e the element's linear stiffness (co-rotational; NULL
+     for the others): the element rotation R (3x3, row-major) at positions x and, if f is not NULL,
+     the internal force. With R kept per cell, FCMaterialRotatedApply forms K x without K */
+  PetscErrorCode (*rotation)(FCMaterial, const PetscReal x[12], const PetscReal X[12], const PetscReal Dminv[9],
+                             PetscReal vol, PetscReal f[12], PetscReal R[9]);
   /* Element elastic energy */
   PetscErrorCode (*energy)(FCMaterial, const PetscReal x[12], const PetscReal X[12], const PetscReal Dminv[9],
                            PetscReal vol, PetscReal *E);
@@ -24,5 +29,10 @@ PETSC_INTERN PetscErrorCode    FCMaterialRegisterAll(void);
 PETSC_INTERN PetscErrorCode    FCMaterialCreate(const char type[], PetscReal young, PetscReal poisson, FCMaterial *);
 PETSC_INTERN void              FCMaterialHooke(FCMaterial, const PetscReal H[9], PetscReal sigma[9]);
 PETSC_INTERN PetscReal         FCMaterialHookeEnergy(FCMaterial, const PetscReal H[9], PetscReal vol);
+/* y (12) = R K_e R^T x (12) of one element, K_e the linear stiffness of its gradients (Dminv, vol):
+   V sigma(H) g_a per vertex a, H = sum_b (R^T x_b) g_b^T, sigma = lambda tr(H) I + mu (H + H^T), the
+   product FCTetStiffness' matrix gives, without forming it */
+PETSC_INTERN void FCMaterialRotatedApply(FCMaterial, const PetscReal R[9], const PetscReal Dminv[9], PetscReal vol,
+                                         const PetscReal x[12], PetscReal y[12]);
 PETSC_INTERN void FCMaterialDeformationGradient(const PetscReal x[12], const PetscReal Dminv[9], PetscReal F[9]);
 PETSC_INTERN PetscErrorCode FCMaterialDestroy(FCMaterial *);

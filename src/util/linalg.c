@@ -108,12 +108,57 @@ static void SymEig3(const PetscReal S[9], PetscReal w[3], PetscReal V[9])
   w[2] = a[8];
 }
 
-/* Polar decomposition F = R S with R a proper rotation, used by the co-rotational model.
-   R = U V^T from the SVD F = U Sigma V^T (through the eigen-decomposition of F^T F); when
-   det F <= 0 (inverted element) the smallest singular direction is flipped so that R stays a
-   rotation (the "invertible FEM" convention). */
+/* The polar factor by Newton's iteration X <- (g X + X^-T / g) / 2 from X = F, with Higham's
+   determinant scaling g = |det X|^(-1/3) in the first iterations: quadratic convergence to the
+   orthogonal factor, the same as U V^T to round-off. Only where det F is not small against the
+   size of F (the iteration keeps the sign of det F, and converges slowly near a singular F);
+   returns whether it converged */
+static PetscBool PolarNewton(const PetscReal F[9], PetscReal R[9])
+{
+  PetscReal X[9], n2 = 0.0, d;
+
+  for (int i = 0; i < 9; i++) {
+    X[i] = F[i];
+    n2 += F[i] * F[i];
+  }
+  d = FCMat3Det(F);
+  if (!(d > 1e-2 * n2 * PetscSqrtReal(n2) / (3.0 * PetscSqrtReal(3.0)))) return PETSC_FALSE;
+  for (int it = 0; it < 30; it++) {
+    PetscReal C[9], det, g, change = 0.0;
+    C[0] = X[4] * X[8] - X[5] * X[7]; /* the cofactors: X^-T = C / det X */
+    C[1] = X[5] * X[6] - X[3] * X[8];
+    C[2] = X[3] * X[7] - X[4] * X[6];
+    C[3] = X[2] * X[7] - X[1] * X[8];
+    C[4] = X[0] * X[8] - X[2] * X[6];
+    C[5] = X[1] * X[6] - X[0] * X[7];
+    C[6] = X[1] * X[5] - X[2] * X[4];
+    C[7] = X[2] * X[3] - X[0] * X[5];
+    C[8] = X[0] * X[4] - X[1] * X[3];
+    det  = X[0] * C[0] + X[1] * C[1] + X[2] * C[2];
+    if (!(det > 0.0)) return PETSC_FALSE;
+    g = it < 4 ? PetscPowReal(det, -1.0 / 3.0) : 1.0;
+    for (int i = 0; i < 9; i++) {
+      PetscReal y = 0.5 * (g * X[i] + C[i] / (g * det));
+      change += (y - X[i]) * (y - X[i]);
+      X[i] = y;
+    }
+    if (change < 1e-28 && it >= 1) {
+      for (int i = 0; i < 9; i++) R[i] = X[i];
+      return PETSC_TRUE;
+    }
+  }
+  return PETSC_FALSE;
+}
+
+/* Polar decomposition F = R S with R a proper rotation, used by the co-rotational model: by
+   Newton's iteration (PolarNewton) where det F is well away from 0, else R = U V^T from the SVD
+   F = U Sigma V^T (through the eigen-decomposition of F^T F), where when det F <= 0 (inverted
+   element) the smallest singular direction is flipped so that R stays a rotation (the
+   "invertible FEM" convention). */
 void FCMat3Polar(const PetscReal F[9], PetscReal R[9])
 {
+  if (PolarNewton(F, R)) return;
+  {
   PetscReal C[9], w[3], V[9], U[9], sig[3];
   int       order[3] = {0, 1, 2};
 
@@ -177,6 +222,7 @@ void FCMat3Polar(const PetscReal F[9], PetscReal R[9])
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++)
       R[3 * i + j] = U[3 * i] * V[3 * j] + U[3 * i + 1] * V[3 * j + 1] + U[3 * i + 2] * V[3 * j + 2];
+  }
 }
 
 void FCCross(const PetscReal a[3], const PetscReal b[3], PetscReal c[3])
