@@ -3,8 +3,9 @@
   fall as the fast scheme does more Newton iterations on the fast-rotating grasp, and one
   iteration gives exactly the explicit scheme's measures (same linearization, same forces);
 - /steps/energy_change adds up to /steps/energy from the attribute initial_energy;
-- -<body>_refactor_every k factors A every k steps (timing rows of the factorization) and is an
-  error for a linear material; -pgs_acceleration nncg and none give the same motion.
+- -<body>_factorization reuse with -<body>_refactor_every k (the other triggers off) factors A
+  every k steps (timing rows of the factorization), and -refactor_every is an error for a linear
+  material; -pgs_acceleration nncg and none give the same motion.
 Usage: test_accuracy.py [--np N]"""
 import numpy as np
 import h5py
@@ -45,12 +46,13 @@ c.check(err < 1e-12 and np.abs(dE).max() > 0, "initial_energy + cumsum(energy_ch
 # refactor every k steps: the factorization timing row is non-zero exactly at steps 1 + k j (step 1:
 # A is factored at its first use, the free motion of the first step)
 drop = ["-options_file", "input/cube_drop.opts", "-time_steps", "20", "-quiet"]
-h = go("refactor4", drop + ["-cube_refactor_every", "4"])
+h = go("refactor4", drop + ["-cube_factorization", "reuse", "-cube_refactor_every", "4", "-cube_refactor_rotation", "10",
+                             "-cube_refactor_residual", "100", "-cube_refactor_iterations", "1000"])
 steps = list(h["steps/step"][:][h["steps/timing/factorization"][:] > 0])
-c.check(steps == [1, 5, 9, 13, 17], "refactor_every 4: factored at steps %s (expected [1, 5, 9, 13, 17])" % steps)
-h1 = go("refactor1", drop)
+c.check(steps == [1, 5, 9, 13, 17], "reuse, refactor_every 4: factored at steps %s (expected [1, 5, 9, 13, 17])" % steps)
+h1 = go("refactor1", drop + ["-cube_factorization", "every_step"])
 n1 = int((h1["steps/timing/factorization"][:] > 0).sum())
-c.check(n1 == 20, "refactor_every 1 (default): factored at %d of 20 steps" % n1)
+c.check(n1 == 20, "every_step: factored at %d of 20 steps" % n1)
 pa, pb = sorted_positions(h1, "cube")[1], sorted_positions(h, "cube")[1]
 d = np.abs(pa - pb).max()
 c.check(0 < d < 1e-3, "older factor: positions differ from refactoring every step by %.2e m (0 < d < 1e-3)" % d)

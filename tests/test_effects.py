@@ -2,8 +2,9 @@
 table is proved from the PETSc log (-log_view CSV: event counts of rank 0) or the HDF5 statistics:
 - no contact pairs: no Collision, BuildWH, PGS, Correction event, no /contacts;
 - a linear material is factored once per run, whatever the number of steps; a co-rotational one
-  once per step after the first (set-up's factor serves step 1), or every k steps with
-  -<body>_refactor_every k;
+  with -<body>_factorization every_step once per step after the first (set-up's factor serves
+  step 1), or every k steps with
+  -<body>_factorization reuse with -<body>_refactor_every k;
 - rigid and kinematic bodies need no FE assembly, factorization or linear solve;
 - Rayleigh damping costs one MatMult per step only when -<body>_rayleigh_mass is non-zero;
 - gravity costs one VecAXPBYPCZ call (PETSc logs it as VecAXPBYCZ) per FE body and step only when it is on;
@@ -42,13 +43,14 @@ def go(args):
 
 
 fall = ["-options_file", "input/cube_fall.opts"]  # FE cube, rigid ball, kinematic plane; no pairs
-e, h = go(fall + ["-time_steps", "6"])
+e, h = go(fall + ["-time_steps", "6", "-cube_factorization", "every_step"])
 c.check(all(e.get(k, 0) == 0 for k in ("Collision", "BuildWH", "PGS", "Correction", "RebuildW")) and "contacts" not in h,
         "no contact pairs: Collision %d, BuildWH %d, PGS %d, Correction %d events, no /contacts" % (
             e.get("Collision", -1), e.get("BuildWH", -1), e.get("PGS", -1), e.get("Correction", -1)))
 c.check(e.get("FCFactorization") == 6, "co-rotational, 6 steps: %d factorizations (set-up + steps 2..6)" % e.get("FCFactorization", -1))
-e4, _ = go(fall + ["-time_steps", "9", "-cube_refactor_every", "4"])
-c.check(e4.get("FCFactorization") == 3, "refactor_every 4, 9 steps: %d factorizations (set-up, steps 5 and 9)" % e4.get("FCFactorization", -1))
+e4, _ = go(fall + ["-time_steps", "9", "-cube_factorization", "reuse", "-cube_refactor_every", "4",
+                   "-cube_refactor_rotation", "10", "-cube_refactor_iterations", "1000"])
+c.check(e4.get("FCFactorization") == 3, "reuse, refactor_every 4, 9 steps: %d factorizations (steps 1, 5 and 9)" % e4.get("FCFactorization", -1))
 lin5, _ = go(fall + ["-time_steps", "5", "-cube_material", "linear"])
 lin20, _ = go(fall + ["-time_steps", "20", "-cube_material", "linear"])
 c.check(lin5.get("FCFactorization") == 1 and lin20.get("FCFactorization") == 1 and lin5.get("FCAssembly") == lin20.get("FCAssembly"),

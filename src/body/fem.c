@@ -58,7 +58,7 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
     if (fem->factorization == FC_FACTORIZATION_REUSE) PetscCall(PetscStrncpy(fmode, "reuse", sizeof(fmode)));
     PetscCall(PetscOptionsString("-factorization",
                                  "When A is factored: every_step, or reuse (CG with the last factor, warped compliance)",
-                                 NULL, fmode, fmode, sizeof(fmode), NULL));
+                                 NULL, fmode, fmode, sizeof(fmode), &fem->factorization_set));
     PetscCheck(strcmp(fmode, "async"), body->comm, PETSC_ERR_SUP,
                "-%sfactorization async (the factorization in the background) is not available: a second MUMPS "
                "factorization beside the step needs MPI_THREAD_MULTIPLE or a spare rank, and on 2 cores it would "
@@ -78,6 +78,10 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
       PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_iterations",
                              "reuse: factor A after a step whose CG took more iterations", &fem->refactor_iterations,
                              NULL));
+      PetscCall(FCOptionsReal(PetscOptionsObject, "-refactor_residual",
+                              "reuse: factor A after a step whose contact correction by the warped factor has a larger "
+                              "relative residual in today's A",
+                              &fem->refactor_residual, NULL));
       PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_every",
                              "reuse: factor A at least every k steps (0: no limit by age)", &fem->refactor_every, NULL));
     }
@@ -90,6 +94,7 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
   } else {
     fem->coo            = PETSC_FALSE;
     fem->rotation_exact = PETSC_FALSE;
+    fem->factorization  = FC_FACTORIZATION_EVERY_STEP; /* factored once: nothing to schedule */
   }
   PetscOptionsEnd();
   if (fem->factorization == FC_FACTORIZATION_REUSE) {
@@ -102,6 +107,8 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
     PetscCheck(fem->refactor_iterations >= 1, body->comm, PETSC_ERR_USER_INPUT,
                "Option -%srefactor_iterations must be >= 1, got %" PetscInt_FMT, body->prefix,
                fem->refactor_iterations);
+    PetscCheck(fem->refactor_residual > 0.0, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%srefactor_residual must be > 0, got %g", body->prefix, (double)fem->refactor_residual);
     PetscCheck(fem->refactor_rotation > 0.0, body->comm, PETSC_ERR_USER_INPUT,
                "Option -%srefactor_rotation must be > 0 (radians), got %g", body->prefix,
                (double)fem->refactor_rotation);
@@ -383,12 +390,13 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   PetscCall(PetscNew(&fem));
   PetscCall(PetscStrncpy(fem->material, "linear", sizeof(fem->material)));
   fem->poisson                 = 0.3;
-  fem->factorization           = FC_FACTORIZATION_EVERY_STEP;
+  fem->factorization           = FC_FACTORIZATION_REUSE; /* co-rotational (docs/accuracy.md, "Factorization schedule") */
   fem->ksp_rtol                = 1e-8;
   fem->ksp_max_it              = 50;
-  fem->refactor_rotation       = 0.1;
+  fem->refactor_rotation       = 0.2;
   fem->refactor_iterations     = 8;
   fem->refactor_every          = 0;
+  fem->refactor_residual       = 0.003;
   fem->coo                     = PETSC_TRUE; /* co-rotational; a linear K is summed once, by values */
   fem->rotation_exact          = PETSC_TRUE; /* co-rotational without fixed vertices */
   body->deformable             = PETSC_TRUE;

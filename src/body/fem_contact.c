@@ -311,6 +311,12 @@ PetscErrorCode ApplyCorrection_FEM(FCBody body, PetscInt self, const FCContactSe
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
-  if (fem->comp) PetscCall(FCComplianceCorrect(fem->comp, body->h, lambda, fem->dv));
+  if (!fem->comp) PetscFunctionReturn(0);
+  if (fem->xcorr) { /* reuse: the correction alone, kept to check the warped factor at the next step */
+    PetscCall(VecZeroEntries(fem->xcorr));
+    PetscCall(FCComplianceCorrect(fem->comp, body->h, lambda, fem->xcorr));
+    PetscCall(FCFEMScheduleKeepCorrection(body, fem->xcorr));
+    PetscCall(VecAXPY(fem->dv, 1.0, fem->xcorr));
+  } else PetscCall(FCComplianceCorrect(fem->comp, body->h, lambda, fem->dv));
   PetscFunctionReturn(0);
 }

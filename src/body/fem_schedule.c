@@ -17,13 +17,18 @@
        (the builder gets Q, FCComplianceSetWarp), so the contact forces solve the problem of that
        operator and the positions they give agree with W. This is the approximation: the
        compliance of the deformation since the last factorization is that of A_0 turned;
-     - A is factored again (at the step's state) when the largest vertex rotation since the last
-       factorization, measured against the body's mean rotation since then (a rigid rotation is
-       exact under the warp), passes -<body>_refactor_rotation, after a step whose CG took more than
+     - A is factored again at the step's state, before its solves, when the last step's contact
+       correction, turned with the vertices since, leaves a relative residual above
+       -<body>_refactor_residual in today's A (Predict: the warped compliance's error along the
+       contacts' forces), when the largest vertex rotation since the last factorization,
+       measured against the body's mean rotation since then (a rigid rotation is exact under the
+       warp), passes -<body>_refactor_rotation, after a step whose CG took more than
        -<body>_refactor_iterations iterations, every -<body>_refactor_every steps (0: never for
        age), or at once when CG does not converge in -<body>_ksp_max_it iterations (the step then
-       solves with the new factor). A contact outside the condensed builder's Schur block refactors
-       A_0 (the builder's miss), which keeps Q.
+       solves with the new factor). A contact outside the condensed builder's Schur block
+       refactors A_0 (the builder's miss), which keeps Q.
+   reuse is the default of a co-rotational body whose solver is MUMPS Cholesky and whose builder
+   is condensed (else every_step; asking for reuse there is an error).
    The counts go to /steps/factorizations and /steps/krylov_iterations. */
 #include "femimpl.h"
 #include "../compliance/compliance.h"
@@ -201,6 +206,37 @@ static PetscErrorCode Turn(FEM *fem, Vec x, PetscBool transpose)
   PetscFunctionReturn(0);
 }
 
+/* A body held by nothing keeps the momentum of its solves: A 1_d = M 1_d for a translation 1_d
+   (K annihilates it), so the exact x = A^-1 b has sum(M x)_d = sum(b)_d. CG stopped at its
+   tolerance and the warped correction do not; x gets the translation velocity that restores it
+   (no elastic force, and the positions move by what the tolerance left) */
+static PetscErrorCode KeepMomentum(FCBody body, Vec b, Vec x)
+{
+  FEM               *fem = (FEM *)body->data;
+  const PetscScalar *ba, *ma;
+  PetscScalar       *xa;
+  PetscReal          s[6] = {0};
+  PetscInt           n;
+
+  PetscFunctionBegin;
+  if (fem->nfixed > 0) PetscFunctionReturn(0);
+  PetscCall(MatMult(fem->M, x, fem->xres));
+  PetscCall(VecGetLocalSize(x, &n));
+  PetscCall(VecGetArrayRead(b, &ba));
+  PetscCall(VecGetArrayRead(fem->xres, &ma));
+  for (PetscInt i = 0; i < n; i++) {
+    s[i % 3] += PetscRealPart(ba[i]);
+    s[3 + i % 3] += PetscRealPart(ma[i]);
+  }
+  PetscCall(VecRestoreArrayRead(b, &ba));
+  PetscCall(VecRestoreArrayRead(fem->xres, &ma));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, s, 6, MPIU_REAL, MPIU_SUM, body->comm));
+  PetscCall(VecGetArray(x, &xa));
+  for (PetscInt i = 0; i < n; i++) xa[i] += (s[i % 3] - s[3 + i % 3]) / fem->mass;
+  PetscCall(VecRestoreArray(x, &xa));
+  PetscFunctionReturn(0);
+}
+
 /* The preconditioner: z = Q A_0^-1 Q^T r with the last factor */
 static PetscErrorCode WarpedSolve(PC pc, Vec r, Vec z)
 {
@@ -228,11 +264,34 @@ PetscErrorCode FCFEMScheduleSetUp(FCBody body)
 
   PetscFunctionBegin;
   if (fem->factorization != FC_FACTORIZATION_REUSE) PetscFunctionReturn(0);
+  { /* the preconditioner is the body's factor: its solver must be one (preonly + Cholesky + MUMPS) */
+    KSPType       kt;
+    MatSolverType st;
+    PetscBool     preonly, cholesky, mumps = PETSC_FALSE;
+    PetscCall(KSPGetType(fem->ksp, &kt));
+    PetscCall(KSPGetPC(fem->ksp, &pc));
+    PetscCall(PetscStrcmp(kt, KSPPREONLY, &preonly));
+    PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
+    if (preonly && cholesky) {
+      PetscCall(PCFactorGetMatSolverType(pc, &st));
+      PetscCall(PetscStrcmp(st, MATSOLVERMUMPS, &mumps));
+    }
+    PetscCheck(mumps || !fem->factorization_set, body->comm, PETSC_ERR_USER_INPUT,
+               "-%sfactorization reuse preconditions with the body's factorization of A, but the options of its solver "
+               "(-%sksp_type, -%spc_type, -%spc_factor_mat_solver_type) ask for another solver than MUMPS Cholesky: "
+               "drop them, or use -%sfactorization every_step",
+               body->prefix, body->prefix, body->prefix, body->prefix, body->prefix);
+    if (!mumps) { /* the default falls back to every_step */
+      fem->factorization = FC_FACTORIZATION_EVERY_STEP;
+      PetscFunctionReturn(0);
+    }
+  }
   fem->Acurrent = PETSC_FALSE; /* the first step takes its operator (and first factor) at its state */
   fem->factored = PETSC_FALSE;
   PetscCall(VecGetLocalSize(fem->u, &n));
   PetscCall(VecGetSize(fem->u, &N));
-  PetscCall(PetscMalloc3(9 * nc + 1, &fem->Rcell, 3 * n + 1, &fem->Rv0, 3 * n + 1, &fem->dR));
+  PetscCall(PetscMalloc5(9 * nc + 1, &fem->Rcell, 3 * n + 1, &fem->Rv0, 3 * n + 1, &fem->dR, 3 * n + 1, &fem->Rvnow,
+                         3 * n + 1, &fem->Rvprev));
   for (PetscInt b = 0; b < n / 3; b++) {
     FCMat3Identity(&fem->Rv0[9 * b]);
     FCMat3Identity(&fem->dR[9 * b]);
@@ -243,6 +302,10 @@ PetscErrorCode FCFEMScheduleSetUp(FCBody body)
   }
   PetscCall(VecDuplicate(fem->u, &fem->rw2));
   PetscCall(VecDuplicate(fem->u, &fem->xlast));
+  PetscCall(VecDuplicate(fem->u, &fem->xres));
+  PetscCall(VecDuplicate(fem->u, &fem->xcorr));
+  PetscCall(VecDuplicate(fem->u, &fem->xprev));
+  PetscCall(VecDuplicate(fem->u, &fem->rprev));
   PetscCall(MatCreateShell(body->comm, n, n, N, N, body, &fem->Aop));
   PetscCall(MatShellSetOperation(fem->Aop, MATOP_MULT, (void (*)(void))AMult));
   PetscCall(KSPCreate(body->comm, &fem->kspk));
@@ -268,10 +331,14 @@ PetscErrorCode FCFEMScheduleSetUpContact(FCBody body)
 
   PetscFunctionBegin;
   if (fem->factorization != FC_FACTORIZATION_REUSE || fem->swdof) PetscFunctionReturn(0);
-  PetscCheck(FCComplianceFactorsA(fem->comp), body->comm, PETSC_ERR_USER_INPUT,
+  PetscCheck(FCComplianceFactorsA(fem->comp) || !fem->factorization_set, body->comm, PETSC_ERR_USER_INPUT,
              "-%sfactorization reuse warps the compliance of the condensed builder: body '%s' needs "
              "-compliance_type condensed (the default)",
              body->prefix, body->name);
+  if (!FCComplianceFactorsA(fem->comp)) { /* the default falls back to every_step */
+    fem->factorization = FC_FACTORIZATION_EVERY_STEP;
+    PetscFunctionReturn(0);
+  }
   PetscCallMPI(MPI_Comm_size(body->comm, &size));
   PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
   PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts, 1, MPI_INT, body->comm));
@@ -293,6 +360,8 @@ PetscErrorCode FCFEMScheduleSetUpContact(FCBody body)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode Predict(FCBody, PetscReal *);
+
 /* Factor A at the state (K assembled there), which becomes A_0: Q = I */
 static PetscErrorCode Refactor(FCBody body, const PetscReal Rv[])
 {
@@ -308,6 +377,7 @@ static PetscErrorCode Refactor(FCBody body, const PetscReal Rv[])
   PetscCall(UpdateWarp(body, Rv));
   fem->refactor_next = PETSC_FALSE;
   fem->fresh         = PETSC_TRUE;
+  fem->hasprev       = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -320,8 +390,7 @@ PetscErrorCode FCFEMScheduleOperator(FCBody body, Vec state)
   FCMesh            *m   = &fem->mesh;
   const PetscScalar *ul;
   PetscScalar       *fl;
-  PetscReal         *Rv;
-  PetscInt           n;
+  PetscReal         *Rv, res = 0.0;
   PetscBool          due;
 
   PetscFunctionBegin;
@@ -353,21 +422,20 @@ PetscErrorCode FCFEMScheduleOperator(FCBody body, Vec state)
   PetscCall(VecRestoreArray(fem->floc, &fl));
   PetscCall(VecZeroEntries(fem->fint));
   PetscCall(DMLocalToGlobal(m->dm, fem->floc, ADD_VALUES, fem->fint));
-  PetscCall(VecGetLocalSize(fem->u, &n));
-  PetscCall(PetscMalloc1(3 * n + 1, &Rv));
+  Rv = fem->Rvnow;
   PetscCall(VertexRotations(body, Rv));
   PetscCall(UpdateWarp(body, Rv));
+  PetscCall(Predict(body, &res));
   PetscCall(FCPhaseEnd(FC_PHASE_ASSEMBLY));
   due = (PetscBool)(!fem->factored || fem->refactor_next || fem->angle > fem->refactor_rotation ||
-                    (fem->refactor_every > 0 && fem->factor_age >= fem->refactor_every));
+                    res > fem->refactor_residual || (fem->refactor_every > 0 && fem->factor_age >= fem->refactor_every));
   if (due) {
     PetscCall(PetscInfo(NULL,
-                        "body %s: factoring A (rotation since the last factorization %g rad, age %" PetscInt_FMT
-                        ", CG iterations above the limit: %s)\n",
-                        body->name, (double)fem->angle, fem->factor_age, PetscBools[fem->refactor_next]));
+                        "body %s: factoring A (rotation since the last factorization %g rad, residual of the last "
+                        "correction %g, age %" PetscInt_FMT ", CG iterations above the limit: %s)\n",
+                        body->name, (double)fem->angle, (double)res, fem->factor_age, PetscBools[fem->refactor_next]));
     PetscCall(Refactor(body, Rv));
   }
-  PetscCall(PetscFree(Rv));
   PetscFunctionReturn(0);
 }
 
@@ -388,23 +456,82 @@ PetscErrorCode FCFEMScheduleSolve(FCBody body, Vec b, Vec x, PetscReal t)
   }
   PetscCall(VecCopy(fem->xlast, x)); /* the last step's solution: the free motion changes little from step to step */
   PetscCall(KSPSolve(fem->kspk, b, x));
+  PetscCall(KeepMomentum(body, b, x));
   PetscCall(VecCopy(x, fem->xlast));
   PetscCall(KSPGetConvergedReason(fem->kspk, &reason));
   PetscCall(KSPGetIterationNumber(fem->kspk, &its));
   fem->nkrylov += its;
   if (its > fem->refactor_iterations) fem->refactor_next = PETSC_TRUE;
   if (reason < 0) { /* the old factor is too far from A: a new one, and a direct solve */
-    PetscReal *Rv;
-    PetscInt   n;
     PetscCall(PetscInfo(NULL, "body %s: CG with the old factor did not converge (%s, %" PetscInt_FMT " iterations): refactoring\n",
                         body->name, KSPConvergedReasons[reason], its));
-    PetscCall(VecGetLocalSize(fem->u, &n));
-    PetscCall(PetscMalloc1(3 * n + 1, &Rv));
-    PetscCall(VertexRotations(body, Rv));
-    PetscCall(Refactor(body, Rv));
-    PetscCall(PetscFree(Rv));
+    PetscCall(Refactor(body, fem->Rvnow));
     PetscCall(FCFEMSolveA(body, b, x, "Free-motion", t));
   }
+  PetscFunctionReturn(0);
+}
+
+/* The contact correction x = h Q A_0^-1 Q^T J^T lambda (the warped operator's), before dv += x: its
+   momentum restored (KeepMomentum), and x and its right-hand side h J^T lambda kept, with the
+   vertex rotations of the step, for the check of the next step (Predict) */
+PetscErrorCode FCFEMScheduleKeepCorrection(FCBody body, Vec x)
+{
+  FEM     *fem = (FEM *)body->data;
+  Vec      rhs;
+  PetscInt n;
+
+  PetscFunctionBegin;
+  if (fem->factorization != FC_FACTORIZATION_REUSE || !fem->comp) PetscFunctionReturn(0);
+  PetscCall(FCComplianceGetCorrectionRHS(fem->comp, &rhs)); /* (J Q)^T h lambda = Q^T J^T h lambda */
+  if (!rhs) PetscFunctionReturn(0);
+  PetscCall(VecCopy(rhs, fem->rprev));
+  PetscCall(Turn(fem, fem->rprev, PETSC_FALSE));
+  if (!fem->fresh) PetscCall(KeepMomentum(body, fem->rprev, x)); /* the warped operator's correction */
+  PetscCall(VecCopy(x, fem->xprev));
+  PetscCall(VecGetLocalSize(fem->u, &n));
+  PetscCall(PetscArraycpy(fem->Rvprev, fem->Rvnow, 3 * n));
+  fem->hasprev = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* Before the step's solves, whether the warped factor still answers the last step's contact forces:
+   x and r = h J^T lambda of the last correction, turned with each vertex since (R_v R_v,last^T), and
+   the relative residual ||A x - r|| / ||r|| in today's A (one matrix-free product). It measures the
+   warped compliance's error along the forces of the contacts, and the change of A since they were
+   computed; above -refactor_residual, A is factored now, before the contacts need it */
+static PetscErrorCode Predict(FCBody body, PetscReal *res)
+{
+  FEM         *fem = (FEM *)body->data;
+  PetscScalar *xa, *ra;
+  PetscInt     n;
+  PetscReal    nr, nb;
+
+  PetscFunctionBegin;
+  *res = 0.0;
+  if (!fem->hasprev) PetscFunctionReturn(0);
+  fem->hasprev = PETSC_FALSE;
+  PetscCall(VecGetLocalSize(fem->u, &n));
+  PetscCall(VecGetArray(fem->xprev, &xa));
+  PetscCall(VecGetArray(fem->rprev, &ra));
+  for (PetscInt b = 0; b < n / 3; b++) {
+    PetscReal PT[9], T[9], y[3], z[3];
+    FCMat3Transpose(&fem->Rvprev[9 * b], PT);
+    FCMat3Mult(&fem->Rvnow[9 * b], PT, T);
+    for (int d = 0; d < 3; d++) z[d] = PetscRealPart(xa[3 * b + d]);
+    FCMat3Vec(T, z, y);
+    for (int d = 0; d < 3; d++) xa[3 * b + d] = y[d];
+    for (int d = 0; d < 3; d++) z[d] = PetscRealPart(ra[3 * b + d]);
+    FCMat3Vec(T, z, y);
+    for (int d = 0; d < 3; d++) ra[3 * b + d] = y[d];
+  }
+  PetscCall(VecRestoreArray(fem->xprev, &xa));
+  PetscCall(VecRestoreArray(fem->rprev, &ra));
+  PetscCall(VecNorm(fem->rprev, NORM_2, &nb));
+  if (nb == 0.0) PetscFunctionReturn(0);
+  PetscCall(MatMult(fem->Aop, fem->xprev, fem->xres));
+  PetscCall(VecAXPY(fem->xres, -1.0, fem->rprev));
+  PetscCall(VecNorm(fem->xres, NORM_2, &nr));
+  *res = nr / nb;
   PetscFunctionReturn(0);
 }
 
@@ -413,13 +540,17 @@ PetscErrorCode FCFEMScheduleDestroy(FCBody body)
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
-  PetscCall(PetscFree3(fem->Rcell, fem->Rv0, fem->dR));
+  PetscCall(PetscFree5(fem->Rcell, fem->Rv0, fem->dR, fem->Rvnow, fem->Rvprev));
   for (int j = 0; j < 3; j++) {
     PetscCall(VecDestroy(&fem->rcol[j]));
     PetscCall(VecDestroy(&fem->rcolloc[j]));
   }
   PetscCall(VecDestroy(&fem->rw2));
   PetscCall(VecDestroy(&fem->xlast));
+  PetscCall(VecDestroy(&fem->xres));
+  PetscCall(VecDestroy(&fem->xcorr));
+  PetscCall(VecDestroy(&fem->xprev));
+  PetscCall(VecDestroy(&fem->rprev));
   PetscCall(MatDestroy(&fem->Aop));
   PetscCall(KSPDestroy(&fem->kspk));
   PetscCall(PetscFree4(fem->swdof, fem->swperm, fem->swR, fem->swbuf));

@@ -81,6 +81,7 @@ typedef struct {
   PetscInt         factor_age;     /* steps since A was last factored */
   /* the factorization schedule (fem_schedule.c) */
   PetscInt     factorization;                     /* FC_FACTORIZATION_EVERY_STEP or _REUSE */
+  PetscBool    factorization_set;                 /* given by -factorization (else the default, reuse where it can) */
   PetscReal    ksp_rtol, refactor_rotation;       /* reuse: CG tolerance; the angle (rad) that refactors */
   PetscInt     ksp_max_it, refactor_iterations;   /* reuse: CG's limit; the iterations that refactor */
   PetscInt     refactor_every;                    /* reuse: the age (steps) that refactors, 0: none */
@@ -91,6 +92,11 @@ typedef struct {
   PetscReal   *Rcell, *Rv0, *dR;                  /* per cell its rotation; per owned vertex block R_0 and Q */
   Vec          rcol[3], rcolloc[3], rw2;          /* the vertex rotations' sums; work */
   Vec          xlast;                             /* the last free motion: CG's first guess */
+  Vec          xres, xcorr;                       /* work: a residual, the step's correction */
+  Vec          xprev, rprev;                      /* the last correction and its right-hand side h J^T lambda */
+  PetscReal   *Rvnow, *Rvprev;                    /* per owned vertex block: its rotation now, at the last correction */
+  PetscBool    hasprev;                           /* xprev, rprev hold the last step's correction */
+  PetscReal    refactor_residual;                 /* the residual of the last correction in today's A that refactors */
   Mat          Aop;                               /* today's A, matrix-free */
   KSP          kspk;                              /* CG on Aop, preconditioned by the warped factor */
   PetscInt     nsw, *swdof, *swperm;              /* the surface vertices of every rank (first DOFs, sorted) */
@@ -205,6 +211,7 @@ PETSC_INTERN PetscErrorCode FCFEMScheduleSetUpContact(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMScheduleOperator(FCBody, Vec state);
 PETSC_INTERN PetscErrorCode FCFEMScheduleSolve(FCBody, Vec b, Vec x, PetscReal t);
 PETSC_INTERN PetscErrorCode FCFEMKMult(FCBody, Vec x, Vec y);
+PETSC_INTERN PetscErrorCode FCFEMScheduleKeepCorrection(FCBody, Vec x);
 PETSC_INTERN PetscErrorCode FCFEMScheduleDestroy(FCBody);
 /* fem_bc.c */
 PETSC_INTERN PetscErrorCode FCFEMBCSetFromOptions(PetscOptionItems *, FCBody);

@@ -171,6 +171,13 @@ PetscErrorCode FCComplianceSetWarp(FCCompliance comp, PetscInt nsurf, const Pets
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCComplianceGetCorrectionRHS(FCCompliance comp, Vec *rhs)
+{
+  PetscFunctionBegin;
+  *rhs = comp->ops.correct ? NULL : comp->rhs;
+  PetscFunctionReturn(0);
+}
+
 PetscInt FCComplianceOwnFactorizations(FCCompliance comp)
 {
   return comp->nownfactor;

@@ -43,6 +43,9 @@ PETSC_INTERN PetscErrorCode FCComplianceSetRotation(FCCompliance, const PetscRea
    owned vertex blocks (nowned, in the order of the layout of u). The arrays stay the caller's */
 PETSC_INTERN PetscErrorCode FCComplianceSetWarp(FCCompliance, PetscInt nsurf, const PetscInt sdof[],
                                                 const PetscReal sQ[], PetscInt nowned, const PetscReal oQ[]);
+/* The right-hand side h J_b^T lambda (with a warp: (J_b Q)^T h lambda) of the last correction by one
+   solve (NULL: none, or a builder with its own correction) */
+PETSC_INTERN PetscErrorCode FCComplianceGetCorrectionRHS(FCCompliance, Vec *);
 /* Factorizations the builder did on its own (a condensed miss), so far */
 PETSC_INTERN PetscInt FCComplianceOwnFactorizations(FCCompliance);
 /* W_b = J_b A^-1 J_b^T for the contacts touching body `self`, kept for the next Add; same: it is the
