@@ -23,11 +23,10 @@ c = Checker("compliance np%d" % NP)
 # to round-off. NNCG (the default) branches on residual comparisons, which round-off can flip: its
 # answers then agree only to the PGS tolerance (measured 2.4e-10 on 2 ranks), which says nothing
 # about the builders.
-# The builders are compared with A factored at every step (-<body>_factorization every_step): the
-# default for a co-rotational body with the condensed builder is reuse (an older factor, warped:
-# docs/method.md), which the other builders do not take (tests/test_factorization.py checks it).
+# The builders are compared with A factored at every step (-<body>_factorization every_step, the
+# default; reuse, an older factor warped, is the condensed builder's only: tests/test_factorization.py).
 base = ["-options_file", "input/cube_drop.opts", "-time_steps", "28", "-pgs_tol", "1e-10", "-pgs_max_it", "20000", "-quiet",
-        "-pgs_acceleration", "none", "-cube_factorization", "every_step"]
+        "-pgs_acceleration", "none"]
 
 
 def result(ctype, extra=()):
@@ -88,8 +87,7 @@ wh = {}
 for ctype in ["dense", "schur", "inverse", "redundant", "condensed"]:
     f = out("wh_%s_np%d.h5" % (ctype, NP))
     run(["-options_file", "input/grasp_rotate.opts", "-time_steps", "10", "-constraint_scheme", "fast", "-pgs_tol", "1e-11",
-         "-pgs_max_it", "50000", "-compliance_type", ctype, "-output_file", f, "-quiet", "-pgs_acceleration", "none",
-         "-object_factorization", "every_step"], np_=NP)
+         "-pgs_max_it", "50000", "-compliance_type", ctype, "-output_file", f, "-quiet", "-pgs_acceleration", "none"], np_=NP)
     wh[ctype] = h5py.File(f, "r")
 for ctype in ["schur", "inverse", "redundant", "condensed"]:
     fa, fb = wh["dense"]["contacts/force"][:], wh[ctype]["contacts/force"][:]
@@ -105,8 +103,7 @@ fe = {}
 for ctype in ["dense", "inverse", "redundant", "condensed"]:
     f = out("fefe_%s_np%d.h5" % (ctype, NP))
     run(["-options_file", "input/two_cubes.opts", "-time_steps", "60", "-compliance_type", ctype, "-output_file", f, "-quiet",
-         "-pgs_acceleration", "none", "-pgs_tol", "1e-11", "-pgs_max_it", "20000", "-contact_edge_edge", "0",
-         "-left_factorization", "every_step", "-right_factorization", "every_step"], np_=NP)
+         "-pgs_acceleration", "none", "-pgs_tol", "1e-11", "-pgs_max_it", "20000", "-contact_edge_edge", "0"], np_=NP)
     fe[ctype] = h5py.File(f, "r")
 # The steps are compared where both runs have the same number of contact records: on 2 ranks MUMPS'
 # parallel factorization is not bitwise reproducible, and a vertex at the alarm distance may then be

@@ -8,13 +8,13 @@ docs/method.md "When A is factored"), on --np ranks:
   (input/cube_spin.opts, before it lands) factored once in 15 steps, CG iterations at every step
   after the first in /steps/krylov_iterations, follows every_step to 1e-6 of its displacement
   scale (the rigid rotation is exact under the warp: no refactorization by rotation);
-- with contact, the default (reuse, -refactor_residual 0.003) keeps the grasp's positions within
-  1e-3 of every_step's displacement scale (the target of docs/accuracy.md, "Factorization
-  schedule"), and so does -refactor_residual 0.01 while it factors less often than every step;
-  0.1 factors still less often, for a larger error; with -compliance_type dense the default is
-  every_step;
+- the default is every_step; with contact, reuse with its default thresholds
+  (-refactor_residual 0.003) keeps the grasp's positions within 1e-3 of every_step's displacement
+  scale (the target of docs/accuracy.md, "Factorization schedule"), and so does
+  -refactor_residual 0.01 while it factors less often than every step; 0.1 factors still less
+  often, for a larger error;
 - on 2 ranks, the 1-rank run's positions (-refactor_residual 0.01) to 1e-6 of the displacement
-  scale, with the same factorization counts;
+  scale, the factorizations within one (a condensed builder's miss may differ);
 - bad input: async (not available), an unknown mode, thresholds out of range, -refactor_every with
   every_step, reuse with another compliance builder than condensed."""
 import h5py
@@ -51,21 +51,19 @@ x1, f1, k1 = positions(go("reuse1", ["-object_factorization", "reuse", "-object_
 c.check(err(x1, xe) < 1e-10 and (f1 >= 1).all() and (k1 == 0).all(),
         "grasp: reuse with -refactor_every 1 is every_step (positions %.1e of the displacement scale, a factorization "
         "at every step, no CG)" % err(x1, xe))
-xd0, fd0, kd0 = positions(go("default", []), "object")  # the default: reuse, -refactor_residual 0.003
-c.check(err(xd0, xe) < 1e-3, "grasp, default (reuse): positions within 1e-3 of every_step's displacement scale (%.2e; "
-        "%d factorizations, every_step %d)" % (err(xd0, xe), fd0.sum(), fe.sum()))
-xr, fr, kr = positions(go("reuse", ["-object_refactor_residual", "0.01"]), "object")
+xd0, fd0, kd0 = positions(go("default", []), "object")
+c.check(err(xd0, xe) < 1e-12 and (kd0 == 0).all(), "grasp: the default is every_step (positions %.1e, no CG)" % err(xd0, xe))
+xd3, fd3, kd3 = positions(go("reuse_default", ["-object_factorization", "reuse"]), "object")  # -refactor_residual 0.003
+c.check(err(xd3, xe) < 1e-3, "grasp, reuse with its default thresholds: positions within 1e-3 of every_step's "
+        "displacement scale (%.2e; %d factorizations, every_step %d)" % (err(xd3, xe), fd3.sum(), fe.sum()))
+xr, fr, kr = positions(go("reuse", ["-object_factorization", "reuse", "-object_refactor_residual", "0.01"]), "object")
 c.check(fr.sum() < fe.sum() and kr.sum() > 0 and err(xr, xe) < 1e-3,
         "grasp, -refactor_residual 0.01: %d factorizations in 20 steps (every_step %d), %d CG iterations, positions "
         "within 1e-3 (%.2e)" % (fr.sum(), fe.sum(), kr.sum(), err(xr, xe)))
-xl, fl, kl = positions(go("reuse_loose", ["-object_refactor_residual", "0.1"]), "object")
+xl, fl, kl = positions(go("reuse_loose", ["-object_factorization", "reuse", "-object_refactor_residual", "0.1"]), "object")
 c.check(fl.sum() < fr.sum() and err(xl, xe) > err(xr, xe),
         "grasp: -refactor_residual 0.1 factors less often (%d) than 0.01 (%d), for a larger error (%.2e)"
         % (fl.sum(), fr.sum(), err(xl, xe)))
-xd, fd, kd = positions(go("dense", ["-compliance_type", "dense"]), "object")
-c.check((kd == 0).all() and (fd >= 1).all() and err(xd, xe) < 1e-8,
-        "grasp, -compliance_type dense: the default falls back to every_step (a factorization a step, no CG; "
-        "positions %.1e)" % err(xd, xe))
 
 # free flight of a fast-spinning cube: the free motion by CG is exact to its tolerance
 sp = ["-time_steps", "15"]
@@ -79,10 +77,13 @@ c.check(err(xsr, xse) < 1e-6, "spin, free flight: reuse follows every_step to %.
         % err(xsr, xse))
 
 if NP > 1:  # the same schedule and answer as on 1 rank
-    xr1, fr1, _ = positions(go("reuse", ["-object_refactor_residual", "0.01"], np_=1), "object")
-    c.check(err(xr, xr1) < 1e-6 and (fr == fr1).all(),
-            "grasp, reuse: %d ranks give the 1-rank positions to %.1e of the displacement scale (< 1e-6), the same "
-            "factorizations (%d, %d)" % (NP, err(xr, xr1), fr.sum(), fr1.sum()))
+    xr1, fr1, _ = positions(go("reuse", ["-object_factorization", "reuse", "-object_refactor_residual", "0.01"], np_=1),
+                            "object")
+    # the count may differ by the condensed builder's refactorization on a miss: a vertex at the alarm
+    # distance is a (force-free) contact on one partition and not on the other (tests/test_compliance.py)
+    c.check(err(xr, xr1) < 1e-6 and abs(int(fr.sum()) - int(fr1.sum())) <= 1,
+            "grasp, reuse: %d ranks give the 1-rank positions to %.1e of the displacement scale (< 1e-6), "
+            "factorizations %d and %d" % (NP, err(xr, xr1), fr.sum(), fr1.sum()))
 
 # bad input: an error naming the option, never a crash
 bad = [(["-object_factorization", "async"], "async"),

@@ -40,12 +40,12 @@ def compare(name, full, rest):
             "%s: the restarted file holds steps %d..%d, its frame 0 is step %d" % (name, S0, hb["steps/step"][-1], hb["frames/step"][0]))
 
 
-# A co-rotational body restarts exactly with -<body>_factorization every_step; with reuse (the
-# default) the restarted run factors A at its first step where the uninterrupted one may keep an
-# older factor, so they agree to the schedule's tolerance only (docs/method.md): checked below too
-SCENES = [("grasp", ["-options_file", "input/grasp_rotate.opts", "-object_factorization", "every_step"], 40, 23),
-          ("box on slab", ["-options_file", "input/box_on_slab.opts", "-slab_factorization", "every_step"], 30, 17),
-          ("cube and ball fall", ["-options_file", "input/cube_fall.opts", "-cube_factorization", "every_step"], 40, 25)]
+# A co-rotational body restarts exactly with -<body>_factorization every_step (the default); with
+# reuse the restarted run factors A at its first step where the uninterrupted one may keep an older
+# factor, so they agree to the schedule's tolerance only (docs/method.md): checked below too
+SCENES = [("grasp", ["-options_file", "input/grasp_rotate.opts"], 40, 23),
+          ("box on slab", ["-options_file", "input/box_on_slab.opts"], 30, 17),
+          ("cube and ball fall", ["-options_file", "input/cube_fall.opts"], 40, 25)]
 for name, opts, N, k in SCENES:
     tag = name.replace(" ", "_")
     base = opts + ["-output_every", "4", "-quiet"]
@@ -55,9 +55,9 @@ for name, opts, N, k in SCENES:
     run(base + ["-time_steps", N, "-output_file", rest, "-restart", half], np_=NP)
     compare(name, full, rest)
 
-# reuse (the default): the restarted run refactors at its first step; it ends within the schedule's
-# tolerance of the uninterrupted run (measured 1.1e-7 relative on the box on the slab)
-opts = ["-options_file", "input/box_on_slab.opts", "-output_every", "4", "-quiet"]
+# reuse: the restarted run refactors at its first step; it ends within the schedule's tolerance of
+# the uninterrupted run (measured 1.1e-7 relative on the box on the slab)
+opts = ["-options_file", "input/box_on_slab.opts", "-output_every", "4", "-quiet", "-slab_factorization", "reuse"]
 full, half, rest = out("reuse_full_np%d.h5" % NP), out("reuse_half_np%d.h5" % NP), out("reuse_rest_np%d.h5" % NP)
 run(opts + ["-time_steps", 30, "-output_file", full], np_=NP)
 run(opts + ["-time_steps", 17, "-output_file", half], np_=NP)
@@ -68,7 +68,7 @@ d = np.abs(a - b).max() / np.abs(a).max()
 c.check(d <= 1e-5, "box on slab, reuse: restarted run ends within 1e-5 of the uninterrupted one (rel. %.1e)" % d)
 
 # from a run stopped by SIGINT (the restart state is that of its last frame)
-opts = ["-options_file", "input/grasp_rotate.opts", "-output_every", "3", "-quiet", "-object_factorization", "every_step"]
+opts = ["-options_file", "input/grasp_rotate.opts", "-output_every", "3", "-quiet"]
 full, cut, rest = out("sig_full_np%d.h5" % NP), out("sig_cut_np%d.h5" % NP), out("sig_rest_np%d.h5" % NP)
 p = start(opts + ["-time_steps", "100000", "-output_file", cut], NP)
 wait_for_frames(cut, 0.5)
@@ -81,7 +81,7 @@ run(opts + ["-time_steps", N, "-output_file", rest, "-restart", cut], np_=NP)
 compare("after SIGINT at step %d" % S, full, rest)
 
 if NP > 1:  # a file written on one rank, continued on NP: the same end state up to round-off
-    opts = ["-options_file", "input/cube_drop.opts", "-output_every", "5", "-quiet", "-cube_factorization", "every_step"]
+    opts = ["-options_file", "input/cube_drop.opts", "-output_every", "5", "-quiet"]
     f1, half, rest = out("x_full1.h5"), out("x_half1.h5"), out("x_rest%d.h5" % NP)
     run(opts + ["-time_steps", "40", "-output_file", f1], np_=1)
     run(opts + ["-time_steps", "20", "-output_file", half], np_=1)

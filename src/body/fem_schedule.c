@@ -27,8 +27,9 @@
        age), or at once when CG does not converge in -<body>_ksp_max_it iterations (the step then
        solves with the new factor). A contact outside the condensed builder's Schur block
        refactors A_0 (the builder's miss), which keeps Q.
-   reuse is the default of a co-rotational body whose solver is MUMPS Cholesky and whose builder
-   is condensed (else every_step; asking for reuse there is an error).
+   reuse needs the body's default solver (MUMPS Cholesky) and, in a contact pair, the condensed
+   builder. every_step is the default: reuse does not keep the hard cases' tolerances
+   (docs/accuracy.md, "Factorization schedule").
    The counts go to /steps/factorizations and /steps/krylov_iterations. */
 #include "femimpl.h"
 #include "../compliance/compliance.h"
@@ -276,15 +277,11 @@ PetscErrorCode FCFEMScheduleSetUp(FCBody body)
       PetscCall(PCFactorGetMatSolverType(pc, &st));
       PetscCall(PetscStrcmp(st, MATSOLVERMUMPS, &mumps));
     }
-    PetscCheck(mumps || !fem->factorization_set, body->comm, PETSC_ERR_USER_INPUT,
+    PetscCheck(mumps, body->comm, PETSC_ERR_USER_INPUT,
                "-%sfactorization reuse preconditions with the body's factorization of A, but the options of its solver "
                "(-%sksp_type, -%spc_type, -%spc_factor_mat_solver_type) ask for another solver than MUMPS Cholesky: "
                "drop them, or use -%sfactorization every_step",
                body->prefix, body->prefix, body->prefix, body->prefix, body->prefix);
-    if (!mumps) { /* the default falls back to every_step */
-      fem->factorization = FC_FACTORIZATION_EVERY_STEP;
-      PetscFunctionReturn(0);
-    }
   }
   fem->Acurrent = PETSC_FALSE; /* the first step takes its operator (and first factor) at its state */
   fem->factored = PETSC_FALSE;
@@ -331,14 +328,10 @@ PetscErrorCode FCFEMScheduleSetUpContact(FCBody body)
 
   PetscFunctionBegin;
   if (fem->factorization != FC_FACTORIZATION_REUSE || fem->swdof) PetscFunctionReturn(0);
-  PetscCheck(FCComplianceFactorsA(fem->comp) || !fem->factorization_set, body->comm, PETSC_ERR_USER_INPUT,
+  PetscCheck(FCComplianceFactorsA(fem->comp), body->comm, PETSC_ERR_USER_INPUT,
              "-%sfactorization reuse warps the compliance of the condensed builder: body '%s' needs "
              "-compliance_type condensed (the default)",
              body->prefix, body->name);
-  if (!FCComplianceFactorsA(fem->comp)) { /* the default falls back to every_step */
-    fem->factorization = FC_FACTORIZATION_EVERY_STEP;
-    PetscFunctionReturn(0);
-  }
   PetscCallMPI(MPI_Comm_size(body->comm, &size));
   PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
   PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts, 1, MPI_INT, body->comm));

@@ -81,7 +81,6 @@ typedef struct {
   PetscInt         factor_age;     /* steps since A was last factored */
   /* the factorization schedule (fem_schedule.c) */
   PetscInt     factorization;                     /* FC_FACTORIZATION_EVERY_STEP or _REUSE */
-  PetscBool    factorization_set;                 /* given by -factorization (else the default, reuse where it can) */
   PetscReal    ksp_rtol, refactor_rotation;       /* reuse: CG tolerance; the angle (rad) that refactors */
   PetscInt     ksp_max_it, refactor_iterations;   /* reuse: CG's limit; the iterations that refactor */
   PetscInt     refactor_every;                    /* reuse: the age (steps) that refactors, 0: none */
