@@ -390,7 +390,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   PetscCall(PetscNew(&fem));
   PetscCall(PetscStrncpy(fem->material, "linear", sizeof(fem->material)));
   fem->poisson                 = 0.3;
-  fem->factorization           = FC_FACTORIZATION_EVERY_STEP; /* reuse fails hard cases: docs/accuracy.md */
+  fem->factorization           = FC_FACTORIZATION_EVERY_STEP; /* exact; reuse's trade: docs/accuracy.md */
   fem->ksp_rtol                = 1e-8;
   fem->ksp_max_it              = 50;
   fem->refactor_rotation       = 0.2;

@@ -28,8 +28,8 @@
        solves with the new factor). A contact outside the condensed builder's Schur block
        refactors A_0 (the builder's miss), which keeps Q.
    reuse needs the body's default solver (MUMPS Cholesky) and, in a contact pair, the condensed
-   builder. every_step is the default: reuse does not keep the hard cases' tolerances
-   (docs/accuracy.md, "Factorization schedule").
+   builder. every_step is the default: reuse's correction does not conserve momentum where Q
+   varies, and its restarts are not exact (docs/accuracy.md, "Factorization schedule").
    The counts go to /steps/factorizations and /steps/krylov_iterations. */
 #include "femimpl.h"
 #include "../compliance/compliance.h"
@@ -207,10 +207,10 @@ static PetscErrorCode Turn(FEM *fem, Vec x, PetscBool transpose)
   PetscFunctionReturn(0);
 }
 
-/* A body held by nothing keeps the momentum of its solves: A 1_d = M 1_d for a translation 1_d
-   (K annihilates it), so the exact x = A^-1 b has sum(M x)_d = sum(b)_d. CG stopped at its
-   tolerance and the warped correction do not; x gets the translation velocity that restores it
-   (no elastic force, and the positions move by what the tolerance left) */
+/* A body held by nothing keeps the momentum of its free motion: A 1_d = M 1_d for a translation
+   1_d (K annihilates it), so the exact x = A^-1 b has sum(M x)_d = sum(b)_d. CG stopped at its
+   tolerance does not; x gets the translation velocity that restores it (no elastic force, and the
+   positions move by what the tolerance left) */
 static PetscErrorCode KeepMomentum(FCBody body, Vec b, Vec x)
 {
   FEM               *fem = (FEM *)body->data;
@@ -464,9 +464,10 @@ PetscErrorCode FCFEMScheduleSolve(FCBody body, Vec b, Vec x, PetscReal t)
   PetscFunctionReturn(0);
 }
 
-/* The contact correction x = h Q A_0^-1 Q^T J^T lambda (the warped operator's), before dv += x: its
-   momentum restored (KeepMomentum), and x and its right-hand side h J^T lambda kept, with the
-   vertex rotations of the step, for the check of the next step (Predict) */
+/* The contact correction x = h Q A_0^-1 Q^T J^T lambda (the warped operator's), before dv += x: x
+   and its right-hand side h J^T lambda kept, with the vertex rotations of the step, for the check
+   of the next step (Predict). Its momentum is the warped operator's: not restored, since a
+   translation added to x would move the contacts off the gaps W was solved for */
 PetscErrorCode FCFEMScheduleKeepCorrection(FCBody body, Vec x)
 {
   FEM     *fem = (FEM *)body->data;
@@ -479,7 +480,6 @@ PetscErrorCode FCFEMScheduleKeepCorrection(FCBody body, Vec x)
   if (!rhs) PetscFunctionReturn(0);
   PetscCall(VecCopy(rhs, fem->rprev));
   PetscCall(Turn(fem, fem->rprev, PETSC_FALSE));
-  if (!fem->fresh) PetscCall(KeepMomentum(body, fem->rprev, x)); /* the warped operator's correction */
   PetscCall(VecCopy(x, fem->xprev));
   PetscCall(VecGetLocalSize(fem->u, &n));
   PetscCall(PetscArraycpy(fem->Rvprev, fem->Rvnow, 3 * n));
