@@ -128,11 +128,11 @@ PETSC_EXTERN PetscErrorCode FCBodyGetExternalWork(FCBody, PetscReal *);
 PETSC_EXTERN PetscErrorCode FCBodyGetReactions(FCBody, PetscInt *n, const char ***names, const PetscReal **values);
 /* The factorizations of the body's A and the Krylov iterations of its solves so far (0 for bodies without) */
 PETSC_EXTERN PetscErrorCode FCBodyGetSolverCounts(FCBody, PetscInt *nfactor, PetscInt *nkrylov);
-PETSC_EXTERN PetscErrorCode    FCBodyGetEnergy(FCBody, FCEnergy *);
-PETSC_EXTERN PetscErrorCode    FCBodyGetVisual(FCBody, const FCBodyVisual **);
-PETSC_EXTERN PetscErrorCode    FCBodyGetVisualPositions(FCBody, PetscReal[]);
-PETSC_EXTERN PetscErrorCode    FCBodyCheckState(FCBody, PetscInt step);
-PETSC_EXTERN PetscErrorCode    FCBodyDestroy(FCBody *);
+PETSC_EXTERN PetscErrorCode FCBodyGetEnergy(FCBody, FCEnergy *);
+PETSC_EXTERN PetscErrorCode FCBodyGetVisual(FCBody, const FCBodyVisual **);
+PETSC_EXTERN PetscErrorCode FCBodyGetVisualPositions(FCBody, PetscReal[]);
+PETSC_EXTERN PetscErrorCode FCBodyCheckState(FCBody, PetscInt step);
+PETSC_EXTERN PetscErrorCode FCBodyDestroy(FCBody *);
 
 /* FE body specifics, for tests and tools: the DMPlex with the displacement section, the
    displacement u and velocity v (global vectors), the elastic force f_int(u) (global). */

@@ -54,37 +54,7 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
   if (strcmp(fem->material, "linear")) { /* a linear A never changes: nothing to refactor or re-sum */
     const char *how[] = {"values", "coo"}, *rot[] = {"linear", "exact"};
     PetscInt    a = fem->coo ? 1 : 0, r = fem->rotation_exact ? 1 : 0;
-    char fmode[FC_MAX_NAME] = "every_step";
-    if (fem->factorization == FC_FACTORIZATION_REUSE) PetscCall(PetscStrncpy(fmode, "reuse", sizeof(fmode)));
-    PetscCall(PetscOptionsString("-factorization",
-                                 "When A is factored: every_step, or reuse (CG with the last factor, warped compliance)",
-                                 NULL, fmode, fmode, sizeof(fmode), NULL));
-    PetscCheck(strcmp(fmode, "async"), body->comm, PETSC_ERR_SUP,
-               "-%sfactorization async (the factorization in the background) is not available: a second MUMPS "
-               "factorization beside the step needs MPI_THREAD_MULTIPLE or a spare rank, and on 2 cores it would "
-               "share them with the step (docs/method.md, \"When A is factored\"); use reuse",
-               body->prefix);
-    PetscCheck(!strcmp(fmode, "every_step") || !strcmp(fmode, "reuse"), body->comm, PETSC_ERR_USER_INPUT,
-               "Unknown value '%s' of -%sfactorization (known: every_step, reuse)", fmode, body->prefix);
-    fem->factorization = !strcmp(fmode, "reuse") ? FC_FACTORIZATION_REUSE : FC_FACTORIZATION_EVERY_STEP;
-    if (fem->factorization == FC_FACTORIZATION_REUSE) {
-      PetscCall(FCOptionsReal(PetscOptionsObject, "-ksp_rtol", "reuse: relative residual of the free motion's CG",
-                              &fem->ksp_rtol, NULL));
-      PetscCall(FCOptionsInt(PetscOptionsObject, "-ksp_max_it",
-                             "reuse: CG iterations after which A is factored at once", &fem->ksp_max_it, NULL));
-      PetscCall(FCOptionsReal(PetscOptionsObject, "-refactor_rotation",
-                              "reuse: factor A when a vertex turned more (rad) since the last factorization",
-                              &fem->refactor_rotation, NULL));
-      PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_iterations",
-                             "reuse: factor A after a step whose CG took more iterations", &fem->refactor_iterations,
-                             NULL));
-      PetscCall(FCOptionsReal(PetscOptionsObject, "-refactor_residual",
-                              "reuse: factor A after a step whose contact correction by the warped factor has a larger "
-                              "relative residual in today's A",
-                              &fem->refactor_residual, NULL));
-      PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_every",
-                             "reuse: factor A at least every k steps (0: no limit by age)", &fem->refactor_every, NULL));
-    }
+    PetscCall(FCFEMScheduleSetFromOptions(PetscOptionsObject, body));
     PetscCall(
         PetscOptionsEList("-assembly", "How K is summed every step (co-rotational)", NULL, how, 2, how[a], &a, NULL));
     fem->coo = a == 1 ? PETSC_TRUE : PETSC_FALSE;
@@ -97,22 +67,6 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
     fem->factorization  = FC_FACTORIZATION_EVERY_STEP; /* factored once: nothing to schedule */
   }
   PetscOptionsEnd();
-  if (fem->factorization == FC_FACTORIZATION_REUSE) {
-    PetscCheck(fem->refactor_every >= 0, body->comm, PETSC_ERR_USER_INPUT,
-               "Option -%srefactor_every must be >= 0, got %" PetscInt_FMT, body->prefix, fem->refactor_every);
-    PetscCheck(fem->ksp_rtol > 0.0 && fem->ksp_rtol < 1.0, body->comm, PETSC_ERR_USER_INPUT,
-               "Option -%sksp_rtol must lie in (0, 1), got %g", body->prefix, (double)fem->ksp_rtol);
-    PetscCheck(fem->ksp_max_it >= 1, body->comm, PETSC_ERR_USER_INPUT,
-               "Option -%sksp_max_it must be >= 1, got %" PetscInt_FMT, body->prefix, fem->ksp_max_it);
-    PetscCheck(fem->refactor_iterations >= 1, body->comm, PETSC_ERR_USER_INPUT,
-               "Option -%srefactor_iterations must be >= 1, got %" PetscInt_FMT, body->prefix,
-               fem->refactor_iterations);
-    PetscCheck(fem->refactor_residual > 0.0, body->comm, PETSC_ERR_USER_INPUT,
-               "Option -%srefactor_residual must be > 0, got %g", body->prefix, (double)fem->refactor_residual);
-    PetscCheck(fem->refactor_rotation > 0.0, body->comm, PETSC_ERR_USER_INPUT,
-               "Option -%srefactor_rotation must be > 0 (radians), got %g", body->prefix,
-               (double)fem->refactor_rotation);
-  }
   PetscCheck(!strcmp(masstype, "consistent") || !strcmp(masstype, "lumped"), body->comm, PETSC_ERR_USER_INPUT,
              "Unknown mass type '%s' in -%smass_type (known: consistent, lumped)", masstype, body->prefix);
   fem->lumped = !strcmp(masstype, "lumped") ? PETSC_TRUE : PETSC_FALSE;

@@ -317,6 +317,7 @@ PetscErrorCode ApplyCorrection_FEM(FCBody body, PetscInt self, const FCContactSe
     PetscCall(FCComplianceCorrect(fem->comp, body->h, lambda, fem->xcorr));
     PetscCall(FCFEMScheduleKeepCorrection(body, fem->xcorr));
     PetscCall(VecAXPY(fem->dv, 1.0, fem->xcorr));
-  } else PetscCall(FCComplianceCorrect(fem->comp, body->h, lambda, fem->dv));
+  } else
+    PetscCall(FCComplianceCorrect(fem->comp, body->h, lambda, fem->dv));
   PetscFunctionReturn(0);
 }

@@ -34,179 +34,6 @@
 #include "femimpl.h"
 #include "../compliance/compliance.h"
 
-/* The per-vertex rotations of the state: R_v = polar(sum over the vertex's cells of V R_cell), on
-   the owned vertex blocks of the layout of u (column j of R_v in rcol[j]) */
-static PetscErrorCode VertexRotations(FCBody body, PetscReal Rv[])
-{
-  FEM          *fem = (FEM *)body->data;
-  FCMesh       *m   = &fem->mesh;
-  PetscScalar  *l[3];
-  const PetscScalar *g[3];
-  PetscInt      n;
-
-  PetscFunctionBegin;
-  for (int j = 0; j < 3; j++) {
-    PetscCall(VecZeroEntries(fem->rcolloc[j]));
-    PetscCall(VecGetArray(fem->rcolloc[j], &l[j]));
-  }
-  for (PetscInt c = 0; c < m->cEnd - m->cStart; c++) {
-    const PetscReal *R = &fem->Rcell[9 * c];
-    PetscReal        V = PetscAbsReal(fem->vol[c]);
-    for (int a = 0; a < 4; a++) {
-      PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
-      if (fem->fixed[v]) continue;
-      for (int j = 0; j < 3; j++)
-        for (int i = 0; i < 3; i++) l[j][fem->ldof[v] + i] += V * R[3 * i + j];
-    }
-  }
-  for (int j = 0; j < 3; j++) {
-    PetscCall(VecRestoreArray(fem->rcolloc[j], &l[j]));
-    PetscCall(VecZeroEntries(fem->rcol[j]));
-    PetscCall(DMLocalToGlobal(m->dm, fem->rcolloc[j], ADD_VALUES, fem->rcol[j]));
-    PetscCall(VecGetArrayRead(fem->rcol[j], &g[j]));
-  }
-  PetscCall(VecGetLocalSize(fem->u, &n));
-  for (PetscInt b = 0; b < n / 3; b++) {
-    PetscReal S[9];
-    for (int i = 0; i < 3; i++)
-      for (int j = 0; j < 3; j++) S[3 * i + j] = PetscRealPart(g[j][3 * b + i]);
-    FCMat3Polar(S, &Rv[9 * b]);
-  }
-  for (int j = 0; j < 3; j++) PetscCall(VecRestoreArrayRead(fem->rcol[j], &g[j]));
-  PetscFunctionReturn(0);
-}
-
-/* Q = R_v R_0^T per owned block, the largest angle among them (every rank), and the surface
-   vertices' Q on every rank for the compliance builder */
-static PetscErrorCode UpdateWarp(FCBody body, const PetscReal Rv[])
-{
-  FEM      *fem = (FEM *)body->data;
-  PetscInt  n, lo;
-  PetscReal cmin = 1.0;
-
-  PetscFunctionBegin;
-  PetscCall(VecGetLocalSize(fem->u, &n));
-  PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
-  PetscReal S[9] = {0}, Qm[9];
-  for (PetscInt b = 0; b < n / 3; b++) {
-    PetscReal *Q = &fem->dR[9 * b], R0T[9];
-    FCMat3Transpose(&fem->Rv0[9 * b], R0T);
-    FCMat3Mult(&Rv[9 * b], R0T, Q);
-    for (int i = 0; i < 9; i++) S[i] += Q[i];
-  }
-  /* the angle that counts is each Q's against the body's mean rotation Qm: a rigid rotation turns
-     A_0 into A exactly (Q A_0 Q^T), a rotation that varies over the body does not */
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, S, 9, MPIU_REAL, MPIU_SUM, body->comm));
-  FCMat3Polar(S, Qm);
-  for (PetscInt b = 0; b < n / 3; b++) {
-    const PetscReal *Q = &fem->dR[9 * b];
-    PetscReal        c = -0.5; /* cos of the angle of Q Qm^T: (tr(Q Qm^T) - 1) / 2 */
-    for (int i = 0; i < 9; i++) c += 0.5 * Q[i] * Qm[i];
-    cmin = PetscMin(cmin, c);
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &cmin, 1, MPIU_REAL, MPIU_MIN, body->comm));
-  fem->angle = PetscAcosReal(PetscMax(-1.0, PetscMin(1.0, cmin)));
-  if (!fem->comp) PetscFunctionReturn(0);
-  for (PetscInt i = 0; i < fem->nsurface; i++)
-    PetscCall(PetscArraycpy(&fem->swbuf[9 * i], &fem->dR[9 * ((fem->surface[i] - lo) / 3)], 9));
-  {
-    PetscMPIInt size;
-    PetscReal  *all;
-    PetscCallMPI(MPI_Comm_size(body->comm, &size));
-    PetscCall(PetscMalloc1(9 * fem->nsw + 1, &all));
-    PetscCallMPI(MPI_Allgatherv(fem->swbuf, 9 * (PetscMPIInt)fem->nsurface, MPIU_REAL, all, fem->swcounts,
-                                fem->swdispls, MPIU_REAL, body->comm));
-    for (PetscInt i = 0; i < fem->nsw; i++) PetscCall(PetscArraycpy(&fem->swR[9 * i], &all[9 * fem->swperm[i]], 9));
-    PetscCall(PetscFree(all));
-  }
-  PetscCall(FCComplianceSetWarp(fem->comp, fem->nsw, fem->swdof, fem->swR, n / 3, fem->dR));
-  PetscFunctionReturn(0);
-}
-
-/* y = K(R) x, the cells' rotations of the step (Rcell) */
-static PetscErrorCode KMultFree(FCBody body, Vec x, Vec y)
-{
-  FEM               *fem = (FEM *)body->data;
-  FCMesh            *m   = &fem->mesh;
-  const PetscScalar *xl;
-  PetscScalar       *yl;
-
-  PetscFunctionBegin;
-  PetscCall(DMGlobalToLocal(m->dm, x, INSERT_VALUES, fem->vloc));
-  PetscCall(VecZeroEntries(fem->dvloc));
-  PetscCall(VecGetArrayRead(fem->vloc, &xl));
-  PetscCall(VecGetArray(fem->dvloc, &yl));
-  for (PetscInt c = 0; c < m->cEnd - m->cStart; c++) {
-    PetscReal xe[12], ye[12];
-    for (int a = 0; a < 4; a++) {
-      PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
-      for (int d = 0; d < 3; d++) xe[3 * a + d] = fem->fixed[v] ? 0.0 : PetscRealPart(xl[fem->ldof[v] + d]);
-    }
-    FCMaterialRotatedApply(fem->mat, &fem->Rcell[9 * c], &fem->Dminv[9 * c], fem->vol[c], xe, ye);
-    for (int a = 0; a < 4; a++) {
-      PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
-      if (fem->fixed[v]) continue;
-      for (int d = 0; d < 3; d++) yl[fem->ldof[v] + d] += ye[3 * a + d];
-    }
-  }
-  PetscCall(VecRestoreArrayRead(fem->vloc, &xl));
-  PetscCall(VecRestoreArray(fem->dvloc, &yl));
-  PetscCall(VecZeroEntries(y));
-  PetscCall(DMLocalToGlobal(m->dm, fem->dvloc, ADD_VALUES, y));
-  PetscFunctionReturn(0);
-}
-
-/* y = K x with the step's K: the assembled one (every_step, linear) or the cells' rotations (reuse) */
-PetscErrorCode FCFEMKMult(FCBody body, Vec x, Vec y)
-{
-  FEM *fem = (FEM *)body->data;
-
-  PetscFunctionBegin;
-  if (fem->factorization == FC_FACTORIZATION_REUSE) PetscCall(KMultFree(body, x, y));
-  else PetscCall(MatMult(fem->K, x, y));
-  PetscFunctionReturn(0);
-}
-
-/* Today's A x = (1 + h alpha) M x + (h beta + h^2) K x (quasi-static: h^2 K x), as FCFEMFormA forms it */
-static PetscErrorCode AMult(Mat A, Vec x, Vec y)
-{
-  FCBody    body;
-  FEM      *fem;
-  PetscReal h;
-
-  PetscFunctionBegin;
-  PetscCall(MatShellGetContext(A, &body));
-  fem = (FEM *)body->data;
-  h   = body->h;
-  PetscCall(KMultFree(body, x, y));
-  if (body->quasistatic) PetscCall(VecScale(y, h * h));
-  else {
-    PetscCall(VecScale(y, h * fem->beta + h * h));
-    PetscCall(MatMult(fem->M, x, fem->work));
-    PetscCall(VecAXPY(y, 1.0 + h * fem->alpha, fem->work));
-  }
-  PetscFunctionReturn(0);
-}
-
-/* x (owned blocks) = Q x or Q^T x */
-static PetscErrorCode Turn(FEM *fem, Vec x, PetscBool transpose)
-{
-  PetscScalar *a;
-  PetscInt     n;
-
-  PetscFunctionBegin;
-  PetscCall(VecGetLocalSize(x, &n));
-  PetscCall(VecGetArray(x, &a));
-  for (PetscInt b = 0; b < n / 3; b++) {
-    PetscReal y[3], z[3] = {PetscRealPart(a[3 * b]), PetscRealPart(a[3 * b + 1]), PetscRealPart(a[3 * b + 2])};
-    if (transpose) FCMat3TVec(&fem->dR[9 * b], z, y);
-    else FCMat3Vec(&fem->dR[9 * b], z, y);
-    for (int d = 0; d < 3; d++) a[3 * b + d] = y[d];
-  }
-  PetscCall(VecRestoreArray(x, &a));
-  PetscFunctionReturn(0);
-}
-
 /* A body held by nothing keeps the momentum of its free motion: A 1_d = M 1_d for a translation
    1_d (K annihilates it), so the exact x = A^-1 b has sum(M x)_d = sum(b)_d. CG stopped at its
    tolerance does not; x gets the translation velocity that restores it (no elastic force, and the
@@ -248,9 +75,69 @@ static PetscErrorCode WarpedSolve(PC pc, Vec r, Vec z)
   PetscCall(PCShellGetContext(pc, &body));
   fem = (FEM *)body->data;
   PetscCall(VecCopy(r, fem->rw2));
-  PetscCall(Turn(fem, fem->rw2, PETSC_TRUE));
+  PetscCall(FCFEMWarpTurn(fem, fem->rw2, PETSC_TRUE));
   PetscCall(FCFEMSolveA(body, fem->rw2, z, "Preconditioner", fem->tnow));
-  PetscCall(Turn(fem, z, PETSC_FALSE));
+  PetscCall(FCFEMWarpTurn(fem, z, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+/* -factorization and, with reuse, its tolerance and triggers (read in the co-rotational block of
+   the body's options) */
+PetscErrorCode FCFEMScheduleSetFromOptions(PetscOptionItems *PetscOptionsObject, FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  {
+    char fmode[FC_MAX_NAME] = "every_step";
+    if (fem->factorization == FC_FACTORIZATION_REUSE) PetscCall(PetscStrncpy(fmode, "reuse", sizeof(fmode)));
+    PetscCall(PetscOptionsString(
+        "-factorization", "When A is factored: every_step, or reuse (CG with the last factor, warped compliance)", NULL,
+        fmode, fmode, sizeof(fmode), NULL));
+    PetscCheck(strcmp(fmode, "async"), body->comm, PETSC_ERR_SUP,
+               "-%sfactorization async (the factorization in the background) is not available: a second MUMPS "
+               "factorization beside the step needs MPI_THREAD_MULTIPLE or a spare rank, and on 2 cores it would "
+               "share them with the step (docs/method.md, \"When A is factored\"); use reuse",
+               body->prefix);
+    PetscCheck(!strcmp(fmode, "every_step") || !strcmp(fmode, "reuse"), body->comm, PETSC_ERR_USER_INPUT,
+               "Unknown value '%s' of -%sfactorization (known: every_step, reuse)", fmode, body->prefix);
+    fem->factorization = !strcmp(fmode, "reuse") ? FC_FACTORIZATION_REUSE : FC_FACTORIZATION_EVERY_STEP;
+    if (fem->factorization == FC_FACTORIZATION_REUSE) {
+      PetscCall(FCOptionsReal(PetscOptionsObject, "-ksp_rtol", "reuse: relative residual of the free motion's CG",
+                              &fem->ksp_rtol, NULL));
+      PetscCall(FCOptionsInt(PetscOptionsObject, "-ksp_max_it",
+                             "reuse: CG iterations after which A is factored at once", &fem->ksp_max_it, NULL));
+      PetscCall(FCOptionsReal(PetscOptionsObject, "-refactor_rotation",
+                              "reuse: factor A when a vertex turned more (rad) since the last factorization",
+                              &fem->refactor_rotation, NULL));
+      PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_iterations",
+                             "reuse: factor A after a step whose CG took more iterations", &fem->refactor_iterations,
+                             NULL));
+      PetscCall(FCOptionsReal(PetscOptionsObject, "-refactor_residual",
+                              "reuse: factor A when the last contact correction, by the warped factor, leaves a larger "
+                              "relative residual in today's A",
+                              &fem->refactor_residual, NULL));
+      PetscCall(FCOptionsInt(PetscOptionsObject, "-refactor_every",
+                             "reuse: factor A at least every k steps (0: no limit by age)", &fem->refactor_every,
+                             NULL));
+    }
+  }
+  if (fem->factorization == FC_FACTORIZATION_REUSE) {
+    PetscCheck(fem->refactor_every >= 0, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%srefactor_every must be >= 0, got %" PetscInt_FMT, body->prefix, fem->refactor_every);
+    PetscCheck(fem->ksp_rtol > 0.0 && fem->ksp_rtol < 1.0, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%sksp_rtol must lie in (0, 1), got %g", body->prefix, (double)fem->ksp_rtol);
+    PetscCheck(fem->ksp_max_it >= 1, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%sksp_max_it must be >= 1, got %" PetscInt_FMT, body->prefix, fem->ksp_max_it);
+    PetscCheck(fem->refactor_iterations >= 1, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%srefactor_iterations must be >= 1, got %" PetscInt_FMT, body->prefix,
+               fem->refactor_iterations);
+    PetscCheck(fem->refactor_residual > 0.0, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%srefactor_residual must be > 0, got %g", body->prefix, (double)fem->refactor_residual);
+    PetscCheck(fem->refactor_rotation > 0.0, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%srefactor_rotation must be > 0 (radians), got %g", body->prefix,
+               (double)fem->refactor_rotation);
+  }
   PetscFunctionReturn(0);
 }
 
@@ -304,7 +191,7 @@ PetscErrorCode FCFEMScheduleSetUp(FCBody body)
   PetscCall(VecDuplicate(fem->u, &fem->xprev));
   PetscCall(VecDuplicate(fem->u, &fem->rprev));
   PetscCall(MatCreateShell(body->comm, n, n, N, N, body, &fem->Aop));
-  PetscCall(MatShellSetOperation(fem->Aop, MATOP_MULT, (void (*)(void))AMult));
+  PetscCall(MatShellSetOperation(fem->Aop, MATOP_MULT, (void (*)(void))FCFEMWarpAMult));
   PetscCall(KSPCreate(body->comm, &fem->kspk));
   PetscCall(KSPSetType(fem->kspk, KSPCG));
   PetscCall(KSPSetOperators(fem->kspk, fem->Aop, fem->Aop));
@@ -316,40 +203,6 @@ PetscErrorCode FCFEMScheduleSetUp(FCBody body)
   PetscCall(PCShellSetContext(pc, body));
   PetscCall(PCShellSetApply(pc, WarpedSolve));
   PetscCall(PCShellSetName(pc, "warped factor of the last A"));
-  PetscFunctionReturn(0);
-}
-
-/* The surface table of the compliance builder (after the builder exists): every rank's owned
-   surface DOFs, sorted, and where each comes from in the gathered order */
-PetscErrorCode FCFEMScheduleSetUpContact(FCBody body)
-{
-  FEM        *fem = (FEM *)body->data;
-  PetscMPIInt size, n = (PetscMPIInt)fem->nsurface, *counts, *displs;
-
-  PetscFunctionBegin;
-  if (fem->factorization != FC_FACTORIZATION_REUSE || fem->swdof) PetscFunctionReturn(0);
-  PetscCheck(FCComplianceFactorsA(fem->comp), body->comm, PETSC_ERR_USER_INPUT,
-             "-%sfactorization reuse warps the compliance of the condensed builder: body '%s' needs "
-             "-compliance_type condensed (the default)",
-             body->prefix, body->name);
-  PetscCallMPI(MPI_Comm_size(body->comm, &size));
-  PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
-  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts, 1, MPI_INT, body->comm));
-  displs[0] = 0;
-  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
-  fem->nsw = displs[size];
-  PetscCall(PetscMalloc4(fem->nsw + 1, &fem->swdof, fem->nsw + 1, &fem->swperm, 9 * fem->nsw + 1, &fem->swR,
-                         9 * fem->nsurface + 1, &fem->swbuf));
-  PetscCallMPI(
-      MPI_Allgatherv(fem->surface, n, MPIU_INT, fem->swdof, counts, displs, MPIU_INT, body->comm));
-  for (PetscInt i = 0; i < fem->nsw; i++) fem->swperm[i] = i;
-  PetscCall(PetscSortIntWithArray(fem->nsw, fem->swdof, fem->swperm));
-  PetscCall(PetscMalloc2(size, &fem->swcounts, size, &fem->swdispls));
-  for (PetscMPIInt r = 0; r < size; r++) {
-    fem->swcounts[r] = 9 * counts[r];
-    fem->swdispls[r] = 9 * displs[r];
-  }
-  PetscCall(PetscFree2(counts, displs));
   PetscFunctionReturn(0);
 }
 
@@ -367,7 +220,7 @@ static PetscErrorCode Refactor(FCBody body, const PetscReal Rv[])
   PetscCall(FCFEMFactorA(body));
   PetscCall(VecGetLocalSize(fem->u, &n));
   PetscCall(PetscArraycpy(fem->Rv0, Rv, 3 * n));
-  PetscCall(UpdateWarp(body, Rv));
+  PetscCall(FCFEMWarpUpdate(body, Rv));
   fem->refactor_next = PETSC_FALSE;
   fem->fresh         = PETSC_TRUE;
   fem->hasprev       = PETSC_FALSE;
@@ -379,12 +232,9 @@ static PetscErrorCode Refactor(FCBody body, const PetscReal Rv[])
    factorization, and factors A when one of the triggers says so */
 PetscErrorCode FCFEMScheduleOperator(FCBody body, Vec state)
 {
-  FEM               *fem = (FEM *)body->data;
-  FCMesh            *m   = &fem->mesh;
-  const PetscScalar *ul;
-  PetscScalar       *fl;
-  PetscReal         *Rv, res = 0.0;
-  PetscBool          due;
+  FEM       *fem = (FEM *)body->data;
+  PetscReal *Rv, res = 0.0;
+  PetscBool  due;
 
   PetscFunctionBegin;
   fem->state = state;
@@ -397,31 +247,13 @@ PetscErrorCode FCFEMScheduleOperator(FCBody body, Vec state)
     PetscFunctionReturn(0);
   }
   PetscCall(FCPhaseBegin(FC_PHASE_ASSEMBLY));
-  PetscCall(DMGlobalToLocal(m->dm, state, INSERT_VALUES, fem->uloc));
-  PetscCall(VecGetArrayRead(fem->uloc, &ul));
-  PetscCall(VecZeroEntries(fem->floc));
-  PetscCall(VecGetArray(fem->floc, &fl));
-  for (PetscInt c = 0; c < m->cEnd - m->cStart; c++) {
-    PetscReal X[12], x[12], fe[12];
-    FCFEMGatherElement(fem, c, ul, X, x);
-    PetscCall((*fem->mat->rotation)(fem->mat, x, X, &fem->Dminv[9 * c], fem->vol[c], fe, &fem->Rcell[9 * c]));
-    for (int a = 0; a < 4; a++) {
-      PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
-      if (fem->fixed[v]) continue;
-      for (int d = 0; d < 3; d++) fl[fem->ldof[v] + d] += fe[3 * a + d];
-    }
-  }
-  PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
-  PetscCall(VecRestoreArray(fem->floc, &fl));
-  PetscCall(VecZeroEntries(fem->fint));
-  PetscCall(DMLocalToGlobal(m->dm, fem->floc, ADD_VALUES, fem->fint));
+  PetscCall(FCFEMWarpAtState(body, state));
   Rv = fem->Rvnow;
-  PetscCall(VertexRotations(body, Rv));
-  PetscCall(UpdateWarp(body, Rv));
   PetscCall(Predict(body, &res));
   PetscCall(FCPhaseEnd(FC_PHASE_ASSEMBLY));
-  due = (PetscBool)(!fem->factored || fem->refactor_next || fem->angle > fem->refactor_rotation ||
-                    res > fem->refactor_residual || (fem->refactor_every > 0 && fem->factor_age >= fem->refactor_every));
+  due =
+      (PetscBool)(!fem->factored || fem->refactor_next || fem->angle > fem->refactor_rotation ||
+                  res > fem->refactor_residual || (fem->refactor_every > 0 && fem->factor_age >= fem->refactor_every));
   if (due) {
     PetscCall(PetscInfo(NULL,
                         "body %s: factoring A (rotation since the last factorization %g rad, residual of the last "
@@ -456,8 +288,9 @@ PetscErrorCode FCFEMScheduleSolve(FCBody body, Vec b, Vec x, PetscReal t)
   fem->nkrylov += its;
   if (its > fem->refactor_iterations) fem->refactor_next = PETSC_TRUE;
   if (reason < 0) { /* the old factor is too far from A: a new one, and a direct solve */
-    PetscCall(PetscInfo(NULL, "body %s: CG with the old factor did not converge (%s, %" PetscInt_FMT " iterations): refactoring\n",
-                        body->name, KSPConvergedReasons[reason], its));
+    PetscCall(PetscInfo(
+        NULL, "body %s: CG with the old factor did not converge (%s, %" PetscInt_FMT " iterations): refactoring\n",
+        body->name, KSPConvergedReasons[reason], its));
     PetscCall(Refactor(body, fem->Rvnow));
     PetscCall(FCFEMSolveA(body, b, x, "Free-motion", t));
   }
@@ -479,7 +312,7 @@ PetscErrorCode FCFEMScheduleKeepCorrection(FCBody body, Vec x)
   PetscCall(FCComplianceGetCorrectionRHS(fem->comp, &rhs)); /* (J Q)^T h lambda = Q^T J^T h lambda */
   if (!rhs) PetscFunctionReturn(0);
   PetscCall(VecCopy(rhs, fem->rprev));
-  PetscCall(Turn(fem, fem->rprev, PETSC_FALSE));
+  PetscCall(FCFEMWarpTurn(fem, fem->rprev, PETSC_FALSE));
   PetscCall(VecCopy(x, fem->xprev));
   PetscCall(VecGetLocalSize(fem->u, &n));
   PetscCall(PetscArraycpy(fem->Rvprev, fem->Rvnow, 3 * n));

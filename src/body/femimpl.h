@@ -5,7 +5,8 @@
      fem_contact.c  contact points, surface triangles, proximity positions, the compliance builder
      fem_rotation.c the rotation of a free co-rotational body within a step
      fem_check.c    the checks of the derived quantities (mass, energies, M, K, A) at set-up
-     fem_schedule.c when A is factored (-factorization), the matrix-free A and CG of reuse
+     fem_schedule.c when A is factored (-factorization), CG with the warped factor (femschedule.h)
+     fem_warp.c     reuse without K: cell and vertex rotations, Q, the matrix-free A, the builder's table
      fem_bc.c       regions' constraints (fixed, prescribed, attached): options, set-up, poses, eq. 5's coupling
      fem_load.c     loads on regions
      fem_reaction.c the constrained regions' reactions */
@@ -59,50 +60,45 @@ typedef struct {
   PetscInt  *gdof;           /* per local vertex: first global DOF, -1 when fixed */
   PetscBool *fixed;          /* per local vertex: constrained (fixed or prescribed) */
   /* boundary conditions and loads (fem_bc.c) */
-  char             bcspec[6][1024]; /* -fixed, -displacement, -force, -traction, -pressure, -attach as given */
-  PetscInt         ncons, nload;
-  FCFEMConstraint  cons[FC_MAX_REGIONS];
-  FCFEMLoad        load[FC_MAX_REGIONS];
-  PetscInt        *creg;           /* per local vertex: its constraint, -1 when free */
-  PetscInt         nccell, *ccell; /* the cells with a constrained vertex */
-  PetscBool        moving;         /* some constraint moves */
-  Vec              fload;          /* the loads at the end of the step */
-  Vec              varea;          /* per DOF: a third of the boundary faces' area at the vertex (contact_pressure) */
-  const char      *rname[FC_MAX_REGIONS]; /* the constraints' regions and reactions, for the output */
-  PetscReal        rval[6 * FC_MAX_REGIONS];
-  PetscReal        extwork;     /* magnitude of the work of the prescribed motions and loads so far (energy guard) */
-  PetscReal       *Dminv, *vol; /* per cell */
-  Mat              M, K, A;
-  Vec              u, v, dv, b, fint, fgrav, work, uloc, floc;
-  KSP              ksp;
-  PetscInt         nassembly, nfactor;
-  PetscBool        Acurrent;       /* K and f_int belong to the current state */
-  PetscBool        factored;       /* the factor of A is that of the current A */
-  PetscInt         factor_age;     /* steps since A was last factored */
-  /* the factorization schedule (fem_schedule.c) */
-  PetscInt     factorization;                     /* FC_FACTORIZATION_EVERY_STEP or _REUSE */
-  PetscReal    ksp_rtol, refactor_rotation;       /* reuse: CG tolerance; the angle (rad) that refactors */
-  PetscInt     ksp_max_it, refactor_iterations;   /* reuse: CG's limit; the iterations that refactor */
-  PetscInt     refactor_every;                    /* reuse: the age (steps) that refactors, 0: none */
-  PetscInt     nkrylov;                           /* CG iterations so far */
-  PetscBool    refactor_next, fresh;              /* a factorization is due; A was factored this step */
-  PetscReal    angle, tnow;                       /* the largest vertex rotation since the last factorization */
-  Vec          state;                             /* where this step's A is linearized (u or the turned state) */
-  PetscReal   *Rcell, *Rv0, *dR;                  /* per cell its rotation; per owned vertex block R_0 and Q */
-  Vec          rcol[3], rcolloc[3], rw2;          /* the vertex rotations' sums; work */
-  Vec          xlast;                             /* the last free motion: CG's first guess */
-  Vec          xres, xcorr;                       /* work: a residual, the step's correction */
-  Vec          xprev, rprev;                      /* the last correction and its right-hand side h J^T lambda */
-  PetscReal   *Rvnow, *Rvprev;                    /* per owned vertex block: its rotation now, at the last correction */
-  PetscBool    hasprev;                           /* xprev, rprev hold the last step's correction */
-  PetscReal    refactor_residual;                 /* the residual of the last correction in today's A that refactors */
-  Mat          Aop;                               /* today's A, matrix-free */
-  KSP          kspk;                              /* CG on Aop, preconditioned by the warped factor */
-  PetscInt     nsw, *swdof, *swperm;              /* the surface vertices of every rank (first DOFs, sorted) */
-  PetscReal   *swR, *swbuf;                       /* their Q; this rank's */
-  PetscMPIInt *swcounts, *swdispls;
-  PetscBool        coo;            /* -assembly coo: K summed by MatSetValuesCOO from Kcells */
-  PetscReal       *Kcells;         /* coo: the element matrices, 144 per cell, in cell order */
+  char            bcspec[6][1024]; /* -fixed, -displacement, -force, -traction, -pressure, -attach as given */
+  PetscInt        ncons, nload;
+  FCFEMConstraint cons[FC_MAX_REGIONS];
+  FCFEMLoad       load[FC_MAX_REGIONS];
+  PetscInt       *creg;           /* per local vertex: its constraint, -1 when free */
+  PetscInt        nccell, *ccell; /* the cells with a constrained vertex */
+  PetscBool       moving;         /* some constraint moves */
+  Vec             fload;          /* the loads at the end of the step */
+  Vec             varea;          /* per DOF: a third of the boundary faces' area at the vertex (contact_pressure) */
+  const char     *rname[FC_MAX_REGIONS]; /* the constraints' regions and reactions, for the output */
+  PetscReal       rval[6 * FC_MAX_REGIONS];
+  PetscReal       extwork;     /* magnitude of the work of the prescribed motions and loads so far (energy guard) */
+  PetscReal      *Dminv, *vol; /* per cell */
+  Mat             M, K, A;
+  Vec             u, v, dv, b, fint, fgrav, work, uloc, floc;
+  KSP             ksp;
+  PetscInt        nassembly, nfactor;
+  PetscBool       Acurrent;   /* K and f_int belong to the current state */
+  PetscBool       factored;   /* the factor of A is that of the current A */
+  PetscInt        factor_age; /* steps since A was last factored */
+  /* the factorization schedule (fem_schedule.c, fem_warp.c; docs/method.md "When A is factored") */
+  PetscInt         factorization;                                            /* FC_FACTORIZATION_EVERY_STEP or _REUSE */
+  PetscReal        ksp_rtol, refactor_rotation, refactor_residual;           /* reuse: CG's tolerance, the triggers */
+  PetscInt         ksp_max_it, refactor_iterations, refactor_every, nkrylov; /* ... and CG iterations so far */
+  PetscBool        refactor_next, fresh, hasprev; /* factor at the next step; A factored this step; xprev holds */
+  PetscReal        angle, tnow;                   /* the largest vertex rotation since the last factorization */
+  Vec              state;                         /* where this step's A is linearized (u or the turned state) */
+  PetscReal       *Rcell, *Rv0, *dR;              /* per cell its rotation; per owned vertex block R_0 and Q */
+  PetscReal       *Rvnow, *Rvprev;                /* per owned vertex block its rotation now, at the last correction */
+  Vec              rcol[3], rcolloc[3];           /* the vertex rotations' sums */
+  Vec              rw2, xlast, xres, xcorr;       /* work; the last free motion (CG's first guess); the correction */
+  Vec              xprev, rprev;                  /* the last correction and its right-hand side h J^T lambda */
+  Mat              Aop;                           /* today's A, matrix-free */
+  KSP              kspk;                          /* CG on Aop, preconditioned by the warped factor */
+  PetscInt         nsw, *swdof, *swperm;          /* the surface vertices of every rank (first DOFs, sorted) */
+  PetscReal       *swR, *swbuf;                   /* their Q; this rank's */
+  PetscMPIInt     *swcounts, *swdispls;
+  PetscBool        coo;    /* -assembly coo: K summed by MatSetValuesCOO from Kcells */
+  PetscReal       *Kcells; /* coo: the element matrices, 144 per cell, in cell order */
   PetscReal        mass;
   FCEnergy         energy;             /* the last energy computed (GetEnergy_FEM) ... */
   PetscObjectState energy_u, energy_v; /* ... for these states of u and v (0: none yet) */
@@ -204,14 +200,7 @@ PETSC_INTERN PetscErrorCode FCFEMFactorA(FCBody); /* by the builder that owns it
 PETSC_INTERN PetscErrorCode FCFEMSolveA(FCBody, Vec b, Vec x, const char what[], PetscReal t);
 PETSC_INTERN PetscErrorCode FreeMotion_FEM(FCBody, PetscReal);
 PETSC_INTERN PetscErrorCode Integrate_FEM(FCBody, PetscReal);
-/* fem_schedule.c */
-PETSC_INTERN PetscErrorCode FCFEMScheduleSetUp(FCBody);
-PETSC_INTERN PetscErrorCode FCFEMScheduleSetUpContact(FCBody);
-PETSC_INTERN PetscErrorCode FCFEMScheduleOperator(FCBody, Vec state);
-PETSC_INTERN PetscErrorCode FCFEMScheduleSolve(FCBody, Vec b, Vec x, PetscReal t);
-PETSC_INTERN PetscErrorCode FCFEMKMult(FCBody, Vec x, Vec y);
-PETSC_INTERN PetscErrorCode FCFEMScheduleKeepCorrection(FCBody, Vec x);
-PETSC_INTERN PetscErrorCode FCFEMScheduleDestroy(FCBody);
+#include "femschedule.h" /* fem_schedule.c, fem_warp.c */
 /* fem_bc.c */
 PETSC_INTERN PetscErrorCode FCFEMBCSetFromOptions(PetscOptionItems *, FCBody);
 PETSC_INTERN PetscErrorCode FCFEMBCSetUpConstraints(FCBody); /* fixed[], creg[] before the section */

@@ -72,7 +72,7 @@ PETSC_INTERN PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *);
 #define FC_MAX_REACTIONS 16
 typedef struct {
   hid_t    group, centroid, rotation, energy, positions;
-  PetscInt nreact;                /* constrained regions: /bodies/<name>/reactions/<region> */
+  PetscInt nreact; /* constrained regions: /bodies/<name>/reactions/<region> */
   hid_t    react[FC_MAX_REACTIONS];
   double  *rreact; /* buffered rows (rank 0): 6 values per region */
 } BodyOut;
@@ -102,16 +102,16 @@ struct _p_FCOutput {
   PetscInt nrows, maxrows;
   double  *rtime, *renergy, *rtiming, *rbody; /* rtiming: per row the phases, then the wall time; rbody: per row,
                                                 per body: centroid 3, quaternion 4, energy 3 */
-  PetscInt *rstep;
-  long long *rsolve;              /* per row: factorizations and Krylov iterations of the step (all bodies) */
+  PetscInt  *rstep;
+  long long *rsolve;                 /* per row: factorizations and Krylov iterations of the step (all bodies) */
   PetscInt   lastfactor, lastkrylov; /* the bodies' totals at the last row */
   hid_t      s_factor, s_krylov;
-  double    elast; /* total energy of the last recorded step (initial energy before step 1) */
-  PetscInt  nframes, xdmfwritten;
-  hid_t     complete;         /* /complete: the last step, and the frames, that a flush has put on disk */
-  long long laststep;         /* the last step whose rows or frame have been written (flushed or not) */
-  size_t    lastsize, growth; /* HDF5's end of allocation after the last output step, largest growth over one
-                                 (the next reservation, reserve.c) */
+  double     elast; /* total energy of the last recorded step (initial energy before step 1) */
+  PetscInt   nframes, xdmfwritten;
+  hid_t      complete;         /* /complete: the last step, and the frames, that a flush has put on disk */
+  long long  laststep;         /* the last step whose rows or frame have been written (flushed or not) */
+  size_t     lastsize, growth; /* HDF5's end of allocation after the last output step, largest growth over one
+                                  (the next reservation, reserve.c) */
   /* contacts (scenes with contact pairs only) */
   PetscBool contacts;
   hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state, c_pointend, c_fworld, c_ftan;

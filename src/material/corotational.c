@@ -118,10 +118,10 @@ static PetscErrorCode Stress_Corotational(FCMaterial m, const PetscReal x[12], c
 PetscErrorCode FCMaterialCreate_Corotational(FCMaterial m)
 {
   PetscFunctionBegin;
-  m->linear  = PETSC_FALSE;
+  m->linear   = PETSC_FALSE;
   m->element  = Element_Corotational;
   m->rotation = Rotation_Corotational;
-  m->energy  = Energy_Corotational;
-  m->stress  = Stress_Corotational;
+  m->energy   = Energy_Corotational;
+  m->stress   = Stress_Corotational;
   PetscFunctionReturn(0);
 }

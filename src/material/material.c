@@ -86,7 +86,8 @@ void FCMaterialRotatedApply(FCMaterial m, const PetscReal R[9], const PetscReal 
   }
   tr = H[0] + H[4] + H[8];
   for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) S[3 * i + j] = V * (m->mu * (H[3 * i + j] + H[3 * j + i]) + (i == j ? m->lambda * tr : 0.0));
+    for (int j = 0; j < 3; j++)
+      S[3 * i + j] = V * (m->mu * (H[3 * i + j] + H[3 * j + i]) + (i == j ? m->lambda * tr : 0.0));
   for (int a = 0; a < 4; a++) {
     const PetscReal *g = &G[3 * a];
     for (int i = 0; i < 3; i++) fl[i] = S[3 * i] * g[0] + S[3 * i + 1] * g[1] + S[3 * i + 2] * g[2];

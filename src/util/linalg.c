@@ -159,69 +159,69 @@ void FCMat3Polar(const PetscReal F[9], PetscReal R[9])
 {
   if (PolarNewton(F, R)) return;
   {
-  PetscReal C[9], w[3], V[9], U[9], sig[3];
-  int       order[3] = {0, 1, 2};
+    PetscReal C[9], w[3], V[9], U[9], sig[3];
+    int       order[3] = {0, 1, 2};
 
-  FCMat3MultTranspose(F, F, C);
-  SymEig3(C, w, V);
-  /* sort eigenvalues descending */
-  for (int i = 0; i < 3; i++)
-    for (int j = i + 1; j < 3; j++)
-      if (w[order[j]] > w[order[i]]) {
-        int t    = order[i];
-        order[i] = order[j];
-        order[j] = t;
-      }
-  {
-    PetscReal Vs[9], ws[3];
-    for (int j = 0; j < 3; j++) {
-      ws[j] = w[order[j]];
-      for (int i = 0; i < 3; i++) Vs[3 * i + j] = V[3 * i + order[j]];
-    }
-    for (int i = 0; i < 9; i++) V[i] = Vs[i];
-    for (int j = 0; j < 3; j++) w[j] = ws[j];
-  }
-  if (FCMat3Det(V) < 0)
-    for (int i = 0; i < 3; i++) V[3 * i + 2] = -V[3 * i + 2];
-  for (int j = 0; j < 3; j++) sig[j] = PetscSqrtReal(PetscMax(w[j], 0.0));
-  /* U columns u_j = F v_j / sigma_j for the well-conditioned ones, the rest completed */
-  for (int j = 0; j < 2; j++) {
-    PetscReal v[3] = {V[j], V[3 + j], V[6 + j]}, u[3], n;
-    FCMat3Vec(F, v, u);
-    n = PetscSqrtReal(FCDot(u, u));
-    if (n > 1e-12 * PetscMax(sig[0], 1e-300)) {
-      for (int i = 0; i < 3; i++) U[3 * i + j] = u[i] / n;
-    } else { /* degenerate: any unit vector orthogonal to previous columns */
-      PetscReal e[3] = {1, 0, 0};
-      if (j == 1) {
-        PetscReal u0[3] = {U[0], U[3], U[6]}, d;
-        if (PetscAbsReal(u0[0]) > 0.9) {
-          e[0] = 0;
-          e[1] = 1;
+    FCMat3MultTranspose(F, F, C);
+    SymEig3(C, w, V);
+    /* sort eigenvalues descending */
+    for (int i = 0; i < 3; i++)
+      for (int j = i + 1; j < 3; j++)
+        if (w[order[j]] > w[order[i]]) {
+          int t    = order[i];
+          order[i] = order[j];
+          order[j] = t;
         }
-        d = FCDot(e, u0);
-        for (int i = 0; i < 3; i++) e[i] -= d * u0[i];
-        n = PetscSqrtReal(FCDot(e, e));
-        for (int i = 0; i < 3; i++) e[i] /= n;
+    {
+      PetscReal Vs[9], ws[3];
+      for (int j = 0; j < 3; j++) {
+        ws[j] = w[order[j]];
+        for (int i = 0; i < 3; i++) Vs[3 * i + j] = V[3 * i + order[j]];
       }
-      for (int i = 0; i < 3; i++) U[3 * i + j] = e[i];
+      for (int i = 0; i < 9; i++) V[i] = Vs[i];
+      for (int j = 0; j < 3; j++) w[j] = ws[j];
     }
-  }
-  { /* Gram-Schmidt on the second column, third = first x second: det U = +1 */
-    PetscReal u0[3] = {U[0], U[3], U[6]}, u1[3] = {U[1], U[4], U[7]}, u2[3], d = FCDot(u0, u1), n;
-    for (int i = 0; i < 3; i++) u1[i] -= d * u0[i];
-    n = PetscSqrtReal(FCDot(u1, u1));
-    for (int i = 0; i < 3; i++) u1[i] /= n;
-    FCCross(u0, u1, u2);
-    for (int i = 0; i < 3; i++) {
-      U[3 * i + 1] = u1[i];
-      U[3 * i + 2] = u2[i];
+    if (FCMat3Det(V) < 0)
+      for (int i = 0; i < 3; i++) V[3 * i + 2] = -V[3 * i + 2];
+    for (int j = 0; j < 3; j++) sig[j] = PetscSqrtReal(PetscMax(w[j], 0.0));
+    /* U columns u_j = F v_j / sigma_j for the well-conditioned ones, the rest completed */
+    for (int j = 0; j < 2; j++) {
+      PetscReal v[3] = {V[j], V[3 + j], V[6 + j]}, u[3], n;
+      FCMat3Vec(F, v, u);
+      n = PetscSqrtReal(FCDot(u, u));
+      if (n > 1e-12 * PetscMax(sig[0], 1e-300)) {
+        for (int i = 0; i < 3; i++) U[3 * i + j] = u[i] / n;
+      } else { /* degenerate: any unit vector orthogonal to previous columns */
+        PetscReal e[3] = {1, 0, 0};
+        if (j == 1) {
+          PetscReal u0[3] = {U[0], U[3], U[6]}, d;
+          if (PetscAbsReal(u0[0]) > 0.9) {
+            e[0] = 0;
+            e[1] = 1;
+          }
+          d = FCDot(e, u0);
+          for (int i = 0; i < 3; i++) e[i] -= d * u0[i];
+          n = PetscSqrtReal(FCDot(e, e));
+          for (int i = 0; i < 3; i++) e[i] /= n;
+        }
+        for (int i = 0; i < 3; i++) U[3 * i + j] = e[i];
+      }
     }
-  }
-  /* R = U V^T */
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++)
-      R[3 * i + j] = U[3 * i] * V[3 * j] + U[3 * i + 1] * V[3 * j + 1] + U[3 * i + 2] * V[3 * j + 2];
+    { /* Gram-Schmidt on the second column, third = first x second: det U = +1 */
+      PetscReal u0[3] = {U[0], U[3], U[6]}, u1[3] = {U[1], U[4], U[7]}, u2[3], d = FCDot(u0, u1), n;
+      for (int i = 0; i < 3; i++) u1[i] -= d * u0[i];
+      n = PetscSqrtReal(FCDot(u1, u1));
+      for (int i = 0; i < 3; i++) u1[i] /= n;
+      FCCross(u0, u1, u2);
+      for (int i = 0; i < 3; i++) {
+        U[3 * i + 1] = u1[i];
+        U[3 * i + 2] = u2[i];
+      }
+    }
+    /* R = U V^T */
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++)
+        R[3 * i + j] = U[3 * i] * V[3 * j] + U[3 * i + 1] * V[3 * j + 1] + U[3 * i + 2] * V[3 * j + 2];
   }
 }
 
