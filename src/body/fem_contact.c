@@ -220,7 +220,7 @@ PetscErrorCode SetUpContact_FEM(FCBody body)
   /* A is factored at its first use (the free motion of the first step), by the KSP or, for a
      builder that owns the factor (condensed), by the builder: the KSP then never factors */
   PetscCall(FCComplianceSetUp(fem->comp));
-  PetscCall(FCFEMScheduleSetUpContact(body)); /* reuse: the builder warps W_b and the correction */
+  PetscCall(FCFEMWarpSetUpContact(body)); /* reuse: the builder warps W_b and the correction */
   body->expects = FCComplianceUsesExpectedContacts(fem->comp);
   PetscFunctionReturn(0);
 }

@@ -75,9 +75,9 @@ static PetscErrorCode WarpedSolve(PC pc, Vec r, Vec z)
   PetscCall(PCShellGetContext(pc, &body));
   fem = (FEM *)body->data;
   PetscCall(VecCopy(r, fem->rw2));
-  PetscCall(FCFEMWarpTurn(fem, fem->rw2, PETSC_TRUE));
+  PetscCall(FCFEMWarpTurn(fem->dR, fem->rw2, PETSC_TRUE));
   PetscCall(FCFEMSolveA(body, fem->rw2, z, "Preconditioner", fem->tnow));
-  PetscCall(FCFEMWarpTurn(fem, z, PETSC_FALSE));
+  PetscCall(FCFEMWarpTurn(fem->dR, z, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -153,17 +153,8 @@ PetscErrorCode FCFEMScheduleSetUp(FCBody body)
   PetscFunctionBegin;
   if (fem->factorization != FC_FACTORIZATION_REUSE) PetscFunctionReturn(0);
   { /* the preconditioner is the body's factor: its solver must be one (preonly + Cholesky + MUMPS) */
-    KSPType       kt;
-    MatSolverType st;
-    PetscBool     preonly, cholesky, mumps = PETSC_FALSE;
-    PetscCall(KSPGetType(fem->ksp, &kt));
-    PetscCall(KSPGetPC(fem->ksp, &pc));
-    PetscCall(PetscStrcmp(kt, KSPPREONLY, &preonly));
-    PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
-    if (preonly && cholesky) {
-      PetscCall(PCFactorGetMatSolverType(pc, &st));
-      PetscCall(PetscStrcmp(st, MATSOLVERMUMPS, &mumps));
-    }
+    PetscBool mumps;
+    PetscCall(FCComplianceKSPIsMumps(fem->ksp, &mumps));
     PetscCheck(mumps, body->comm, PETSC_ERR_USER_INPUT,
                "-%sfactorization reuse preconditions with the body's factorization of A, but the options of its solver "
                "(-%sksp_type, -%spc_type, -%spc_factor_mat_solver_type) ask for another solver than MUMPS Cholesky: "
@@ -312,7 +303,7 @@ PetscErrorCode FCFEMScheduleKeepCorrection(FCBody body, Vec x)
   PetscCall(FCComplianceGetCorrectionRHS(fem->comp, &rhs)); /* (J Q)^T h lambda = Q^T J^T h lambda */
   if (!rhs) PetscFunctionReturn(0);
   PetscCall(VecCopy(rhs, fem->rprev));
-  PetscCall(FCFEMWarpTurn(fem, fem->rprev, PETSC_FALSE));
+  PetscCall(FCFEMWarpTurn(fem->dR, fem->rprev, PETSC_FALSE));
   PetscCall(VecCopy(x, fem->xprev));
   PetscCall(VecGetLocalSize(fem->u, &n));
   PetscCall(PetscArraycpy(fem->Rvprev, fem->Rvnow, 3 * n));
@@ -327,31 +318,22 @@ PetscErrorCode FCFEMScheduleKeepCorrection(FCBody body, Vec x)
    computed; above -refactor_residual, A is factored now, before the contacts need it */
 static PetscErrorCode Predict(FCBody body, PetscReal *res)
 {
-  FEM         *fem = (FEM *)body->data;
-  PetscScalar *xa, *ra;
-  PetscInt     n;
-  PetscReal    nr, nb;
+  FEM      *fem = (FEM *)body->data;
+  PetscInt  n;
+  PetscReal nr, nb;
 
   PetscFunctionBegin;
   *res = 0.0;
   if (!fem->hasprev) PetscFunctionReturn(0);
   fem->hasprev = PETSC_FALSE;
   PetscCall(VecGetLocalSize(fem->u, &n));
-  PetscCall(VecGetArray(fem->xprev, &xa));
-  PetscCall(VecGetArray(fem->rprev, &ra));
-  for (PetscInt b = 0; b < n / 3; b++) {
-    PetscReal PT[9], T[9], y[3], z[3];
+  for (PetscInt b = 0; b < n / 3; b++) { /* Rvprev, used up, becomes the turn since: R_v R_v,last^T */
+    PetscReal PT[9];
     FCMat3Transpose(&fem->Rvprev[9 * b], PT);
-    FCMat3Mult(&fem->Rvnow[9 * b], PT, T);
-    for (int d = 0; d < 3; d++) z[d] = PetscRealPart(xa[3 * b + d]);
-    FCMat3Vec(T, z, y);
-    for (int d = 0; d < 3; d++) xa[3 * b + d] = y[d];
-    for (int d = 0; d < 3; d++) z[d] = PetscRealPart(ra[3 * b + d]);
-    FCMat3Vec(T, z, y);
-    for (int d = 0; d < 3; d++) ra[3 * b + d] = y[d];
+    FCMat3Mult(&fem->Rvnow[9 * b], PT, &fem->Rvprev[9 * b]);
   }
-  PetscCall(VecRestoreArray(fem->xprev, &xa));
-  PetscCall(VecRestoreArray(fem->rprev, &ra));
+  PetscCall(FCFEMWarpTurn(fem->Rvprev, fem->xprev, PETSC_FALSE));
+  PetscCall(FCFEMWarpTurn(fem->Rvprev, fem->rprev, PETSC_FALSE));
   PetscCall(VecNorm(fem->rprev, NORM_2, &nb));
   if (nb == 0.0) PetscFunctionReturn(0);
   PetscCall(MatMult(fem->Aop, fem->xprev, fem->xres));
@@ -379,7 +361,7 @@ PetscErrorCode FCFEMScheduleDestroy(FCBody body)
   PetscCall(VecDestroy(&fem->rprev));
   PetscCall(MatDestroy(&fem->Aop));
   PetscCall(KSPDestroy(&fem->kspk));
-  PetscCall(PetscFree4(fem->swdof, fem->swperm, fem->swR, fem->swbuf));
+  PetscCall(PetscFree5(fem->swdof, fem->swperm, fem->swR, fem->swbuf, fem->swall));
   PetscCall(PetscFree2(fem->swcounts, fem->swdispls));
   PetscFunctionReturn(0);
 }

@@ -81,16 +81,9 @@ PetscErrorCode FCFEMWarpUpdate(FCBody body, const PetscReal Rv[])
   if (!fem->comp) PetscFunctionReturn(0);
   for (PetscInt i = 0; i < fem->nsurface; i++)
     PetscCall(PetscArraycpy(&fem->swbuf[9 * i], &fem->dR[9 * ((fem->surface[i] - lo) / 3)], 9));
-  {
-    PetscMPIInt size;
-    PetscReal  *all;
-    PetscCallMPI(MPI_Comm_size(body->comm, &size));
-    PetscCall(PetscMalloc1(9 * fem->nsw + 1, &all));
-    PetscCallMPI(MPI_Allgatherv(fem->swbuf, 9 * (PetscMPIInt)fem->nsurface, MPIU_REAL, all, fem->swcounts,
-                                fem->swdispls, MPIU_REAL, body->comm));
-    for (PetscInt i = 0; i < fem->nsw; i++) PetscCall(PetscArraycpy(&fem->swR[9 * i], &all[9 * fem->swperm[i]], 9));
-    PetscCall(PetscFree(all));
-  }
+  PetscCallMPI(MPI_Allgatherv(fem->swbuf, 9 * (PetscMPIInt)fem->nsurface, MPIU_REAL, fem->swall, fem->swcounts,
+                              fem->swdispls, MPIU_REAL, body->comm));
+  for (PetscInt i = 0; i < fem->nsw; i++) PetscCall(PetscArraycpy(&fem->swR[9 * i], &fem->swall[9 * fem->swperm[i]], 9));
   PetscCall(FCComplianceSetWarp(fem->comp, fem->nsw, fem->swdof, fem->swR, n / 3, fem->dR));
   PetscFunctionReturn(0);
 }
@@ -196,8 +189,8 @@ PetscErrorCode FCFEMWarpAMult(Mat A, Vec x, Vec y)
   PetscFunctionReturn(0);
 }
 
-/* x (owned blocks) = Q x or Q^T x */
-PetscErrorCode FCFEMWarpTurn(FEM *fem, Vec x, PetscBool transpose)
+/* x (owned vertex blocks) = R_b x_b, or R_b^T x_b, with one 3x3 rotation per block (Q: fem->dR) */
+PetscErrorCode FCFEMWarpTurn(const PetscReal R[], Vec x, PetscBool transpose)
 {
   PetscScalar *a;
   PetscInt     n;
@@ -208,9 +201,9 @@ PetscErrorCode FCFEMWarpTurn(FEM *fem, Vec x, PetscBool transpose)
   for (PetscInt b = 0; b < n / 3; b++) {
     PetscReal y[3], z[3] = {PetscRealPart(a[3 * b]), PetscRealPart(a[3 * b + 1]), PetscRealPart(a[3 * b + 2])};
     if (transpose)
-      FCMat3TVec(&fem->dR[9 * b], z, y);
+      FCMat3TVec(&R[9 * b], z, y);
     else
-      FCMat3Vec(&fem->dR[9 * b], z, y);
+      FCMat3Vec(&R[9 * b], z, y);
     for (int d = 0; d < 3; d++) a[3 * b + d] = y[d];
   }
   PetscCall(VecRestoreArray(x, &a));
@@ -219,7 +212,7 @@ PetscErrorCode FCFEMWarpTurn(FEM *fem, Vec x, PetscBool transpose)
 
 /* The surface table of the compliance builder (after the builder exists): every rank's owned
    surface DOFs, sorted, and where each comes from in the gathered order */
-PetscErrorCode FCFEMScheduleSetUpContact(FCBody body)
+PetscErrorCode FCFEMWarpSetUpContact(FCBody body)
 {
   FEM        *fem = (FEM *)body->data;
   PetscMPIInt size, n = (PetscMPIInt)fem->nsurface, *counts, *displs;
@@ -236,8 +229,8 @@ PetscErrorCode FCFEMScheduleSetUpContact(FCBody body)
   displs[0] = 0;
   for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
   fem->nsw = displs[size];
-  PetscCall(PetscMalloc4(fem->nsw + 1, &fem->swdof, fem->nsw + 1, &fem->swperm, 9 * fem->nsw + 1, &fem->swR,
-                         9 * fem->nsurface + 1, &fem->swbuf));
+  PetscCall(PetscMalloc5(fem->nsw + 1, &fem->swdof, fem->nsw + 1, &fem->swperm, 9 * fem->nsw + 1, &fem->swR,
+                         9 * fem->nsurface + 1, &fem->swbuf, 9 * fem->nsw + 1, &fem->swall));
   PetscCallMPI(MPI_Allgatherv(fem->surface, n, MPIU_INT, fem->swdof, counts, displs, MPIU_INT, body->comm));
   for (PetscInt i = 0; i < fem->nsw; i++) fem->swperm[i] = i;
   PetscCall(PetscSortIntWithArray(fem->nsw, fem->swdof, fem->swperm));

@@ -95,7 +95,7 @@ typedef struct {
   Mat              Aop;                           /* today's A, matrix-free */
   KSP              kspk;                          /* CG on Aop, preconditioned by the warped factor */
   PetscInt         nsw, *swdof, *swperm;          /* the surface vertices of every rank (first DOFs, sorted) */
-  PetscReal       *swR, *swbuf;                   /* their Q; this rank's */
+  PetscReal       *swR, *swbuf, *swall;           /* their Q; this rank's; every rank's, gathered */
   PetscMPIInt     *swcounts, *swdispls;
   PetscBool        coo;    /* -assembly coo: K summed by MatSetValuesCOO from Kcells */
   PetscReal       *Kcells; /* coo: the element matrices, 144 per cell, in cell order */

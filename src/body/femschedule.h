@@ -15,6 +15,6 @@ PETSC_INTERN PetscErrorCode FCFEMKMult(FCBody, Vec x, Vec y);
 PETSC_INTERN PetscErrorCode FCFEMWarpAtState(FCBody, Vec state);
 PETSC_INTERN PetscErrorCode FCFEMWarpVertexRotations(FCBody, PetscReal Rv[]);
 PETSC_INTERN PetscErrorCode FCFEMWarpUpdate(FCBody, const PetscReal Rv[]);
-PETSC_INTERN PetscErrorCode FCFEMWarpTurn(FEM *, Vec x, PetscBool transpose);
+PETSC_INTERN PetscErrorCode FCFEMWarpTurn(const PetscReal R[], Vec x, PetscBool transpose);
 PETSC_INTERN PetscErrorCode FCFEMWarpAMult(Mat, Vec x, Vec y);
-PETSC_INTERN PetscErrorCode FCFEMScheduleSetUpContact(FCBody); /* the surface table of the builder's warp */
+PETSC_INTERN PetscErrorCode FCFEMWarpSetUpContact(FCBody); /* the surface table of the builder's warp */

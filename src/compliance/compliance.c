@@ -73,8 +73,8 @@ PetscErrorCode FCComplianceSetType(FCCompliance comp, FCComplianceType type)
   PetscFunctionReturn(0);
 }
 
-/* Whether the body's solver is the default one, preonly + Cholesky by MUMPS */
-PetscErrorCode FCComplianceBodySolverIsMumps(FCCompliance comp, PetscBool *mumps)
+/* Whether a KSP is the default solver of an FE body, preonly + Cholesky by MUMPS (a factorization) */
+PetscErrorCode FCComplianceKSPIsMumps(KSP ksp, PetscBool *mumps)
 {
   PC            pc;
   KSPType       ktype;
@@ -82,8 +82,8 @@ PetscErrorCode FCComplianceBodySolverIsMumps(FCCompliance comp, PetscBool *mumps
   PetscBool     preonly, cholesky;
 
   PetscFunctionBegin;
-  PetscCall(KSPGetType(comp->ctx.ksp, &ktype));
-  PetscCall(KSPGetPC(comp->ctx.ksp, &pc));
+  PetscCall(KSPGetType(ksp, &ktype));
+  PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscStrcmp(ktype, KSPPREONLY, &preonly));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCCHOLESKY, &cholesky));
   *mumps = PETSC_FALSE;
@@ -91,6 +91,14 @@ PetscErrorCode FCComplianceBodySolverIsMumps(FCCompliance comp, PetscBool *mumps
     PetscCall(PCFactorGetMatSolverType(pc, &stype));
     PetscCall(PetscStrcmp(stype, MATSOLVERMUMPS, mumps));
   }
+  PetscFunctionReturn(0);
+}
+
+/* Whether the body's solver is the default one */
+PetscErrorCode FCComplianceBodySolverIsMumps(FCCompliance comp, PetscBool *mumps)
+{
+  PetscFunctionBegin;
+  PetscCall(FCComplianceKSPIsMumps(comp->ctx.ksp, mumps));
   PetscFunctionReturn(0);
 }
 

@@ -27,6 +27,8 @@ PETSC_INTERN PetscErrorCode    FCComplianceRegisterAll(void);
 PETSC_INTERN PetscErrorCode    FCComplianceCreate(const FCComplianceContext *, FCCompliance *);
 PETSC_INTERN PetscErrorCode    FCComplianceSetType(FCCompliance, FCComplianceType);
 PETSC_INTERN PetscErrorCode    FCComplianceSetFromOptions(FCCompliance); /* -compliance_type and the type's own */
+/* Whether a KSP is an FE body's default solver, preonly + Cholesky by MUMPS */
+PETSC_INTERN PetscErrorCode FCComplianceKSPIsMumps(KSP, PetscBool *);
 PETSC_INTERN PetscErrorCode    FCComplianceSetUp(FCCompliance);          /* at set-up, A at the reference state */
 PETSC_INTERN PetscErrorCode    FCComplianceFactor(FCCompliance);         /* after every change of A            */
 /* A builder that factors A itself (condensed) is the body's only factor: the body calls
