@@ -88,6 +88,17 @@ PetscErrorCode FCFEMWarpUpdate(FCBody body, const PetscReal Rv[])
   PetscFunctionReturn(0);
 }
 
+/* fl (local vector) += fe, a cell's 12 values, on its unconstrained vertices */
+static inline void AddCell(const FEM *fem, PetscInt c, const PetscReal fe[12], PetscScalar fl[])
+{
+  const FCMesh *m = &fem->mesh;
+  for (int a = 0; a < 4; a++) {
+    PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
+    if (fem->fixed[v]) continue;
+    for (int d = 0; d < 3; d++) fl[fem->ldof[v] + d] += fe[3 * a + d];
+  }
+}
+
 /* The cells' rotations at `state` (Rcell) and f_int there, R K_e (R^T x - X) per cell without
    forming K_e (FCMaterialRotatedApply); then the vertex rotations (Rvnow) and Q */
 PetscErrorCode FCFEMWarpAtState(FCBody body, Vec state)
@@ -106,11 +117,7 @@ PetscErrorCode FCFEMWarpAtState(FCBody body, Vec state)
     PetscReal X[12], x[12], fe[12];
     FCFEMGatherElement(fem, c, ul, X, x);
     PetscCall((*fem->mat->rotation)(fem->mat, x, X, &fem->Dminv[9 * c], fem->vol[c], fe, &fem->Rcell[9 * c]));
-    for (int a = 0; a < 4; a++) {
-      PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
-      if (fem->fixed[v]) continue;
-      for (int d = 0; d < 3; d++) fl[fem->ldof[v] + d] += fe[3 * a + d];
-    }
+    AddCell(fem, c, fe, fl);
   }
   PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
   PetscCall(VecRestoreArray(fem->floc, &fl));
@@ -141,11 +148,7 @@ static PetscErrorCode KMultFree(FCBody body, Vec x, Vec y)
       for (int d = 0; d < 3; d++) xe[3 * a + d] = fem->fixed[v] ? 0.0 : PetscRealPart(xl[fem->ldof[v] + d]);
     }
     FCMaterialRotatedApply(fem->mat, &fem->Rcell[9 * c], &fem->Dminv[9 * c], fem->vol[c], xe, ye);
-    for (int a = 0; a < 4; a++) {
-      PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
-      if (fem->fixed[v]) continue;
-      for (int d = 0; d < 3; d++) yl[fem->ldof[v] + d] += ye[3 * a + d];
-    }
+    AddCell(fem, c, ye, yl);
   }
   PetscCall(VecRestoreArrayRead(fem->vloc, &xl));
   PetscCall(VecRestoreArray(fem->dvloc, &yl));
