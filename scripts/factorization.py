@@ -20,6 +20,7 @@ time and the step time of each setting) and prints the markdown tables of docs/a
 docs/benchmarks.md.
 
     scripts/factorization.py [--scenes drop,rest,grasp,spin] [--np 1] [--quick]
+    scripts/factorization.py --momentum     (the momentum of two colliding cubes in both modes)
 """
 import argparse
 import csv
@@ -135,7 +136,12 @@ def main():
     ap.add_argument("--scenes", default="drop,rest,grasp,spin")
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--quick", action="store_true", help="every_step and one reuse setting (a smoke test)")
+    ap.add_argument("--momentum", action="store_true",
+                    help="only the momentum of two colliding cubes (input/two_cubes.opts) in both modes")
     a = ap.parse_args()
+    if a.momentum:
+        momentum(a.np)
+        return
     os.makedirs(OUT, exist_ok=True)
     settings = SETTINGS[:1] + SETTINGS[2:3] if a.quick else SETTINGS  # every_step, the default
     rows, curves = [], {}
@@ -181,6 +187,23 @@ def main():
               % (r["scene"], r["setting"], 1e3 * r["t_free"], 1e3 * r["t_contact"], 1e3 * r["t_contact_mean"],
                  r["ratio_free"], r["ratio_contact"], r["factorizations"], r["krylov_per_step"], r["pos_err"],
                  r["centroid_err"], r["force_err"], r["complementarity"], r["peak_rss_mb"]))
+
+
+def momentum(np_):
+    """The drift of the two cubes' centroid sum over the run (no gravity, frictionless: it stays at
+    its initial value when momentum is conserved), as tests/test_fe_fe.py measures it"""
+    for mode in ("every_step", "reuse"):
+        h5 = os.path.join(OUT, "two_cubes_%s.h5" % mode)
+        cmd = [EXE, "-options_file", "input/two_cubes.opts", "-pgs_tol", "1e-12", "-pgs_max_it", "20000", "-quiet",
+               "-left_factorization", mode, "-right_factorization", mode, "-output_file", h5]
+        if np_ > 1:
+            cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
+        subprocess.run(cmd, cwd=ROOT, env=ENV, check=True)
+        with h5py.File(h5, "r") as f:
+            L, R = f["bodies/left/centroid"][:], f["bodies/right/centroid"][:]
+            L0, R0 = f["bodies/left"].attrs["initial_centroid"], f["bodies/right"].attrs["initial_centroid"]
+            print("two cubes, %-10s: centroid sum drifts %.1e m over %d steps" % (mode, np.abs((L + R) - (L0 + R0)).max(),
+                                                                                 len(L)))
 
 
 def plot(rows, curves):
