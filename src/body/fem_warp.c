@@ -83,7 +83,8 @@ PetscErrorCode FCFEMWarpUpdate(FCBody body, const PetscReal Rv[])
     PetscCall(PetscArraycpy(&fem->swbuf[9 * i], &fem->dR[9 * ((fem->surface[i] - lo) / 3)], 9));
   PetscCallMPI(MPI_Allgatherv(fem->swbuf, 9 * (PetscMPIInt)fem->nsurface, MPIU_REAL, fem->swall, fem->swcounts,
                               fem->swdispls, MPIU_REAL, body->comm));
-  for (PetscInt i = 0; i < fem->nsw; i++) PetscCall(PetscArraycpy(&fem->swR[9 * i], &fem->swall[9 * fem->swperm[i]], 9));
+  for (PetscInt i = 0; i < fem->nsw; i++)
+    PetscCall(PetscArraycpy(&fem->swR[9 * i], &fem->swall[9 * fem->swperm[i]], 9));
   PetscCall(FCComplianceSetWarp(fem->comp, fem->nsw, fem->swdof, fem->swR, n / 3, fem->dR));
   PetscFunctionReturn(0);
 }

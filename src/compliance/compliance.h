@@ -29,8 +29,8 @@ PETSC_INTERN PetscErrorCode    FCComplianceSetType(FCCompliance, FCComplianceTyp
 PETSC_INTERN PetscErrorCode    FCComplianceSetFromOptions(FCCompliance); /* -compliance_type and the type's own */
 /* Whether a KSP is an FE body's default solver, preonly + Cholesky by MUMPS */
 PETSC_INTERN PetscErrorCode FCComplianceKSPIsMumps(KSP, PetscBool *);
-PETSC_INTERN PetscErrorCode    FCComplianceSetUp(FCCompliance);          /* at set-up, A at the reference state */
-PETSC_INTERN PetscErrorCode    FCComplianceFactor(FCCompliance);         /* after every change of A            */
+PETSC_INTERN PetscErrorCode FCComplianceSetUp(FCCompliance);  /* at set-up, A at the reference state */
+PETSC_INTERN PetscErrorCode FCComplianceFactor(FCCompliance); /* after every change of A            */
 /* A builder that factors A itself (condensed) is the body's only factor: the body calls
    FCComplianceFactor instead of factoring and FCComplianceSolve for its solves */
 PETSC_INTERN PetscBool      FCComplianceFactorsA(FCCompliance);

@@ -7,6 +7,20 @@
 
 _Static_assert(sizeof(PetscReal) == 8, "the contact records are written as 8-byte columns");
 
+/* The bodies' factorizations and Krylov iterations so far, summed (/steps takes their increments) */
+static PetscErrorCode SolverTotals(PetscInt nbodies, FCBody bodies[], PetscInt *nfactor, PetscInt *nkrylov)
+{
+  PetscFunctionBegin;
+  *nfactor = *nkrylov = 0;
+  for (PetscInt i = 0; i < nbodies; i++) {
+    PetscInt nf, nk;
+    PetscCall(FCBodyGetSolverCounts(bodies[i], &nf, &nk));
+    *nfactor += nf;
+    *nkrylov += nk;
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The initial_energy attribute, /steps and, with contact pairs, /contacts */
 PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodies[], PetscBool contacts)
 {
@@ -32,13 +46,7 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
   PetscCall(FCH5CreateRows(g, "wall_time", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->wall));
   PetscCall(FCH5CreateRows(g, "factorizations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_factor));
   PetscCall(FCH5CreateRows(g, "krylov_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_krylov));
-  out->lastfactor = out->lastkrylov = 0;
-  for (PetscInt i = 0; i < nbodies; i++) {
-    PetscInt nf, nk;
-    PetscCall(FCBodyGetSolverCounts(bodies[i], &nf, &nk));
-    out->lastfactor += nf;
-    out->lastkrylov += nk;
-  }
+  PetscCall(SolverTotals(nbodies, bodies, &out->lastfactor, &out->lastkrylov));
   gt = H5Gcreate2(g, "timing", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   for (int p = 0; p < FC_PHASE_NUM; p++)
     PetscCall(FCH5CreateRows(gt, FCPhaseNames[p], H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->timing[p]));
@@ -126,13 +134,8 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
   out->rtime[r] = t;
   out->rstep[r] = step;
   {
-    PetscInt tf = 0, tk = 0;
-    for (PetscInt i = 0; i < nbodies; i++) {
-      PetscInt nf, nk;
-      PetscCall(FCBodyGetSolverCounts(bodies[i], &nf, &nk));
-      tf += nf;
-      tk += nk;
-    }
+    PetscInt tf, tk;
+    PetscCall(SolverTotals(nbodies, bodies, &tf, &tk));
     out->rsolve[2 * r]     = tf - out->lastfactor;
     out->rsolve[2 * r + 1] = tk - out->lastkrylov;
     out->lastfactor        = tf;
