@@ -24,6 +24,7 @@ PetscErrorCode FCSignalsInstall(void)
   PetscFunctionBegin;
   memset(&sa, 0, sizeof(sa));
   sa.sa_handler = Handler;
+  sa.sa_flags   = SA_RESTART; /* a system call the signal lands in (MPI, MUMPS, HDF5) resumes: the step finishes */
   sigemptyset(&sa.sa_mask);
   PetscCheck(sigaction(SIGINT, &sa, NULL) == 0 && sigaction(SIGTERM, &sa, NULL) == 0, PETSC_COMM_SELF, PETSC_ERR_SYS,
              "Cannot install the SIGINT/SIGTERM handler");
