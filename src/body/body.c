@@ -252,6 +252,16 @@ PetscErrorCode FCBodyGetSolverCounts(FCBody body, PetscInt *nfactor, PetscInt *n
   PetscFunctionReturn(0);
 }
 
+/* Bytes this rank holds for the body's contact compliance: W_b, Sigma / C and its factorization
+   (MUMPS' own count) */
+PetscErrorCode FCBodyGetContactMemory(FCBody body, PetscReal bytes[3])
+{
+  PetscFunctionBegin;
+  bytes[0] = bytes[1] = bytes[2] = 0.0;
+  if (body->ops.getcontactmemory) PetscCall((*body->ops.getcontactmemory)(body, bytes));
+  PetscFunctionReturn(0);
+}
+
 /* The body's constrained regions and their reactions of the last step (none: n = 0) */
 PetscErrorCode FCBodyGetReactions(FCBody body, PetscInt *n, const char ***names, const PetscReal **values)
 {

@@ -67,12 +67,17 @@ PETSC_INTERN PetscErrorCode FCBodyToBodyFrame(FCBody, PetscInt when, const Petsc
 PETSC_INTERN PetscErrorCode FCBodyShapeDistanceLocal(FCBody, const PetscReal r[3], PetscReal *d, PetscReal n[3],
                                                      PetscReal cp[3]);
 PETSC_INTERN PetscErrorCode FCBodyAddPartialPosition(FCBody, const FCProximity *, PetscReal x[3]);
+/* bytes on this rank: W_b, Sigma / C, the factorization of A (0 where the body has none) */
+PETSC_INTERN PetscErrorCode FCBodyGetContactMemory(FCBody, PetscReal bytes[3]);
 /* Contact response */
 PETSC_INTERN PetscErrorCode FCBodySetUpContact(FCBody); /* a body named in a contact pair, after FCBodySetUp */
-PETSC_INTERN PetscErrorCode FCBodyAddCompliance(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
-/* before FCBodyAddCompliance with the same set: whether the body's part of W is the one it added
-   last (on the same rows): a W summed from the bodies' last parts still holds when every one is */
-PETSC_INTERN PetscErrorCode FCBodyBuildCompliance(FCBody, PetscInt self, const FCContactSet *, PetscBool *same);
+/* W += the body's part, on this rank's rows of W (NULL: all) */
+PETSC_INTERN PetscErrorCode FCBodyAddCompliance(FCBody, PetscInt self, const FCContactSet *, const FCRows *,
+                                                PetscReal W[]);
+/* before FCBodyAddCompliance with the same set and rows: whether the body's part of W is the one it
+   added last (on the same rows): a W summed from the bodies' last parts still holds when every one is */
+PETSC_INTERN PetscErrorCode FCBodyBuildCompliance(FCBody, PetscInt self, const FCContactSet *, const FCRows *,
+                                                  PetscBool *same);
 /* before the first free motion of a run: whether the body's factorization depends on its contacts,
    and the contacts a proximity query at the start positions gives it */
 PETSC_INTERN PetscBool      FCBodyExpectsContacts(FCBody);

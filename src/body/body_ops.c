@@ -225,18 +225,20 @@ PetscErrorCode FCBodySetUpContact(FCBody body)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCBodyAddCompliance(FCBody body, PetscInt self, const FCContactSet *set, PetscReal W[])
+PetscErrorCode FCBodyAddCompliance(FCBody body, PetscInt self, const FCContactSet *set, const FCRows *rows,
+                                   PetscReal W[])
 {
   PetscFunctionBegin;
-  if (body->ops.addcompliance) PetscCall((*body->ops.addcompliance)(body, self, set, W));
+  if (body->ops.addcompliance) PetscCall((*body->ops.addcompliance)(body, self, set, rows, W));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCBodyBuildCompliance(FCBody body, PetscInt self, const FCContactSet *set, PetscBool *same)
+PetscErrorCode FCBodyBuildCompliance(FCBody body, PetscInt self, const FCContactSet *set, const FCRows *rows,
+                                     PetscBool *same)
 {
   PetscFunctionBegin;
   if (body->ops.buildcompliance)
-    PetscCall((*body->ops.buildcompliance)(body, self, set, same));
+    PetscCall((*body->ops.buildcompliance)(body, self, set, rows, same));
   else { /* unchanged only when it adds nothing: no compliance, or no contact on it */
     *same = PETSC_TRUE;
     if (body->ops.addcompliance)

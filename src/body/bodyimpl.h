@@ -28,11 +28,11 @@ typedef struct {
   /* world position of a proximity point: at the start of the step, after free motion, now */
   PetscErrorCode (*proximityposition)(FCBody, const FCProximity *, PetscInt when, PetscReal x[3]);
   /* W += J_b A_b^-1 J_b^T for the contacts touching this body (W: nrows x nrows, replicated) */
-  PetscErrorCode (*addcompliance)(FCBody, PetscInt self, const FCContactSet *, PetscReal W[]);
+  PetscErrorCode (*addcompliance)(FCBody, PetscInt self, const FCContactSet *, const FCRows *, PetscReal W[]);
   /* optional: builds that W_b for the next addcompliance and tells whether it is the last one, on
      the same rows of W (NULL: a body that adds something is never known to be unchanged; one that
      has it is always called before addcompliance, by FCSchemeCompliance) */
-  PetscErrorCode (*buildcompliance)(FCBody, PetscInt self, const FCContactSet *, PetscBool *same);
+  PetscErrorCode (*buildcompliance)(FCBody, PetscInt self, const FCContactSet *, const FCRows *, PetscBool *same);
   /* signed distance of a world point to this body's shape now: outward normal (world) and the
      closest point (body frame) */
   PetscErrorCode (*shapedistance)(FCBody, const PetscReal x[3], PetscReal *d, PetscReal n[3], PetscReal cpb[3]);
@@ -75,6 +75,7 @@ typedef struct {
   PetscErrorCode (*getreactions)(FCBody, PetscInt *n, const char ***names, const PetscReal **values);
   /* optional: factorizations and Krylov iterations so far */
   PetscErrorCode (*getsolvercounts)(FCBody, PetscInt *nfactor, PetscInt *nkrylov);
+  PetscErrorCode (*getcontactmemory)(FCBody, PetscReal bytes[3]); /* W_b, Sigma / C, factor on this rank */
 } FCBodyOps;
 
 struct _p_FCBody {

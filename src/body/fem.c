@@ -291,6 +291,16 @@ static PetscErrorCode GetSolverCounts_FEM(FCBody body, PetscInt *nfactor, PetscI
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode GetContactMemory_FEM(FCBody body, PetscReal bytes[3])
+{
+  FEM      *fem = (FEM *)body->data;
+  PetscReal fmax;
+
+  PetscFunctionBegin;
+  if (fem->comp) PetscCall(FCComplianceGetMemory(fem->comp, &bytes[0], &bytes[1], &bytes[2], &fmax));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy_FEM(FCBody body)
 {
   FEM *fem = (FEM *)body->data;
@@ -385,6 +395,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.settime            = FCFEMBCPoses;
   body->ops.getexternalwork    = GetExternalWork_FEM;
   body->ops.getsolvercounts    = GetSolverCounts_FEM;
+  body->ops.getcontactmemory   = GetContactMemory_FEM;
   PetscFunctionReturn(0);
 }
 

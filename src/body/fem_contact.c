@@ -285,23 +285,24 @@ static PetscErrorCode SetRotation(FCBody body)
 }
 
 /* W_b = J_b A_b^-1 J_b^T for the next AddCompliance, and whether it is the last one */
-PetscErrorCode BuildCompliance_FEM(FCBody body, PetscInt self, const FCContactSet *set, PetscBool *same)
+PetscErrorCode BuildCompliance_FEM(FCBody body, PetscInt self, const FCContactSet *set, const FCRows *rows,
+                                   PetscBool *same)
 {
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
   PetscCall(SetRotation(body));
-  PetscCall(FCComplianceBuild(fem->comp, self, set, same));
+  PetscCall(FCComplianceBuild(fem->comp, self, set, rows, same));
   PetscFunctionReturn(0);
 }
 
 /* W += J_b A_b^-1 J_b^T (eq. 17; FCSchemeCompliance scales the sum by h^2), the W_b of BuildCompliance_FEM */
-PetscErrorCode AddCompliance_FEM(FCBody body, PetscInt self, const FCContactSet *set, PetscReal W[])
+PetscErrorCode AddCompliance_FEM(FCBody body, PetscInt self, const FCContactSet *set, const FCRows *rows, PetscReal W[])
 {
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
-  PetscCall(FCComplianceAdd(fem->comp, self, set, W));
+  PetscCall(FCComplianceAdd(fem->comp, self, set, rows, W));
   PetscFunctionReturn(0);
 }
 

@@ -117,11 +117,12 @@ static PetscErrorCode CheckState_Rigid(FCBody body, PetscInt step)
 
 /* Row of J_b for direction e at world offset r from the centre of mass: e.(v + w x r) =
    [e, r x e] . (v, w). W_b = J A^-1 J^T with A = diag(m I, J_world) (closed form). */
-static PetscErrorCode AddCompliance_Rigid(FCBody body, PetscInt self, const FCContactSet *set, PetscReal W[])
+static PetscErrorCode AddCompliance_Rigid(FCBody body, PetscInt self, const FCContactSet *set, const FCRows *rows,
+                                          PetscReal W[])
 {
   Rigid    *rb = (Rigid *)body->data;
   PetscReal Jw[9], Jinv[9], R[9], *J;
-  PetscInt  n = 0, M = set->nrows;
+  PetscInt  n = 0, M = set->nrows, r0 = rows ? rows->r0 : 0, r1 = rows ? rows->r1 : M;
 
   PetscFunctionBegin;
   PetscCall(PetscFree(rb->cols));
@@ -162,12 +163,14 @@ static PetscErrorCode AddCompliance_Rigid(FCBody body, PetscInt self, const FCCo
       }
     }
   rb->ncols = n;
-  for (PetscInt i = 0; i < n; i++)
+  for (PetscInt i = 0; i < n; i++) {
+    if (rb->cols[i] < r0 || rb->cols[i] >= r1) continue; /* another rank's row */
     for (PetscInt j = 0; j < n; j++) {
       PetscReal w = 0.0;
       for (int d = 0; d < 6; d++) w += J[6 * i + d] * rb->AiJT[6 * j + d];
-      W[rb->cols[i] * M + rb->cols[j]] += w;
+      W[(rb->cols[i] - r0) * M + rb->cols[j]] += w;
     }
+  }
   PetscCall(PetscFree(J));
   PetscFunctionReturn(0);
 }

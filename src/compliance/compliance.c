@@ -271,9 +271,9 @@ void FCComplianceAddColumn(PetscInt ncols, PetscInt ns, const PetscInt cptr[], c
    columns by one transposition. Per row, 2 passes of nt and ncols over data that stays in cache,
    where FCComplianceAddColumn cleared and scattered into a work vector of ncols for every column
    of C */
-PetscErrorCode FCComplianceAddCongruence(PetscInt ncols, PetscInt nt, const PetscInt cptr[], const PetscInt crow[],
-                                         const PetscReal cval[], const PetscInt pos[], PetscInt ldc,
-                                         const PetscReal C[], PetscReal Wb[])
+PetscErrorCode FCComplianceAddCongruence(PetscInt ncols, PetscInt a0, PetscInt a1, PetscInt nt, const PetscInt cptr[],
+                                         const PetscInt crow[], const PetscReal cval[], const PetscInt pos[],
+                                         const PetscInt lcol[], PetscInt ldc, const PetscReal C[], PetscReal Wb[])
 {
   PetscInt  *rptr, *rcol, *fill, nnz = cptr[nt];
   PetscReal *rval, *q;
@@ -289,14 +289,20 @@ PetscErrorCode FCComplianceAddCongruence(PetscInt ncols, PetscInt nt, const Pets
       rcol[at]    = i;
       rval[at]    = cval[k];
     }
-  for (PetscInt a = 0; a < ncols; a++) {
-    PetscReal *w = Wb + a * ncols;
+  for (PetscInt a = a0; a < a1; a++) {
+    PetscReal *w   = Wb + (a - a0) * ncols;
+    PetscBool  any = PETSC_FALSE;
     if (rptr[a] == rptr[a + 1]) continue;
     for (PetscInt i = 0; i < nt; i++) q[i] = 0.0;
     for (PetscInt k = rptr[a]; k < rptr[a + 1]; k++) { /* q += J_T(a, t) C(:, t) */
-      const PetscReal *c = C + pos[rcol[k]] * ldc, v = rval[k];
+      PetscInt         col = lcol ? lcol[pos[rcol[k]]] : pos[rcol[k]];
+      const PetscReal *c, v = rval[k];
+      if (col < 0) continue; /* not among the columns given */
+      c   = C + col * ldc;
+      any = PETSC_TRUE;
       for (PetscInt i = 0; i < nt; i++) q[i] += v * c[pos[i]];
     }
+    if (!any) continue;
     for (PetscInt b = 0; b < ncols; b++) { /* W_b(a, b) += q . J_T(b, :) */
       PetscReal sum = 0.0;
       for (PetscInt k = rptr[b]; k < rptr[b + 1]; k++) sum += rval[k] * q[rcol[k]];
@@ -394,9 +400,10 @@ PetscErrorCode FCComplianceExpectContacts(FCCompliance comp, PetscInt self, cons
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCComplianceBuild(FCCompliance comp, PetscInt self, const FCContactSet *set, PetscBool *same)
+PetscErrorCode FCComplianceBuild(FCCompliance comp, PetscInt self, const FCContactSet *set, const FCRows *rows,
+                                 PetscBool *same)
 {
-  PetscInt  ncols0 = comp->ncols, *cols0 = comp->cols, ncols;
+  PetscInt  ncols0 = comp->ncols, *cols0 = comp->cols, ncols, a0, a1;
   PetscBool eq = PETSC_TRUE;
 
   PetscFunctionBegin;
@@ -407,15 +414,31 @@ PetscErrorCode FCComplianceBuild(FCCompliance comp, PetscInt self, const FCConta
   PetscCall(BuildJacobian(comp, self, set));
   ncols      = comp->ncols;
   comp->kept = PETSC_FALSE;
-  if (ncols != comp->wb_n) {
+  a0         = 0; /* the rows of W_b in this rank's rows of W: comp->cols ascends (contact order) */
+  a1         = ncols;
+  if (rows) {
+    while (a0 < ncols && comp->cols[a0] < rows->r0) a0++;
+    for (a1 = a0; a1 < ncols && comp->cols[a1] < rows->r1;) a1++;
+  }
+  if (ncols != comp->wb_n || a0 != comp->wa0 || a1 != comp->wa1) {
     PetscCall(PetscFree(comp->Wb));
-    PetscCall(PetscMalloc1(ncols * ncols + 1, &comp->Wb));
+    PetscCall(PetscMalloc1((a1 - a0) * ncols + 1, &comp->Wb));
     comp->wb_n     = ncols;
+    comp->wa0      = a0;
+    comp->wa1      = a1;
     comp->wb_valid = PETSC_FALSE;
   }
   if (ncols) {
-    if (!comp->keepswb || !comp->wb_valid) PetscCall(PetscArrayzero(comp->Wb, ncols * ncols));
-    PetscCall((*comp->ops.build)(comp, self, set, comp->Wb));
+    if (!comp->keepswb || !comp->wb_valid) PetscCall(PetscArrayzero(comp->Wb, (a1 - a0) * ncols));
+    if (comp->windows || (a0 == 0 && a1 == ncols))
+      PetscCall((*comp->ops.build)(comp, self, set, comp->Wb));
+    else { /* a builder that forms W_b whole: its rows of this rank kept */
+      PetscReal *full;
+      PetscCall(PetscCalloc1(ncols * ncols, &full));
+      PetscCall((*comp->ops.build)(comp, self, set, full));
+      PetscCall(PetscArraycpy(comp->Wb, full + a0 * ncols, (a1 - a0) * ncols));
+      PetscCall(PetscFree(full));
+    }
     comp->wb_valid = PETSC_TRUE;
   }
   comp->pending = PETSC_TRUE;
@@ -425,9 +448,10 @@ PetscErrorCode FCComplianceBuild(FCCompliance comp, PetscInt self, const FCConta
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCComplianceAdd(FCCompliance comp, PetscInt self, const FCContactSet *set, PetscReal W[])
+PetscErrorCode FCComplianceAdd(FCCompliance comp, PetscInt self, const FCContactSet *set, const FCRows *rows,
+                               PetscReal W[])
 {
-  PetscInt         M = set->nrows, ncols;
+  PetscInt         M = set->nrows, ncols, r0 = rows ? rows->r0 : 0;
   const PetscReal *Wb;
 
   PetscFunctionBegin;
@@ -437,9 +461,9 @@ PetscErrorCode FCComplianceAdd(FCCompliance comp, PetscInt self, const FCContact
   comp->pending = PETSC_FALSE;
   ncols         = comp->ncols;
   Wb            = comp->Wb;
-  for (PetscInt i = 0; i < ncols; i++) {
-    PetscReal       *w = W + comp->cols[i] * M;
-    const PetscReal *b = Wb + i * ncols;
+  for (PetscInt i = comp->wa0; i < comp->wa1; i++) {
+    PetscReal       *w = W + (comp->cols[i] - r0) * M;
+    const PetscReal *b = Wb + (i - comp->wa0) * ncols;
     for (PetscInt j = 0; j < ncols; j++) w[comp->cols[j]] += b[j];
   }
   PetscFunctionReturn(0);
@@ -479,6 +503,16 @@ PetscErrorCode FCComplianceCorrect(FCCompliance comp, PetscReal h, const PetscRe
     PetscCall(VecRestoreArray(comp->work, &r));
   }
   PetscCall(VecAXPY(dv, 1.0, comp->work));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCComplianceGetMemory(FCCompliance comp, PetscReal *wb, PetscReal *sigma, PetscReal *factor,
+                                     PetscReal *factormax)
+{
+  PetscFunctionBegin;
+  *wb    = 8.0 * (PetscReal)(comp->wa1 - comp->wa0) * comp->wb_n;
+  *sigma = *factor = *factormax = 0.0;
+  if (comp->ops.memory) PetscCall((*comp->ops.memory)(comp, sigma, factor, factormax));
   PetscFunctionReturn(0);
 }
 

@@ -50,12 +50,19 @@ PETSC_INTERN PetscErrorCode FCComplianceSetWarp(FCCompliance, PetscInt nsurf, co
 PETSC_INTERN PetscErrorCode FCComplianceGetCorrectionRHS(FCCompliance, Vec *);
 /* Factorizations the builder did on its own (a condensed miss), so far */
 PETSC_INTERN PetscInt FCComplianceOwnFactorizations(FCCompliance);
-/* W_b = J_b A^-1 J_b^T for the contacts touching body `self`, kept for the next Add; same: it is the
-   last build's W_b on the same rows of W (a sum of the last builds still holds) */
-PETSC_INTERN PetscErrorCode FCComplianceBuild(FCCompliance, PetscInt self, const FCContactSet *, PetscBool *same);
-/* W (M x M, row-major, replicated) += J_b A^-1 J_b^T for the contacts touching body `self`: the W_b
-   of the Build just before, with the same set */
-PETSC_INTERN PetscErrorCode FCComplianceAdd(FCCompliance, PetscInt self, const FCContactSet *, PetscReal W[]);
+/* W_b = J_b A^-1 J_b^T for the contacts touching body `self`, kept for the next Add: its rows that
+   fall in this rank's rows of W (NULL: all); same: it is the last build's W_b on the same rows of W
+   (a sum of the last builds still holds). Collective. */
+PETSC_INTERN PetscErrorCode FCComplianceBuild(FCCompliance, PetscInt self, const FCContactSet *, const FCRows *,
+                                              PetscBool *same);
+/* W (this rank's rows, row-major; NULL rows: M x M) += J_b A^-1 J_b^T for the contacts touching
+   body `self`: the W_b of the Build just before, with the same set and rows */
+PETSC_INTERN PetscErrorCode FCComplianceAdd(FCCompliance, PetscInt self, const FCContactSet *, const FCRows *,
+                                            PetscReal W[]);
+/* Bytes this rank holds for the builder's W_b, and for Sigma / C and the factor (condensed; else 0)
+   with the factor's largest rank */
+PETSC_INTERN PetscErrorCode FCComplianceGetMemory(FCCompliance, PetscReal *wb, PetscReal *sigma, PetscReal *factor,
+                                                  PetscReal *factormax);
 /* a builder whose factorization depends on the contact DOFs (condensed) takes the contacts expected
    at its next factorization: whether it does, and the contacts */
 PETSC_INTERN PetscBool      FCComplianceUsesExpectedContacts(FCCompliance);

@@ -13,6 +13,8 @@ typedef struct {
      unless the builder sets `keepswb`: then it holds the last build's W_b when comp->wb_valid,
      and a builder that knows it still holds leaves it and sets comp->kept */
   PetscErrorCode (*build)(FCCompliance, PetscInt self, const FCContactSet *, PetscReal Wb[]);
+  /* bytes of Sigma / C and of the factor on this rank and on the largest (NULL: none) */
+  PetscErrorCode (*memory)(FCCompliance, PetscReal *sigma, PetscReal *factor, PetscReal *factormax);
   /* x = A^-1 b for the correction (default: a solve with the body's factor) ... */
   PetscErrorCode (*solve)(FCCompliance, Vec b, Vec x);
   /* ... or the whole correction dv += h A^-1 J_b^T lambda from what build kept */
@@ -42,6 +44,9 @@ struct _p_FCCompliance {
   /* W_b of the last build (FCComplianceBuild), added to W by FCComplianceAdd */
   PetscReal *Wb;
   PetscInt   wb_n;     /* its ncols */
+  PetscInt   wa0, wa1; /* the rows of W_b kept: [wa0, wa1), those in this rank's rows of W (Wb is
+                          (wa1 - wa0) x ncols) */
+  PetscBool  windows;  /* ops.build fills only rows [wa0, wa1) (else it is given a whole W_b)    */
   PetscBool  wb_valid; /* it holds a complete W_b */
   PetscBool  keepswb;  /* the builder may keep it (ops.build) */
   PetscBool  kept;     /* the last build kept it: the W_b of the build before */
@@ -63,20 +68,34 @@ PETSC_INTERN PetscErrorCode FCComplianceContactDofs(FCCompliance, PetscInt *ns, 
 PETSC_INTERN void FCComplianceAddColumn(PetscInt ncols, PetscInt ns, const PetscInt cptr[], const PetscInt crow[],
                                         const PetscReal cval[], PetscInt j, const PetscScalar Ccol[], PetscReal T[],
                                         PetscReal Wb[]);
-/* W_b += J_T C J_T^T for a dense C given whole: C(pos[i], pos[k]) is the entry of the contact DOFs
-   T[i], T[k] in an ldc x ldc symmetric column-major array (J_T by columns as FCComplianceContactDofs
-   returns it, nt of them); row by row of W_b, without the column loop's scattered writes */
-PETSC_INTERN PetscErrorCode FCComplianceAddCongruence(PetscInt ncols, PetscInt nt, const PetscInt cptr[],
-                                                      const PetscInt crow[], const PetscReal cval[],
-                                                      const PetscInt pos[], PetscInt ldc, const PetscReal C[],
+/* Rows [a0, a1) of W_b += J_T C J_T^T for a dense symmetric C: C(pos[i], pos[k]) is the entry of
+   the contact DOFs T[i], T[k] (J_T by columns as FCComplianceContactDofs returns it, nt of them).
+   C is column-major with leading dimension ldc, given whole (lcol NULL: column pos[k] at
+   pos[k] ldc) or by some of its columns (column pos[k] at lcol[pos[k]] ldc, absent where
+   lcol[pos[k]] < 0: the sum then holds only the terms of those columns). Wb holds rows a0 .. a1 - 1
+   (ncols each); row by row, without the column loop's scattered writes */
+PETSC_INTERN PetscErrorCode FCComplianceAddCongruence(PetscInt ncols, PetscInt a0, PetscInt a1, PetscInt nt,
+                                                      const PetscInt cptr[], const PetscInt crow[],
+                                                      const PetscReal cval[], const PetscInt pos[],
+                                                      const PetscInt lcol[], PetscInt ldc, const PetscReal C[],
                                                       PetscReal Wb[]);
 /* Whether the body's KSP is preonly + Cholesky by MUMPS (the default) */
 PETSC_INTERN PetscErrorCode FCComplianceBodySolverIsMumps(FCCompliance, PetscBool *);
 /* The factor of A (the body's KSP) */
 PETSC_INTERN PetscErrorCode FCComplianceGetFactor(FCCompliance, Mat *F);
 
+#ifndef FC_SPD_BLOCK
+#define FC_SPD_BLOCK 64 /* ScaLAPACK block size (rows and columns) of Sigma and C */
+#endif
+
 /* Where C = Sigma^-1 is formed (spdinverse.c; -compliance_condensed_inverse) */
-typedef enum { FC_SPD_INVERSE_HOST, FC_SPD_INVERSE_SCALAPACK, FC_SPD_INVERSE_COLUMNS } FCSPDInverseType;
+typedef enum {
+  FC_SPD_INVERSE_HOST,
+  FC_SPD_INVERSE_SCALAPACK,
+  FC_SPD_INVERSE_COLUMNS,
+  FC_SPD_INVERSE_DISTRIBUTED, /* Sigma from MUMPS and C kept distributed by block-cyclic columns */
+  FC_SPD_INVERSE_AUTO         /* distributed on several ranks from a Schur block size on, else host */
+} FCSPDInverseType;
 
 /* One MUMPS Cholesky factorization of A with a set S of DOFs ordered last (METIS nested
    dissection before them), giving C = (A^-1)_SS on rank 0 besides the solves (schurfactor.c) */
@@ -90,7 +109,7 @@ PETSC_INTERN PetscErrorCode FCSchurOrdering(const char name[], PetscInt nb, cons
 /* distributed_inverse: C = Sigma^-1 by ScaLAPACK over the ranks, else LAPACK on rank 0;
    balance: top levels of the nested dissection bisected in balance of the vertices next to S */
 PETSC_INTERN PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSPDInverseType inverse, PetscInt balance,
-                                                FCSchurFactor *);
+                                                PetscInt distmin, FCSchurFactor *);
 /* rank 0: sorted DOFs, whole vertex blocks (the other ranks' arguments are ignored); collective */
 PETSC_INTERN PetscErrorCode FCSchurFactorSetSchur(FCSchurFactor, PetscInt ns, const PetscInt S[]);
 PETSC_INTERN PetscErrorCode FCSchurFactorFactor(FCSchurFactor, Mat A);
@@ -98,6 +117,12 @@ PETSC_INTERN PetscErrorCode FCSchurFactorSolve(FCSchurFactor, Vec b, Vec x);
 /* rank 0: S and C (ns x ns, column-major) of the current factorization */
 PETSC_INTERN PetscErrorCode FCSchurFactorGetInverse(FCSchurFactor, PetscInt *ns, const PetscInt **S,
                                                     const PetscReal **C);
+/* every rank: whether C is distributed, S, and this rank's ns x nloc block-cyclic columns of C */
+PETSC_INTERN PetscErrorCode FCSchurFactorGetLocalInverse(FCSchurFactor, PetscBool *dist, PetscInt *ns,
+                                                         const PetscInt **S, PetscInt *nloc, const PetscReal **C);
+/* bytes: this rank's Sigma / C, MUMPS' factorization memory on this rank and on the largest one */
+PETSC_INTERN PetscErrorCode FCSchurFactorGetMemory(FCSchurFactor, PetscReal *sigma, PetscReal *factor,
+                                                   PetscReal *factormax);
 PETSC_INTERN PetscErrorCode FCSchurFactorGetGraph(FCSchurFactor, PetscInt *nb, const PetscInt **xadj,
                                                   const PetscInt **adj);
 PETSC_INTERN PetscErrorCode FCSchurFactorGetCounts(FCSchurFactor, PetscInt *nanalysis, PetscInt *nfactor);
@@ -109,4 +134,11 @@ typedef struct _FCSPDInverse *FCSPDInverse;
 PETSC_INTERN PetscErrorCode   FCSPDInverseCreate(MPI_Comm, const char name[], FCSPDInverseType, FCSPDInverse *);
 /* rank 0: a = the upper triangle of Sigma (column-major ns x ns) in, the whole C out; collective */
 PETSC_INTERN PetscErrorCode FCSPDInverseApply(FCSPDInverse, PetscInt ns, PetscReal a[]);
+/* every rank: its block-cyclic columns (1 x p grid, ns rows, lld ns) of Sigma (lower triangle at
+   least) in, of the whole C out; collective */
+PETSC_INTERN PetscErrorCode FCSPDInverseApplyLocal(FCSPDInverse, PetscInt ns, PetscReal loc[]);
+/* the columns of an n x n matrix that a rank holds on the 1 x p grid: how many, and the global
+   index of local column jl */
+PETSC_INTERN PetscInt       FCSPDLocalColumns(PetscInt n, PetscMPIInt rank, PetscMPIInt size);
+PETSC_INTERN PetscInt       FCSPDGlobalColumn(PetscInt jl, PetscMPIInt rank, PetscMPIInt size);
 PETSC_INTERN PetscErrorCode FCSPDInverseDestroy(FCSPDInverse *);

@@ -23,10 +23,15 @@
      - after 3 factorizations without contacts, S is dropped.
    A linear body keeps its factor as long as its contacts stay inside S: W_b then costs the dense
    products only, and not even those while J_T (the contact DOFs, rows and weights) is the last
-   build's: a body resting on a kinematic shape reuses its W_b (every rank keeps a copy, (3m)^2
-   values; the "CondensedWb" event counts the builds that compute).
-   Options: -compliance_condensed_ring, -compliance_condensed_inverse (where C = Sigma^-1 is formed:
-   spdinverse.c), -compliance_condensed_balance (the top levels of the ordering: schurorder.c) (help
+   build's: a body resting on a kinematic shape reuses its W_b (the "CondensedWb" event counts the
+   builds that compute). Each rank keeps the rows of W_b that fall in its rows of W (all of them
+   unless the scheme distributes W by block rows). Where C is on the host, the host forms W_b and
+   sends each rank its rows; where C is distributed by columns (schurfactor.c), each rank forms the
+   terms of its columns of C for every rank's rows, summed on that rank (one reduction per rank):
+   no rank ever holds more than its rows.
+   Options: -compliance_condensed_ring, -compliance_condensed_inverse and
+   -compliance_condensed_distributed_size (where C = Sigma^-1 is formed and kept: spdinverse.c,
+   schurfactor.c), -compliance_condensed_balance (the top levels of the ordering: schurorder.c) (help
    strings below; docs/options.md). */
 #include "complianceimpl.h"
 
@@ -35,6 +40,7 @@ typedef struct {
   PetscInt      ring;
   PetscInt      inverse; /* FCSPDInverseType */
   PetscInt      balance; /* -compliance_condensed_balance */
+  PetscInt      distmin; /* -compliance_condensed_distributed_size */
   PetscBool    *surf;    /* host: per vertex block, a non-fixed boundary vertex */
   PetscInt      nT, *T;  /* host: the DOFs of the last build's contacts */
   PetscBool     built;   /* a build since the last factorization */
@@ -50,7 +56,8 @@ typedef struct {
 
 static PetscLogEvent EV_PRODUCTS; /* "CondensedWb": W_b = J_T C J_T^T computed (not reused) */
 
-static const char *const InverseTypes[] = {"host", "scalapack", "columns"}; /* FCSPDInverseType's order */
+static const char *const InverseTypes[] = {"host", "scalapack", "columns", "distributed",
+                                           "auto"}; /* FCSPDInverseType's order */
 
 static PetscErrorCode SetFromOptions_Condensed(FCCompliance comp, PetscOptionItems *PetscOptionsObject)
 {
@@ -58,9 +65,17 @@ static PetscErrorCode SetFromOptions_Condensed(FCCompliance comp, PetscOptionIte
 
   PetscFunctionBegin;
   PetscCall(PetscOptionsEList("-compliance_condensed_inverse",
-                              "Where Sigma^-1 is formed: rank 0 (LAPACK), every rank (ScaLAPACK), or the host's "
-                              "Cholesky factor and the ranks' blocks of columns of its inverse",
-                              NULL, InverseTypes, 3, InverseTypes[cd->inverse], &cd->inverse, NULL));
+                              "Where Sigma^-1 is formed: rank 0 (LAPACK), every rank (ScaLAPACK) and gathered on "
+                              "rank 0, the host's Cholesky factor and the ranks' blocks of columns of its inverse, "
+                              "Sigma and its inverse distributed (MUMPS and ScaLAPACK, never gathered), or auto: "
+                              "distributed from -compliance_condensed_distributed_size on several ranks, else rank 0",
+                              NULL, InverseTypes, 5, InverseTypes[cd->inverse], &cd->inverse, NULL));
+  PetscCall(FCOptionsInt(PetscOptionsObject, "-compliance_condensed_distributed_size",
+                         "Schur block size (DOFs) from which -compliance_condensed_inverse auto keeps Sigma and its "
+                         "inverse distributed",
+                         &cd->distmin, NULL));
+  PetscCheck(cd->distmin >= 0, comp->ctx.comm, PETSC_ERR_USER_INPUT,
+             "Option -compliance_condensed_distributed_size must be >= 0, got %" PetscInt_FMT, cd->distmin);
   PetscCall(FCOptionsInt(PetscOptionsObject, "-compliance_condensed_ring",
                          "Rings of surface neighbours around contact DOFs in the Schur block", &cd->ring, NULL));
   PetscCheck(cd->ring >= 0, comp->ctx.comm, PETSC_ERR_USER_INPUT,
@@ -91,7 +106,8 @@ static PetscErrorCode SetUp_Condensed(FCCompliance comp)
   PetscCallMPI(MPI_Comm_size(comp->ctx.comm, &size));
   PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
   if (!EV_PRODUCTS) PetscCall(PetscLogEventRegister("CondensedWb", FC_CLASSID, &EV_PRODUCTS));
-  PetscCall(FCSchurFactorCreate(comp->ctx.A, comp->ctx.name, (FCSPDInverseType)cd->inverse, cd->balance, &cd->sf));
+  PetscCall(FCSchurFactorCreate(comp->ctx.A, comp->ctx.name, (FCSPDInverseType)cd->inverse, cd->balance, cd->distmin,
+                                &cd->sf));
   if (!rank) PetscCall(PetscMalloc2(size, &counts, size + 1, &displs));
   PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, 0, comp->ctx.comm));
   if (!rank) {
@@ -195,19 +211,118 @@ static PetscErrorCode KeepWb(Condensed *cd, PetscInt *cptr, PetscInt *crow, Pets
   PetscFunctionReturn(0);
 }
 
-/* W_b = J_S C J_S^T on the host, broadcast; a contact DOF outside S first grows S and refactors.
+/* This rank's rows [wa0, wa1) of W_b = J_T C_TT J_T^T, C_TT the block of C on the contact DOFs T
+   within S, from J_T by columns (the host's cptr, crow, cval): formed on the host and sent by rows
+   (C on the host), or by every rank from its columns of C and summed on each rank for its rows
+   (C distributed) */
+static PetscErrorCode Products(FCCompliance comp, const PetscInt hcptr[], const PetscInt hcrow[],
+                               const PetscReal hcval[], PetscReal Wb[])
+{
+  Condensed       *cd    = (Condensed *)comp->data;
+  PetscInt         ncols = comp->ncols, ns, nloc, nT = cd->nT, *pos = NULL, *win, *lcol, maxrows = 0;
+  PetscInt        *cptr = (PetscInt *)hcptr, *crow = (PetscInt *)hcrow;
+  PetscReal       *cval = (PetscReal *)hcval, *buf = NULL;
+  const PetscInt  *S;
+  const PetscReal *C;
+  PetscBool        dist, whole = PETSC_TRUE;
+  PetscMPIInt      rank, size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comp->ctx.comm, &size));
+  PetscCall(PetscMalloc1(2 * size, &win)); /* every rank's rows of W_b */
+  {
+    PetscInt mine[2] = {comp->wa0, comp->wa1};
+    PetscCallMPI(MPI_Allgather(mine, 2, MPIU_INT, win, 2, MPIU_INT, comp->ctx.comm));
+  }
+  for (PetscMPIInt r = 0; r < size; r++) {
+    whole   = (PetscBool)(whole && win[2 * r] == 0 && win[2 * r + 1] == ncols);
+    maxrows = PetscMax(maxrows, win[2 * r + 1] - win[2 * r]);
+  }
+  PetscCall(FCSchurFactorGetLocalInverse(cd->sf, &dist, &ns, &S, &nloc, &C));
+  if (!rank) { /* T within S */
+    const PetscInt *Sh;
+    PetscCall(FCSchurFactorGetInverse(cd->sf, &ns, &Sh, dist ? NULL : &C));
+    PetscCall(PetscMalloc1(nT + 1, &pos));
+    for (PetscInt i = 0; i < nT; i++) PetscCall(PetscFindInt(cd->T[i], ns, Sh, &pos[i]));
+  }
+  if (!dist) {
+    PetscReal   *full = Wb;
+    PetscMPIInt *cnt = NULL, *dsp = NULL;
+    if (!rank) {
+      if (!whole) PetscCall(PetscMalloc1(ncols * ncols, &full));
+      PetscCall(PetscArrayzero(full, ncols * ncols)); /* it may hold the last W_b */
+      PetscCall(FCComplianceAddCongruence(ncols, 0, ncols, nT, cptr, crow, cval, pos, NULL, ns, C, full));
+    }
+    if (whole)
+      PetscCallMPI(MPI_Bcast(Wb, (PetscMPIInt)(ncols * ncols), MPIU_REAL, 0, comp->ctx.comm));
+    else {
+      PetscCall(PetscMalloc2(size, &cnt, size, &dsp));
+      for (PetscMPIInt r = 0; r < size; r++) {
+        PetscCall(PetscMPIIntCast((win[2 * r + 1] - win[2 * r]) * ncols, &cnt[r]));
+        PetscCall(PetscMPIIntCast(win[2 * r] * ncols, &dsp[r]));
+      }
+      PetscCallMPI(MPI_Scatterv(full, cnt, dsp, MPIU_REAL, Wb, cnt[rank], MPIU_REAL, 0, comp->ctx.comm));
+      PetscCall(PetscFree2(cnt, dsp));
+      if (!rank) PetscCall(PetscFree(full));
+    }
+    PetscCall(PetscFree(pos));
+    PetscCall(PetscFree(win));
+    PetscFunctionReturn(0);
+  }
+  /* C by columns: J_T and T within S to every rank */
+  PetscCallMPI(MPI_Bcast(&nT, 1, MPIU_INT, 0, comp->ctx.comm));
+  if (rank) PetscCall(PetscMalloc1(nT + 1, &cptr));
+  PetscCallMPI(MPI_Bcast(cptr, (PetscMPIInt)(nT + 1), MPIU_INT, 0, comp->ctx.comm));
+  if (rank) PetscCall(PetscMalloc3(cptr[nT] + 1, &crow, cptr[nT] + 1, &cval, nT + 1, &pos));
+  PetscCallMPI(MPI_Bcast(crow, (PetscMPIInt)cptr[nT], MPIU_INT, 0, comp->ctx.comm));
+  PetscCallMPI(MPI_Bcast(cval, (PetscMPIInt)cptr[nT], MPIU_REAL, 0, comp->ctx.comm));
+  PetscCallMPI(MPI_Bcast(pos, (PetscMPIInt)nT, MPIU_INT, 0, comp->ctx.comm));
+  PetscCall(PetscMalloc1(ns + 1, &lcol)); /* the local column of each column of C, or -1 */
+  for (PetscInt j = 0; j < ns; j++) lcol[j] = -1;
+  for (PetscInt jl = 0; jl < nloc; jl++) lcol[FCSPDGlobalColumn(jl, rank, size)] = jl;
+  if (whole) {
+    PetscCall(PetscArrayzero(Wb, ncols * ncols));
+    PetscCall(FCComplianceAddCongruence(ncols, 0, ncols, nT, cptr, crow, cval, pos, lcol, ns, C, Wb));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, Wb, (PetscMPIInt)(ncols * ncols), MPIU_REAL, MPIU_SUM, comp->ctx.comm));
+  } else {
+    PetscCall(PetscMalloc1(maxrows * ncols + 1, &buf));
+    for (PetscMPIInt q = 0; q < size; q++) { /* rank q's rows: every rank's terms, summed on q */
+      PetscInt    a0 = win[2 * q], a1 = win[2 * q + 1];
+      PetscReal  *out = q == rank ? Wb : buf;
+      PetscMPIInt n;
+      PetscCall(PetscMPIIntCast((a1 - a0) * ncols, &n));
+      PetscCall(PetscArrayzero(out, (a1 - a0) * ncols));
+      PetscCall(FCComplianceAddCongruence(ncols, a0, a1, nT, cptr, crow, cval, pos, lcol, ns, C, out));
+      PetscCallMPI(MPI_Reduce(q == rank ? MPI_IN_PLACE : buf, Wb, n, MPIU_REAL, MPIU_SUM, q, comp->ctx.comm));
+    }
+    PetscCall(PetscFree(buf));
+  }
+  if (rank) PetscCall(PetscFree3(crow, cval, pos));
+  if (rank)
+    PetscCall(PetscFree(cptr));
+  else
+    PetscCall(PetscFree(pos));
+  PetscCall(PetscFree(lcol));
+  PetscCall(PetscFree(win));
+  PetscFunctionReturn(0);
+}
+
+/* W_b = J_S C J_S^T (this rank's rows: Products); a contact DOF outside S first grows S and refactors.
    A build with the factor and J_T of the last one (a linear body whose contacts keep their DOFs
    and weights, as on a kinematic plane) reuses the last W_b: no products, no broadcast. */
 static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FCContactSet *set, PetscReal Wb[])
 {
-  Condensed  *cd    = (Condensed *)comp->data;
-  PetscInt    ncols = comp->ncols, *cptr = NULL, *crow = NULL;
+  Condensed  *cd   = (Condensed *)comp->data;
+  PetscInt   *cptr = NULL, *crow = NULL;
   PetscReal  *cval = NULL;
   PetscMPIInt rank;
   PetscBool   flag[2] = {PETSC_FALSE, PETSC_FALSE}; /* a contact DOF outside S; the last W_b still holds */
+  PetscBool   valid   = comp->wb_valid;             /* on every rank: its rows may have moved */
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comp->ctx.comm, &rank));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &valid, 1, MPIU_BOOL, MPI_LAND, comp->ctx.comm));
   if (!rank) { /* T: the DOFs the contacts touch, and J_T by columns (every rank holds every entry of J_b) */
     PetscInt        ns, nT, *T, nf;
     const PetscInt *S;
@@ -219,7 +334,7 @@ static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FC
     }
     /* the same factor and the same J_T as the last build (whose T is still cd->T): the same W_b */
     PetscCall(FCSchurFactorGetCounts(cd->sf, NULL, &nf));
-    flag[1] = (PetscBool)(!flag[0] && comp->wb_valid && cd->wb_cptr && nf == cd->wb_nfactor && nT == cd->nT);
+    flag[1] = (PetscBool)(!flag[0] && valid && cd->wb_cptr && nf == cd->wb_nfactor && nT == cd->nT);
     if (flag[1]) PetscCall(PetscArraycmp(T, cd->T, nT, &flag[1]));
     if (flag[1]) PetscCall(PetscArraycmp(cptr, cd->wb_cptr, nT + 1, &flag[1]));
     if (flag[1]) PetscCall(PetscArraycmp(crow, cd->wb_crow, cptr[nT], &flag[1]));
@@ -263,18 +378,7 @@ static PetscErrorCode Build_Condensed(FCCompliance comp, PetscInt self, const FC
   }
   cd->built = PETSC_TRUE;
   PetscCall(PetscLogEventBegin(EV_PRODUCTS, 0, 0, 0, 0));
-  if (!rank) { /* W_b = J_T C_TT J_T^T, C_TT: the block of C on T within S */
-    PetscInt         ns, *pos;
-    const PetscInt  *S;
-    const PetscReal *C;
-    PetscCall(FCSchurFactorGetInverse(cd->sf, &ns, &S, &C));
-    PetscCall(PetscArrayzero(Wb, ncols * ncols)); /* it may hold the last W_b */
-    PetscCall(PetscMalloc1(cd->nT + 1, &pos));
-    for (PetscInt i = 0; i < cd->nT; i++) PetscCall(PetscFindInt(cd->T[i], ns, S, &pos[i])); /* T within S */
-    PetscCall(FCComplianceAddCongruence(ncols, cd->nT, cptr, crow, cval, pos, ns, C, Wb));
-    PetscCall(PetscFree(pos));
-  }
-  PetscCallMPI(MPI_Bcast(Wb, (PetscMPIInt)(ncols * ncols), MPIU_REAL, 0, comp->ctx.comm));
+  PetscCall(Products(comp, cptr, crow, cval, Wb));
   PetscCall(PetscLogEventEnd(EV_PRODUCTS, 0, 0, 0, 0));
   PetscCall(KeepWb(cd, cptr, crow, cval)); /* takes cptr, crow, cval (the host's) */
   PetscFunctionReturn(0);
@@ -316,6 +420,15 @@ static PetscErrorCode Solve_Condensed(FCCompliance comp, Vec b, Vec x)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode Memory_Condensed(FCCompliance comp, PetscReal *sigma, PetscReal *factor, PetscReal *factormax)
+{
+  Condensed *cd = (Condensed *)comp->data;
+
+  PetscFunctionBegin;
+  PetscCall(FCSchurFactorGetMemory(cd->sf, sigma, factor, factormax));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy_Condensed(FCCompliance comp)
 {
   Condensed *cd = (Condensed *)comp->data;
@@ -345,10 +458,13 @@ PetscErrorCode FCComplianceCreate_Condensed(FCCompliance comp)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&cd));
-  cd->inverse              = FC_SPD_INVERSE_HOST; /* docs/options.md */
+  cd->inverse              = FC_SPD_INVERSE_AUTO; /* docs/options.md */
+  cd->distmin              = 3000;
   comp->data               = cd;
   comp->factors            = PETSC_TRUE;
   comp->keepswb            = PETSC_TRUE; /* Build_Condensed keeps W_b while it holds */
+  comp->windows            = PETSC_TRUE; /* and forms only this rank's rows */
+  comp->ops.memory         = Memory_Condensed;
   comp->ops.setfromoptions = SetFromOptions_Condensed;
   comp->ops.setup          = SetUp_Condensed;
   comp->ops.factor         = Factor_Condensed;

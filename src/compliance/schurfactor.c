@@ -18,6 +18,11 @@
    centralized on rank 0 (the host); Sigma^-1 is formed there with LAPACK, or over all the ranks
    with ScaLAPACK and gathered back (spdinverse.c). A solve is condensation
    (ICNTL(26) = 1), x_S = Sigma^-1 r_S on the host, then expansion (ICNTL(26) = 2).
+   Distributed (-compliance_condensed_inverse distributed, or auto from a Schur block of
+   -compliance_condensed_distributed_size DOFs on several ranks): MUMPS returns Sigma by
+   block-cyclic columns over a 1 x p grid (ICNTL(19) = 3), ScaLAPACK inverts it there, every rank
+   keeps its columns of C (ns^2 / p values) and S; x_S = C r_S is the sum of the ranks' columns
+   times r_S, reduced on the host. Nothing of size ns^2 is ever on one rank.
    The DOFs come in vertex blocks of 3 (A's block size), and S is a union of blocks. */
 #include "complianceimpl.h"
 #include <dmumps_c.h>
@@ -51,6 +56,12 @@ struct _FCSchurFactor {
   FCSPDInverse inv;
   PetscInt     nanalysis, nfactor;
   PetscInt     balance; /* top levels of the dissection balanced in the vertices next to S (Dissect) */
+  /* distributed Sigma and C (every rank): this analysis uses them, and when they are asked for */
+  FCSPDInverseType type;
+  PetscInt         distmin;
+  PetscBool        dist;
+  PetscInt         nloc, *Sall;   /* local columns of C; S on every rank */
+  PetscReal       *loc, *rl, *yl; /* ns x nloc (lld ns); r_S at the local columns; C_loc r_l */
 };
 
 /* S holds every DOF (a thin body all in contact): MUMPS takes only a Schur block smaller than A
@@ -59,6 +70,14 @@ struct _FCSchurFactor {
 static inline PetscBool Full(FCSchurFactor f)
 {
   return f->ns >= f->N ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* Whether this analysis (ns known on the host) will have Sigma distributed */
+static inline PetscBool DistAsked(FCSchurFactor f)
+{
+  return (
+      PetscBool)(f->size > 1 && f->ns &&
+                 (f->type == FC_SPD_INVERSE_DISTRIBUTED || (f->type == FC_SPD_INVERSE_AUTO && f->ns >= f->distmin)));
 }
 
 /* MUMPS call with its error (INFOG(1) < 0) turned into a PETSc error naming the body and the phase */
@@ -160,7 +179,7 @@ static PetscErrorCode GatherGraph(FCSchurFactor f, Mat A)
 }
 
 PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSPDInverseType inverse, PetscInt balance,
-                                   FCSchurFactor *sf)
+                                   PetscInt distmin, FCSchurFactor *sf)
 {
   FCSchurFactor f;
   PetscBool     sbaij;
@@ -179,6 +198,8 @@ PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSPDInverseType in
   PetscCallMPI(MPI_Comm_size(f->comm, &f->size));
   PetscCall(PetscStrncpy(f->name, name, sizeof(f->name)));
   f->balance = balance;
+  f->type    = inverse;
+  f->distmin = distmin;
   PetscCall(MatGetSize(A, &f->N, NULL));
   PetscCall(MatGetOwnershipRange(A, &f->lo, &f->hi));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)A, &sbaij, MATSBAIJ, MATSEQSBAIJ, MATMPISBAIJ, ""));
@@ -277,7 +298,8 @@ static PetscErrorCode Analyse(FCSchurFactor f)
     PetscCall(PetscFree(f->list));
     PetscCall(PetscFree3(f->sigma, f->red, f->work));
     PetscCall(PetscMalloc1(f->ns + 1, &f->list));
-    PetscCall(PetscMalloc3(f->ns * f->ns + 1, &f->sigma, f->ns + 1, &f->red, f->ns + 1, &f->work));
+    PetscCall(PetscMalloc3(Full(f) || !DistAsked(f) ? f->ns * f->ns + 1 : 1, &f->sigma, f->ns + 1, &f->red, f->ns + 1,
+                           &f->work));
     for (PetscInt i = 0; i < f->ns; i++) f->list[i] = (MUMPS_INT)(f->S[i] + 1);
     f->id.perm_in       = f->perm;
     f->id.size_schur    = (MUMPS_INT)f->ns;
@@ -286,11 +308,35 @@ static PetscErrorCode Analyse(FCSchurFactor f)
     f->id.schur_lld     = (MUMPS_INT)f->ns;
   }
   PetscCallMPI(MPI_Bcast(&f->ns, 1, MPIU_INT, 0, f->comm));
-  /* centralized even for the ScaLAPACK inverse: MUMPS 5.5 asked for it distributed on the grid
-     (ICNTL(19) = 3) failed with INFOG(1) = -9 on input/hard/cube_thin_plate.opts (2 ranks) whatever
-     ICNTL(14); Sigma is then redistributed from the host (2 ns^2 values, milliseconds) */
-  f->id.ICNTL(19) = f->ns ? 1 : 0; /* Schur complement centralized on the host (lower triangle by rows) */
+  f->dist = (PetscBool)(DistAsked(f) && !Full(f));
+  PetscCall(PetscFree3(f->loc, f->rl, f->yl));
+  PetscCall(PetscFree(f->Sall));
+  f->nloc = 0;
+  if (f->dist) { /* Sigma by block-cyclic columns over the 1 x p grid of spdinverse.c, whole columns */
+    PetscCall(PetscMalloc1(f->ns + 1, &f->Sall));
+    if (!f->rank) PetscCall(PetscArraycpy(f->Sall, f->S, f->ns));
+    PetscCallMPI(MPI_Bcast(f->Sall, (PetscMPIInt)f->ns, MPIU_INT, 0, f->comm));
+    f->nloc = FCSPDLocalColumns(f->ns, f->rank, f->size);
+    PetscCall(PetscMalloc3((size_t)f->ns * f->nloc + 1, &f->loc, f->nloc + 1, &f->rl, f->ns + 1, &f->yl));
+    f->id.nprow     = 1;
+    f->id.npcol     = (MUMPS_INT)f->size;
+    f->id.mblock    = FC_SPD_BLOCK;
+    f->id.nblock    = FC_SPD_BLOCK;
+    f->id.ICNTL(19) = 3; /* distributed on the grid, both triangles */
+    if (!f->rank) f->id.schur = NULL;
+  } else
+    f->id.ICNTL(19) = f->ns ? 1 : 0; /* Schur complement centralized on the host (lower triangle by rows) */
   if (!Full(f)) PetscCall(CallMumps(f, 1, "analysis"));
+  if (f->dist) {
+    PetscCheck(f->id.schur_mloc == (MUMPS_INT)f->ns && f->id.schur_nloc == (MUMPS_INT)f->nloc, PETSC_COMM_SELF,
+               PETSC_ERR_LIB,
+               "MUMPS' distributed Schur block of body '%s' on rank %d: %d x %d, expected %" PetscInt_FMT
+               " x %" PetscInt_FMT " (1 x %d grid, blocks of %d)",
+               f->name, (int)f->rank, (int)f->id.schur_mloc, (int)f->id.schur_nloc, f->ns, f->nloc, (int)f->size,
+               FC_SPD_BLOCK);
+    f->id.schur     = f->loc;
+    f->id.schur_lld = (MUMPS_INT)f->ns;
+  }
   PetscCall(PetscLogEventEnd(EV_ANALYSIS, 0, 0, 0, 0));
   f->analysed = PETSC_TRUE;
   f->nanalysis++;
@@ -359,7 +405,10 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
   f->nfactor++;
   /* MUMPS returns the lower triangle by rows: the upper one of the column-major array */
   PetscCall(PetscLogEventBegin(EV_INVERSE, 0, 0, 0, 0));
-  PetscCall(FCSPDInverseApply(f->inv, f->ns, f->sigma));
+  if (f->dist)
+    PetscCall(FCSPDInverseApplyLocal(f->inv, f->ns, f->loc));
+  else
+    PetscCall(FCSPDInverseApply(f->inv, f->ns, f->sigma));
   PetscCall(PetscLogEventEnd(EV_INVERSE, 0, 0, 0, 0));
   f->factored = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -374,6 +423,27 @@ static PetscErrorCode ApplyC(FCSchurFactor f, const PetscReal x[], PetscReal y[]
   PetscFunctionBegin;
   PetscCall(PetscBLASIntCast(f->ns, &n));
   if (n) PetscCallBLAS("BLASgemv", BLASgemv_("N", &n, &n, &alpha, f->sigma, &n, x, &one, &beta, y, &one));
+  PetscFunctionReturn(0);
+}
+
+/* The host's reduced right-hand side r_S becomes C r_S, C by the ranks' block-cyclic columns:
+   r_S broadcast, each rank's C(:, J) r_S(J), summed on the host */
+static PetscErrorCode ApplyDistributedC(FCSchurFactor f)
+{
+  PetscReal   *r = f->rank ? f->yl : f->red, alpha = 1.0, beta = 0.0;
+  PetscBLASInt n, m, one                                       = 1;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Bcast(r, (PetscMPIInt)f->ns, MPIU_REAL, 0, f->comm));
+  for (PetscInt jl = 0; jl < f->nloc; jl++) f->rl[jl] = r[FCSPDGlobalColumn(jl, f->rank, f->size)];
+  PetscCall(PetscBLASIntCast(f->ns, &n));
+  PetscCall(PetscBLASIntCast(f->nloc, &m));
+  if (m)
+    PetscCallBLAS("BLASgemv", BLASgemv_("N", &n, &m, &alpha, f->loc, &n, f->rl, &one, &beta, f->yl, &one));
+  else
+    PetscCall(PetscArrayzero(f->yl, f->ns));
+  PetscCallMPI(MPI_Reduce(f->yl, f->work, (PetscMPIInt)f->ns, MPIU_REAL, MPIU_SUM, 0, f->comm));
+  if (!f->rank) PetscCall(PetscArraycpy(f->red, f->work, f->ns));
   PetscFunctionReturn(0);
 }
 
@@ -403,7 +473,9 @@ PetscErrorCode FCSchurFactorSolve(FCSchurFactor f, Vec b, Vec x)
   } else if (f->ns) {
     f->id.ICNTL(26) = 1;
     PetscCall(CallMumps(f, 3, "condensation"));
-    if (!f->rank) {
+    if (f->dist)
+      PetscCall(ApplyDistributedC(f));
+    else if (!f->rank) {
       PetscCall(ApplyC(f, f->red, f->work));
       PetscCall(PetscArraycpy(f->red, f->work, f->ns));
     }
@@ -427,6 +499,31 @@ PetscErrorCode FCSchurFactorGetInverse(FCSchurFactor f, PetscInt *ns, const Pets
   *ns = f->ns;
   if (S) *S = f->S;
   if (C) *C = f->sigma;
+  PetscFunctionReturn(0);
+}
+
+/* Every rank: whether C is distributed, and then S, and this rank's block-cyclic columns of C
+   (ns x nloc, lld ns; global column of local jl: FCSPDGlobalColumn) */
+PetscErrorCode FCSchurFactorGetLocalInverse(FCSchurFactor f, PetscBool *dist, PetscInt *ns, const PetscInt **S,
+                                            PetscInt *nloc, const PetscReal **C)
+{
+  PetscFunctionBegin;
+  *dist = f->dist;
+  *ns   = f->ns;
+  *S    = f->Sall;
+  *nloc = f->nloc;
+  *C    = f->loc;
+  PetscFunctionReturn(0);
+}
+
+/* This rank's bytes of Sigma / C, and MUMPS' memory for the factorization on this rank and the
+   largest rank (INFO(22), INFOG(21): millions of bytes) */
+PetscErrorCode FCSchurFactorGetMemory(FCSchurFactor f, PetscReal *sigma, PetscReal *factor, PetscReal *factormax)
+{
+  PetscFunctionBegin;
+  *sigma     = 8.0 * (f->dist ? (PetscReal)f->ns * f->nloc : (!f->rank ? (PetscReal)f->ns * f->ns : 0.0));
+  *factor    = f->factored && !Full(f) ? 1e6 * f->id.INFO(22) : 0.0;
+  *factormax = f->factored && !Full(f) ? 1e6 * f->id.INFOG(21) : 0.0;
   PetscFunctionReturn(0);
 }
 
@@ -463,6 +560,8 @@ PetscErrorCode FCSchurFactorDestroy(FCSchurFactor *sf)
   PetscCall(PetscFree(f->perm));
   PetscCall(PetscFree(f->list));
   PetscCall(PetscFree3(f->sigma, f->red, f->work));
+  PetscCall(PetscFree3(f->loc, f->rl, f->yl));
+  PetscCall(PetscFree(f->Sall));
   PetscCall(VecDestroy(&f->bseq));
   PetscCall(VecScatterDestroy(&f->tohost));
   PetscCall(FCSPDInverseDestroy(&f->inv));

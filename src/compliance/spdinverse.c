@@ -13,8 +13,11 @@
                 narrowest).
 
    Both take Sigma's upper triangle (column-major, ns x ns, on the host) and leave the whole
-   symmetric C in the same array. host is the default (-compliance_condensed_inverse): where rank 1
-   comes late from its share of MUMPS' factorization, a split does not pay (docs/scaling.md). */
+   symmetric C in the same array. The distributed Schur complement (FCSPDInverseApplyLocal) never
+   comes to the host: MUMPS leaves each rank its block-cyclic columns of Sigma on the same 1 x p
+   grid, ScaLAPACK inverts them in place and each rank keeps its columns of C. host is the default
+   (-compliance_condensed_inverse): where rank 1 comes late from its share of MUMPS' factorization, a split does not pay
+   (docs/scaling.md). */
 #include "complianceimpl.h"
 #include <petscblaslapack.h>
 
@@ -35,12 +38,10 @@ extern void dtrtri_(const char *uplo, const char *diag, const int *n, double *a,
 extern void dlauum_(const char *uplo, const int *n, double *a, const int *lda, int *info);
 extern void dtrmm_(const char *side, const char *uplo, const char *transa, const char *diag, const int *m, const int *n,
                    const double *alpha, const double *a, const int *lda, double *b, const int *ldb);
+extern void pdtran_(const int *m, const int *n, const double *alpha, const double *a, const int *ia, const int *ja,
+                    const int *desca, const double *beta, double *c, const int *ic, const int *jc, const int *descc);
 extern void pdpotri_(const char *uplo, const int *n, double *a, const int *ia, const int *ja, const int *desca,
                      int *info);
-
-#ifndef FC_SPD_BLOCK
-#define FC_SPD_BLOCK 64 /* ScaLAPACK block size (rows and columns) */
-#endif
 
 struct _FCSPDInverse {
   MPI_Comm    comm;
@@ -48,6 +49,7 @@ struct _FCSPDInverse {
   char        name[FC_MAX_NAME];
   PetscBool   distributed; /* scalapack */
   PetscBool   columns;     /* columns */
+  PetscBool   grid;        /* the BLACS grids exist (scalapack, distributed, auto on several ranks) */
   int         sys;         /* BLACS handle of comm */
   int         ctxt_all;    /* 1 x size grid */
   int         ctxt_host;   /* 1 x 1 grid on the host (-1 elsewhere) */
@@ -67,8 +69,9 @@ PetscErrorCode FCSPDInverseCreate(MPI_Comm comm, const char name[], FCSPDInverse
   PetscCallMPI(MPI_Comm_size(comm, &v->size));
   PetscCall(PetscStrncpy(v->name, name, sizeof(v->name)));
   v->distributed = (PetscBool)(type == FC_SPD_INVERSE_SCALAPACK && v->size > 1);
+  v->grid        = (PetscBool)(v->size > 1 && type != FC_SPD_INVERSE_HOST && type != FC_SPD_INVERSE_COLUMNS);
   v->columns     = (PetscBool)(type == FC_SPD_INVERSE_COLUMNS && v->size > 1);
-  if (v->distributed) {
+  if (v->grid) {
     int nprow, npcol, myrow;
     v->sys      = Csys2blacs_handle(comm);
     v->ctxt_all = v->sys;
@@ -234,13 +237,63 @@ PetscErrorCode FCSPDInverseApply(FCSPDInverse v, PetscInt ns, PetscReal a[])
   PetscFunctionReturn(0);
 }
 
+/* Local columns of an n x n matrix block-cyclic over the 1 x size grid: how many, and the global
+   index of local column jl */
+PetscInt FCSPDLocalColumns(PetscInt n, PetscMPIInt rank, PetscMPIInt size)
+{
+  int nn = (int)n, nb = FC_SPD_BLOCK, zero = 0, r = (int)rank, p = (int)size;
+  return (PetscInt)numroc_(&nn, &nb, &r, &zero, &p);
+}
+
+PetscInt FCSPDGlobalColumn(PetscInt jl, PetscMPIInt rank, PetscMPIInt size)
+{
+  return ((jl / FC_SPD_BLOCK) * size + rank) * FC_SPD_BLOCK + jl % FC_SPD_BLOCK;
+}
+
+/* This rank's block-cyclic columns of Sigma (n rows, lld n; the lower triangle at least) become its
+   columns of the whole symmetric C = Sigma^-1: pdpotrf and pdpotri on the lower triangle, then the
+   upper one from the transpose (pdtran into a scratch of the same size). Collective. */
+PetscErrorCode FCSPDInverseApplyLocal(FCSPDInverse v, PetscInt ns, PetscReal loc[])
+{
+  int        n, nb = FC_SPD_BLOCK, zero = 0, one = 1, info = 0, dc[9], lld;
+  PetscInt   nloc;
+  PetscReal *t, dzero = 0.0, done = 1.0;
+
+  PetscFunctionBegin;
+  if (!ns) PetscFunctionReturn(0);
+  PetscCheck(v->grid, v->comm, PETSC_ERR_PLIB, "Body '%s': a distributed inverse without a BLACS grid", v->name);
+  PetscCall(PetscMPIIntCast(ns, &n));
+  lld = n;
+  descinit_(dc, &n, &n, &nb, &nb, &zero, &zero, &v->ctxt_all, &lld, &info);
+  PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "ScaLAPACK descinit (grid) for body '%s': %d", v->name, info);
+  pdpotrf_("L", &n, loc, &one, &one, dc, &info);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &info, 1, MPI_INT, MPI_MAX, v->comm)); /* one verdict */
+  PetscCheck(info == 0, v->comm, PETSC_ERR_CONV_FAILED,
+             "The Schur complement of A of body '%s' on its %d contact DOFs is not positive definite (ScaLAPACK "
+             "pdpotrf info %d)",
+             v->name, n, info);
+  pdpotri_("L", &n, loc, &one, &one, dc, &info);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &info, 1, MPI_INT, MPI_MAX, v->comm));
+  PetscCheck(info == 0, v->comm, PETSC_ERR_LIB, "ScaLAPACK pdpotri on the Schur complement of body '%s': %d", v->name,
+             info);
+  nloc = FCSPDLocalColumns(ns, v->rank, v->size);
+  PetscCall(PetscMalloc1((size_t)ns * nloc + 1, &t));
+  pdtran_(&n, &n, &done, loc, &one, &one, dc, &dzero, t, &one, &one, dc); /* t = L^T: C's upper triangle */
+  for (PetscInt jl = 0; jl < nloc; jl++) {
+    PetscInt j = FCSPDGlobalColumn(jl, v->rank, v->size);
+    for (PetscInt i = 0; i < j; i++) loc[i + jl * ns] = t[i + jl * ns];
+  }
+  PetscCall(PetscFree(t));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCSPDInverseDestroy(FCSPDInverse *inv)
 {
   FCSPDInverse v = *inv;
 
   PetscFunctionBegin;
   if (!v) PetscFunctionReturn(0);
-  if (v->distributed) {
+  if (v->grid) {
     if (!v->rank) Cblacs_gridexit(v->ctxt_host);
     Cblacs_gridexit(v->ctxt_all);
     Cfree_blacs_system_handle(v->sys);

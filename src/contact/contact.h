@@ -45,6 +45,12 @@ typedef struct {
   FCContact *c;
   PetscReal  dormant_depth; /* the depth at which a dormant contact wakes (FCCollisionDetect) */
 } FCContactSet;
+
+/* The rows [r0, r1) of a contact compliance (W, W_H) that a rank holds when it is distributed by
+   block rows: row-major, (r1 - r0) x nrows, entry (i, j) at [(i - r0) nrows + j]. NULL: whole */
+typedef struct {
+  PetscInt r0, r1;
+} FCRows;
 PETSC_INTERN PetscErrorCode FCContactSetAdd(FCContactSet *, const FCContact *);
 PETSC_INTERN PetscErrorCode FCContactSetGather(FCContactSet *, MPI_Comm);
 PETSC_INTERN PetscErrorCode FCContactSetFinalize(FCContactSet *); /* frames, rows */

@@ -390,6 +390,33 @@ PetscErrorCode FCOutputWriteRestart(FCOutput out, PetscInt step, PetscReal t, Pe
    half-way and leaves a dangling handle, which its clean-up at MPI_Finalize dereferences), so the
    file is left open as its last flush made it and the program exits without that clean-up
    (FCOutputFileLeftOpen, src/main.c). Returns the (collective) error of a final write that fails. */
+/* /memory: one row per rank (bytes; its columns named by the attribute `columns`), written again
+   (replaced) by each call, e.g. at the end of a restarted run; collective */
+PetscErrorCode FCOutputWriteMemory(FCOutput out, PetscInt ncols, const char *const names[], const PetscReal row[])
+{
+  PetscMPIInt size, rank;
+  char        cols[256] = "";
+  hid_t       d;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(out->comm, &size));
+  PetscCallMPI(MPI_Comm_rank(out->comm, &rank));
+  for (PetscInt i = 0; i < ncols; i++) {
+    PetscCall(PetscStrlcat(cols, names[i], sizeof(cols)));
+    if (i + 1 < ncols) PetscCall(PetscStrlcat(cols, ",", sizeof(cols)));
+  }
+  if (H5Lexists(out->file, "memory", H5P_DEFAULT) > 0) FCH5Check(H5Ldelete(out->file, "memory", H5P_DEFAULT), "memory");
+  PetscCall(FCH5WriteDistributed(out->file, "memory", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, (hsize_t)size, (hsize_t)ncols,
+                                 (hsize_t)rank, 1, row));
+  d = H5Dopen2(out->file, "memory", H5P_DEFAULT);
+  FCH5Check(d, "memory");
+  PetscCall(FCH5AttrString(d, "columns", cols));
+  PetscCall(FCH5AttrString(d, "units", "bytes; per rank, the largest over the steps of the run"));
+  H5Dclose(d);
+  FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush");
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCOutputDestroy(FCOutput *output)
 {
   FCOutput       out  = *output;

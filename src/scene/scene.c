@@ -29,6 +29,7 @@ struct _p_FCScene {
   FCOutput       output;
   FCProgress     progress;
   PetscReal      phase_total[FC_PHASE_NUM];
+  PetscReal      memory[FC_MEMORY_NUM]; /* this rank's largest over the steps (memory.c) */
   PetscLogDouble tmark; /* when the ranks last met at the end of a step (FCSceneStep: the wall time of a step) */
   /* contact */
   FCCollision           collision; /* the contact pairs and their detection (src/collision/pairs.c) */
@@ -259,6 +260,7 @@ PetscErrorCode FCSceneStep(FCScene s)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, timing, FC_PHASE_NUM + 1, MPIU_REAL, MPIU_MAX, s->comm));
   PetscCall(PetscTime(&s->tmark));
   for (int p = 0; p < FC_PHASE_NUM; p++) s->phase_total[p] += timing[p];
+  PetscCall(FCMemoryUpdate(s->scheme, s->nbodies, s->bodies, s->memory));
   PetscCall(FCPhaseResetTimes());
   /* the output of this step (frame and flush) is counted in the next step's row */
   PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, timing[FC_PHASE_NUM], s->nbodies, s->bodies));
@@ -361,6 +363,7 @@ PetscErrorCode FCSceneRun(FCScene s)
   }
   PetscCall(PetscTime(&t1));
   if (!s->quiet) PetscCall(PrintSummary(s, t1 - t0));
+  PetscCall(FCMemoryReport(s->comm, s->memory, (PetscBool)!s->quiet, s->output));
   PetscFunctionReturn(0);
 }
 

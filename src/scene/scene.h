@@ -2,6 +2,15 @@
 #pragma once
 
 #include "../body/body.h"
+#include "../io/io.h"
+
+/* Memory per rank (src/scene/memory.c): peak RSS and the contact data held, in bytes */
+#define FC_MEMORY_NUM 7
+PETSC_EXTERN const char *const FCMemoryNames[FC_MEMORY_NUM];
+/* after a step: peak[i] = max(peak[i], this rank's value now) */
+PETSC_INTERN PetscErrorCode FCMemoryUpdate(FCScheme, PetscInt nbodies, FCBody[], PetscReal peak[FC_MEMORY_NUM]);
+/* collective: the ranks' rows printed by rank 0 (print), and written to /memory (NULL output: not) */
+PETSC_INTERN PetscErrorCode FCMemoryReport(MPI_Comm, const PetscReal peak[FC_MEMORY_NUM], PetscBool print, FCOutput);
 
 /* The guard on the total energy of the scene (src/scene/energy.c): -energy_growth_limit */
 typedef struct {

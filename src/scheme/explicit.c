@@ -27,7 +27,7 @@ static PetscErrorCode Solve_Explicit(FCScheme scheme, FCContactSet *set, const F
   PetscCall(PetscMalloc1(M * M, &W));
   PetscCall(PetscMalloc6(M, &q, set->n, &mu, set->n, &dims, M, &lambda, 3 * set->n, &dfree, 3 * set->n, &d0));
   PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
-  PetscCall(FCSchemeCompliance(scheme, set, W, NULL));
+  PetscCall(FCSchemeCompliance(scheme, set, NULL, W, NULL));
   PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
   FCContactSetNormalCompliance(set, W);
   FCSchemeStartLinearization(set, dfree, d0, q, mu, dims);

@@ -14,8 +14,12 @@
    the proximity points do not carry). The loop stops when frames and right-hand sides change by
    less than -newton_tol (0: always -newton_max_it). One correction per body at the end:
    dv = dv_free + h A^-1 H^T F.
-   Options (-fast_update, -fast_wk_rows, the matrix and vector types -wh_mat_type, -frames_mat_type,
-   -contact_vec_type; -newton_max_it and -newton_tol in recursive.c): their help strings below and
+   Distributed (-fast_distributed_contacts, on several ranks with split contact sweeps): each rank
+   holds only the rows of W_H of its block of contacts (the block whose rows of W_k it forms and
+   whose sweeps it runs), the builders form only those rows (FCRows), and the proximity update sums
+   the ranks' W_H(rows, :)^T F(rows) (one reduction of 3 m values): no (3m)^2 array on any rank.
+   Options (-fast_update, -fast_wk_rows, -fast_distributed_contacts, the matrix and vector types -wh_mat_type,
+   -frames_mat_type, -contact_vec_type; -newton_max_it and -newton_tol in recursive.c): their help strings below and
    docs/options.md. */
 #include "fastimpl.h"
 
@@ -67,6 +71,12 @@ static PetscErrorCode SetFromOptions_Fast(FCScheme scheme, PetscOptionItems *Pet
   }
   PetscCall(PetscOptionsBool("-fast_wk_rows", "With split contact sweeps, each rank forms only its block rows of W_k",
                              NULL, fast->by_rows, &fast->by_rows, NULL));
+  PetscCall(FCOptionsInt(PetscOptionsObject, "-fast_distributed_contacts",
+                         "From this many contacts, with split contact sweeps on several ranks, each rank holds only "
+                         "its block rows of W_H (0: always)",
+                         &fast->dist_min, NULL));
+  PetscCheck(fast->dist_min >= 0, scheme->comm, PETSC_ERR_USER_INPUT,
+             "Option -fast_distributed_contacts must be >= 0, got %" PetscInt_FMT, fast->dist_min);
   PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->wh_mat_type, "-wh_mat_type"));
   PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->frames_mat_type, "-frames_mat_type"));
   PetscCall(CheckType(scheme->comm, PETSC_FALSE, fast->vec_type, "-contact_vec_type"));
@@ -103,8 +113,18 @@ static PetscErrorCode RowBlock(FCScheme scheme, const FCContactSet *set, PetscBo
   PetscFunctionReturn(0);
 }
 
-/* W_H (3m)^2, U and U^T (M x 3m; general types only), W_k (M^2, or the largest rank's block rows);
-   collective */
+/* Whether W_H is held by block rows: several ranks, host types, split sweeps, enough contacts */
+static PetscBool Distributed(FCScheme scheme, const FCContactSet *set, PetscBool rows)
+{
+  Fast       *fast = (Fast *)scheme->data;
+  PetscMPIInt size;
+
+  if (MPI_Comm_size(scheme->comm, &size)) return PETSC_FALSE;
+  return (PetscBool)(size > 1 && rows && fast->host && set->n >= fast->dist_min);
+}
+
+/* W_H (3m)^2 or its block rows, U and U^T (M x 3m; general types only), W_k (M^2, or the largest
+   rank's block rows); collective */
 static PetscErrorCode Memory_Fast(FCScheme scheme, const FCContactSet *set, PetscReal *bytes, const char **what)
 {
   Fast     *fast = (Fast *)scheme->data;
@@ -113,13 +133,19 @@ static PetscErrorCode Memory_Fast(FCScheme scheme, const FCContactSet *set, Pets
   PetscInt  c0, c1;
 
   PetscFunctionBegin;
+  PetscReal nh = n3; /* W_H's columns held */
   PetscCall(RowBlock(scheme, set, &rows, &c0, &c1));
   if (rows) { /* the largest block of the ranks: every rank decides the same against the limit */
-    Mb = (c1 < set->n ? set->c[c1].row : set->nrows) - (c0 < set->n ? set->c[c0].row : set->nrows);
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &Mb, 1, MPIU_REAL, MPIU_MAX, scheme->comm));
+    PetscReal b[2];
+    b[0] = (c1 < set->n ? set->c[c1].row : set->nrows) - (c0 < set->n ? set->c[c0].row : set->nrows);
+    b[1] = 3.0 * (c1 - c0);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, b, 2, MPIU_REAL, MPIU_MAX, scheme->comm));
+    Mb = b[0];
+    if (Distributed(scheme, set, rows)) nh = b[1];
   }
-  *bytes = 8.0 * (n3 * n3 + (fast->host ? 0.0 : 2.0 * M * n3) + M * Mb);
-  *what  = rows ? "dense W_H and this rank's rows of W_k" : "dense W_H and W_k";
+  *bytes = 8.0 * (n3 * nh + (fast->host ? 0.0 : 2.0 * M * n3) + M * Mb);
+  *what  = rows ? (nh < n3 ? "this rank's rows of W_H and of W_k" : "dense W_H and this rank's rows of W_k")
+                : "dense W_H and W_k";
   PetscFunctionReturn(0);
 }
 
@@ -129,8 +155,9 @@ static PetscErrorCode BuildWH(FastStep *fs)
 {
   FCScheme   scheme = fs->scheme;
   Fast      *fast   = (Fast *)scheme->data;
-  PetscInt   nc = fs->nc, n3 = fs->n3, M = fs->M;
+  PetscInt   nc = fs->nc, n3 = fs->n3, M = fs->M, nh = fs->dist ? 3 * (fs->c1 - fs->c0) : n3;
   PetscReal *WH;
+  FCRows     rows = {3 * fs->c0, 3 * fs->c1};
 
   PetscFunctionBegin;
   PetscCall(FCContactSetCopy(fs->set, &fs->H));
@@ -142,14 +169,17 @@ static PetscErrorCode BuildWH(FastStep *fs)
     c->row                        = 3 * k;
   }
   fs->H.nrows = n3;
-  if (!fast->WH || fast->wh_n3 != n3) {
+  if (!fast->WH || fast->wh_n3 != n3 || fast->wh_c0 != (fs->dist ? fs->c0 : 0) ||
+      fast->wh_c1 != (fs->dist ? fs->c1 : nc)) {
     PetscCall(MatDestroy(&fast->WH));
     PetscCall(MatDestroy(&fast->Wk));
     PetscCall(MatCreate(PETSC_COMM_SELF, &fast->WH));
-    PetscCall(MatSetSizes(fast->WH, n3, n3, n3, n3));
+    PetscCall(MatSetSizes(fast->WH, n3, nh, n3, nh));
     PetscCall(MatSetType(fast->WH, fast->wh_mat_type));
     PetscCall(MatSetUp(fast->WH));
     fast->wh_n3    = n3;
+    fast->wh_c0    = fs->dist ? fs->c0 : 0;
+    fast->wh_c1    = fs->dist ? fs->c1 : nc;
     fast->wh_valid = PETSC_FALSE;
   }
   fs->WHm = fast->WH;
@@ -167,7 +197,7 @@ static PetscErrorCode BuildWH(FastStep *fs)
     fast->wh_valid = PETSC_FALSE;
     PetscCall(MatDenseGetArrayWrite(fs->WHm, &WH)); /* symmetric: row/column-major alike */
     PetscCall(FCPhaseBegin(FC_PHASE_COMPLIANCE));
-    PetscCall(FCSchemeCompliance(scheme, &fs->H, WH, &kept));
+    PetscCall(FCSchemeCompliance(scheme, &fs->H, fs->dist ? &rows : NULL, WH, &kept));
     PetscCall(FCPhaseEnd(FC_PHASE_COMPLIANCE));
     PetscCall(MatDenseRestoreArrayWrite(fs->WHm, &WH));
     fast->wh_valid = PETSC_TRUE;
@@ -233,7 +263,7 @@ static PetscErrorCode SolveInFrames(FastStep *fs, FCSchemeStats *st)
     const PetscScalar *wh;
     PetscCall(FCContactProblemCreateDenseRows(scheme->comm, nc, fs->dims, fs->mu, fs->c0, fs->c1, w, fs->q, &prob));
     PetscCall(MatDenseGetArrayRead(fs->WHm, &wh));
-    FCFastNormalComplianceFromWH(fs, wh);
+    PetscCall(FCFastNormalComplianceFromWH(fs, wh));
     PetscCall(MatDenseRestoreArrayRead(fs->WHm, &wh));
   } else {
     PetscCall(FCContactProblemCreateDense(nc, fs->dims, fs->mu, w, fs->q, &prob));
@@ -303,8 +333,9 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
   fs.M      = M;
   fs.host   = fast->host;
   PetscCall(RowBlock(scheme, set, &fs.rows, &fs.c0, &fs.c1));
-  fs.rlo = fs.c0 < nc ? set->c[fs.c0].row : M;
-  fs.rhi = fs.c1 < nc ? set->c[fs.c1].row : M;
+  fs.dist = Distributed(scheme, set, fs.rows);
+  fs.rlo  = fs.c0 < nc ? set->c[fs.c0].row : M;
+  fs.rhi  = fs.c1 < nc ? set->c[fs.c1].row : M;
   PetscCall(BuildWH(&fs));
   PetscCall(SetUpStep(&fs, previous));
   for (PetscInt it = 1; it <= scheme->newton_max_it; it++) {
@@ -333,6 +364,23 @@ static PetscErrorCode Solve_Fast(FCScheme scheme, FCContactSet *set, const FCCon
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode Held_Fast(FCScheme scheme, PetscReal *wh, PetscReal *wk)
+{
+  Fast    *fast = (Fast *)scheme->data;
+  PetscInt m, n;
+
+  PetscFunctionBegin;
+  if (fast->WH) {
+    PetscCall(MatGetSize(fast->WH, &m, &n));
+    *wh = 8.0 * m * n;
+  }
+  if (fast->Wk) {
+    PetscCall(MatGetSize(fast->Wk, &m, &n));
+    *wk = 8.0 * m * n;
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy_Fast(FCScheme scheme)
 {
   Fast *fast = (Fast *)scheme->data;
@@ -356,11 +404,13 @@ PetscErrorCode FCSchemeCreate_Fast(FCScheme scheme)
   PetscCall(PetscStrncpy(fast->vec_type, VECSEQ, sizeof(fast->vec_type)));
   fast->host                 = PETSC_TRUE; /* the default types above */
   fast->by_rows              = PETSC_TRUE;
+  fast->dist_min             = 1000;
   fast->wk_state             = -1;
   scheme->data               = fast;
   scheme->ops.setfromoptions = SetFromOptions_Fast;
   scheme->ops.memory         = Memory_Fast;
   scheme->ops.solve          = Solve_Fast;
+  scheme->ops.held           = Held_Fast;
   scheme->ops.destroy        = Destroy_Fast;
   PetscFunctionReturn(0);
 }

@@ -3,6 +3,7 @@
    lambda, and the forces between the world and the frames; with -fast_update sweep, the update after
    every sweep of the contact solver. */
 #include "fastimpl.h"
+#include <petscblaslapack.h>
 
 /* C (rows x 3 nc, AIJ): the frame rows of every contact */
 static PetscErrorCode AssembleFrames(const FCContactSet *set, Mat C)
@@ -34,7 +35,7 @@ static PetscErrorCode CongruenceHost(FastStep *fs)
   const FCContactSet *set = fs->set;
   const PetscScalar  *wh;
   PetscScalar        *wk;
-  PetscInt            n3 = fs->n3, M = fs->M;
+  PetscInt            n3 = fs->n3, M = fs->M, off = fs->dist ? 3 * fs->c0 : 0; /* W_H's first column held */
 
   PetscFunctionBegin;
   if (!fs->Wk) PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, M, fs->rhi - fs->rlo, NULL, &fs->Wk));
@@ -43,7 +44,7 @@ static PetscErrorCode CongruenceHost(FastStep *fs)
   for (PetscInt kj = fs->c0; kj < fs->c1; kj++) {
     const FCContact *cj     = &set->c[kj];
     const PetscReal *fj[3]  = {cj->n, cj->t1, cj->t2};
-    const PetscReal *col[3] = {wh + (3 * kj) * n3, wh + (3 * kj + 1) * n3, wh + (3 * kj + 2) * n3};
+    const PetscReal *col[3] = {wh + (3 * kj - off) * n3, wh + (3 * kj + 1 - off) * n3, wh + (3 * kj + 2 - off) * n3};
     PetscScalar     *out[3];
     for (PetscInt b = 0; b < cj->dim; b++) out[b] = wk + (cj->row + b - fs->rlo) * M;
     for (PetscInt ki = 0; ki < fs->nc; ki++) {
@@ -68,19 +69,31 @@ static PetscErrorCode CongruenceHost(FastStep *fs)
 }
 
 /* The normal compliance of every contact, n^T W_H[k,k] n: W_k's diagonal by the arithmetic of
-   CongruenceHost, for a W_k that holds only this rank's rows */
-void FCFastNormalComplianceFromWH(FastStep *fs, const PetscScalar *wh)
+   CongruenceHost, for a W_k that holds only this rank's rows (from a W_H held by rows, this rank's
+   contacts', summed over the ranks) */
+PetscErrorCode FCFastNormalComplianceFromWH(FastStep *fs, const PetscScalar *wh)
 {
   FCContactSet *set = fs->set;
-  PetscInt      n3  = fs->n3;
-  for (PetscInt k = 0; k < fs->nc; k++) {
+  PetscInt      n3 = fs->n3, k0 = fs->dist ? fs->c0 : 0, k1 = fs->dist ? fs->c1 : fs->nc, off = 3 * k0;
+  PetscReal    *w = NULL;
+
+  PetscFunctionBegin;
+  if (fs->dist) PetscCall(PetscCalloc1(fs->nc + 1, &w));
+  for (PetscInt k = k0; k < k1; k++) {
     FCContact       *c      = &set->c[k];
-    const PetscReal *col[3] = {wh + (3 * k) * n3, wh + (3 * k + 1) * n3, wh + (3 * k + 2) * n3};
+    const PetscReal *col[3] = {wh + (3 * k - off) * n3, wh + (3 * k + 1 - off) * n3, wh + (3 * k + 2 - off) * n3};
     PetscReal        p[3];
     for (int i = 0; i < 3; i++)
       p[i] = col[0][3 * k + i] * c->n[0] + col[1][3 * k + i] * c->n[1] + col[2][3 * k + i] * c->n[2];
     c->wnn = c->n[0] * p[0] + c->n[1] * p[1] + c->n[2] * p[2];
+    if (w) w[k] = c->wnn;
   }
+  if (fs->dist) {
+    PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, w, fs->nc, MPIU_REAL, MPIU_SUM, fs->scheme->comm));
+    for (PetscInt k = 0; k < fs->nc; k++) set->c[k].wnn = w[k];
+    PetscCall(PetscFree(w));
+  }
+  PetscFunctionReturn(0);
 }
 
 /* Whether W_k was formed from the current W_H with the frames of the set (the host's kept W_k);
@@ -153,7 +166,26 @@ PetscErrorCode FCFastProximityUpdate(FastStep *fs, const PetscReal lambda[])
   for (PetscInt r = 0; r < fs->M; r++) l[r] = lambda[r];
   PetscCall(VecRestoreArray(fs->lam, &l));
   PetscCall(MatMultTranspose(fs->C, fs->lam, fs->F));
-  PetscCall(MatMult(fs->WHm, fs->F, fs->dvec));
+  if (fs->dist) { /* W_H F = sum over the ranks of W_H(:, own) F(own), W_H(:, own) = W_H(own, :)^T */
+    const PetscScalar *f, *wh;
+    PetscScalar       *d;
+    PetscBLASInt       n, m, one = 1;
+    PetscScalar        alpha = 1.0, beta = 0.0;
+    PetscCall(PetscBLASIntCast(fs->n3, &n));
+    PetscCall(PetscBLASIntCast(3 * (fs->c1 - fs->c0), &m));
+    PetscCall(VecGetArrayRead(fs->F, &f));
+    PetscCall(VecGetArrayWrite(fs->dvec, &d));
+    PetscCall(MatDenseGetArrayRead(fs->WHm, &wh));
+    if (m)
+      PetscCallBLAS("BLASgemv", BLASgemv_("N", &n, &m, &alpha, wh, &n, f + 3 * fs->c0, &one, &beta, d, &one));
+    else
+      for (PetscInt i = 0; i < fs->n3; i++) d[i] = 0.0;
+    PetscCall(MatDenseRestoreArrayRead(fs->WHm, &wh));
+    PetscCall(VecRestoreArrayRead(fs->F, &f));
+    PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, d, (PetscMPIInt)fs->n3, MPIU_SCALAR, MPIU_SUM, fs->scheme->comm));
+    PetscCall(VecRestoreArrayWrite(fs->dvec, &d));
+  } else
+    PetscCall(MatMult(fs->WHm, fs->F, fs->dvec));
   PetscCall(VecGetArrayRead(fs->dvec, &dv));
   for (PetscInt i = 0; i < fs->n3; i++) fs->d[i] = fs->dfree[i] + PetscRealPart(dv[i]);
   PetscCall(VecRestoreArrayRead(fs->dvec, &dv));

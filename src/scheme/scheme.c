@@ -123,30 +123,34 @@ PetscErrorCode FCSchemeSolve(FCScheme scheme, PetscInt step, FCContactSet *set, 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSchemeCompliance(FCScheme scheme, const FCContactSet *set, PetscReal W[], PetscBool *kept)
+PetscErrorCode FCSchemeCompliance(FCScheme scheme, const FCContactSet *set, const FCRows *rows, PetscReal W[],
+                                  PetscBool *kept)
 {
   FCBody   *bodies = scheme->bodies;
   PetscReal h      = scheme->nbodies ? FCBodyTimeStep(bodies[0]) : 0.0;
   PetscBool same   = (PetscBool)(kept && *kept);
+  PetscInt  n = set->nrows, r0 = rows ? rows->r0 : 0, r1 = rows ? rows->r1 : n, nw = (r1 - r0) * n;
 
   PetscFunctionBegin;
   for (PetscInt b = 0; b < scheme->nbodies; b++) { /* every body builds, even once one has changed */
     PetscBool s;
-    PetscCall(FCBodyBuildCompliance(bodies[b], b, set, &s));
+    PetscCall(FCBodyBuildCompliance(bodies[b], b, set, rows, &s));
     same = (PetscBool)(same && s);
   }
+  if (rows) PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPIU_BOOL, MPI_LAND, scheme->comm));
   if (kept) *kept = same;
   if (same) PetscFunctionReturn(0); /* W, summed and checked from these same parts, holds */
   PetscCall(PetscLogEventBegin(FC_EVENT_COMPLIANCE_SUM, 0, 0, 0, 0));
-  PetscCall(PetscArrayzero(W, set->nrows * set->nrows));
-  for (PetscInt b = 0; b < scheme->nbodies; b++) PetscCall(FCBodyAddCompliance(bodies[b], b, set, W));
-  for (PetscInt k = 0; k < set->nrows * set->nrows; k++) W[k] *= h * h;
+  PetscCall(PetscArrayzero(W, nw));
+  for (PetscInt b = 0; b < scheme->nbodies; b++) PetscCall(FCBodyAddCompliance(bodies[b], b, set, rows, W));
+  for (PetscInt k = 0; k < nw; k++) W[k] *= h * h;
   { /* a compliance is symmetric with a non-negative diagonal: anything else is a failed factorization
-       or builder, which the contact solver would turn into wrong forces without noticing */
+       or builder, which the contact solver would turn into wrong forces without noticing (by rows:
+       this rank's diagonal and diagonal block; one verdict) */
     const PetscInt tile = 64; /* the symmetry by tiles: W's columns stay in the cache */
-    PetscInt       n = set->nrows, bad = -1, badrow = -1;
-    PetscReal      wmax = 0.0, asym = 0.0;
-    for (PetscInt i = 0; i < n; i++) wmax = PetscMax(wmax, PetscAbsReal(W[i * n + i]));
+    PetscInt       bad = -1, badrow = -1;
+    PetscReal      wmax = 0.0, asym = 0.0, wbad = 0.0;
+    for (PetscInt i = r0; i < r1; i++) wmax = PetscMax(wmax, PetscAbsReal(W[(i - r0) * n + i]));
     for (PetscInt k = 0; k < set->n && bad < 0; k++) {
       const FCContact *c     = &set->c[k];
       PetscBool        moves = PETSC_FALSE; /* W_kk > 0 unless neither side can move at the contact */
@@ -155,25 +159,38 @@ PetscErrorCode FCSchemeCompliance(FCScheme scheme, const FCContactSet *set, Pets
         for (PetscInt v = 0; v < c->prox[s].nv; v++) /* FE: a free vertex with a weight */
           moves = moves || (c->prox[s].gdof[v] >= 0 && c->prox[s].w[v] != 0.0);
       }
+      if (c->row < r0 || c->row >= r1) continue; /* another rank's rows */
       for (PetscInt i = c->row; i < c->row + c->dim && bad < 0; i++) {
-        PetscReal d = W[i * n + i];
+        PetscReal d = W[(i - r0) * n + i];
         if (PetscIsInfOrNanReal(d) || d < 0.0 || (moves && d <= 0.0)) {
           bad    = k;
           badrow = i;
+          wbad   = d;
         }
       }
     }
-    for (PetscInt i0 = 0; i0 < n; i0 += tile)
-      for (PetscInt j0 = i0; j0 < n; j0 += tile)
-        for (PetscInt i = i0; i < PetscMin(i0 + tile, n); i++)
-          for (PetscInt j = PetscMax(j0, i + 1); j < PetscMin(j0 + tile, n); j++)
-            asym = PetscMax(asym, PetscAbsReal(W[i * n + j] - W[j * n + i]));
+    for (PetscInt i0 = r0; i0 < r1; i0 += tile)
+      for (PetscInt j0 = i0; j0 < r1; j0 += tile)
+        for (PetscInt i = i0; i < PetscMin(i0 + tile, r1); i++)
+          for (PetscInt j = PetscMax(j0, i + 1); j < PetscMin(j0 + tile, r1); j++)
+            asym = PetscMax(asym, PetscAbsReal(W[(i - r0) * n + j] - W[(j - r0) * n + i]));
+    if (rows) { /* one verdict: the first bad contact, the largest asymmetry and diagonal */
+      PetscReal v[3] = {bad >= 0 ? (PetscReal)bad : (PetscReal)set->n, -asym, -wmax};
+      PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, v, 3, MPIU_REAL, MPIU_MIN, scheme->comm));
+      if ((PetscInt)v[0] != bad) bad = -1; /* reported by its rank */
+      asym = -v[1];
+      wmax = -v[2];
+      PetscCheck((PetscInt)v[0] >= set->n || bad >= 0, scheme->comm, PETSC_ERR_CONV_FAILED,
+                 "The contact compliance W is not a compliance at contact %" PetscInt_FMT
+                 " (on another rank's rows); the factorization or the -compliance_type builder failed",
+                 (PetscInt)v[0]);
+    }
     if (bad >= 0)
-      SETERRQ(scheme->comm, PETSC_ERR_CONV_FAILED,
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
               "The contact compliance W is not a compliance: W(%" PetscInt_FMT ",%" PetscInt_FMT
               ") = %g (contact %" PetscInt_FMT ", bodies '%s' and '%s'); the factorization or the -compliance_type "
               "builder failed",
-              badrow, badrow, (double)W[badrow * n + badrow], bad, FCBodyName(bodies[set->c[bad].body[0]]),
+              badrow, badrow, (double)wbad, bad, FCBodyName(bodies[set->c[bad].body[0]]),
               FCBodyName(bodies[set->c[bad].body[1]]));
     PetscCheck(asym <= 1e-8 * wmax, scheme->comm, PETSC_ERR_CONV_FAILED,
                "The contact compliance W is not symmetric (max |W_ij - W_ji| = %g, max W_ii = %g); the factorization "
@@ -201,6 +218,14 @@ PetscErrorCode FCSchemeCorrect(FCScheme scheme, const FCContactSet *set, const P
 {
   PetscFunctionBegin;
   for (PetscInt b = 0; b < scheme->nbodies; b++) PetscCall(FCBodyApplyCorrection(scheme->bodies[b], b, set, lambda));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSchemeGetHeldMemory(FCScheme scheme, PetscReal *wh, PetscReal *wk)
+{
+  PetscFunctionBegin;
+  *wh = *wk = 0.0;
+  if (scheme->ops.held) PetscCall((*scheme->ops.held)(scheme, wh, wk));
   PetscFunctionReturn(0);
 }
 

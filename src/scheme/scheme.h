@@ -23,6 +23,8 @@ PETSC_INTERN PetscErrorCode    FCSchemeSetFromOptions(FCScheme);
    names the step in errors (a contact problem left unsolved stops the run, -pgs_fail_residual) */
 PETSC_INTERN PetscErrorCode FCSchemeSolve(FCScheme, PetscInt step, FCContactSet *, const FCContactSet *previous,
                                           FCSchemeStats *);
+/* bytes this rank keeps from step to step: W_H and W_k (0 for a scheme that keeps neither) */
+PETSC_INTERN PetscErrorCode FCSchemeGetHeldMemory(FCScheme, PetscReal *wh, PetscReal *wk);
 PETSC_INTERN PetscErrorCode FCSchemeDestroy(FCScheme *);
 
 struct _FCContactSetView {

@@ -11,6 +11,8 @@ typedef struct {
   PetscErrorCode (*memory)(FCScheme, const FCContactSet *, PetscReal *bytes, const char **what);
   /* forces and corrected motions of a non-empty contact set; stats were reset by the caller */
   PetscErrorCode (*solve)(FCScheme, FCContactSet *, const FCContactSet *previous, FCSchemeStats *);
+  /* bytes this rank holds from step to step: W_H and W_k (fast) */
+  PetscErrorCode (*held)(FCScheme, PetscReal *wh, PetscReal *wk);
   PetscErrorCode (*destroy)(FCScheme);
 } FCSchemeOps;
 
@@ -33,7 +35,8 @@ struct _p_FCScheme {
    checked to be a compliance (scheme.c). kept (NULL: no): on entry, W holds the W of the last call,
    for a set with the same rows (h is fixed at set-up); on return, whether W was left as it was because
    every body's part is the one it added last (a linear body on the same contacts: condensed.c) */
-PETSC_INTERN PetscErrorCode FCSchemeCompliance(FCScheme, const FCContactSet *, PetscReal W[], PetscBool *kept);
+PETSC_INTERN PetscErrorCode FCSchemeCompliance(FCScheme, const FCContactSet *, const FCRows *, PetscReal W[],
+                                               PetscBool *kept);
 /* The contact solver on prob (the set's linearization), with the set's dormant contacts; the ones
    the solver wakes stay awake in the set for the rest of the step */
 PETSC_INTERN PetscErrorCode FCSchemeContactSolve(FCScheme, FCContactSet *, FCContactProblem, PetscReal lambda[]);

@@ -38,7 +38,7 @@ static PetscErrorCode Solve_Standard(FCScheme scheme, FCContactSet *set, const F
     PetscInt sweeps;
     PetscCall(PetscLogEventBegin(FC_EVENT_NEWTON, 0, 0, 0, 0));
     PetscCall(FCPhaseBegin(FC_PHASE_REBUILD_W));
-    PetscCall(FCSchemeCompliance(scheme, set, W, NULL));
+    PetscCall(FCSchemeCompliance(scheme, set, NULL, W, NULL));
     PetscCall(FCPhaseEnd(FC_PHASE_REBUILD_W));
     FCContactSetNormalCompliance(set, W);
     PetscCall(FCPhaseBegin(FC_PHASE_CONTACT_SOLVE));

@@ -1,0 +1,57 @@
+/* Memory per rank (docs/output.md, /memory; the run summary's table): for each rank, the largest
+   over the steps of its peak resident memory and of the contact data it holds, each counted where
+   it is allocated: W_H and W_k (the fast scheme), W_b and Sigma / C (the bodies' compliance
+   builders) and the factorization of A (MUMPS' own count, INFO(22), condensed builder). Updated
+   after every step (local, no communication), gathered at the end of the run. */
+#include "scene.h"
+#include "../scheme/scheme.h"
+#include "../io/io.h"
+#include <sys/resource.h>
+
+const char *const FCMemoryNames[FC_MEMORY_NUM] = {"peak_rss", "W_H", "W_k", "W_b", "Sigma", "factor", "contact_data"};
+
+PetscErrorCode FCMemoryUpdate(FCScheme scheme, PetscInt nbodies, FCBody bodies[], PetscReal peak[FC_MEMORY_NUM])
+{
+  struct rusage ru;
+  PetscReal     m[FC_MEMORY_NUM] = {0};
+
+  PetscFunctionBegin;
+  if (!getrusage(RUSAGE_SELF, &ru)) m[0] = 1024.0 * (PetscReal)ru.ru_maxrss; /* kB on Linux */
+  if (scheme) PetscCall(FCSchemeGetHeldMemory(scheme, &m[1], &m[2]));
+  for (PetscInt b = 0; b < nbodies; b++) {
+    PetscReal bytes[3];
+    PetscCall(FCBodyGetContactMemory(bodies[b], bytes));
+    m[3] += bytes[0];
+    m[4] += bytes[1];
+    m[5] += bytes[2];
+  }
+  m[6] = m[1] + m[2] + m[3] + m[4];
+  for (int i = 0; i < FC_MEMORY_NUM; i++) peak[i] = PetscMax(peak[i], m[i]);
+  PetscFunctionReturn(0);
+}
+
+/* The ranks' rows (MB) printed by rank 0 (print), and written to /memory (out; NULL: not) */
+PetscErrorCode FCMemoryReport(MPI_Comm comm, const PetscReal peak[FC_MEMORY_NUM], PetscBool print, FCOutput out)
+{
+  PetscMPIInt size, rank;
+  PetscReal  *all = NULL;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (out) PetscCall(FCOutputWriteMemory(out, FC_MEMORY_NUM, FCMemoryNames, peak));
+  if (!print) PetscFunctionReturn(0);
+  if (!rank) PetscCall(PetscMalloc1(FC_MEMORY_NUM * size, &all));
+  PetscCallMPI(MPI_Gather(peak, FC_MEMORY_NUM, MPIU_REAL, all, FC_MEMORY_NUM, MPIU_REAL, 0, comm));
+  PetscCall(PetscPrintf(comm, "  memory per rank (MB, largest over the steps):"));
+  for (int i = 0; i < FC_MEMORY_NUM; i++) PetscCall(PetscPrintf(comm, " %s", FCMemoryNames[i]));
+  PetscCall(PetscPrintf(comm, "\n"));
+  for (PetscMPIInt r = 0; r < size && !rank; r++) {
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "    rank %d:", (int)r));
+    for (int i = 0; i < FC_MEMORY_NUM; i++)
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, " %.1f", (double)(all[FC_MEMORY_NUM * r + i] / 1048576.0)));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "\n"));
+  }
+  PetscCall(PetscFree(all));
+  PetscFunctionReturn(0);
+}
