@@ -23,7 +23,9 @@ def run(args, np_=1, check=True, timeout=600):
     cmd = [EXE] + [str(a) for a in args]
     if np_ > 1:
         cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
-    p = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=timeout)
+    # errors="replace": PETSc 3.18's -help prints -dm_plex_boundary_label's default from an
+    # uninitialized buffer, whatever bytes it holds
+    p = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True, errors="replace", timeout=timeout)
     sanitizer_check(p, cmd)
     if check and p.returncode != 0:
         sys.stderr.write(p.stdout + p.stderr)

@@ -24,45 +24,13 @@
    keeps its columns of C (ns^2 / p values) and S; x_S = C r_S is the sum of the ranks' columns
    times r_S, reduced on the host. Nothing of size ns^2 is ever on one rank.
    The DOFs come in vertex blocks of 3 (A's block size), and S is a union of blocks. */
-#include "complianceimpl.h"
-#include <dmumps_c.h>
+#include "schurfactorimpl.h"
 #include <petscblaslapack.h>
 
 /* -log_view: where a factorization's time goes */
 static PetscLogEvent EV_ANALYSIS, EV_NUMERIC, EV_INVERSE, EV_SOLVE;
 
-#define ICNTL(i) icntl[(i)-1]
-#define INFOG(i) infog[(i)-1]
-#define INFO(i) info[(i)-1]
-
-struct _FCSchurFactor {
-  MPI_Comm       comm; /* a duplicate of A's: MUMPS messages stay apart from PETSc's */
-  PetscMPIInt    rank, size;
-  char           name[FC_MAX_NAME];
-  DMUMPS_STRUC_C id;
-  PetscInt       N, lo, hi;
-  PetscInt       nnz; /* upper-triangle entries of the owned rows */
-  MUMPS_INT     *irn, *jcn;
-  PetscReal     *val;
-  /* host only */
-  PetscInt     nb, *xadj, *adj; /* vertex-block graph of A (without self loops) */
-  PetscInt     ns, *S;          /* Schur DOFs (sorted) of the current analysis */
-  PetscInt     nsnext, *Snext;  /* requested by FCSchurFactorSetSchur */
-  MUMPS_INT   *perm, *list;
-  PetscReal   *sigma, *red, *work; /* Sigma from MUMPS, inverted in place into C = (A^-1)_SS; reduced rhs; C red */
-  Vec          bseq;
-  VecScatter   tohost;
-  PetscBool    analysed, factored;
-  FCSPDInverse inv;
-  PetscInt     nanalysis, nfactor;
-  PetscInt     balance; /* top levels of the dissection balanced in the vertices next to S (Dissect) */
-  /* distributed Sigma and C (every rank): this analysis uses them, and when they are asked for */
-  FCSPDInverseType type;
-  PetscInt         distmin;
-  PetscBool        dist;
-  PetscInt         nloc, *Sall;   /* local columns of C; S on every rank */
-  PetscReal       *loc, *rl, *yl; /* ns x nloc (lld ns); r_S at the local columns; C_loc r_l */
-};
+/* struct _FCSchurFactor: schurfactorimpl.h */
 
 /* S holds every DOF (a thin body all in contact): MUMPS takes only a Schur block smaller than A
    (SIZE_SCHUR < N, else INFOG(1) = -49), and Sigma = A: gathered dense and inverted, no MUMPS.
@@ -90,91 +58,6 @@ static PetscErrorCode CallMumps(FCSchurFactor f, int job, const char phase[])
              "MUMPS %s of A of body '%s' failed: INFOG(1) = %d, INFOG(2) = %d (MUMPS users' guide, section "
              "'Error diagnostics')",
              phase, f->name, (int)f->id.INFOG(1), (int)f->id.INFOG(2));
-  PetscFunctionReturn(0);
-}
-
-/* The owned rows' upper triangle (c >= r), in MatGetRow order: the pattern at create, the values
-   at each factorization (A's pattern never changes) */
-static PetscErrorCode Triples(FCSchurFactor f, Mat A, PetscBool values)
-{
-  PetscInt k = 0;
-
-  PetscFunctionBegin;
-  for (PetscInt r = f->lo; r < f->hi; r++) {
-    PetscInt           nc;
-    const PetscInt    *cols;
-    const PetscScalar *vals;
-    PetscCall(MatGetRow(A, r, &nc, &cols, &vals));
-    for (PetscInt j = 0; j < nc; j++) {
-      if (cols[j] < r) continue;
-      if (values)
-        f->val[k] = PetscRealPart(vals[j]);
-      else if (f->irn) {
-        f->irn[k] = (MUMPS_INT)(r + 1);
-        f->jcn[k] = (MUMPS_INT)(cols[j] + 1);
-      }
-      k++;
-    }
-    PetscCall(MatRestoreRow(A, r, &nc, &cols, &vals));
-  }
-  if (!values && !f->irn) {
-    f->nnz = k;
-    PetscCall(PetscMalloc3(k + 1, &f->irn, k + 1, &f->jcn, k + 1, &f->val));
-    PetscCall(Triples(f, A, PETSC_FALSE));
-  }
-  PetscFunctionReturn(0);
-}
-
-/* The vertex-block graph of A, gathered on the host (the ordering is computed there) */
-static PetscErrorCode GatherGraph(FCSchurFactor f, Mat A)
-{
-  PetscInt     nbl = (f->hi - f->lo) / 3, *cnt, *nbr, nnbr = 0, cap = 1, *allcnt = NULL;
-  PetscMPIInt *rc = NULL, *rd = NULL, *ec = NULL, *ed = NULL, mc, me;
-
-  PetscFunctionBegin;
-  for (PetscInt b = 0; b < nbl; b++) { /* room: the entries of the first row of each block */
-    PetscInt nc;
-    PetscCall(MatGetRow(A, f->lo + 3 * b, &nc, NULL, NULL));
-    cap += nc;
-    PetscCall(MatRestoreRow(A, f->lo + 3 * b, &nc, NULL, NULL));
-  }
-  PetscCall(PetscMalloc2(nbl + 1, &cnt, cap, &nbr));
-  for (PetscInt b = 0; b < nbl; b++) {
-    PetscInt        nc, r = f->lo + 3 * b, start = nnbr;
-    const PetscInt *cols;
-    PetscCall(MatGetRow(A, r, &nc, &cols, NULL));
-    for (PetscInt j = 0; j < nc; j++) { /* cols sorted: a block's columns are consecutive */
-      PetscInt cb = cols[j] / 3;
-      if (cb == r / 3 || (nnbr > start && nbr[nnbr - 1] == cb)) continue;
-      nbr[nnbr++] = cb;
-    }
-    PetscCall(MatRestoreRow(A, r, &nc, &cols, NULL));
-    cnt[b] = nnbr - start;
-  }
-  mc = (PetscMPIInt)nbl;
-  me = (PetscMPIInt)nnbr;
-  if (!f->rank) PetscCall(PetscMalloc4(f->size, &rc, f->size + 1, &rd, f->size, &ec, f->size + 1, &ed));
-  PetscCallMPI(MPI_Gather(&mc, 1, MPI_INT, rc, 1, MPI_INT, 0, f->comm));
-  PetscCallMPI(MPI_Gather(&me, 1, MPI_INT, ec, 1, MPI_INT, 0, f->comm));
-  if (!f->rank) {
-    rd[0] = ed[0] = 0;
-    for (PetscMPIInt r = 0; r < f->size; r++) {
-      rd[r + 1] = rd[r] + rc[r];
-      ed[r + 1] = ed[r] + ec[r];
-    }
-    f->nb = rd[f->size];
-    PetscCall(PetscMalloc1(f->nb + 1, &allcnt));
-    PetscCall(PetscMalloc2(f->nb + 1, &f->xadj, ed[f->size] + 1, &f->adj));
-  }
-  PetscCallMPI(MPI_Gatherv(cnt, mc, MPIU_INT, allcnt, rc, rd, MPIU_INT, 0, f->comm));
-  PetscCallMPI(MPI_Gatherv(nbr, me, MPIU_INT, f->adj, ec, ed, MPIU_INT, 0, f->comm));
-  if (!f->rank) {
-    f->xadj[0] = 0;
-    for (PetscInt b = 0; b < f->nb; b++) f->xadj[b + 1] = f->xadj[b] + allcnt[b];
-    PetscCall(PetscFree(allcnt));
-    PetscCall(PetscFree4(rc, rd, ec, ed));
-  }
-  PetscCall(PetscFree2(cnt, nbr));
   PetscFunctionReturn(0);
 }
 
@@ -208,8 +91,8 @@ PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSPDInverseType in
              "-compliance_type condensed needs A of body '%s' by rows of vertex blocks of 3 DOFs (AIJ or BAIJ, "
              "not SBAIJ)",
              name);
-  PetscCall(Triples(f, A, PETSC_FALSE));
-  PetscCall(GatherGraph(f, A));
+  PetscCall(FCSchurFactorTriples(f, A, PETSC_FALSE));
+  PetscCall(FCSchurFactorGatherGraph(f, A));
   PetscCall(MatCreateVecs(A, &b, NULL));
   PetscCall(VecScatterCreateToZero(b, &f->tohost, &f->bseq));
   PetscCall(VecDestroy(&b));
@@ -326,6 +209,7 @@ static PetscErrorCode Analyse(FCSchurFactor f)
     if (!f->rank) f->id.schur = NULL;
   } else
     f->id.ICNTL(19) = f->ns ? 1 : 0; /* Schur complement centralized on the host (lower triangle by rows) */
+  f->id.ICNTL(23) = 0;               /* MUMPS' own workspace estimate (FCSchurFactorFactor raises it on a -9) */
   if (!Full(f)) PetscCall(CallMumps(f, 1, "analysis"));
   if (f->dist) {
     PetscCheck(f->id.schur_mloc == (MUMPS_INT)f->ns && f->id.schur_nloc == (MUMPS_INT)f->nloc, PETSC_COMM_SELF,
@@ -377,7 +261,7 @@ static PetscErrorCode GatherDense(FCSchurFactor f)
 PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
 {
   PetscFunctionBegin;
-  PetscCall(Triples(f, A, PETSC_TRUE));
+  PetscCall(FCSchurFactorTriples(f, A, PETSC_TRUE));
   if (!f->analysed) PetscCall(Analyse(f));
   PetscCall(PetscLogEventBegin(EV_NUMERIC, 0, 0, 0, 0));
   if (Full(f))
@@ -388,6 +272,10 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
       dmumps_c(&f->id);
       if (f->id.INFOG(1) >= 0 || (f->id.INFOG(1) != -8 && f->id.INFOG(1) != -9) || attempt == 3) break;
       f->id.ICNTL(14) = 2 * f->id.ICNTL(14) + 20;
+      /* a distributed Schur block: MUMPS 5.5 can fail with -9 on small problems whatever ICNTL(14)
+         (input/hard/cube_thin_plate.opts, 2 ranks); a workspace given in MB, twice its estimate of
+         the most loaded rank (INFOG(16)), is enough there. Until the next analysis. */
+      if (f->dist) f->id.ICNTL(23) = PetscMax(2 * f->id.ICNTL(23), 2 * f->id.INFOG(16) + 16);
     }
   PetscCheck(Full(f) || f->id.INFOG(1) >= 0, f->comm, PETSC_ERR_LIB,
              "MUMPS factorization of A of body '%s' failed: INFOG(1) = %d, INFOG(2) = %d%s", f->name,

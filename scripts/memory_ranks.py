@@ -1,0 +1,81 @@
+"""Memory per rank of the contact phase against the number of ranks (issue 37): the 149k-DOF box
+of docs/scaling.md (input/table1_36k.opts on the 40 x 40 x 31 mesh: 1600 contacts, fast scheme,
+condensed builder, the fast scheme of docs/scaling.md) run for --steps steps on each of --ranks (oversubscribed beyond the cores), with
+the default thresholds (distributed from 1000 contacts and a 3000-DOF Schur block), and once with
+the replicated contact phase forced on the largest rank count for contrast. Reads /memory (each
+rank's largest over the steps: peak RSS, W_H, W_k, W_b, Sigma / C, MUMPS' factor) and prints a
+markdown table: the largest rank's values, their ratio to 1 rank, and the final positions' largest
+difference from the 1-rank run over the displacement.
+Usage: /usr/bin/python3 scripts/memory_ranks.py [--ranks 1,2,4] [--steps 2] [--csv docs/scaling/memory.csv]"""
+import argparse
+import csv
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+sys.path.insert(0, os.path.join(ROOT, "tests"))
+from fctest import ENV, sorted_positions  # noqa: E402
+import scaling  # noqa: E402
+
+EXE = os.path.join(ROOT, "build", "fecontact")
+COLS = ["peak_rss", "W_H", "W_k", "W_b", "Sigma", "factor", "contact_data"]
+REPLICATED = ["-fast_distributed_contacts", "1000000", "-compliance_condensed_inverse", "host"]
+
+
+def run(np_, steps, extra, tag):
+    path = os.path.join(scaling.OUT, "memory_%s_np%d.h5" % (tag, np_))
+    cmd = ["mpirun", "-n", str(np_), "--oversubscribe", EXE, "-options_file", "input/table1_36k.opts",
+           "-box_dm_plex_filename", scaling.big_mesh(), "-constraint_scheme", "fast", "-time_steps", str(steps), "-quiet",
+           "-output_file", path] + extra
+    subprocess.run(cmd, cwd=ROOT, env=ENV, check=True, capture_output=True)
+    with h5py.File(path, "r") as f:
+        mem = f["memory"][:]
+        contacts = int(f["steps/contacts"][-1])
+        ref, pos = sorted_positions(f, "box")
+    return mem, contacts, ref, pos
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--ranks", default="1,2,4")
+    ap.add_argument("--steps", type=int, default=2)
+    ap.add_argument("--csv", default=None)
+    a = ap.parse_args()
+    os.makedirs(scaling.OUT, exist_ok=True)
+    ranks = [int(r) for r in a.ranks.split(",")]
+    rows = []
+    for np_ in ranks:
+        rows.append(("default", np_) + run(np_, a.steps, [], "default"))
+    rows.append(("replicated", ranks[-1]) + run(ranks[-1], a.steps, REPLICATED, "replicated"))
+    one = rows[0][2].max(axis=0)
+    ref, x1 = rows[0][4], rows[0][5]
+    scale = np.abs(x1 - ref).max()
+    print("| contact phase | ranks | contacts | peak RSS (MB) | vs 1 rank | W_H (MB) | W_k (MB) | W_b (MB) | "
+          "Sigma / C (MB) | contact data (MB) | x p vs 1 rank | MUMPS factor (MB) | positions vs 1 rank |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    out = []
+    for tag, np_, mem, contacts, _, pos in rows:
+        big = mem.max(axis=0)  # the largest rank, per column
+        mb = big / 1048576.0
+        dx = np.abs(pos - x1).max() / scale
+        r = dict(phase=tag, ranks=np_, contacts=contacts, rss_mb=mb[0], rss_ratio=big[0] / one[0], wh_mb=mb[1],
+                 wk_mb=mb[2], wb_mb=mb[3], sigma_mb=mb[4], data_mb=mb[6], data_ratio_p=big[6] / one[6] * np_,
+                 factor_mb=mb[5], dx=dx)
+        out.append(r)
+        print("| %s | %d%s | %d | %.0f | %.2f | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %.0f | %.1e |"
+              % (tag, np_, " (oversubscribed)" if np_ > 2 else "", contacts, r["rss_mb"], r["rss_ratio"], r["wh_mb"],
+                 r["wk_mb"], r["wb_mb"], r["sigma_mb"], r["data_mb"], r["data_ratio_p"], r["factor_mb"], dx))
+    if a.csv:
+        with open(a.csv, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(out[0].keys()))
+            w.writeheader()
+            w.writerows(out)
+
+
+if __name__ == "__main__":
+    main()
