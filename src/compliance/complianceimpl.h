@@ -119,7 +119,8 @@ PETSC_INTERN PetscErrorCode FCSchurFactorGetInverse(FCSchurFactor, PetscInt *ns,
                                                     const PetscReal **C);
 /* every rank: whether C is distributed, S, and this rank's ns x nloc block-cyclic columns of C */
 PETSC_INTERN PetscErrorCode FCSchurFactorGetLocalInverse(FCSchurFactor, PetscBool *dist, PetscInt *ns,
-                                                         const PetscInt **S, PetscInt *nloc, const PetscReal **C);
+                                                         const PetscInt **S, PetscInt *nb, PetscInt *nloc,
+                                                         const PetscReal **C);
 /* bytes: this rank's Sigma / C, MUMPS' factorization memory on this rank and on the largest one */
 PETSC_INTERN PetscErrorCode FCSchurFactorGetMemory(FCSchurFactor, PetscReal *sigma, PetscReal *factor,
                                                    PetscReal *factormax);
@@ -134,11 +135,14 @@ typedef struct _FCSPDInverse *FCSPDInverse;
 PETSC_INTERN PetscErrorCode   FCSPDInverseCreate(MPI_Comm, const char name[], FCSPDInverseType, FCSPDInverse *);
 /* rank 0: a = the upper triangle of Sigma (column-major ns x ns) in, the whole C out; collective */
 PETSC_INTERN PetscErrorCode FCSPDInverseApply(FCSPDInverse, PetscInt ns, PetscReal a[]);
-/* every rank: its block-cyclic columns (1 x p grid, ns rows, lld ns) of Sigma (lower triangle at
+/* every rank: its block-cyclic columns (1 x p grid, blocks of nb, ns rows, lld ns) of Sigma (lower triangle at
    least) in, of the whole C out; collective */
-PETSC_INTERN PetscErrorCode FCSPDInverseApplyLocal(FCSPDInverse, PetscInt ns, PetscReal loc[]);
+PETSC_INTERN PetscErrorCode FCSPDInverseApplyLocal(FCSPDInverse, PetscInt ns, PetscInt nb, PetscReal loc[]);
 /* the columns of an n x n matrix that a rank holds on the 1 x p grid: how many, and the global
    index of local column jl */
-PETSC_INTERN PetscInt       FCSPDLocalColumns(PetscInt n, PetscMPIInt rank, PetscMPIInt size);
-PETSC_INTERN PetscInt       FCSPDGlobalColumn(PetscInt jl, PetscMPIInt rank, PetscMPIInt size);
+PETSC_INTERN PetscInt FCSPDLocalColumns(PetscInt n, PetscInt nb, PetscMPIInt rank, PetscMPIInt size);
+PETSC_INTERN PetscInt FCSPDGlobalColumn(PetscInt jl, PetscInt nb, PetscMPIInt rank, PetscMPIInt size);
+/* the block size of a distributed n x n matrix on size ranks: FC_SPD_BLOCK, smaller where n is
+   small, so that the ranks' columns stay even (at least 4 blocks a rank) */
+PETSC_INTERN PetscInt       FCSPDBlock(PetscInt n, PetscMPIInt size);
 PETSC_INTERN PetscErrorCode FCSPDInverseDestroy(FCSPDInverse *);

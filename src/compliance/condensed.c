@@ -219,7 +219,7 @@ static PetscErrorCode Products(FCCompliance comp, const PetscInt hcptr[], const 
                                const PetscReal hcval[], PetscReal Wb[])
 {
   Condensed       *cd    = (Condensed *)comp->data;
-  PetscInt         ncols = comp->ncols, ns, nloc, nT = cd->nT, *pos = NULL, *win, *lcol, maxrows = 0;
+  PetscInt         ncols = comp->ncols, ns, nb, nloc, nT = cd->nT, *pos = NULL, *win, *lcol, maxrows = 0;
   PetscInt        *cptr = (PetscInt *)hcptr, *crow = (PetscInt *)hcrow;
   PetscReal       *cval = (PetscReal *)hcval, *buf = NULL;
   const PetscInt  *S;
@@ -239,7 +239,7 @@ static PetscErrorCode Products(FCCompliance comp, const PetscInt hcptr[], const 
     whole   = (PetscBool)(whole && win[2 * r] == 0 && win[2 * r + 1] == ncols);
     maxrows = PetscMax(maxrows, win[2 * r + 1] - win[2 * r]);
   }
-  PetscCall(FCSchurFactorGetLocalInverse(cd->sf, &dist, &ns, &S, &nloc, &C));
+  PetscCall(FCSchurFactorGetLocalInverse(cd->sf, &dist, &ns, &S, &nb, &nloc, &C));
   if (!rank) { /* T within S */
     const PetscInt *Sh;
     PetscCall(FCSchurFactorGetInverse(cd->sf, &ns, &Sh, dist ? NULL : &C));
@@ -280,7 +280,7 @@ static PetscErrorCode Products(FCCompliance comp, const PetscInt hcptr[], const 
   PetscCallMPI(MPI_Bcast(pos, (PetscMPIInt)nT, MPIU_INT, 0, comp->ctx.comm));
   PetscCall(PetscMalloc1(ns + 1, &lcol)); /* the local column of each column of C, or -1 */
   for (PetscInt j = 0; j < ns; j++) lcol[j] = -1;
-  for (PetscInt jl = 0; jl < nloc; jl++) lcol[FCSPDGlobalColumn(jl, rank, size)] = jl;
+  for (PetscInt jl = 0; jl < nloc; jl++) lcol[FCSPDGlobalColumn(jl, nb, rank, size)] = jl;
   if (whole) {
     PetscCall(PetscArrayzero(Wb, ncols * ncols));
     PetscCall(FCComplianceAddCongruence(ncols, 0, ncols, nT, cptr, crow, cval, pos, lcol, ns, C, Wb));

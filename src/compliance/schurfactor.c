@@ -199,12 +199,13 @@ static PetscErrorCode Analyse(FCSchurFactor f)
     PetscCall(PetscMalloc1(f->ns + 1, &f->Sall));
     if (!f->rank) PetscCall(PetscArraycpy(f->Sall, f->S, f->ns));
     PetscCallMPI(MPI_Bcast(f->Sall, (PetscMPIInt)f->ns, MPIU_INT, 0, f->comm));
-    f->nloc = FCSPDLocalColumns(f->ns, f->rank, f->size);
+    f->cnb  = FCSPDBlock(f->ns, f->size);
+    f->nloc = FCSPDLocalColumns(f->ns, f->cnb, f->rank, f->size);
     PetscCall(PetscMalloc3((size_t)f->ns * f->nloc + 1, &f->loc, f->nloc + 1, &f->rl, f->ns + 1, &f->yl));
     f->id.nprow     = 1;
     f->id.npcol     = (MUMPS_INT)f->size;
-    f->id.mblock    = FC_SPD_BLOCK;
-    f->id.nblock    = FC_SPD_BLOCK;
+    f->id.mblock    = (MUMPS_INT)f->cnb;
+    f->id.nblock    = (MUMPS_INT)f->cnb;
     f->id.ICNTL(19) = 3; /* distributed on the grid, both triangles */
     if (!f->rank) f->id.schur = NULL;
   } else
@@ -212,12 +213,11 @@ static PetscErrorCode Analyse(FCSchurFactor f)
   f->id.ICNTL(23) = 0;               /* MUMPS' own workspace estimate (FCSchurFactorFactor raises it on a -9) */
   if (!Full(f)) PetscCall(CallMumps(f, 1, "analysis"));
   if (f->dist) {
-    PetscCheck(f->id.schur_mloc == (MUMPS_INT)f->ns && f->id.schur_nloc == (MUMPS_INT)f->nloc, PETSC_COMM_SELF,
-               PETSC_ERR_LIB,
-               "MUMPS' distributed Schur block of body '%s' on rank %d: %d x %d, expected %" PetscInt_FMT
-               " x %" PetscInt_FMT " (1 x %d grid, blocks of %d)",
-               f->name, (int)f->rank, (int)f->id.schur_mloc, (int)f->id.schur_nloc, f->ns, f->nloc, (int)f->size,
-               FC_SPD_BLOCK);
+    PetscCheck(
+        f->id.schur_mloc == (MUMPS_INT)f->ns && f->id.schur_nloc == (MUMPS_INT)f->nloc, PETSC_COMM_SELF, PETSC_ERR_LIB,
+        "MUMPS' distributed Schur block of body '%s' on rank %d: %d x %d, expected %" PetscInt_FMT " x %" PetscInt_FMT
+        " (1 x %d grid, blocks of %d)",
+        f->name, (int)f->rank, (int)f->id.schur_mloc, (int)f->id.schur_nloc, f->ns, f->nloc, (int)f->size, (int)f->cnb);
     f->id.schur     = f->loc;
     f->id.schur_lld = (MUMPS_INT)f->ns;
   }
@@ -294,7 +294,7 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
   /* MUMPS returns the lower triangle by rows: the upper one of the column-major array */
   PetscCall(PetscLogEventBegin(EV_INVERSE, 0, 0, 0, 0));
   if (f->dist)
-    PetscCall(FCSPDInverseApplyLocal(f->inv, f->ns, f->loc));
+    PetscCall(FCSPDInverseApplyLocal(f->inv, f->ns, f->cnb, f->loc));
   else
     PetscCall(FCSPDInverseApply(f->inv, f->ns, f->sigma));
   PetscCall(PetscLogEventEnd(EV_INVERSE, 0, 0, 0, 0));
@@ -323,7 +323,7 @@ static PetscErrorCode ApplyDistributedC(FCSchurFactor f)
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Bcast(r, (PetscMPIInt)f->ns, MPIU_REAL, 0, f->comm));
-  for (PetscInt jl = 0; jl < f->nloc; jl++) f->rl[jl] = r[FCSPDGlobalColumn(jl, f->rank, f->size)];
+  for (PetscInt jl = 0; jl < f->nloc; jl++) f->rl[jl] = r[FCSPDGlobalColumn(jl, f->cnb, f->rank, f->size)];
   PetscCall(PetscBLASIntCast(f->ns, &n));
   PetscCall(PetscBLASIntCast(f->nloc, &m));
   if (m)
@@ -391,11 +391,12 @@ PetscErrorCode FCSchurFactorGetInverse(FCSchurFactor f, PetscInt *ns, const Pets
 }
 
 /* Every rank: whether C is distributed, and then S, and this rank's block-cyclic columns of C
-   (ns x nloc, lld ns; global column of local jl: FCSPDGlobalColumn) */
+   (ns x nloc, lld ns, blocks of nb; global column of local jl: FCSPDGlobalColumn) */
 PetscErrorCode FCSchurFactorGetLocalInverse(FCSchurFactor f, PetscBool *dist, PetscInt *ns, const PetscInt **S,
-                                            PetscInt *nloc, const PetscReal **C)
+                                            PetscInt *nb, PetscInt *nloc, const PetscReal **C)
 {
   PetscFunctionBegin;
+  *nb   = f->cnb;
   *dist = f->dist;
   *ns   = f->ns;
   *S    = f->Sall;

@@ -33,8 +33,8 @@ struct _FCSchurFactor {
   FCSPDInverseType type;
   PetscInt         distmin;
   PetscBool        dist;
-  PetscInt         nloc, *Sall;   /* local columns of C; S on every rank */
-  PetscReal       *loc, *rl, *yl; /* ns x nloc (lld ns); r_S at the local columns; C_loc r_l */
+  PetscInt         cnb, nloc, *Sall; /* block size and local columns of C; S on every rank */
+  PetscReal       *loc, *rl, *yl;    /* ns x nloc (lld ns); r_S at the local columns; C_loc r_l */
 };
 
 /* The owned rows' upper triangle of A (values: only the values, A's pattern being fixed) */

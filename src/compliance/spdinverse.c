@@ -239,23 +239,29 @@ PetscErrorCode FCSPDInverseApply(FCSPDInverse v, PetscInt ns, PetscReal a[])
 
 /* Local columns of an n x n matrix block-cyclic over the 1 x size grid: how many, and the global
    index of local column jl */
-PetscInt FCSPDLocalColumns(PetscInt n, PetscMPIInt rank, PetscMPIInt size)
+PetscInt FCSPDBlock(PetscInt n, PetscMPIInt size)
 {
-  int nn = (int)n, nb = FC_SPD_BLOCK, zero = 0, r = (int)rank, p = (int)size;
+  PetscInt nb = (n + 4 * size - 1) / (4 * size); /* at least 4 blocks a rank: columns even within a block */
+  return PetscMax(1, PetscMin(FC_SPD_BLOCK, nb));
+}
+
+PetscInt FCSPDLocalColumns(PetscInt n, PetscInt nbl, PetscMPIInt rank, PetscMPIInt size)
+{
+  int nn = (int)n, nb = (int)nbl, zero = 0, r = (int)rank, p = (int)size;
   return (PetscInt)numroc_(&nn, &nb, &r, &zero, &p);
 }
 
-PetscInt FCSPDGlobalColumn(PetscInt jl, PetscMPIInt rank, PetscMPIInt size)
+PetscInt FCSPDGlobalColumn(PetscInt jl, PetscInt nb, PetscMPIInt rank, PetscMPIInt size)
 {
-  return ((jl / FC_SPD_BLOCK) * size + rank) * FC_SPD_BLOCK + jl % FC_SPD_BLOCK;
+  return ((jl / nb) * size + rank) * nb + jl % nb;
 }
 
 /* This rank's block-cyclic columns of Sigma (n rows, lld n; the lower triangle at least) become its
    columns of the whole symmetric C = Sigma^-1: pdpotrf and pdpotri on the lower triangle, then the
    upper one from the transpose (pdtran into a scratch of the same size). Collective. */
-PetscErrorCode FCSPDInverseApplyLocal(FCSPDInverse v, PetscInt ns, PetscReal loc[])
+PetscErrorCode FCSPDInverseApplyLocal(FCSPDInverse v, PetscInt ns, PetscInt nbl, PetscReal loc[])
 {
-  int        n, nb = FC_SPD_BLOCK, zero = 0, one = 1, info = 0, dc[9], lld;
+  int        n, nb = (int)nbl, zero = 0, one = 1, info = 0, dc[9], lld;
   PetscInt   nloc;
   PetscReal *t, dzero = 0.0, done = 1.0;
 
@@ -276,11 +282,11 @@ PetscErrorCode FCSPDInverseApplyLocal(FCSPDInverse v, PetscInt ns, PetscReal loc
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &info, 1, MPI_INT, MPI_MAX, v->comm));
   PetscCheck(info == 0, v->comm, PETSC_ERR_LIB, "ScaLAPACK pdpotri on the Schur complement of body '%s': %d", v->name,
              info);
-  nloc = FCSPDLocalColumns(ns, v->rank, v->size);
+  nloc = FCSPDLocalColumns(ns, nbl, v->rank, v->size);
   PetscCall(PetscMalloc1((size_t)ns * nloc + 1, &t));
   pdtran_(&n, &n, &done, loc, &one, &one, dc, &dzero, t, &one, &one, dc); /* t = L^T: C's upper triangle */
   for (PetscInt jl = 0; jl < nloc; jl++) {
-    PetscInt j = FCSPDGlobalColumn(jl, v->rank, v->size);
+    PetscInt j = FCSPDGlobalColumn(jl, nbl, v->rank, v->size);
     for (PetscInt i = 0; i < j; i++) loc[i + jl * ns] = t[i + jl * ns];
   }
   PetscCall(PetscFree(t));
