@@ -130,6 +130,10 @@ PetscErrorCode FCComplianceSetUp(FCCompliance comp)
   PetscFunctionBegin;
   if (comp->setupcalled) PetscFunctionReturn(0);
   if (!comp->type[0]) PetscCall(FCComplianceSetFromOptions(comp));
+  /* a builder that keeps its W_b forms it by rows (FCComplianceBuild hands the others a zeroed whole
+     W_b, where a kept one would be lost) */
+  PetscCheck(!comp->keepswb || comp->windows, comp->ctx.comm, PETSC_ERR_PLIB,
+             "Compliance builder '%s' keeps its W_b (keepswb) but does not form it by rows (windows)", comp->type);
   if (comp->ops.setup) PetscCall((*comp->ops.setup)(comp));
   comp->setupcalled = PETSC_TRUE;
   PetscFunctionReturn(0);

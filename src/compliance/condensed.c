@@ -211,6 +211,17 @@ static PetscErrorCode KeepWb(Condensed *cd, PetscInt *cptr, PetscInt *crow, Pets
   PetscFunctionReturn(0);
 }
 
+/* An MPI count of n values (W_b's rows can pass 2^31 entries before memory does on a large machine) */
+static PetscErrorCode Count(MPI_Comm comm, PetscInt64 n, PetscMPIInt *c)
+{
+  PetscFunctionBegin;
+  PetscCheck(n <= PETSC_MPI_INT_MAX, comm, PETSC_ERR_SUP,
+             "The condensed builder's W_b has %" PetscInt64_FMT " entries to move in one message, more than MPI counts",
+             n);
+  *c = (PetscMPIInt)n;
+  PetscFunctionReturn(0);
+}
+
 /* This rank's rows [wa0, wa1) of W_b = J_T C_TT J_T^T, C_TT the block of C on the contact DOFs T
    within S, from J_T by columns (the host's cptr, crow, cval): formed on the host and sent by rows
    (C on the host), or by every rank from its columns of C and summed on each rank for its rows
@@ -254,13 +265,15 @@ static PetscErrorCode Products(FCCompliance comp, const PetscInt hcptr[], const 
       PetscCall(PetscArrayzero(full, ncols * ncols)); /* it may hold the last W_b */
       PetscCall(FCComplianceAddCongruence(ncols, 0, ncols, nT, cptr, crow, cval, pos, NULL, ns, C, full));
     }
-    if (whole)
-      PetscCallMPI(MPI_Bcast(Wb, (PetscMPIInt)(ncols * ncols), MPIU_REAL, 0, comp->ctx.comm));
-    else {
+    if (whole) {
+      PetscMPIInt n = 0;
+      PetscCall(Count(comp->ctx.comm, (PetscInt64)ncols * ncols, &n));
+      PetscCallMPI(MPI_Bcast(Wb, n, MPIU_REAL, 0, comp->ctx.comm));
+    } else {
       PetscCall(PetscMalloc2(size, &cnt, size, &dsp));
       for (PetscMPIInt r = 0; r < size; r++) {
-        PetscCall(PetscMPIIntCast((win[2 * r + 1] - win[2 * r]) * ncols, &cnt[r]));
-        PetscCall(PetscMPIIntCast(win[2 * r] * ncols, &dsp[r]));
+        PetscCall(Count(comp->ctx.comm, (PetscInt64)(win[2 * r + 1] - win[2 * r]) * ncols, &cnt[r]));
+        PetscCall(Count(comp->ctx.comm, (PetscInt64)win[2 * r] * ncols, &dsp[r]));
       }
       PetscCallMPI(MPI_Scatterv(full, cnt, dsp, MPIU_REAL, Wb, cnt[rank], MPIU_REAL, 0, comp->ctx.comm));
       PetscCall(PetscFree2(cnt, dsp));
@@ -284,14 +297,16 @@ static PetscErrorCode Products(FCCompliance comp, const PetscInt hcptr[], const 
   if (whole) {
     PetscCall(PetscArrayzero(Wb, ncols * ncols));
     PetscCall(FCComplianceAddCongruence(ncols, 0, ncols, nT, cptr, crow, cval, pos, lcol, ns, C, Wb));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, Wb, (PetscMPIInt)(ncols * ncols), MPIU_REAL, MPIU_SUM, comp->ctx.comm));
+    PetscMPIInt n = 0;
+    PetscCall(Count(comp->ctx.comm, (PetscInt64)ncols * ncols, &n));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, Wb, n, MPIU_REAL, MPIU_SUM, comp->ctx.comm));
   } else {
     PetscCall(PetscMalloc1(maxrows * ncols + 1, &buf));
     for (PetscMPIInt q = 0; q < size; q++) { /* rank q's rows: every rank's terms, summed on q */
       PetscInt    a0 = win[2 * q], a1 = win[2 * q + 1];
       PetscReal  *out = q == rank ? Wb : buf;
-      PetscMPIInt n;
-      PetscCall(PetscMPIIntCast((a1 - a0) * ncols, &n));
+      PetscMPIInt n = 0;
+      PetscCall(Count(comp->ctx.comm, (PetscInt64)(a1 - a0) * ncols, &n));
       PetscCall(PetscArrayzero(out, (a1 - a0) * ncols));
       PetscCall(FCComplianceAddCongruence(ncols, a0, a1, nT, cptr, crow, cval, pos, lcol, ns, C, out));
       PetscCallMPI(MPI_Reduce(q == rank ? MPI_IN_PLACE : buf, Wb, n, MPIU_REAL, MPIU_SUM, q, comp->ctx.comm));

@@ -206,18 +206,22 @@ static PetscErrorCode Analyse(FCSchurFactor f)
     f->id.npcol     = (MUMPS_INT)f->size;
     f->id.mblock    = (MUMPS_INT)f->cnb;
     f->id.nblock    = (MUMPS_INT)f->cnb;
-    f->id.ICNTL(19) = 3; /* distributed on the grid, both triangles */
-    if (!f->rank) f->id.schur = NULL;
+    f->id.ICNTL(19) = 3;    /* distributed on the grid, both triangles */
+    f->id.schur     = NULL; /* given after the analysis, at its size */
   } else
     f->id.ICNTL(19) = f->ns ? 1 : 0; /* Schur complement centralized on the host (lower triangle by rows) */
   f->id.ICNTL(23) = 0;               /* MUMPS' own workspace estimate (FCSchurFactorFactor raises it on a -9) */
   if (!Full(f)) PetscCall(CallMumps(f, 1, "analysis"));
-  if (f->dist) {
-    PetscCheck(
-        f->id.schur_mloc == (MUMPS_INT)f->ns && f->id.schur_nloc == (MUMPS_INT)f->nloc, PETSC_COMM_SELF, PETSC_ERR_LIB,
-        "MUMPS' distributed Schur block of body '%s' on rank %d: %d x %d, expected %" PetscInt_FMT " x %" PetscInt_FMT
-        " (1 x %d grid, blocks of %d)",
-        f->name, (int)f->rank, (int)f->id.schur_mloc, (int)f->id.schur_nloc, f->ns, f->nloc, (int)f->size, (int)f->cnb);
+  if (f->dist) { /* MUMPS' layout is the grid's (one verdict: a rank alone leaving would hang the others) */
+    PetscBool ok = (PetscBool)(f->id.schur_mloc == (MUMPS_INT)f->ns && f->id.schur_nloc == (MUMPS_INT)f->nloc &&
+                               f->id.nprow == 1 && f->id.npcol == (MUMPS_INT)f->size &&
+                               f->id.mblock == (MUMPS_INT)f->cnb && f->id.nblock == (MUMPS_INT)f->cnb);
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPIU_BOOL, MPI_LAND, f->comm));
+    PetscCheck(ok, f->comm, PETSC_ERR_LIB,
+               "MUMPS' distributed Schur block of body '%s' is not on the expected 1 x %d grid of %" PetscInt_FMT
+               " x %" PetscInt_FMT "-column blocks (rank %d: %d x %d local, grid %d x %d)",
+               f->name, (int)f->size, f->ns, f->cnb, (int)f->rank, (int)f->id.schur_mloc, (int)f->id.schur_nloc,
+               (int)f->id.nprow, (int)f->id.npcol);
     f->id.schur     = f->loc;
     f->id.schur_lld = (MUMPS_INT)f->ns;
   }

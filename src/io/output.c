@@ -383,13 +383,6 @@ PetscErrorCode FCOutputWriteRestart(FCOutput out, PetscInt step, PetscReal t, Pe
   PetscFunctionReturn(0);
 }
 
-/* Writes what is buffered and closes the file. After a failed write nothing more is written.
-   A failure outside HDF5 (disk space not reserved, the XDMF index) leaves nothing unwritten in
-   HDF5, and the file is closed. After one inside HDF5 (FCH5FailedInside, on every rank alike) it
-   is not even closed: HDF5 1.10 cannot close a file whose metadata it cannot write (H5Fclose fails
-   half-way and leaves a dangling handle, which its clean-up at MPI_Finalize dereferences), so the
-   file is left open as its last flush made it and the program exits without that clean-up
-   (FCOutputFileLeftOpen, src/main.c). Returns the (collective) error of a final write that fails. */
 /* /memory: one row per rank (bytes; its columns named by the attribute `columns`), written again
    (replaced) by each call, e.g. at the end of a restarted run; collective */
 PetscErrorCode FCOutputWriteMemory(FCOutput out, PetscInt ncols, const char *const names[], const PetscReal row[])
@@ -417,6 +410,13 @@ PetscErrorCode FCOutputWriteMemory(FCOutput out, PetscInt ncols, const char *con
   PetscFunctionReturn(0);
 }
 
+/* Writes what is buffered and closes the file. After a failed write nothing more is written.
+   A failure outside HDF5 (disk space not reserved, the XDMF index) leaves nothing unwritten in
+   HDF5, and the file is closed. After one inside HDF5 (FCH5FailedInside, on every rank alike) it
+   is not even closed: HDF5 1.10 cannot close a file whose metadata it cannot write (H5Fclose fails
+   half-way and leaves a dangling handle, which its clean-up at MPI_Finalize dereferences), so the
+   file is left open as its last flush made it and the program exits without that clean-up
+   (FCOutputFileLeftOpen, src/main.c). Returns the (collective) error of a final write that fails. */
 PetscErrorCode FCOutputDestroy(FCOutput *output)
 {
   FCOutput       out  = *output;
