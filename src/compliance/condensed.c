@@ -70,12 +70,11 @@ static PetscErrorCode SetFromOptions_Condensed(FCCompliance comp, PetscOptionIte
                               "Sigma and its inverse distributed (MUMPS and ScaLAPACK, never gathered), or auto: "
                               "distributed from -compliance_condensed_distributed_size on several ranks, else rank 0",
                               NULL, InverseTypes, 5, InverseTypes[cd->inverse], &cd->inverse, NULL));
-  PetscCall(FCOptionsInt(PetscOptionsObject, "-compliance_condensed_distributed_size",
-                         "Schur block size (DOFs) from which -compliance_condensed_inverse auto keeps Sigma and its "
-                         "inverse distributed",
-                         &cd->distmin, NULL));
-  PetscCheck(cd->distmin >= 0, comp->ctx.comm, PETSC_ERR_USER_INPUT,
-             "Option -compliance_condensed_distributed_size must be >= 0, got %" PetscInt_FMT, cd->distmin);
+  PetscCall(
+      FCOptionsIntRange(PetscOptionsObject, "-compliance_condensed_distributed_size",
+                        "Schur block size (DOFs) from which -compliance_condensed_inverse auto keeps Sigma and its "
+                        "inverse distributed",
+                        0, PETSC_MAX_INT, &cd->distmin, NULL));
   PetscCall(FCOptionsInt(PetscOptionsObject, "-compliance_condensed_ring",
                          "Rings of surface neighbours around contact DOFs in the Schur block", &cd->ring, NULL));
   PetscCheck(cd->ring >= 0, comp->ctx.comm, PETSC_ERR_USER_INPUT,
@@ -305,7 +304,7 @@ static PetscErrorCode Products(FCCompliance comp, const PetscInt hcptr[], const 
     for (PetscMPIInt q = 0; q < size; q++) { /* rank q's rows: every rank's terms, summed on q */
       PetscInt    a0 = win[2 * q], a1 = win[2 * q + 1];
       PetscReal  *out = q == rank ? Wb : buf;
-      PetscMPIInt n = 0;
+      PetscMPIInt n   = 0;
       PetscCall(Count(comp->ctx.comm, (PetscInt64)(a1 - a0) * ncols, &n));
       PetscCall(PetscArrayzero(out, (a1 - a0) * ncols));
       PetscCall(FCComplianceAddCongruence(ncols, a0, a1, nT, cptr, crow, cval, pos, lcol, ns, C, out));

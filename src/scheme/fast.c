@@ -71,12 +71,11 @@ static PetscErrorCode SetFromOptions_Fast(FCScheme scheme, PetscOptionItems *Pet
   }
   PetscCall(PetscOptionsBool("-fast_wk_rows", "With split contact sweeps, each rank forms only its block rows of W_k",
                              NULL, fast->by_rows, &fast->by_rows, NULL));
-  PetscCall(FCOptionsInt(PetscOptionsObject, "-fast_distributed_contacts",
-                         "From this many contacts, with split contact sweeps on several ranks, each rank holds only "
-                         "its block rows of W_H (0: always)",
-                         &fast->dist_min, NULL));
-  PetscCheck(fast->dist_min >= 0, scheme->comm, PETSC_ERR_USER_INPUT,
-             "Option -fast_distributed_contacts must be >= 0, got %" PetscInt_FMT, fast->dist_min);
+  PetscCall(
+      FCOptionsIntRange(PetscOptionsObject, "-fast_distributed_contacts",
+                        "From this many contacts, with split contact sweeps on several ranks, each rank holds only "
+                        "its block rows of W_H (0: always)",
+                        0, PETSC_MAX_INT, &fast->dist_min, NULL));
   PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->wh_mat_type, "-wh_mat_type"));
   PetscCall(CheckType(scheme->comm, PETSC_TRUE, fast->frames_mat_type, "-frames_mat_type"));
   PetscCall(CheckType(scheme->comm, PETSC_FALSE, fast->vec_type, "-contact_vec_type"));
