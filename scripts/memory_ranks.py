@@ -28,19 +28,9 @@ COLS = ["peak_rss", "W_H", "W_k", "W_b", "Sigma", "factor", "contact_data"]
 REPLICATED = ["-fast_distributed_contacts", "1000000", "-compliance_condensed_inverse", "host"]
 
 
-def large_mesh():
-    m = os.path.join(ROOT, "build", "meshes", "large_box.msh")
-    if not os.path.exists(m):
-        os.makedirs(os.path.dirname(m), exist_ok=True)
-        subprocess.run(["gmsh", "-3", "-nt", "1", "-format", "msh41", "-bin", "-setnumber", "nx", "64", "-setnumber",
-                        "ny", "64", "-setnumber", "nz", "20", "-setnumber", "d", "0.05",
-                        os.path.join(ROOT, "meshes", "table1.geo"), "-o", m], check=True, capture_output=True)
-    return m
-
-
 def scene_args(name):
-    if name == "large":
-        large_mesh()
+    if name == "large":  # input/large_box.opts reads build/meshes/large_box.msh
+        scaling.table1_mesh("large_box", 64, 64, 20)
         return ["-options_file", "input/large_box.opts"]
     return ["-options_file", "input/table1_36k.opts", "-box_dm_plex_filename", scaling.big_mesh(),
             "-constraint_scheme", "fast"]

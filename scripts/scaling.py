@@ -56,14 +56,20 @@ PHASES = ["assembly", "factorization", "free_motion", "collision", "compliance",
           "rebuild_w", "proximity_update", "integration", "output"]
 
 
-def big_mesh():
-    m = os.path.join(ROOT, "build", "meshes", "table1_150k.msh")
+def table1_mesh(name, nx, ny, nz):
+    """build/meshes/<name>.msh: the Table 1 box family (meshes/table1.geo) at nx x ny x nz vertices, made
+    by gmsh the first time"""
+    m = os.path.join(ROOT, "build", "meshes", name + ".msh")
     if not os.path.exists(m):
         os.makedirs(os.path.dirname(m), exist_ok=True)
-        subprocess.run(["gmsh", "-3", "-nt", "1", "-format", "msh41", "-bin", "-setnumber", "nx", "40", "-setnumber", "ny", "40",
-                        "-setnumber", "nz", "31", "-setnumber", "d", "0.05", os.path.join(ROOT, "meshes", "table1.geo"), "-o", m],
-                       check=True, capture_output=True)
+        subprocess.run(["gmsh", "-3", "-nt", "1", "-format", "msh41", "-bin", "-setnumber", "nx", str(nx), "-setnumber",
+                        "ny", str(ny), "-setnumber", "nz", str(nz), "-setnumber", "d", "0.05",
+                        os.path.join(ROOT, "meshes", "table1.geo"), "-o", m], check=True, capture_output=True)
     return m
+
+
+def big_mesh():
+    return table1_mesh("table1_150k", 40, 40, 31)
 
 
 def scene(name):
