@@ -256,13 +256,21 @@ PetscInt FCSPDGlobalColumn(PetscInt jl, PetscInt nb, PetscMPIInt rank, PetscMPII
   return ((jl / nb) * size + rank) * nb + jl % nb;
 }
 
+/* Rows of the transpose's panel (FCSPDInverseApplyLocal): a scratch of 1/16 of this rank's columns,
+   at least one block high, so that the transient memory stays small beside C's columns */
+static PetscInt PanelRows(PetscInt ns, PetscInt nbl)
+{
+  return PetscMin(ns, PetscMax(nbl, (ns + 15) / 16));
+}
+
 /* This rank's block-cyclic columns of Sigma (n rows, lld n; the lower triangle at least) become its
    columns of the whole symmetric C = Sigma^-1: pdpotrf and pdpotri on the lower triangle, then the
-   upper one from the transpose (pdtran into a scratch of the same size). Collective. */
+   upper one from the transpose, one panel of rows at a time (pdtran of L's columns [r0, r0 + h)
+   into an h x n scratch on the same 1 x p grid). Collective. */
 PetscErrorCode FCSPDInverseApplyLocal(FCSPDInverse v, PetscInt ns, PetscInt nbl, PetscReal loc[])
 {
   int        n, nb = (int)nbl, zero = 0, one = 1, info = 0, dc[9], lld;
-  PetscInt   nloc;
+  PetscInt   nloc, hmax;
   PetscReal *t, dzero = 0.0, done = 1.0;
 
   PetscFunctionBegin;
@@ -283,11 +291,20 @@ PetscErrorCode FCSPDInverseApplyLocal(FCSPDInverse v, PetscInt ns, PetscInt nbl,
   PetscCheck(info == 0, v->comm, PETSC_ERR_LIB, "ScaLAPACK pdpotri on the Schur complement of body '%s': %d", v->name,
              info);
   nloc = FCSPDLocalColumns(ns, nbl, v->rank, v->size);
-  PetscCall(PetscMalloc1((size_t)ns * nloc + 1, &t));
-  pdtran_(&n, &n, &done, loc, &one, &one, dc, &dzero, t, &one, &one, dc); /* t = L^T: C's upper triangle */
-  for (PetscInt jl = 0; jl < nloc; jl++) {
-    PetscInt j = FCSPDGlobalColumn(jl, nbl, v->rank, v->size);
-    for (PetscInt i = 0; i < j; i++) loc[i + jl * ns] = t[i + jl * ns];
+  hmax = PanelRows(ns, nbl);
+  PetscCall(PetscMalloc1((size_t)hmax * nloc + 1, &t));
+  for (PetscInt r0 = 0; r0 < ns; r0 += hmax) {
+    int h = (int)PetscMin(hmax, ns - r0), ja = (int)r0 + 1, dt[9];
+
+    descinit_(dt, &h, &n, &h, &nb, &zero, &zero, &v->ctxt_all, &h, &info);
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "ScaLAPACK descinit (panel) for body '%s': %d", v->name,
+               info);
+    pdtran_(&h, &n, &done, loc, &one, &ja, dc, &dzero, t, &one, &one, dt); /* t = L(:, r0:r0+h)^T */
+    for (PetscInt jl = 0; jl < nloc; jl++) {
+      PetscInt j = FCSPDGlobalColumn(jl, nbl, v->rank, v->size);
+      for (PetscInt i = r0; i < PetscMin(j, r0 + h); i++)
+        loc[i + jl * ns] = t[(i - r0) + jl * h]; /* C's upper triangle */
+    }
   }
   PetscCall(PetscFree(t));
   PetscFunctionReturn(0);
