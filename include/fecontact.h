@@ -126,8 +126,9 @@ PETSC_EXTERN PetscErrorCode    FCBodyGetRotation(FCBody, PetscReal[4], PetscBool
    the supports on the body and its moment about the region's centroid */
 PETSC_EXTERN PetscErrorCode FCBodyGetExternalWork(FCBody, PetscReal *);
 PETSC_EXTERN PetscErrorCode FCBodyGetReactions(FCBody, PetscInt *n, const char ***names, const PetscReal **values);
-/* The factorizations of the body's A and the Krylov iterations of its solves so far (0 for bodies without) */
-PETSC_EXTERN PetscErrorCode FCBodyGetSolverCounts(FCBody, PetscInt *nfactor, PetscInt *nkrylov);
+/* The factorizations of the body's A, the Krylov iterations of its solves and the Newton iterations of
+   its free motions so far (0 for bodies without) */
+PETSC_EXTERN PetscErrorCode FCBodyGetSolverCounts(FCBody, PetscInt *nfactor, PetscInt *nkrylov, PetscInt *nnewton);
 PETSC_EXTERN PetscErrorCode FCBodyGetEnergy(FCBody, FCEnergy *);
 PETSC_EXTERN PetscErrorCode FCBodyGetVisual(FCBody, const FCBodyVisual **);
 PETSC_EXTERN PetscErrorCode FCBodyGetVisualPositions(FCBody, PetscReal[]);

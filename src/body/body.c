@@ -244,11 +244,11 @@ PetscErrorCode FCBodyGetExternalWork(FCBody body, PetscReal *w)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCBodyGetSolverCounts(FCBody body, PetscInt *nfactor, PetscInt *nkrylov)
+PetscErrorCode FCBodyGetSolverCounts(FCBody body, PetscInt *nfactor, PetscInt *nkrylov, PetscInt *nnewton)
 {
   PetscFunctionBegin;
-  *nfactor = *nkrylov = 0;
-  if (body->ops.getsolvercounts) PetscCall((*body->ops.getsolvercounts)(body, nfactor, nkrylov));
+  *nfactor = *nkrylov = *nnewton = 0;
+  if (body->ops.getsolvercounts) PetscCall((*body->ops.getsolvercounts)(body, nfactor, nkrylov, nnewton));
   PetscFunctionReturn(0);
 }
 

@@ -74,7 +74,7 @@ typedef struct {
   PetscErrorCode (*settime)(FCBody, PetscReal t);
   PetscErrorCode (*getreactions)(FCBody, PetscInt *n, const char ***names, const PetscReal **values);
   /* optional: factorizations and Krylov iterations so far */
-  PetscErrorCode (*getsolvercounts)(FCBody, PetscInt *nfactor, PetscInt *nkrylov);
+  PetscErrorCode (*getsolvercounts)(FCBody, PetscInt *nfactor, PetscInt *nkrylov, PetscInt *nnewton);
   PetscErrorCode (*getcontactmemory)(FCBody, PetscReal bytes[3]); /* W_b, Sigma / C, factor on this rank */
 } FCBodyOps;
 

@@ -44,6 +44,7 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
     fem->nfixed_box = n / 6;
   }
   PetscCall(FCFEMBCSetFromOptions(PetscOptionsObject, body));
+  PetscCall(FCFEMNewtonSetFromOptions(PetscOptionsObject, body));
   {
     const char *inv[] = {"error", "allow"};
     PetscInt    a     = fem->allow_inverted ? 1 : 0;
@@ -265,6 +266,7 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   PetscCall(FCFEMCheckDerived(body));
   fem->Acurrent = PETSC_TRUE;
   PetscCall(FCFEMScheduleSetUp(body)); /* reuse: the first step takes its operator at its state */
+  PetscCall(FCFEMNewtonSetUp(body));   /* -free_motion newton: its SNES */
   PetscCall(FCMeshCreateVisual(m, &body->visual));
   PetscCall(FCBodyFEMGetReferenceCoordinates(body, &fem->Xg));
   /* boundary: owned vertices (candidate contact points) and outward triangles (src/mesh/boundary.c) */
@@ -280,14 +282,15 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   PetscFunctionReturn(0);
 }
 
-/* The body's factorizations of A (a condensed builder's misses included) and CG iterations */
-static PetscErrorCode GetSolverCounts_FEM(FCBody body, PetscInt *nfactor, PetscInt *nkrylov)
+/* The body's factorizations of A (a condensed builder's misses included), CG and Newton iterations */
+static PetscErrorCode GetSolverCounts_FEM(FCBody body, PetscInt *nfactor, PetscInt *nkrylov, PetscInt *nnewton)
 {
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
   *nfactor = fem->nfactor + (fem->comp ? FCComplianceOwnFactorizations(fem->comp) : 0);
   *nkrylov = fem->nkrylov;
+  *nnewton = fem->nnewton;
   PetscFunctionReturn(0);
 }
 
@@ -306,6 +309,7 @@ static PetscErrorCode Destroy_FEM(FCBody body)
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
+  PetscCall(FCFEMNewtonDestroy(body));
   PetscCall(KSPDestroy(&fem->ksp));
   PetscCall(FCFEMScheduleDestroy(body));
   PetscCall(FCComplianceDestroy(&fem->comp));
@@ -363,6 +367,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   fem->refactor_residual       = 0.003;
   fem->coo                     = PETSC_TRUE; /* co-rotational; a linear K is summed once, by values */
   fem->rotation_exact          = PETSC_TRUE; /* co-rotational without fixed vertices */
+  fem->free_motion             = -1;         /* newton for a hyperelastic material, else linearized */
   body->deformable             = PETSC_TRUE;
   body->state_cols             = 6; /* u, v */
   body->state_per_vertex       = PETSC_TRUE;

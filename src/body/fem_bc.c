@@ -269,7 +269,7 @@ PetscErrorCode FCFEMBCBeginStep(FCBody body, PetscReal t)
 }
 
 /* b += h f_load, and the coupling of the free rows with the prescribed motion (header) */
-PetscErrorCode FCFEMBCAddRHS(FCBody body, Vec b)
+PetscErrorCode FCFEMBCAddRHS(FCBody body, Vec b, PetscBool stiffness)
 {
   FEM      *fem = (FEM *)body->data;
   FCMesh   *m   = &fem->mesh;
@@ -297,14 +297,18 @@ PetscErrorCode FCFEMBCAddRHS(FCBody body, Vec b)
         for (int d = 0; d < 3; d++) {
           const PetscReal *Xv = &m->X[3 * v], vp = FCFEMConstrainedV(fem, k, Xv, PETSC_FALSE, h, d),
                           v0 = FCFEMConstrainedV(fem, k, Xv, PETSC_TRUE, h, d);
-          wk[3 * a + d]      = h * h * vp + h * fem->beta * vp +
-                          (fem->mat->linear ? h * FCFEMConstrainedU(fem, k, Xv, FC_BC_NOW, d) : 0.0);
-          wm[3 * a + d] = body->quasistatic ? 0.0 : (vp - v0) + h * fem->alpha * vp;
+          wk[3 * a + d]      = !stiffness ? 0.0
+                                          : h * h * vp + h * fem->beta * vp +
+                                           (fem->mat->linear ? h * FCFEMConstrainedU(fem, k, Xv, FC_BC_NOW, d) : 0.0);
+          wm[3 * a + d]      = body->quasistatic ? 0.0 : (vp - v0) + h * fem->alpha * vp;
         }
       }
       if (!any) continue;
       FCFEMGatherElement(fem, c, ul, X, x);
-      PetscCall((*fem->mat->element)(fem->mat, x, X, &fem->Dminv[9 * c], fem->vol[c], NULL, Ke));
+      if (stiffness)
+        PetscCall((*fem->mat->element)(fem->mat, x, X, &fem->Dminv[9 * c], fem->vol[c], NULL, Ke));
+      else
+        PetscCall(PetscArrayzero(Ke, 144));
       FCTetMass(body->density, fem->vol[c], fem->lumped, Me);
       for (int a = 0; a < 4; a++) {
         PetscInt v = m->cellVerts[4 * c + a] - m->vStart;

@@ -77,7 +77,8 @@ static PetscErrorCode CrossField(const PetscReal a[3], Vec r, Vec y)
 /* Whether the body advances its rotation exactly: asked for, co-rotational, no fixed vertex */
 PetscBool FCFEMRotationActive(FEM *fem)
 {
-  return (PetscBool)(fem->rotation_exact && !fem->mat->linear && fem->nfixed == 0);
+  return (PetscBool)(fem->rotation_exact && fem->mat->rotation && fem->free_motion != FC_FREE_MOTION_NEWTON &&
+                     fem->nfixed == 0);
 }
 
 /* The rotation of the step: omega from the state (u, v), and the vectors of the header comment:

@@ -287,12 +287,13 @@ PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
   }
   SETERRQ(body->comm, PETSC_ERR_CONV_FAILED,
           "Body '%s': %.0f element(s) turned inside out at step %" PetscInt_FMT
-          " (volume ratio J = det F down to %g, at (%g, %g, %g)). The %s material is a small-strain model and "
-          "does not resist it: the body is crushed or stretched through its own thickness, and its surface "
-          "crosses itself and what it touches. Make the body stiffer or thicker, its mesh finer, or -time_step "
-          "smaller; -%sinverted allow runs on",
+          " (volume ratio J = det F down to %g, at (%g, %g, %g)). %s the body is crushed or stretched through its "
+          "own thickness, and its surface crosses itself and what it touches. Make the body stiffer or thicker, its "
+          "mesh finer, or -time_step smaller; -%sinverted allow runs on",
           body->name, (double)where[3], step, (double)all.J, (double)where[0], (double)where[1], (double)where[2],
-          fem->material, body->prefix);
+          fem->mat->hyperelastic ? "The step went past what the material's energy can resist:"
+                                 : "The material is a small-strain model and does not resist it:",
+          body->prefix);
 }
 
 /* contact_pressure: per owned visual vertex, the normal force of the last step's contacts on it

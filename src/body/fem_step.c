@@ -8,6 +8,13 @@
    one (MatSetValues: a search in the row per entry, a stash for the remote ones) */
 PetscErrorCode FCFEMAssembleElastic(FCBody body, Vec u, Vec f, Mat K)
 {
+  PetscFunctionBegin;
+  PetscCall(FCFEMAssembleElasticAt(body, u, FC_BC_NOW, f, K));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCFEMAssembleElasticAt(FCBody body, Vec u, int when, Vec f, Mat K)
+{
   FEM               *fem = (FEM *)body->data;
   FCMesh            *m   = &fem->mesh;
   const PetscScalar *ul;
@@ -27,7 +34,7 @@ PetscErrorCode FCFEMAssembleElastic(FCBody body, Vec u, Vec f, Mat K)
     PetscReal  X[12], x[12], fe[12], Kv[144];
     PetscReal *Ke = coo ? &fem->Kcells[144 * c] : Kv;
     PetscInt   idx[12];
-    FCFEMGatherElement(fem, c, ul, X, x);
+    FCFEMGatherElementAt(fem, c, ul, when, X, x);
     PetscCall((*fem->mat->element)(fem->mat, x, X, &fem->Dminv[9 * c], fem->vol[c], f ? fe : NULL, K ? Ke : NULL));
     if (f)
       for (int a = 0; a < 4; a++) {
@@ -243,6 +250,10 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
   PetscFunctionBegin;
   PetscCall(FCFEMBCBeginStep(body, t));
   if (body->quasistatic) PetscCall(VecZeroEntries(fem->v));
+  if (fem->free_motion == FC_FREE_MOTION_NEWTON) {
+    PetscCall(FCFEMNewtonFreeMotion(body, t));
+    PetscFunctionReturn(0);
+  }
   rotate = FCFEMRotationActive(fem);
   if (rotate) {
     PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));
@@ -281,7 +292,7 @@ PetscErrorCode FreeMotion_FEM(FCBody body, PetscReal t)
     PetscCall(FCFEMKMult(body, vk, fem->work));
     PetscCall(VecAXPY(fem->b, -h * h, fem->work));
   }
-  PetscCall(FCFEMBCAddRHS(body, fem->b));
+  PetscCall(FCFEMBCAddRHS(body, fem->b, PETSC_TRUE));
   PetscCall(FCFEMScheduleSolve(body, fem->b, fem->dv, t));
   if (rotate) { /* dv = D + v~ - v_t */
     PetscCall(VecAXPY(fem->dv, 1.0, fem->rvt));

@@ -1,6 +1,7 @@
 /* Private data of an FE body, shared by its files:
      fem.c          options, set-up, destroy, type registration, accessors for tests and tools
      fem_step.c     element loops, A and its factorization, free motion (eq. 5), integration (eq. 2)
+     fem_newton.c   the free motion by Newton's method (SNES) of a nonlinear body
      fem_state.c    centroid, energies, visual positions and fields, restart state, NaN check
      fem_contact.c  contact points, surface triangles, proximity positions, the compliance builder
      fem_rotation.c the rotation of a free co-rotational body within a step
@@ -12,6 +13,7 @@
      fem_reaction.c the constrained regions' reactions */
 #pragma once
 #include "bodyimpl.h"
+#include <petscsnes.h>
 
 #define FC_MAX_FIXED_BOXES 8 /* -<body>_fixed_box: boxes at most */
 
@@ -45,6 +47,7 @@ typedef struct {
 } FCFEMLoad;
 
 enum { FC_FACTORIZATION_EVERY_STEP, FC_FACTORIZATION_REUSE };
+enum { FC_FREE_MOTION_LINEARIZED, FC_FREE_MOTION_NEWTON };
 
 typedef struct {
   FCMesh     mesh;
@@ -81,24 +84,30 @@ typedef struct {
   PetscBool       factored;   /* the factor of A is that of the current A */
   PetscInt        factor_age; /* steps since A was last factored */
   /* the factorization schedule (fem_schedule.c, fem_warp.c; docs/method.md "When A is factored") */
-  PetscInt         factorization;                                            /* FC_FACTORIZATION_EVERY_STEP or _REUSE */
-  PetscReal        ksp_rtol, refactor_rotation, refactor_residual;           /* reuse: CG's tolerance, the triggers */
-  PetscInt         ksp_max_it, refactor_iterations, refactor_every, nkrylov; /* ... and CG iterations so far */
-  PetscBool        refactor_next, fresh, hasprev; /* factor at the next step; A factored this step; xprev holds */
-  PetscReal        angle, tnow;                   /* the largest vertex rotation since the last factorization */
-  Vec              state;                         /* where this step's A is linearized (u or the turned state) */
-  PetscReal       *Rcell, *Rv0, *dR;              /* per cell its rotation; per owned vertex block R_0 and Q */
-  PetscReal       *Rvnow, *Rvprev;                /* per owned vertex block its rotation now, at the last correction */
-  Vec              rcol[3], rcolloc[3];           /* the vertex rotations' sums */
-  Vec              rw2, xlast, xres, xcorr;       /* work; the last free motion (CG's first guess); the correction */
-  Vec              xprev, rprev;                  /* the last correction and its right-hand side h J^T lambda */
-  Mat              Aop;                           /* today's A, matrix-free */
-  KSP              kspk;                          /* CG on Aop, preconditioned by the warped factor */
-  PetscInt         nsw, *swdof, *swperm;          /* the surface vertices of every rank (first DOFs, sorted) */
-  PetscReal       *swR, *swbuf, *swall;           /* their Q; this rank's; every rank's, gathered */
-  PetscMPIInt     *swcounts, *swdispls;
-  PetscBool        coo;    /* -assembly coo: K summed by MatSetValuesCOO from Kcells */
-  PetscReal       *Kcells; /* coo: the element matrices, 144 per cell, in cell order */
+  PetscInt     factorization;                                            /* FC_FACTORIZATION_EVERY_STEP or _REUSE */
+  PetscReal    ksp_rtol, refactor_rotation, refactor_residual;           /* reuse: CG's tolerance, the triggers */
+  PetscInt     ksp_max_it, refactor_iterations, refactor_every, nkrylov; /* ... and CG iterations so far */
+  PetscBool    refactor_next, fresh, hasprev; /* factor at the next step; A factored this step; xprev holds */
+  PetscReal    angle, tnow;                   /* the largest vertex rotation since the last factorization */
+  Vec          state;                         /* where this step's A is linearized (u or the turned state) */
+  PetscReal   *Rcell, *Rv0, *dR;              /* per cell its rotation; per owned vertex block R_0 and Q */
+  PetscReal   *Rvnow, *Rvprev;                /* per owned vertex block its rotation now, at the last correction */
+  Vec          rcol[3], rcolloc[3];           /* the vertex rotations' sums */
+  Vec          rw2, xlast, xres, xcorr;       /* work; the last free motion (CG's first guess); the correction */
+  Vec          xprev, rprev;                  /* the last correction and its right-hand side h J^T lambda */
+  Mat          Aop;                           /* today's A, matrix-free */
+  KSP          kspk;                          /* CG on Aop, preconditioned by the warped factor */
+  PetscInt     nsw, *swdof, *swperm;          /* the surface vertices of every rank (first DOFs, sorted) */
+  PetscReal   *swR, *swbuf, *swall;           /* their Q; this rank's; every rank's, gathered */
+  PetscMPIInt *swcounts, *swdispls;
+  PetscBool    coo; /* -assembly coo: K summed by MatSetValuesCOO from Kcells */
+  /* the Newton free motion (fem_newton.c) */
+  PetscInt         free_motion; /* -free_motion: FC_FREE_MOTION_LINEARIZED or _NEWTON (-1: the material's default) */
+  SNES             snes;        /* its iterations, on the body's KSP */
+  Vec              nw, nf, nbc, nr; /* the iterate's state at t + h, f_int there, b_c, the residual */
+  PetscBool        jacobian;        /* A formed and factored at an iterate of this step */
+  PetscInt         nnewton;         /* Newton iterations so far */
+  PetscReal       *Kcells;          /* coo: the element matrices, 144 per cell, in cell order */
   PetscReal        mass;
   FCEnergy         energy;             /* the last energy computed (GetEnergy_FEM) ... */
   PetscObjectState energy_u, energy_v; /* ... for these states of u and v (0: none yet) */
@@ -147,10 +156,14 @@ static inline PetscReal FCFEMConstrainedV(const FEM *fem, PetscInt k, const Pets
 /* Component d of the displacement now of local vertex v: its constraint's, or from the local vector
    ul (FCFEMLocalU), or for an owned vertex from the owned rows of a global vector whose first row is
    lo (FCFEMOwnedU) */
+static inline PetscReal FCFEMLocalUAt(const FEM *fem, PetscInt v, const PetscScalar *ul, int when, int d)
+{
+  return fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], &fem->mesh.X[3 * v], when, d)
+                       : PetscRealPart(ul[fem->ldof[v] + d]);
+}
 static inline PetscReal FCFEMLocalU(const FEM *fem, PetscInt v, const PetscScalar *ul, int d)
 {
-  return fem->fixed[v] ? FCFEMConstrainedU(fem, fem->creg[v], &fem->mesh.X[3 * v], FC_BC_NOW, d)
-                       : PetscRealPart(ul[fem->ldof[v] + d]);
+  return FCFEMLocalUAt(fem, v, ul, FC_BC_NOW, d);
 }
 static inline PetscReal FCFEMOwnedU(const FEM *fem, PetscInt v, const PetscScalar *u, PetscInt lo, int d)
 {
@@ -164,17 +177,22 @@ static inline PetscInt FCFEMConstrainedOfDof(PetscInt g)
 }
 
 /* Element positions: reference X and current x = X + u (constrained vertices at their prescribed
-   displacement); uloc NULL: X */
-static inline void FCFEMGatherElement(FEM *fem, PetscInt c, const PetscScalar *uloc, PetscReal X[12], PetscReal x[12])
+   displacement at when: FC_BC_NOW, or FC_BC_END for the Newton iterates); uloc NULL: X */
+static inline void FCFEMGatherElementAt(FEM *fem, PetscInt c, const PetscScalar *uloc, int when, PetscReal X[12],
+                                        PetscReal x[12])
 {
   FCMesh *m = &fem->mesh;
   for (int a = 0; a < 4; a++) {
     PetscInt v = m->cellVerts[4 * c + a] - m->vStart;
     for (int d = 0; d < 3; d++) {
       X[3 * a + d] = m->X[3 * v + d];
-      x[3 * a + d] = X[3 * a + d] + (uloc ? FCFEMLocalU(fem, v, uloc, d) : 0.0);
+      x[3 * a + d] = X[3 * a + d] + (uloc ? FCFEMLocalUAt(fem, v, uloc, when, d) : 0.0);
     }
   }
+}
+static inline void FCFEMGatherElement(FEM *fem, PetscInt c, const PetscScalar *uloc, PetscReal X[12], PetscReal x[12])
+{
+  FCFEMGatherElementAt(fem, c, uloc, FC_BC_NOW, X, x);
 }
 
 /* Global DOFs of a cell's 12 unknowns, -1 on fixed vertices */
@@ -195,6 +213,8 @@ PETSC_INTERN PetscErrorCode FCFEMCheckDerived(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMCreateOperators(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMAssembleMass(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMAssembleElastic(FCBody, Vec u, Vec f, Mat K); /* f, K may be NULL */
+/* ... with the constrained vertices where they are at when (FC_BC_NOW, FC_BC_END) */
+PETSC_INTERN PetscErrorCode FCFEMAssembleElasticAt(FCBody, Vec u, int when, Vec f, Mat K);
 PETSC_INTERN PetscErrorCode FCFEMFormA(FCBody);   /* A from M and K; its factor becomes stale */
 PETSC_INTERN PetscErrorCode FCFEMFactorA(FCBody); /* by the builder that owns it, or the KSP */
 PETSC_INTERN PetscErrorCode FCFEMSolveA(FCBody, Vec b, Vec x, const char what[], PetscReal t);
@@ -209,7 +229,14 @@ PETSC_INTERN PetscErrorCode FCFEMBCPoses(FCBody, PetscReal t);
 PETSC_INTERN PetscErrorCode FCFEMSplitPairs(FCBody, const char option[], const char spec[], PetscInt *n,
                                             char reg[][256], char tab[][768]);
 PETSC_INTERN PetscErrorCode FCFEMBCBeginStep(FCBody, PetscReal t);
-PETSC_INTERN PetscErrorCode FCFEMBCAddRHS(FCBody, Vec b);
+/* b += the loads and the prescribed motion's coupling: its inertia, and with stiffness its elastic
+   coupling too (the Newton free motion takes the latter from f_int at the prescribed positions) */
+PETSC_INTERN PetscErrorCode FCFEMBCAddRHS(FCBody, Vec b, PetscBool stiffness);
+/* fem_newton.c */
+PETSC_INTERN PetscErrorCode FCFEMNewtonSetFromOptions(PetscOptionItems *, FCBody);
+PETSC_INTERN PetscErrorCode FCFEMNewtonSetUp(FCBody); /* after the solver and A */
+PETSC_INTERN PetscErrorCode FCFEMNewtonFreeMotion(FCBody, PetscReal t);
+PETSC_INTERN PetscErrorCode FCFEMNewtonDestroy(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMBCDestroy(FCBody);
 /* fem_load.c */
 PETSC_INTERN PetscErrorCode FCFEMLoadsSetUp(FCBody);

@@ -70,6 +70,7 @@ PETSC_INTERN PetscErrorCode FCRestartWriterWrite(FCRestartWriter, PetscInt step,
 PETSC_INTERN PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *);
 
 #define FC_MAX_REACTIONS 16
+#define FC_SOLVER_COUNTS 3 /* /steps: factorizations, krylov_iterations, free_motion_iterations */
 typedef struct {
   hid_t    group, centroid, rotation, energy, positions;
   PetscInt nreact; /* constrained regions: /bodies/<name>/reactions/<region> */
@@ -103,9 +104,9 @@ struct _p_FCOutput {
   double  *rtime, *renergy, *rtiming, *rbody; /* rtiming: per row the phases, then the wall time; rbody: per row,
                                                 per body: centroid 3, quaternion 4, energy 3 */
   PetscInt  *rstep;
-  long long *rsolve;                 /* per row: factorizations and Krylov iterations of the step (all bodies) */
-  PetscInt   lastfactor, lastkrylov; /* the bodies' totals at the last row */
-  hid_t      s_factor, s_krylov;
+  long long *rsolve; /* per row: factorizations, Krylov and Newton iterations of the step (all bodies) */
+  PetscInt   lastsolve[FC_SOLVER_COUNTS]; /* the bodies' totals at the last row */
+  hid_t      s_solve[FC_SOLVER_COUNTS];
   double     elast; /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt   nframes, xdmfwritten;
   hid_t      complete;         /* /complete: the last step, and the frames, that a flush has put on disk */

@@ -7,16 +7,16 @@
 
 _Static_assert(sizeof(PetscReal) == 8, "the contact records are written as 8-byte columns");
 
-/* The bodies' factorizations and Krylov iterations so far, summed (/steps takes their increments) */
-static PetscErrorCode SolverTotals(PetscInt nbodies, FCBody bodies[], PetscInt *nfactor, PetscInt *nkrylov)
+/* The bodies' factorizations, Krylov and Newton iterations so far, summed (/steps takes their
+   increments) */
+static PetscErrorCode SolverTotals(PetscInt nbodies, FCBody bodies[], PetscInt tot[FC_SOLVER_COUNTS])
 {
   PetscFunctionBegin;
-  *nfactor = *nkrylov = 0;
+  for (int k = 0; k < FC_SOLVER_COUNTS; k++) tot[k] = 0;
   for (PetscInt i = 0; i < nbodies; i++) {
-    PetscInt nf, nk;
-    PetscCall(FCBodyGetSolverCounts(bodies[i], &nf, &nk));
-    *nfactor += nf;
-    *nkrylov += nk;
+    PetscInt n[FC_SOLVER_COUNTS];
+    PetscCall(FCBodyGetSolverCounts(bodies[i], &n[0], &n[1], &n[2]));
+    for (int k = 0; k < FC_SOLVER_COUNTS; k++) tot[k] += n[k];
   }
   PetscFunctionReturn(0);
 }
@@ -44,9 +44,10 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
   PetscCall(FCH5CreateRows(g, "energy", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->energy));
   PetscCall(FCH5CreateRows(g, "energy_change", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->denergy));
   PetscCall(FCH5CreateRows(g, "wall_time", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->wall));
-  PetscCall(FCH5CreateRows(g, "factorizations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_factor));
-  PetscCall(FCH5CreateRows(g, "krylov_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_krylov));
-  PetscCall(SolverTotals(nbodies, bodies, &out->lastfactor, &out->lastkrylov));
+  PetscCall(FCH5CreateRows(g, "factorizations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_solve[0]));
+  PetscCall(FCH5CreateRows(g, "krylov_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_solve[1]));
+  PetscCall(FCH5CreateRows(g, "free_motion_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_solve[2]));
+  PetscCall(SolverTotals(nbodies, bodies, out->lastsolve));
   gt = H5Gcreate2(g, "timing", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   for (int p = 0; p < FC_PHASE_NUM; p++)
     PetscCall(FCH5CreateRows(gt, FCPhaseNames[p], H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->timing[p]));
@@ -85,7 +86,7 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
     H5Gclose(gc);
   }
   out->maxrows = (PetscInt)nrow;
-  PetscCall(PetscMalloc1(2 * nrow, &out->rsolve));
+  PetscCall(PetscMalloc1(FC_SOLVER_COUNTS * nrow, &out->rsolve));
   PetscCall(PetscMalloc5(nrow, &out->rtime, nrow, &out->renergy, nrow * (FC_PHASE_NUM + 1), &out->rtiming,
                          nrow * nbodies * 10 + 1, &out->rbody, nrow, &out->rstep));
   PetscFunctionReturn(0);
@@ -111,7 +112,7 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
     {
       long long *f;
       PetscCall(PetscMalloc1(2 * n, &f));
-      PetscCall(PetscArraycpy(f, out->rsolve, 2 * r));
+      PetscCall(PetscArraycpy(f, out->rsolve, FC_SOLVER_COUNTS * r));
       PetscCall(PetscFree(out->rsolve));
       out->rsolve = f;
     }
@@ -134,12 +135,12 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
   out->rtime[r] = t;
   out->rstep[r] = step;
   {
-    PetscInt tf, tk;
-    PetscCall(SolverTotals(nbodies, bodies, &tf, &tk));
-    out->rsolve[2 * r]     = tf - out->lastfactor;
-    out->rsolve[2 * r + 1] = tk - out->lastkrylov;
-    out->lastfactor        = tf;
-    out->lastkrylov        = tk;
+    PetscInt tot[FC_SOLVER_COUNTS];
+    PetscCall(SolverTotals(nbodies, bodies, tot));
+    for (int k = 0; k < FC_SOLVER_COUNTS; k++) {
+      out->rsolve[FC_SOLVER_COUNTS * r + k] = tot[k] - out->lastsolve[k];
+      out->lastsolve[k]                     = tot[k];
+    }
   }
   for (int p = 0; p < FC_PHASE_NUM; p++) out->rtiming[r * (FC_PHASE_NUM + 1) + p] = timing[p];
   out->rtiming[r * (FC_PHASE_NUM + 1) + FC_PHASE_NUM] = wall;
@@ -291,9 +292,9 @@ PetscErrorCode FCOutputRecordsFlush(FCOutput out)
     for (PetscInt r = 0; r < n; r++) steps[r] = out->rstep[r];
     PetscCall(FCH5AppendRows(out->rank, out->time, H5T_NATIVE_DOUBLE, n, out->rtime));
     PetscCall(FCH5AppendRows(out->rank, out->step, H5T_NATIVE_LLONG, n, steps));
-    for (int k = 0; k < 2; k++) {
-      for (PetscInt r = 0; r < n; r++) steps[r] = out->rsolve[2 * r + k];
-      PetscCall(FCH5AppendRows(out->rank, k ? out->s_krylov : out->s_factor, H5T_NATIVE_LLONG, n, steps));
+    for (int k = 0; k < FC_SOLVER_COUNTS; k++) {
+      for (PetscInt r = 0; r < n; r++) steps[r] = out->rsolve[FC_SOLVER_COUNTS * r + k];
+      PetscCall(FCH5AppendRows(out->rank, out->s_solve[k], H5T_NATIVE_LLONG, n, steps));
     }
     PetscCall(FCH5AppendRows(out->rank, out->energy, H5T_NATIVE_DOUBLE, n, out->renergy));
     for (PetscInt r = 0; r < n; r++) { /* energy change over each step: a scheme adding energy shows here */
@@ -341,8 +342,7 @@ PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
   H5Dclose(out->energy);
   H5Dclose(out->denergy);
   H5Dclose(out->wall);
-  H5Dclose(out->s_factor);
-  H5Dclose(out->s_krylov);
+  for (int k = 0; k < FC_SOLVER_COUNTS; k++) H5Dclose(out->s_solve[k]);
   for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
   if (out->contacts) {
     hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,        out->c_force,

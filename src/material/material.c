@@ -7,6 +7,8 @@ PetscFunctionList FCMaterialList = NULL;
 /* The built-in models: a new model is one file with its create function, declared and registered here */
 PETSC_INTERN PetscErrorCode FCMaterialCreate_Linear(FCMaterial);
 PETSC_INTERN PetscErrorCode FCMaterialCreate_Corotational(FCMaterial);
+PETSC_INTERN PetscErrorCode FCMaterialCreate_NeoHookean(FCMaterial);
+PETSC_INTERN PetscErrorCode FCMaterialCreate_StVK(FCMaterial);
 
 PetscErrorCode FCMaterialRegister(const char name[], PetscErrorCode (*create)(FCMaterial))
 {
@@ -20,6 +22,8 @@ PetscErrorCode FCMaterialRegisterAll(void)
   PetscFunctionBegin;
   PetscCall(FCMaterialRegister("linear", FCMaterialCreate_Linear));
   PetscCall(FCMaterialRegister("corotational", FCMaterialCreate_Corotational));
+  PetscCall(FCMaterialRegister("neohookean", FCMaterialCreate_NeoHookean));
+  PetscCall(FCMaterialRegister("stvk", FCMaterialCreate_StVK));
   PetscFunctionReturn(0);
 }
 

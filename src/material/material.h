@@ -23,6 +23,13 @@ struct _p_FCMaterial {
      eps the small strain of the element (co-rotational: in the element's rotated frame, R^T F - I) */
   PetscErrorCode (*stress)(FCMaterial, const PetscReal x[12], const PetscReal X[12], const PetscReal Dminv[9],
                            PetscReal sigma[9]);
+  /* Hyperelastic models (hyperelastic.c; NULL for the others): the strain-energy density W(F), the
+     first Piola-Kirchhoff stress P(F) and its derivative dP along dF, F row-major with det F > 0 */
+  PetscBool hyperelastic;
+  PetscReal (*density)(FCMaterial, const PetscReal F[9]);
+  void (*piola)(FCMaterial, const PetscReal F[9], PetscReal P[9]);
+  void (*dpiola)(FCMaterial, const PetscReal F[9], const PetscReal dF[9], PetscReal dP[9]);
+  PetscInt ninverted; /* cells met with det F <= 0 by the hyperelastic kernels (reset by their callers) */
 };
 PETSC_EXTERN PetscFunctionList FCMaterialList;
 PETSC_INTERN PetscErrorCode    FCMaterialRegisterAll(void);
@@ -36,3 +43,5 @@ PETSC_INTERN void FCMaterialRotatedApply(FCMaterial, const PetscReal R[9], const
                                          const PetscReal x[12], PetscReal y[12]);
 PETSC_INTERN void FCMaterialDeformationGradient(const PetscReal x[12], const PetscReal Dminv[9], PetscReal F[9]);
 PETSC_INTERN PetscErrorCode FCMaterialDestroy(FCMaterial *);
+/* A hyperelastic model's element, energy and stress kernels from its density, P and dP */
+PETSC_INTERN void FCMaterialSetHyperelastic(FCMaterial);

@@ -1,0 +1,188 @@
+/* FE body, the free motion by Newton's method (-<body>_free_motion newton; the default of the
+   hyperelastic materials). The implicit Euler step of eq. 5 without its linearization: find dv
+   with
+       F(dv) = (1 + h alpha) M dv + h alpha M v + h f_int(u + h (v + dv)) - b_c = 0,
+       b_c   = h (f_grav + f_load) - M_fc ((v_c' - v_c) + h alpha v_c'),
+   the constrained vertices at their prescribed positions at t + h (M_fc their coupling with the
+   free rows, v_c' and v_c their velocities over this step and the last, fem_bc.c). Quasi-static:
+   F(dv) = h f_int(u + h dv) - h (f + f_load), h dv the step's displacement. The Jacobian is
+       A = (1 + h alpha) M + h^2 K_t(u + h (v + dv)),
+   the A of eq. 5 at the iterate, factored by the body's KSP (MUMPS). PETSc's SNES drives the
+   iterations (-<body>_snes_*: line search, tolerances, monitors); an iterate that turns a cell
+   inside out is a domain error, which the line search cuts back. The contact schemes then take
+   the A of Newton's last iteration: W_b = J A^-1 J^T (eq. 17) and the correction (eq. 20) are
+   exact for the step linearized at the free motion (docs/method.md, "Nonlinear bodies"). */
+#include "femimpl.h"
+#include "../compliance/compliance.h"
+
+/* w = u + h (v + dv): the state at t + h of the iterate */
+static PetscErrorCode EndState(FCBody body, Vec dv)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  PetscCall(VecWAXPY(fem->nw, 1.0, fem->v, dv));
+  PetscCall(VecAYPX(fem->nw, body->h, fem->u));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Residual(SNES snes, Vec dv, Vec F, void *ctx)
+{
+  FCBody    body = (FCBody)ctx;
+  FEM      *fem  = (FEM *)body->data;
+  PetscReal h    = body->h;
+  PetscInt  bad;
+
+  PetscFunctionBegin;
+  PetscCall(EndState(body, dv));
+  fem->mat->ninverted = 0;
+  PetscCall(FCFEMAssembleElasticAt(body, fem->nw, FC_BC_END, fem->nf, NULL));
+  PetscCall(MPIU_Allreduce(&fem->mat->ninverted, &bad, 1, MPIU_INT, MPI_SUM, body->comm));
+  if (bad) { /* a cell turned inside out: no energy there, the line search steps back */
+    PetscCall(SNESSetFunctionDomainError(snes));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecAXPBYPCZ(F, h, -1.0, 0.0, fem->nf, fem->nbc));
+  if (!body->quasistatic) {
+    PetscCall(MatMult(fem->M, dv, fem->nf));
+    PetscCall(VecAXPY(F, 1.0 + h * fem->alpha, fem->nf));
+    if (fem->alpha != 0.0) {
+      PetscCall(MatMult(fem->M, fem->v, fem->nf));
+      PetscCall(VecAXPY(F, h * fem->alpha, fem->nf));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+/* A at the iterate, and its factorization by the body's KSP (SNES then solves with it: the same
+   operator, so no second factorization) */
+static PetscErrorCode Jacobian(SNES snes, Vec dv, Mat J, Mat P, void *ctx)
+{
+  FCBody body = (FCBody)ctx;
+  FEM   *fem  = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  (void)snes;
+  (void)J;
+  (void)P;
+  PetscCall(EndState(body, dv));
+  PetscCall(FCFEMAssembleElasticAt(body, fem->nw, FC_BC_END, NULL, fem->K));
+  PetscCall(FCFEMFormA(body));
+  /* the tangent of a hyperelastic body need not be definite: MUMPS' symmetric LDL^T, not Cholesky */
+  PetscCall(MatSetOption(fem->A, MAT_SPD, PETSC_FALSE));
+  PetscCall(MatSetOption(fem->A, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(FCPhaseBegin(FC_PHASE_FACTORIZATION));
+  PetscCall(KSPSetOperators(fem->ksp, fem->A, fem->A));
+  PetscCall(KSPSetUp(fem->ksp));
+  PetscCall(FCMumpsKSPChecked(fem->ksp, fem->A, "A", body->name));
+  PetscCall(FCPhaseEnd(FC_PHASE_FACTORIZATION));
+  fem->nfactor++;
+  fem->jacobian = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* -free_motion linearized|newton (read with the body's options; the default, the material's, is
+   resolved at set-up) */
+PetscErrorCode FCFEMNewtonSetFromOptions(PetscOptionItems *PetscOptionsObject, FCBody body)
+{
+  FEM        *fem    = (FEM *)body->data;
+  const char *kind[] = {"linearized", "newton"};
+  PetscInt    k      = fem->free_motion == FC_FREE_MOTION_NEWTON ? 1 : 0;
+  PetscBool   set;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsEList("-free_motion",
+                              "The free motion (eq. 5): linearized (one linearization at the step's start) or newton "
+                              "(the implicit Euler step solved by SNES; the default of neohookean and stvk)",
+                              NULL, kind, 2, kind[k], &k, &set));
+  if (set) fem->free_motion = k == 1 ? FC_FREE_MOTION_NEWTON : FC_FREE_MOTION_LINEARIZED;
+  PetscFunctionReturn(0);
+}
+
+/* The SNES of the body, prefix <body>_ (its KSP the body's): Newton with a backtracking line
+   search, relative tolerance 1e-10 unless the options say otherwise */
+PetscErrorCode FCFEMNewtonSetUp(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  if (fem->free_motion < 0)
+    fem->free_motion = fem->mat->hyperelastic ? FC_FREE_MOTION_NEWTON : FC_FREE_MOTION_LINEARIZED;
+  PetscCheck(fem->factorization == FC_FACTORIZATION_EVERY_STEP || fem->mat->rotation, body->comm, PETSC_ERR_SUP,
+             "Body '%s': -%sfactorization reuse warps the factor of a co-rotational body; the %s material has no "
+             "element rotation (use every_step)",
+             body->name, body->prefix, fem->material);
+  if (fem->free_motion != FC_FREE_MOTION_NEWTON) PetscFunctionReturn(0);
+  PetscCheck(fem->beta == 0.0, body->comm, PETSC_ERR_SUP,
+             "Body '%s': -%sfree_motion newton takes no -%srayleigh_stiffness (the damping of a tangent that changes "
+             "within the step); use -%srayleigh_mass",
+             body->name, body->prefix, body->prefix, body->prefix);
+  PetscCheck(fem->factorization == FC_FACTORIZATION_EVERY_STEP, body->comm, PETSC_ERR_SUP,
+             "Body '%s': -%sfree_motion newton factors A at every Newton iteration; -%sfactorization reuse is for the "
+             "one-linearization step of a co-rotational body",
+             body->name, body->prefix, body->prefix);
+  PetscCall(VecDuplicate(fem->u, &fem->nw));
+  PetscCall(VecDuplicate(fem->u, &fem->nf));
+  PetscCall(VecDuplicate(fem->u, &fem->nbc));
+  PetscCall(VecDuplicate(fem->u, &fem->nr));
+  PetscCall(SNESCreate(body->comm, &fem->snes));
+  PetscCall(SNESSetOptionsPrefix(fem->snes, body->prefix));
+  PetscCall(SNESSetType(fem->snes, SNESNEWTONLS));
+  PetscCall(SNESSetKSP(fem->snes, fem->ksp));
+  PetscCall(SNESSetFunction(fem->snes, fem->nr, Residual, body));
+  PetscCall(SNESSetJacobian(fem->snes, fem->A, fem->A, Jacobian, body));
+  PetscCall(SNESSetTolerances(fem->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 50, PETSC_DEFAULT));
+  PetscCall(SNESSetFromOptions(fem->snes));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCFEMNewtonFreeMotion(FCBody body, PetscReal t)
+{
+  FEM                *fem = (FEM *)body->data;
+  PetscReal           h   = body->h;
+  SNESConvergedReason reason;
+  PetscInt            its;
+
+  PetscFunctionBegin;
+  PetscCall(FCPhaseBegin(FC_PHASE_FREE_MOTION));
+  PetscCall(VecZeroEntries(fem->nbc));
+  if (body->gravity[0] != 0.0 || body->gravity[1] != 0.0 || body->gravity[2] != 0.0)
+    PetscCall(VecAXPY(fem->nbc, h, fem->fgrav));
+  PetscCall(FCFEMBCAddRHS(body, fem->nbc, PETSC_FALSE)); /* loads, and the inertia of the prescribed motion */
+  PetscCall(VecZeroEntries(fem->dv));                    /* the first iterate: the velocity kept */
+  PetscCall(FCPhaseEnd(FC_PHASE_FREE_MOTION));
+  fem->jacobian = PETSC_FALSE;
+  PetscCall(SNESSolve(fem->snes, NULL, fem->dv));
+  PetscCall(SNESGetConvergedReason(fem->snes, &reason));
+  PetscCall(SNESGetIterationNumber(fem->snes, &its));
+  PetscCheck(reason > 0, body->comm, PETSC_ERR_CONV_FAILED,
+             "The Newton free motion of body '%s' did not converge at t = %g: %s after %" PetscInt_FMT
+             " iterations (-%ssnes_monitor shows them; -%ssnes_max_it, -%ssnes_rtol, or a smaller -time_step)",
+             body->name, (double)t, SNESConvergedReasons[reason], its, body->prefix, body->prefix, body->prefix);
+  fem->nnewton += its;
+  /* the contact schemes take A at Newton's last iterate, factored by the builder that owns it or
+     already by the KSP (a solve that converged at once forms it here) */
+  if (!fem->jacobian) PetscCall(Jacobian(fem->snes, fem->dv, fem->A, fem->A, body));
+  if (fem->comp && FCComplianceFactorsA(fem->comp))
+    PetscCall(FCFEMFactorA(body));
+  else {
+    if (fem->comp) PetscCall(FCComplianceFactor(fem->comp)); /* builders that keep their own copy of A */
+    fem->factor_age = 0;
+    fem->factored   = PETSC_TRUE;
+  }
+  fem->Acurrent = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCFEMNewtonDestroy(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  PetscCall(SNESDestroy(&fem->snes));
+  PetscCall(VecDestroy(&fem->nw));
+  PetscCall(VecDestroy(&fem->nf));
+  PetscCall(VecDestroy(&fem->nbc));
+  PetscCall(VecDestroy(&fem->nr));
+  PetscFunctionReturn(0);
+}
