@@ -23,7 +23,7 @@ sys.path.insert(0, os.path.join(ROOT, "tests"))
 from fctest import ENV, sorted_positions  # noqa: E402
 import scaling  # noqa: E402
 
-EXE = os.path.join(ROOT, "build", "fecontact")
+EXE = os.environ.get("FECONTACT", os.path.join(ROOT, "build", "fecontact"))  # as the tests: another build
 COLS = ["peak_rss", "W_H", "W_k", "W_b", "Sigma", "factor", "contact_data"]
 REPLICATED = ["-fast_distributed_contacts", "1000000", "-compliance_condensed_inverse", "host"]
 
