@@ -38,8 +38,10 @@ PETSC_EXTERN const char *const FCPhaseNames[];
 PETSC_EXTERN PetscErrorCode    FCPhaseBegin(FCPhase);
 PETSC_EXTERN PetscErrorCode    FCPhaseEnd(FCPhase);
 PETSC_EXTERN PetscErrorCode    FCPhaseGetTimes(PetscReal[FC_PHASE_NUM]); /* seconds since last reset */
-PETSC_EXTERN PetscErrorCode    FCPhaseResetTimes(void);
-PETSC_EXTERN PetscLogEvent     FC_EVENT_NEWTON; /* one Newton iteration of a recursive scheme */
+/* bytes by which the process' peak RSS grew while each phase ran, since the start */
+PETSC_EXTERN PetscErrorCode FCPhaseGetMemoryGrowth(PetscReal[FC_PHASE_NUM]);
+PETSC_EXTERN PetscErrorCode FCPhaseResetTimes(void);
+PETSC_EXTERN PetscLogEvent  FC_EVENT_NEWTON; /* one Newton iteration of a recursive scheme */
 /* the work a scheme does only when something changed: W summed from the bodies' parts and checked,
    W_k = C W_H C^T formed on the host (fast scheme; not counted when kept) */
 PETSC_EXTERN PetscLogEvent FC_EVENT_COMPLIANCE_SUM, FC_EVENT_CONGRUENCE_WK;

@@ -24,9 +24,9 @@ PETSC_INTERN PetscErrorCode FCOutputWriteRestart(FCOutput, PetscInt step, PetscR
 PETSC_INTERN PetscErrorCode FCRestartCheckScene(MPI_Comm, const char file[], PetscInt nbodies, FCBody[]);
 PETSC_INTERN PetscErrorCode FCRestartLoad(MPI_Comm, const char file[], PetscInt nbodies, FCBody[],
                                           FCContactSet *previous, PetscInt *step, PetscReal *t);
-/* /memory: a row of ncols values per rank (this rank's row), named */
-PETSC_INTERN PetscErrorCode FCOutputWriteMemory(FCOutput, PetscInt ncols, const char *const names[],
-                                                const PetscReal row[]);
+/* /memory, /memory_phases (name): a row of ncols values per rank (this rank's row), named */
+PETSC_INTERN PetscErrorCode FCOutputWriteMemory(FCOutput, const char name[], const char units[], PetscInt ncols,
+                                                const char *const names[], const PetscReal row[]);
 PETSC_INTERN PetscErrorCode FCOutputDestroy(FCOutput *);
 PETSC_INTERN PetscErrorCode FCXdmfWrite(FCOutput);
 /* -output_fields: the list of field names (FCVisualFieldNames, or "none") as a bit mask, 1 << field;

@@ -383,9 +383,11 @@ PetscErrorCode FCOutputWriteRestart(FCOutput out, PetscInt step, PetscReal t, Pe
   PetscFunctionReturn(0);
 }
 
-/* /memory: one row per rank (bytes; its columns named by the attribute `columns`), written again
-   (replaced) by each call, e.g. at the end of a restarted run; collective */
-PetscErrorCode FCOutputWriteMemory(FCOutput out, PetscInt ncols, const char *const names[], const PetscReal row[])
+/* /memory and /memory_phases (name): one row per rank (bytes; its columns named by the attribute
+   `columns`, what they are by `units`), written again (replaced) by each call, e.g. at the end of a
+   restarted run; collective */
+PetscErrorCode FCOutputWriteMemory(FCOutput out, const char name[], const char units[], PetscInt ncols,
+                                   const char *const names[], const PetscReal row[])
 {
   PetscMPIInt size, rank;
   char        cols[256] = "";
@@ -398,13 +400,13 @@ PetscErrorCode FCOutputWriteMemory(FCOutput out, PetscInt ncols, const char *con
     PetscCall(PetscStrlcat(cols, names[i], sizeof(cols)));
     if (i + 1 < ncols) PetscCall(PetscStrlcat(cols, ",", sizeof(cols)));
   }
-  if (H5Lexists(out->file, "memory", H5P_DEFAULT) > 0) FCH5Check(H5Ldelete(out->file, "memory", H5P_DEFAULT), "memory");
-  PetscCall(FCH5WriteDistributed(out->file, "memory", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, (hsize_t)size, (hsize_t)ncols,
+  if (H5Lexists(out->file, name, H5P_DEFAULT) > 0) FCH5Check(H5Ldelete(out->file, name, H5P_DEFAULT), name);
+  PetscCall(FCH5WriteDistributed(out->file, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, (hsize_t)size, (hsize_t)ncols,
                                  (hsize_t)rank, 1, row));
-  d = H5Dopen2(out->file, "memory", H5P_DEFAULT);
-  FCH5Check(d, "memory");
+  d = H5Dopen2(out->file, name, H5P_DEFAULT);
+  FCH5Check(d, name);
   PetscCall(FCH5AttrString(d, "columns", cols));
-  PetscCall(FCH5AttrString(d, "units", "bytes; per rank, the largest over the steps of the run"));
+  PetscCall(FCH5AttrString(d, "units", units));
   H5Dclose(d);
   FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush");
   PetscFunctionReturn(0);

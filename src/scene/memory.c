@@ -30,8 +30,9 @@ PetscErrorCode FCMemoryUpdate(FCScheme scheme, PetscInt nbodies, FCBody bodies[]
   PetscFunctionReturn(0);
 }
 
-/* The ranks' rows (MB) printed by rank 0 (print), and written to /memory (out; NULL: not) */
-PetscErrorCode FCMemoryReport(MPI_Comm comm, const PetscReal peak[FC_MEMORY_NUM], PetscBool print, FCOutput out)
+/* Rank 0 prints every rank's row of n values (MB) under a title and the column names */
+static PetscErrorCode PrintRows(MPI_Comm comm, const char title[], int n, const char *const names[],
+                                const PetscReal row[])
 {
   PetscMPIInt size, rank;
   PetscReal  *all = NULL;
@@ -39,19 +40,47 @@ PetscErrorCode FCMemoryReport(MPI_Comm comm, const PetscReal peak[FC_MEMORY_NUM]
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (out) PetscCall(FCOutputWriteMemory(out, FC_MEMORY_NUM, FCMemoryNames, peak));
-  if (!print) PetscFunctionReturn(0);
-  if (!rank) PetscCall(PetscMalloc1(FC_MEMORY_NUM * size, &all));
-  PetscCallMPI(MPI_Gather(peak, FC_MEMORY_NUM, MPIU_REAL, all, FC_MEMORY_NUM, MPIU_REAL, 0, comm));
-  PetscCall(PetscPrintf(comm, "  memory per rank (MB, largest over the steps):"));
-  for (int i = 0; i < FC_MEMORY_NUM; i++) PetscCall(PetscPrintf(comm, " %s", FCMemoryNames[i]));
+  if (!rank) PetscCall(PetscMalloc1(n * size, &all));
+  PetscCallMPI(MPI_Gather(row, n, MPIU_REAL, all, n, MPIU_REAL, 0, comm));
+  PetscCall(PetscPrintf(comm, "  %s:", title));
+  for (int i = 0; i < n; i++) PetscCall(PetscPrintf(comm, " %s", names[i]));
   PetscCall(PetscPrintf(comm, "\n"));
   for (PetscMPIInt r = 0; r < size && !rank; r++) {
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "    rank %d:", (int)r));
-    for (int i = 0; i < FC_MEMORY_NUM; i++)
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, " %.1f", (double)(all[FC_MEMORY_NUM * r + i] / 1048576.0)));
+    for (int i = 0; i < n; i++) PetscCall(PetscPrintf(PETSC_COMM_SELF, " %.1f", (double)(all[n * r + i] / 1048576.0)));
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "\n"));
   }
   PetscCall(PetscFree(all));
+  PetscFunctionReturn(0);
+}
+
+/* The ranks' rows (MB) printed by rank 0 (print), and written to /memory and /memory_phases (out;
+   NULL: not). The phases' row: the growth of the peak RSS while each phase ran, the first column
+   (set_up) what it grew outside them (set-up, mesh, operators, the run's own bookkeeping): the
+   columns sum to the peak RSS, and the largest says which phase set it */
+PetscErrorCode FCMemoryReport(MPI_Comm comm, const PetscReal peak[FC_MEMORY_NUM], PetscBool print, FCOutput out)
+{
+  const char *names[FC_PHASE_NUM + 1];
+  PetscReal   grown[FC_PHASE_NUM + 1], sum = 0.0;
+
+  PetscFunctionBegin;
+  names[0] = "set_up";
+  PetscCall(FCPhaseGetMemoryGrowth(&grown[1]));
+  for (int p = 0; p < FC_PHASE_NUM; p++) {
+    names[p + 1] = FCPhaseNames[p];
+    sum += grown[p + 1];
+  }
+  grown[0] = peak[0] - sum;
+  if (out) {
+    PetscCall(FCOutputWriteMemory(out, "memory", "bytes; per rank, the largest over the steps of the run",
+                                  FC_MEMORY_NUM, FCMemoryNames, peak));
+    PetscCall(FCOutputWriteMemory(out, "memory_phases",
+                                  "bytes; per rank, how much the peak RSS grew while each phase ran (set_up: outside "
+                                  "the phases); the row sums to /memory's peak_rss",
+                                  FC_PHASE_NUM + 1, names, grown));
+  }
+  if (!print) PetscFunctionReturn(0);
+  PetscCall(PrintRows(comm, "memory per rank (MB, largest over the steps)", FC_MEMORY_NUM, FCMemoryNames, peak));
+  PetscCall(PrintRows(comm, "peak RSS growth per phase (MB)", FC_PHASE_NUM + 1, names, grown));
   PetscFunctionReturn(0);
 }
