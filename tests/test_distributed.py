@@ -10,7 +10,8 @@ way in both (-pgs_ranks split):
 - an FE cube dropped on a kinematic plane (fast scheme): the contact forces of every step equal
   the replicated ones to 1e-10 of the largest, and the final positions to 1e-10 of the
   displacement; per rank, W_H, W_b and Sigma / C (/memory) are at most 1.2 / N of their replicated
-  size (W_H and W_b whole on every rank there, Sigma on rank 0);
+  size (W_H and W_b whole on every rank there, Sigma on rank 0); /memory_phases has a row per rank,
+  no negative growth, and the factorization's growth;
 - a rigid box on an FE slab (fast scheme; the rigid body's part of W_H by rows too), frictionless:
   the forces to 1e-10 (with the scene's mu = 0.3 the split sweeps stop at -pgs_max_it short of
   1e-13 on one step where the box sticks, and what they leave there is not the same to better than
@@ -64,6 +65,14 @@ for col, whole in (("W_H", memory(rep, "W_H").max()), ("W_b", memory(rep, "W_b")
     c.check(whole > 0 and mine <= 1.2 / NP * whole,
             "cube: %s per rank %.0f kB distributed, %.0f kB replicated (largest rank): %.2f of it (<= 1.2/%d = %.2f)"
             % (col, mine / 1e3, whole / 1e3, mine / whole, NP, 1.2 / NP))
+ph = dist["memory_phases"]
+cols = ph.attrs["columns"].decode().split(",") if isinstance(ph.attrs["columns"], bytes) else ph.attrs["columns"].split(",")
+gap = np.abs(ph[:].sum(axis=1) - memory(dist, "peak_rss")).max()
+c.check(cols[0] == "set_up" and "factorization" in cols and ph.shape[0] == NP and gap < 1.0 and
+        (ph[:] >= 0).all() and ph[:, cols.index("factorization")].min() > 0,
+        "/memory_phases: %d ranks x %s; no phase's growth negative (the phases' sum within the peak RSS: set_up "
+        ">= 0, down to %.1f MB), the factorization grew it (down to %.1f MB)"
+        % (ph.shape[0], ",".join(cols), ph[:, 0].min() / 2**20, ph[:, cols.index("factorization")].min() / 2**20))
 
 # a rigid box on the FE slab, fast scheme
 rep = go("slab_rep", "input/box_on_slab.opts", 30, ["-constraint_scheme", "fast", "-contact_mu", "0"] + REP)

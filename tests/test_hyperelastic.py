@@ -9,6 +9,8 @@
   loss over 0.4 s halves with the time step (ratio 1.7-2.3);
 - contact on top: the cube dropped on the plane (input/cube_drop.opts) comes to rest where the
   co-rotational one does (small strain: to 1e-4 m), no element inverted, on 1 rank and --np;
+- hard case: the soft block crushed to 30 % by a kinematic plate (input/hard/crush_neohookean.opts)
+  runs to the end with no element inverted, no intersection, its top at the plate;
 - --np > 1: the stretch's reaction and the drop's positions are the 1-rank ones to 1e-8;
 - bad input: -free_motion with an unknown value, newton with -rayleigh_stiffness, neohookean with
   -factorization reuse: an error naming the option."""
@@ -106,6 +108,19 @@ if NP > 1:
     _, x1 = sorted_positions(drop("neohookean", 1), "cube")
     c.check(np.abs(x - x1).max() < 1e-8, "%d ranks: the drop's positions are the 1-rank ones to %.1e m" %
             (NP, np.abs(x - x1).max()))
+
+# the hard case: a soft block crushed to 30 % of its height by a kinematic plate (input/hard/crush_neohookean.opts)
+f = out("crush.h5")
+p = run(["-options_file", "input/hard/crush_neohookean.opts", "-output_file", f, "-quiet"], NP, check=False)
+h = h5py.File(f, "r")
+s = h["steps"]
+top = h["bodies/block/positions"][-1][:, 2].max()
+c.check(p.returncode == 0 and len(s["step"]) == 100 and s["intersections"][:].max() == 0 and
+        s["max_penetration"][:].max() < 1e-6 and abs(top + 0.2) < 1e-3,
+        "crushed to 30 %%: %d steps, no element inverted (the run's check), no intersection, penetration %.1e m, top at "
+        "z = %.4f m (the plate: -0.2), Newton %d-%d iterations a step" %
+        (len(s["step"]), s["max_penetration"][:].max(), top, s["free_motion_iterations"][:].min(),
+         s["free_motion_iterations"][:].max()))
 
 BAD = ["-scene_bodies", "cube", "-cube_type", "fem", "-cube_dm_plex_filename", "meshes/cube_coarse.msh",
        "-cube_young", 1e5, "-cube_density", 100, "-time_steps", 1, "-output_file", out("bad.h5")]

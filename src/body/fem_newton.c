@@ -155,6 +155,15 @@ PetscErrorCode FCFEMNewtonFreeMotion(FCBody body, PetscReal t)
   PetscCall(SNESSolve(fem->snes, NULL, fem->dv));
   PetscCall(SNESGetConvergedReason(fem->snes, &reason));
   PetscCall(SNESGetIterationNumber(fem->snes, &its));
+  if (reason == SNES_DIVERGED_FUNCTION_DOMAIN && its == 0) {
+    /* the velocity kept turns a cell inside out (a fast impact on a thin body): start from the
+       positions at t instead (dv = -v), where every cell was upright at the end of the last step */
+    PetscCall(VecCopy(fem->v, fem->dv));
+    PetscCall(VecScale(fem->dv, -1.0));
+    PetscCall(SNESSolve(fem->snes, NULL, fem->dv));
+    PetscCall(SNESGetConvergedReason(fem->snes, &reason));
+    PetscCall(SNESGetIterationNumber(fem->snes, &its));
+  }
   PetscCheck(reason > 0, body->comm, PETSC_ERR_CONV_FAILED,
              "The Newton free motion of body '%s' did not converge at t = %g: %s after %" PetscInt_FMT
              " iterations (-%ssnes_monitor shows them; -%ssnes_max_it, -%ssnes_rtol, or a smaller -time_step)",
