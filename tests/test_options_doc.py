@@ -22,8 +22,8 @@ for f in sorted(glob.glob(os.path.join(T.ROOT, "src", "**", "*.c"), recursive=Tr
 read = set(re.findall(r'"-([a-z][a-z0-9_]*)"', src))
 # PETSc's own options that the code looks up only to report or forward them
 PETSC_OWN = {"options_file", "options_file_yaml"}
-# PETSc options docs/options.md documents for a body's prefix: PETSc reads them (KSP, PC, MUMPS, DMPlex, partitioner)
-PETSC_READ = re.compile(r"^(ksp_|pc_|mat_mumps_|dm_|petscpartitioner_)")
+# PETSc options docs/options.md documents for a body's prefix: PETSc reads them (KSP, PC, SNES, MUMPS, DMPlex, partitioner)
+PETSC_READ = re.compile(r"^(ksp_|pc_|snes_|mat_mumps_|dm_|petscpartitioner_)")
 
 
 def documented(o):
