@@ -299,17 +299,20 @@ static PetscErrorCode Products(FCCompliance comp, const PetscInt hcptr[], const 
     PetscMPIInt n = 0;
     PetscCall(Count(comp->ctx.comm, (PetscInt64)ncols * ncols, &n));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, Wb, n, MPIU_REAL, MPIU_SUM, comp->ctx.comm));
-  } else {
-    PetscCall(PetscMalloc1(maxrows * ncols + 1, &buf));
-    for (PetscMPIInt q = 0; q < size; q++) { /* rank q's rows: every rank's terms, summed on q */
-      PetscInt    a0 = win[2 * q], a1 = win[2 * q + 1];
-      PetscReal  *out = q == rank ? Wb : buf;
-      PetscMPIInt n   = 0;
-      PetscCall(Count(comp->ctx.comm, (PetscInt64)(a1 - a0) * ncols, &n));
-      PetscCall(PetscArrayzero(out, (a1 - a0) * ncols));
-      PetscCall(FCComplianceAddCongruence(ncols, a0, a1, nT, cptr, crow, cval, pos, lcol, ns, C, out));
-      PetscCallMPI(MPI_Reduce(q == rank ? MPI_IN_PLACE : buf, Wb, n, MPIU_REAL, MPIU_SUM, q, comp->ctx.comm));
-    }
+  } else { /* rank q's rows: every rank's terms, summed on q, a panel of rows at a time (a scratch of
+              1/16 of the largest rank's rows, and the reduction's own buffer as small) */
+    PetscInt panel = PetscMax(1, (maxrows + 15) / 16);
+    PetscCall(PetscMalloc1(panel * ncols + 1, &buf));
+    for (PetscMPIInt q = 0; q < size; q++)
+      for (PetscInt p0 = win[2 * q]; p0 < win[2 * q + 1]; p0 += panel) {
+        PetscInt    p1  = PetscMin(win[2 * q + 1], p0 + panel);
+        PetscReal  *out = q == rank ? Wb + (p0 - win[2 * q]) * ncols : buf;
+        PetscMPIInt n   = 0;
+        PetscCall(Count(comp->ctx.comm, (PetscInt64)(p1 - p0) * ncols, &n));
+        PetscCall(PetscArrayzero(out, (p1 - p0) * ncols));
+        PetscCall(FCComplianceAddCongruence(ncols, p0, p1, nT, cptr, crow, cval, pos, lcol, ns, C, out));
+        PetscCallMPI(MPI_Reduce(q == rank ? MPI_IN_PLACE : buf, out, n, MPIU_REAL, MPIU_SUM, q, comp->ctx.comm));
+      }
     PetscCall(PetscFree(buf));
   }
   if (rank) PetscCall(PetscFree3(crow, cval, pos));
