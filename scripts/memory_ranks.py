@@ -7,7 +7,10 @@ rank's largest over the steps: peak RSS, W_H, W_k, W_b, Sigma / C, MUMPS' factor
 markdown table: the largest rank's values, their ratio to 1 rank, and the final positions' largest
 difference from the 1-rank run over the displacement.
 --scene large: input/large_box.opts instead (245,760 DOFs, 4096 contacts; its mesh made here first).
-Usage: /usr/bin/python3 scripts/memory_ranks.py [--scene 149k|large] [--ranks 1,2,4] [--steps 2] [--csv FILE]"""
+A second table gives, for the largest rank of each run, how much its peak RSS grew in the set-up and
+in each phase that grew it (/memory_phases). --tables: print the tables from the files of the last
+runs, without running.
+Usage: /usr/bin/python3 scripts/memory_ranks.py [--scene 149k|large] [--ranks 1,2,4] [--steps 2] [--csv FILE] [--tables]"""
 import argparse
 import csv
 import os
@@ -36,16 +39,20 @@ def scene_args(name):
             "-constraint_scheme", "fast"]
 
 
-def run(scene, np_, steps, extra, tag):
+def run(scene, np_, steps, extra, tag, again=True):
     path = os.path.join(scaling.OUT, "memory_%s_%s_np%d.h5" % (scene, tag, np_))
     cmd = ["mpirun", "-n", str(np_), "--oversubscribe", EXE] + scene_args(scene) + [
            "-time_steps", str(steps), "-quiet", "-output_file", path] + extra
-    subprocess.run(cmd, cwd=ROOT, env=ENV, check=True, capture_output=True)
+    if again:
+        subprocess.run(cmd, cwd=ROOT, env=ENV, check=True, capture_output=True)
     with h5py.File(path, "r") as f:
         mem = f["memory"][:]
         contacts = int(f["steps/contacts"][-1])
         ref, pos = sorted_positions(f, "box")
-    return mem, contacts, ref, pos
+        ph = f["memory_phases"]
+        cols = ph.attrs["columns"]
+        phases = (cols.decode() if isinstance(cols, bytes) else cols).split(","), ph[:]
+    return mem, contacts, ref, pos, phases
 
 
 def main():
@@ -54,14 +61,15 @@ def main():
     ap.add_argument("--ranks", default="1,2,4")
     ap.add_argument("--steps", type=int, default=2)
     ap.add_argument("--csv", default=None)
+    ap.add_argument("--tables", action="store_true")
     a = ap.parse_args()
     os.makedirs(scaling.OUT, exist_ok=True)
     ranks = [int(r) for r in a.ranks.split(",")]
     rows = []
     for np_ in ranks:
-        rows.append(("default", np_) + run(a.scene, np_, a.steps, [], "default"))
+        rows.append(("default", np_) + run(a.scene, np_, a.steps, [], "default", not a.tables))
         print("# %s, %d rank(s): done" % (a.scene, np_), file=sys.stderr, flush=True)
-    rows.append(("replicated", ranks[-1]) + run(a.scene, ranks[-1], a.steps, REPLICATED, "replicated"))
+    rows.append(("replicated", ranks[-1]) + run(a.scene, ranks[-1], a.steps, REPLICATED, "replicated", not a.tables))
     one = rows[0][2].max(axis=0)
     ref, x1 = rows[0][4], rows[0][5]
     scale = np.abs(x1 - ref).max()
@@ -69,7 +77,7 @@ def main():
           "Sigma / C (MB) | contact data (MB) | x p vs 1 rank | MUMPS factor (MB) | positions vs 1 rank |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     out = []
-    for tag, np_, mem, contacts, _, pos in rows:
+    for tag, np_, mem, contacts, _, pos, _ in rows:
         big = mem.max(axis=0)  # the largest rank, per column
         mb = big / 1048576.0
         dx = np.abs(pos - x1).max() / scale
@@ -80,6 +88,15 @@ def main():
         print("| %s | %d%s | %d | %.0f | %.2f | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %.0f | %.1e |"
               % (tag, np_, " (oversubscribed)" if np_ > 2 else "", contacts, r["rss_mb"], r["rss_ratio"], r["wh_mb"],
                  r["wk_mb"], r["wb_mb"], r["sigma_mb"], r["data_mb"], r["data_ratio_p"], r["factor_mb"], dx))
+    names = rows[0][6][0]
+    grown = [j for j in range(len(names)) if any(r[6][1][:, j].max() >= 1048576.0 for r in rows)]
+    print("\nPeak RSS growth of the largest rank (MB) in the set-up and in each phase that grew it "
+          "(/memory_phases; the row sums to its peak RSS):\n")
+    print("| contact phase | ranks | largest rank | " + " | ".join(names[j] for j in grown) + " |")
+    print("|---|---:|---:|" + "---:|" * len(grown))
+    for tag, np_, mem, _, _, _, (_, ph) in rows:
+        big = int(np.argmax(mem[:, 0]))
+        print("| %s | %d | %d | " % (tag, np_, big) + " | ".join("%.0f" % (ph[big, j] / 1048576.0) for j in grown) + " |")
     if a.csv:
         with open(a.csv, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=list(out[0].keys()))

@@ -100,7 +100,7 @@ PetscErrorCode FCFEMNewtonSetFromOptions(PetscOptionItems *PetscOptionsObject, F
 }
 
 /* The SNES of the body, prefix <body>_ (its KSP the body's): Newton with a backtracking line
-   search, relative tolerance 1e-10 unless the options say otherwise */
+   search, relative tolerance 1e-10 and absolute 1e-13 h E V^(2/3) unless the options say otherwise */
 PetscErrorCode FCFEMNewtonSetUp(FCBody body)
 {
   FEM *fem = (FEM *)body->data;
@@ -131,7 +131,12 @@ PetscErrorCode FCFEMNewtonSetUp(FCBody body)
   PetscCall(SNESSetKSP(fem->snes, fem->ksp));
   PetscCall(SNESSetFunction(fem->snes, fem->nr, Residual, body));
   PetscCall(SNESSetJacobian(fem->snes, fem->A, fem->A, Jacobian, body));
-  PetscCall(SNESSetTolerances(fem->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 50, PETSC_DEFAULT));
+  { /* absolute: the round-off of h f_int at the force scale E V^(2/3) of the body (a step that
+       starts at equilibrium cannot reduce its residual by 1e-10) */
+    PetscReal V = fem->mass / body->density;
+    PetscCall(SNESSetTolerances(fem->snes, 1e-13 * body->h * fem->young * PetscPowReal(V, 2.0 / 3.0), 1e-10,
+                                PETSC_DEFAULT, 50, PETSC_DEFAULT));
+  }
   PetscCall(SNESSetFromOptions(fem->snes));
   PetscFunctionReturn(0);
 }
