@@ -11,7 +11,8 @@
 static const char *Free[] = {"ksp_",     "pc_",           "mat_",          "petscpartitioner_", "partition_file",
                              "dm_view",  "dm_plex_check", "dm_distribute", "refactor_",         "factorization",
                              "assembly", "inverted",      "trajectory",    "displacement",      "force",
-                             "traction", "pressure",      "compliance_",   "dm_mat_type",       "dm_vec_type"};
+                             "traction", "pressure",      "compliance_",   "dm_mat_type",       "dm_vec_type",
+                             "snes_"};
 
 /* The value of key in an options string "-a v -b -c w" (NULL: absent; "" : no value) */
 static const char *Find(char *const keys[], char *const vals[], PetscInt n, const char key[])
