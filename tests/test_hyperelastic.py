@@ -11,6 +11,8 @@
   co-rotational one does (small strain: to 1e-4 m), no element inverted, on 1 rank and --np;
 - hard case: the soft block crushed to 30 % by a kinematic plate (input/hard/crush_neohookean.opts)
   runs to the end with no element inverted, no intersection, its top at the plate;
+- -restart: the drop continued from step 28 (with another -snes_rtol) ends where the uninterrupted
+  run does, to 1e-9 m;
 - --np > 1: the stretch's reaction and the drop's positions are the 1-rank ones to 1e-8;
 - bad input: -free_motion with an unknown value, newton with -rayleigh_stiffness, neohookean with
   -factorization reuse: an error naming the option."""
@@ -103,6 +105,16 @@ znh, zcr = nh["bodies/cube/centroid"][-1][2], cr["bodies/cube/centroid"][-1][2]
 c.check(abs(znh - zcr) < 1e-4 and nh["steps/contacts"][-1] > 0,
         "dropped on the plane: at rest at z = %.6f m (co-rotational %.6f m), %d contacts" %
         (znh, zcr, nh["steps/contacts"][-1]))
+# -restart: the drop continued from its step 28 ends where the uninterrupted run does (the Newton free
+# motion has no state of its own beyond u and v)
+half, rest = out("drop_half.h5"), out("drop_rest.h5")
+base = ["-options_file", "input/cube_drop.opts", "-cube_material", "neohookean", "-output_every", 4, "-quiet"]
+run(base + ["-time_steps", 28, "-output_file", half], NP)
+run(base + ["-time_steps", 60, "-output_file", rest, "-restart", half, "-cube_snes_rtol", 1e-11], NP)
+_, xr = sorted_positions(h5py.File(rest, "r"), "cube")
+_, xf = sorted_positions(nh, "cube")
+c.check(np.abs(xr - xf).max() < 1e-9, "-restart at step 28 (a new -cube_snes_rtol allowed): the 60-step positions "
+        "to %.1e m" % np.abs(xr - xf).max())
 if NP > 1:
     ref, x = sorted_positions(nh, "cube")
     _, x1 = sorted_positions(drop("neohookean", 1), "cube")
