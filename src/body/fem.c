@@ -59,9 +59,12 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
     PetscCall(
         PetscOptionsEList("-assembly", "How K is summed every step (co-rotational)", NULL, how, 2, how[a], &a, NULL));
     fem->coo = a == 1 ? PETSC_TRUE : PETSC_FALSE;
-    PetscCall(PetscOptionsEList("-rotation", "The rotation within a step: exact or linear (co-rotational)", NULL, rot,
-                                2, rot[r], &r, NULL));
-    fem->rotation_exact = r == 1 ? PETSC_TRUE : PETSC_FALSE;
+    if (!strcmp(fem->material, "corotational")) { /* a hyperelastic body's Newton step turns exactly */
+      PetscCall(PetscOptionsEList("-rotation", "The rotation within a step: exact or linear (co-rotational)", NULL, rot,
+                                  2, rot[r], &r, NULL));
+      fem->rotation_exact = r == 1 ? PETSC_TRUE : PETSC_FALSE;
+    } else
+      fem->rotation_exact = PETSC_FALSE;
   } else {
     fem->coo            = PETSC_FALSE;
     fem->rotation_exact = PETSC_FALSE;
