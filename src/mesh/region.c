@@ -158,10 +158,23 @@ PetscErrorCode FCMeshRegion(FCMesh *m, const char region[], const char option[],
       fmark[p - pStart] = (PetscBool)(all && any);
     }
   } else {
+    /* PETSc 3.18's reader, with -dm_plex_gmsh_mark_vertices, puts a node in the label of every group
+       whose number is the node's tag, whatever the dimensions (a volume and a surface group both
+       numbered 1 share their vertices): a group with faces or cells takes its vertices from their
+       closures only, a Physical Point group (vertices alone) its vertices */
+    PetscInt higher = 0;
     PetscCall(FindGroup(m, region, option, bodyname, &label, &value));
+    for (PetscInt p = pStart; p < pEnd && label; p++) {
+      PetscInt val;
+      if (p >= m->vStart && p < m->vEnd) continue;
+      PetscCall(DMLabelGetValue(label, p, &val));
+      if (val != -1 && (value < 0 || val == value)) higher = 1;
+    }
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &higher, 1, MPIU_INT, MPI_MAX, comm));
     for (PetscInt p = pStart; p < pEnd; p++) {
       PetscInt val;
       if (!label) break;
+      if (higher && p >= m->vStart && p < m->vEnd) continue;
       PetscCall(DMLabelGetValue(label, p, &val));
       if (val == -1 || (value >= 0 && val != value)) continue;
       { /* the point and its closure's vertices */
