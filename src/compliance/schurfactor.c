@@ -49,6 +49,22 @@ static inline PetscBool DistAsked(FCSchurFactor f)
 }
 
 /* MUMPS call with its error (INFOG(1) < 0) turned into a PETSc error naming the body and the phase */
+/* MUMPS' pointers to the triples (distributed on several ranks, centralized on one) */
+static void Entries(FCSchurFactor f)
+{
+  if (f->size > 1) {
+    f->id.nnz_loc = f->nnz;
+    f->id.irn_loc = f->irn;
+    f->id.jcn_loc = f->jcn;
+    f->id.a_loc   = f->val;
+  } else {
+    f->id.nnz = f->nnz;
+    f->id.irn = f->irn;
+    f->id.jcn = f->jcn;
+    f->id.a   = f->val;
+  }
+}
+
 static PetscErrorCode CallMumps(FCSchurFactor f, int job, const char phase[])
 {
   PetscFunctionBegin;
@@ -115,17 +131,7 @@ PetscErrorCode FCSchurFactorCreate(Mat A, const char name[], FCSPDInverseType in
   f->id.ICNTL(21) = 0;
   f->id.ICNTL(28) = 1; /* sequential analysis: perm_in is used as given */
   f->id.n         = (MUMPS_INT)f->N;
-  if (f->size > 1) {
-    f->id.nnz_loc = f->nnz;
-    f->id.irn_loc = f->irn;
-    f->id.jcn_loc = f->jcn;
-    f->id.a_loc   = f->val;
-  } else {
-    f->id.nnz = f->nnz;
-    f->id.irn = f->irn;
-    f->id.jcn = f->jcn;
-    f->id.a   = f->val;
-  }
+  Entries(f);
   *sf = f;
   PetscFunctionReturn(0);
 }
@@ -265,6 +271,10 @@ static PetscErrorCode GatherDense(FCSchurFactor f)
 PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
 {
   PetscFunctionBegin;
+  if (!f->irn) { /* freed after the last factorization: the structure again */
+    PetscCall(FCSchurFactorTriples(f, A, PETSC_FALSE));
+    Entries(f);
+  }
   PetscCall(FCSchurFactorTriples(f, A, PETSC_TRUE));
   if (!f->analysed) PetscCall(Analyse(f));
   PetscCall(PetscLogEventBegin(EV_NUMERIC, 0, 0, 0, 0));
@@ -286,6 +296,10 @@ PetscErrorCode FCSchurFactorFactor(FCSchurFactor f, Mat A)
              (int)f->id.INFOG(1), (int)f->id.INFOG(2),
              f->id.INFOG(1) == -10 ? " (A is not positive definite: check the material values)" : "");
   PetscCall(PetscLogEventEnd(EV_NUMERIC, 0, 0, 0, 0));
+  /* MUMPS holds A in its own structures from here (its solves read only the factor): the triples
+     (16 bytes an entry of A's upper triangle) are made again at the next factorization */
+  PetscCall(PetscFree3(f->irn, f->jcn, f->val));
+  Entries(f);
   if (Full(f))
     PetscCall(PetscInfo(NULL, "body %s: every one of its %" PetscInt_FMT " DOFs in S: Sigma = A, gathered dense\n",
                         f->name, f->N));
