@@ -10,8 +10,11 @@
    the A of eq. 5 at the iterate, factored by the body's KSP (MUMPS). PETSc's SNES drives the
    iterations (-<body>_snes_*: line search, tolerances, monitors); an iterate that turns a cell
    inside out is a domain error, which the line search cuts back. The contact schemes then take
-   the A of Newton's last iteration: W_b = J A^-1 J^T (eq. 17) and the correction (eq. 20) are
-   exact for the step linearized at the free motion (docs/method.md, "Nonlinear bodies"). */
+   the A of Newton's last Jacobian (at the iterate before the converged one, within the last
+   Newton step of it): W_b = J A^-1 J^T (eq. 17) and the correction (eq. 20) are those of the step
+   linearized there (docs/method.md, "Nonlinear bodies"). A condensed builder, which owns the
+   body's factor, factors that A once more with its Schur complement; the KSP keeps its own factor
+   beside it. */
 #include "femimpl.h"
 #include "../compliance/compliance.h"
 
@@ -174,8 +177,8 @@ PetscErrorCode FCFEMNewtonFreeMotion(FCBody body, PetscReal t)
              " iterations (-%ssnes_monitor shows them; -%ssnes_max_it, -%ssnes_rtol, or a smaller -time_step)",
              body->name, (double)t, SNESConvergedReasons[reason], its, body->prefix, body->prefix, body->prefix);
   fem->nnewton += its;
-  /* the contact schemes take A at Newton's last iterate, factored by the builder that owns it or
-     already by the KSP (a solve that converged at once forms it here) */
+  /* the contact schemes take A of Newton's last Jacobian, factored by the builder that owns it or
+     already by the KSP (a solve that converged at once forms it here, at the converged state) */
   if (!fem->jacobian) PetscCall(Jacobian(fem->snes, fem->dv, fem->A, fem->A, body));
   if (fem->comp && FCComplianceFactorsA(fem->comp))
     PetscCall(FCFEMFactorA(body));

@@ -58,12 +58,16 @@ static PetscErrorCode PrintRows(MPI_Comm comm, const char title[], int n, const 
    NULL: not). The phases' row: the growth of the peak RSS while each phase ran, the first column
    (set_up) what it grew outside them (set-up, mesh, operators, the run's own bookkeeping): the
    columns sum to the peak RSS, and the largest says which phase set it */
-PetscErrorCode FCMemoryReport(MPI_Comm comm, const PetscReal peak[FC_MEMORY_NUM], PetscBool print, FCOutput out)
+PetscErrorCode FCMemoryReport(MPI_Comm comm, const PetscReal peak_in[FC_MEMORY_NUM], PetscBool print, FCOutput out)
 {
-  const char *names[FC_PHASE_NUM + 1];
-  PetscReal   grown[FC_PHASE_NUM + 1], sum = 0.0;
+  const char   *names[FC_PHASE_NUM + 1];
+  PetscReal     grown[FC_PHASE_NUM + 1], sum = 0.0, peak[FC_MEMORY_NUM];
+  struct rusage ru;
 
   PetscFunctionBegin;
+  /* the peak RSS now: the last step's output came after the step's update */
+  for (int i = 0; i < FC_MEMORY_NUM; i++) peak[i] = peak_in[i];
+  if (!getrusage(RUSAGE_SELF, &ru)) peak[0] = PetscMax(peak[0], 1024.0 * (PetscReal)ru.ru_maxrss);
   names[0] = "set_up";
   PetscCall(FCPhaseGetMemoryGrowth(&grown[1]));
   for (int p = 0; p < FC_PHASE_NUM; p++) {
