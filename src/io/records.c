@@ -111,7 +111,7 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
     PetscCall(PetscArraycpy(e, out->rstep, r));
     {
       long long *f;
-      PetscCall(PetscMalloc1(2 * n, &f));
+      PetscCall(PetscMalloc1(FC_SOLVER_COUNTS * n, &f));
       PetscCall(PetscArraycpy(f, out->rsolve, FC_SOLVER_COUNTS * r));
       PetscCall(PetscFree(out->rsolve));
       out->rsolve = f;
