@@ -7,6 +7,7 @@
    - small-strain limit: at a displacement gradient of 1e-7 the force is linear elasticity's with the
      same Lame parameters, to 1e-6 relative (norms and work, the bodies' layouts being their own). */
 #include <fecontact.h>
+#include "util/util.h"
 
 /* u = R (F X) - X + shift (1, 2, 3), R the rotation by th about axis (no shift at small strain: its
    work on the round-off of the forces would hide the comparison) */
@@ -17,19 +18,11 @@ static PetscErrorCode Deform(FCBody body, const PetscReal F[9], const PetscReal 
   const PetscScalar *x;
   PetscScalar       *ua;
   PetscInt           n;
-  PetscReal          a[3], c = PetscCosReal(th), s = PetscSinReal(th), R[9], nn;
+  PetscReal          q4[4], R[9];
 
   PetscFunctionBegin;
-  nn = PetscSqrtReal(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
-  for (int i = 0; i < 3; i++) a[i] = axis[i] / nn;
-  for (int i = 0; i < 3; i++)
-    for (int j = 0; j < 3; j++) R[3 * i + j] = (i == j ? c : 0.0) + (1 - c) * a[i] * a[j];
-  R[1] -= s * a[2];
-  R[2] += s * a[1];
-  R[3] += s * a[2];
-  R[5] -= s * a[0];
-  R[6] -= s * a[1];
-  R[7] += s * a[0];
+  FCQuatFromAxisAngle(axis, th, q4); /* the project's rotation (src/util) */
+  FCQuatToMat3(q4, R);
   PetscCall(FCBodyFEMGetReferenceCoordinates(body, &X));
   PetscCall(VecGetLocalSize(X, &n));
   PetscCall(VecGetArrayRead(X, &x));
