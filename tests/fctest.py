@@ -25,7 +25,11 @@ def run(args, np_=1, check=True, timeout=600):
         cmd = ["mpirun", "-n", str(np_), "--oversubscribe"] + cmd
     # errors="replace": PETSc 3.18's -help prints -dm_plex_boundary_label's default from an
     # uninitialized buffer, whatever bytes it holds
+    t0 = time.time()
     p = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True, errors="replace", timeout=timeout)
+    if os.environ.get("FCTEST_TIMES"):  # where the suite's time goes: seconds, test, command (one line a run)
+        with open(os.environ["FCTEST_TIMES"], "a") as log:
+            log.write("%.2f\t%s\t%s\n" % (time.time() - t0, os.path.basename(sys.argv[0]), " ".join(cmd)))
     sanitizer_check(p, cmd)
     if check and p.returncode != 0:
         sys.stderr.write(p.stdout + p.stderr)

@@ -12,7 +12,9 @@ on --np ranks:
   "inner" (strains of 1e-4: the follower pressure's growth with the area is negligible): the mean
   radial displacement at r = a and r = b against
   u(r) = p a^3 / (E (b^3 - a^3)) ((1 - 2 nu) r + (1 + nu) b^3 / (2 r^2)), within 2 % on the
-  finer mesh (lc 0.05), and closer than on the coarser one (lc 0.1; the error falls as lc^2);
+  finer mesh (lc 0.05), and closer than on the coarser one (lc 0.1; the error falls as lc^2); on
+  --np > 1 the coarser mesh's errors equal the 1-rank ones (1e-7: the free body's rigid modes are
+  held only by M / h^2);
 - a force on a Physical Point group (the finger's tip corner), statically, is the base's reaction;
 - the reaction is the contact force: a rigid box rests on an FE block clamped at "zmin"; at every
   step the block's discrete momentum balance holds, R + F_contact + m g = m (c'' + alpha c') with c
@@ -134,12 +136,12 @@ c.check(np.abs(R[:3] + [0.01, -0.02, 0.005]).max() < 1e-9 and np.abs(X[moved] - 
         np.abs(R[:3] + [0.01, -0.02, 0.005]).max())
 
 # Lame's thick sphere
-def lame(mesh):
-    f = out("lame_%s.h5" % mesh)
+def lame(mesh, np_=NP):
+    f = out("lame_%s_np%d.h5" % (mesh, np_))
     run(["-scene_bodies", "shell", "-shell_type", "fem", "-shell_dm_plex_filename", "meshes/%s.msh" % mesh,
          "-shell_material", "linear", "-shell_young", 1e6, "-shell_poisson", 0.3, "-shell_density", 1000,
          "-shell_pressure", "inner=0:0;1:1e3", "-gravity", "0,0,0", "-time_step", H, "-time_steps", 1,
-         "-output_file", f, "-quiet"], NP)
+         "-output_file", f, "-quiet"], np_)
     g = h5py.File(f, "r")
     X, x = g["bodies/shell/mesh/reference"][:], g["bodies/shell/positions"][-1]
     r = np.linalg.norm(X, axis=1)
@@ -149,10 +151,19 @@ def lame(mesh):
     return [ur[np.abs(r - s) < 1e-3].mean() / u(s) - 1 for s in (a, b)]
 
 
-coarse, fine = lame("hollow_sphere"), lame("hollow_sphere_fine")
-print("Lame radial displacement error at r = a, b: lc 0.1 %+.4f %+.4f, lc 0.05 %+.4f %+.4f" % (*coarse, *fine))
-c.check(max(abs(e) for e in fine) < 0.02, "Lame: within 2%% on the finer mesh (%.4f, %.4f)" % tuple(fine))
-c.check(all(abs(f_) < abs(e) for f_, e in zip(fine, coarse)), "Lame: closer on the finer mesh")
+coarse = lame("hollow_sphere")
+if NP == 1:  # the convergence on 1 rank (the fine mesh's factorization is most of this test's time)
+    fine = lame("hollow_sphere_fine")
+    print("Lame radial displacement error at r = a, b: lc 0.1 %+.4f %+.4f, lc 0.05 %+.4f %+.4f" % (*coarse, *fine))
+    c.check(max(abs(e) for e in fine) < 0.02, "Lame: within 2%% on the finer mesh (%.4f, %.4f)" % tuple(fine))
+    c.check(all(abs(f_) < abs(e) for f_, e in zip(fine, coarse)), "Lame: closer on the finer mesh")
+else:  # the pressure on NP ranks: the 1-rank errors
+    one = lame("hollow_sphere", 1)
+    d = max(abs(a - b) for a, b in zip(coarse, one))
+    # 1e-7: the body is free, its rigid modes held only by M / h^2 (h = 1e3 s), whose round-off
+    # the partition changes (measured 2.9e-9 on 2 ranks)
+    c.check(d < 1e-7, "Lame: %d ranks give the 1-rank displacements at r = a, b (lc 0.1: %+.4f %+.4f; %.1e)" %
+            (NP, *coarse, d))
 
 # reaction = contact force (the block's momentum balance, every step)
 f = out("rest.h5")
