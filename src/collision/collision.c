@@ -37,7 +37,7 @@ static PetscErrorCode Sides(FCBody a, FCBody b, PetscInt ia, PetscInt ib, PetscI
 
 /* The surface of a body, gathered on every rank; hashed by the triangles' boxes over the step
    with continuous detection (widened by the arc margin of a turning mesh, FCCCDArcMargin) */
-static PetscErrorCode SurfaceBuild(MPI_Comm comm, FCBody b, const FCContactPairs *pairs, Surface **S)
+PetscErrorCode FCCollisionSurfaceBuild(MPI_Comm comm, FCBody b, const FCContactPairs *pairs, Surface **S)
 {
   PetscInt           n;
   FCSurfaceTriangle *all;
@@ -72,6 +72,7 @@ static void SweptVertexHit(Surface *S, const PetscReal x0[3], const PetscReal xf
   for (PetscInt k = 0; k < nc; k++) {
     const FCSurfaceTriangle *T = &S->tri[cand[k]];
     PetscReal                t;
+    if (S->self && FCCollisionSelfExcludes(S, cand[k], x0)) continue;
     if (nv) {
       PetscReal nt[3];
       FCTriangleNormal(T->x0, nt);
@@ -118,6 +119,7 @@ PetscErrorCode FCCollisionLandingTriangle(Surface *S, const PetscReal x0[3], con
   if (*best >= 0 && d2 <= distance * distance) PetscFunctionReturn(0);
   if (continuous) SweptVertexHit(S, x0, xf, nv, tau, cand, best);
   if (*best < 0) {
+    if (S->self) PetscFunctionReturn(0); /* a vertex of S is on it: the start-inside fallback does not apply */
     if (!grid->cells) PetscCall(FCRayGridCreate(S, grid));
     if (!FCRayGridInside(S, grid, x0)) PetscFunctionReturn(0);
     NearestTriangle(S, x0, best);
@@ -141,7 +143,8 @@ void FCCollisionTrianglePoint(const FCSurfaceTriangle *T, const PetscReal w[3], 
 
 /* The outward normals of the vertices of a surface's ntri triangles at the start of the step
    (sums of their triangles' normals weighted by area), sorted by reference position */
-static PetscErrorCode VertexNormals(PetscInt ntri, const FCSurfaceTriangle tri[], PetscInt *nvn, FCVertexNormal **vn)
+PetscErrorCode FCCollisionVertexNormals(PetscInt ntri, const FCSurfaceTriangle tri[], PetscInt *nvn,
+                                        FCVertexNormal **vn)
 {
   FCVertexNormal *all;
   PetscInt        m = 0;
@@ -208,6 +211,7 @@ PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt i
       for (int d = 0; d < 3; d++) key1.X[d] = prox[i].X[0][d];
       own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), FCComparePoint);
     }
+    if (S->self) FCCollisionSelfSkip(S, prox[i].X[0]);
     PetscCall(FCCollisionLandingTriangle(S, &x0[3 * i], &xf[3 * i], own ? own->n : NULL, distance, pairs->continuous,
                                          tau, cand, &grid, &best, bw, bcp));
     if (best < 0) continue;
@@ -270,7 +274,8 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
   PetscCall(PetscMalloc1(9 * set->n + 3, &held));
   for (PetscInt k = 0; k < set->n; k++) {
     const FCContact *c = &set->c[k];
-    if (c->side2 != FC_SIDE_FE_TRIANGLE || c->body[0] != pairs->body[c->pair][0]) continue;
+    if (c->side2 != FC_SIDE_FE_TRIANGLE || c->body[0] != pairs->body[c->pair][0] || c->body[0] == c->body[1])
+      continue; /* (a self-contact pair has one pass) */
     for (int a = 0; a < 3; a++)
       if (c->prox[1].w[a] > w) {
         for (int d = 0; d < 3; d++) held[3 * nheld + d] = c->prox[1].X[a][d];
@@ -281,7 +286,8 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
   for (PetscInt k = 0; k < set->n; k++) {
     const FCContact *c      = &set->c[k];
     PetscBool        isheld = PETSC_FALSE;
-    if (c->side2 == FC_SIDE_FE_TRIANGLE && c->body[0] == pairs->body[c->pair][1] && c->prox[0].nv == 1 && nheld)
+    if (c->side2 == FC_SIDE_FE_TRIANGLE && c->body[0] == pairs->body[c->pair][1] && c->body[0] != c->body[1] &&
+        c->prox[0].nv == 1 && nheld)
       isheld = bsearch(c->prox[0].X[0], held, nheld, 3 * sizeof(PetscReal), FCComparePoint) ? PETSC_TRUE : PETSC_FALSE;
     if (isheld && drop_held) continue;
     set->c[k].dormant = set->c[k].dormant || isheld; /* (a shape's points made dormant stay so) */
@@ -303,17 +309,21 @@ static PetscErrorCode MeshedPair(MPI_Comm comm, FCBody bodies[], PetscInt p, con
   PetscInt        nvn[2] = {0, 0};
 
   PetscFunctionBegin;
+  if (pairs->body[p][0] == pairs->body[p][1]) {
+    PetscCall(FCCollisionSelfPair(comm, bodies[pairs->body[p][0]], pairs->body[p][0], p, pairs, rank, set));
+    PetscFunctionReturn(0);
+  }
   for (int side = 0; side < 2; side++) {
     FCBody b = bodies[pairs->body[p][side]];
     if (side == 1 || pairs->passes == 2) { /* a surface some vertex lands on */
-      PetscCall(SurfaceBuild(comm, b, pairs, &Sf[side]));
+      PetscCall(FCCollisionSurfaceBuild(comm, b, pairs, &Sf[side]));
       if (pairs->facing && FCBodyIsDeformable(b))
-        PetscCall(VertexNormals(Sf[side]->n, Sf[side]->tri, &nvn[side], &vn[side]));
+        PetscCall(FCCollisionVertexNormals(Sf[side]->n, Sf[side]->tri, &nvn[side], &vn[side]));
     } else if (pairs->facing && FCBodyIsDeformable(b)) { /* one pass: only the normals of its vertices */
       PetscInt           ntri;
       FCSurfaceTriangle *tri;
       PetscCall(FCSurfaceGather(comm, b, &ntri, &tri));
-      PetscCall(VertexNormals(ntri, tri, &nvn[side], &vn[side]));
+      PetscCall(FCCollisionVertexNormals(ntri, tri, &nvn[side], &vn[side]));
       PetscCall(PetscFree(tri));
     }
   }
@@ -377,8 +387,8 @@ static PetscErrorCode SurfaceShapePair(MPI_Comm comm, FCBody P, FCBody S, PetscI
   PetscFunctionBegin;
   if (FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S) &&
       (pairs->shape_points || pairs->facing)) {
-    PetscCall(SurfaceBuild(comm, P, pairs, &Sf));
-    if (pairs->facing) PetscCall(VertexNormals(Sf->n, Sf->tri, &nvn, &vn));
+    PetscCall(FCCollisionSurfaceBuild(comm, P, pairs, &Sf));
+    if (pairs->facing) PetscCall(FCCollisionVertexNormals(Sf->n, Sf->tri, &nvn, &vn));
   }
   if (Sf && pairs->shape_points) PetscCall(FCCollisionRoundedFollows(S, Sf, pairs, &atfree));
   if (atfree && !FCBodyHasSmoothShape(S)) PetscCall(FCCollisionCylinderLies(S, Sf, pairs, &lies));
@@ -448,4 +458,3 @@ PetscErrorCode FCCollisionDetectPairs(MPI_Comm comm, PetscInt nbodies, FCBody bo
   PetscCall(FCContactSetFinalize(set));
   PetscFunctionReturn(0);
 }
-

@@ -15,7 +15,8 @@ typedef struct {
   PetscBool  facing;        /* -contact_facing: a vertex lands only on triangles that face its own surface */
   PetscBool  continuous;    /* -contact_detection continuous (default) or discrete */
   PetscBool  edges;         /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
-  PetscBool  shape_points;  /* -contact_shape_points: a bounded shape's points against an FE surface too */
+  PetscInt   self_ring;    /* -contact_self_ring: a self-contact vertex leaves out the triangles this many edges near */
+  PetscBool  shape_points; /* -contact_shape_points: a bounded shape's points against an FE surface too */
   PetscBool  rounded_exact; /* -contact_rounded_surface exact: a sphere's or capsule's nearest FE surface points */
   PetscReal
       separation_speed; /* -contact_separation_speed: bodies that start inside each other part at most this fast */

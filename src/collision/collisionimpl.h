@@ -20,6 +20,13 @@ struct _FCSurface {
   PetscInt           nquery;  /* swept queries so far */
   PetscReal          inflate; /* what each triangle's box was inflated by */
   PetscReal          arc;     /* SurfaceBuild: how far a turning mesh's vertices leave their chords (FCCCDArcMargin) */
+  /* self-contact (selfcontact.c): the triangles the current vertex may not land on (sorted), and no
+     start-inside fallback (a vertex of the surface is on it, not inside it) */
+  const PetscInt     *skip;
+  PetscInt            nskip;
+  PetscBool           self;
+  PetscReal           selfX[3]; /* the current vertex's reference position */
+  struct _FCSelfRing *ring;
 };
 
 /* The surface triangles of a body (FE or mesh shape) as they are now, gathered on every rank
@@ -65,6 +72,17 @@ PETSC_INTERN PetscErrorCode FCCollisionLandingTriangle(Surface *, const PetscRea
                                                        PetscReal w[3], PetscReal cp[3]);
 PETSC_INTERN void           FCCollisionTrianglePoint(const FCSurfaceTriangle *, const PetscReal w[3], FCProximity *,
                                                      PetscReal xf[3]);
+/* collision.c: a body's surface gathered and hashed for the step; the vertex normals of ntri triangles */
+PETSC_INTERN PetscErrorCode FCCollisionSurfaceBuild(MPI_Comm, FCBody, const FCContactPairs *, Surface **);
+PETSC_INTERN PetscErrorCode FCCollisionVertexNormals(PetscInt ntri, const FCSurfaceTriangle[], PetscInt *nvn,
+                                                     FCVertexNormal **vn);
+/* selfcontact.c: an FE body against its own surface (a pair a:a) */
+PETSC_INTERN PetscErrorCode FCCollisionSelfPair(MPI_Comm, FCBody, PetscInt ib, PetscInt pair, const FCContactPairs *,
+                                                PetscMPIInt rank, FCContactSet *);
+/* selfcontact.c: before vertex X's landing, the triangles of its ring in S (S->skip); then whether
+   triangle t is not a landing place for it at x (its ring, or across the body's own thickness) */
+PETSC_INTERN void           FCCollisionSelfSkip(Surface *, const PetscReal X[3]);
+PETSC_INTERN PetscBool      FCCollisionSelfExcludes(const Surface *, PetscInt t, const PetscReal x[3]);
 PETSC_INTERN PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp,
                                                               Surface *S, PetscInt nvn, const FCVertexNormal *vn,
                                                               PetscInt pair, const FCContactPairs *, PetscMPIInt rank,

@@ -63,6 +63,10 @@ static PetscErrorCode ReadDetection(FCCollision s, PetscOptionItems *PetscOption
                                detection, 16, NULL));
   PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_edge_edge", "Edge-edge contacts between two meshed bodies",
                           &s->pairs.edges, NULL));
+  PetscCall(FCOptionsInt(PetscOptionsObject, "-contact_self_ring",
+                         "Self-contact (a pair a:a): a vertex leaves out the triangles that touch the surface vertices "
+                         "fewer than this many edges from it",
+                         &s->pairs.self_ring, NULL));
   PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_shape_points",
                           "A bounded shape's points against the triangles of an FE body too", &s->pairs.shape_points,
                           NULL));
@@ -108,6 +112,9 @@ static PetscErrorCode CheckDetection(FCCollision s, PetscInt np, PetscReal mu[],
   for (PetscInt i = 0; i < *nmu; i++)
     PetscCheck(mu[i] >= 0.0 && PetscIsNormalReal(mu[i] + 1.0), s->comm, PETSC_ERR_USER_INPUT,
                "Option -contact_mu: entry %" PetscInt_FMT " must be a finite number >= 0, got %g", i, (double)mu[i]);
+  PetscCheck(s->pairs.self_ring >= 1, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_self_ring must be >= 1 (1: a vertex's own triangles), got %" PetscInt_FMT,
+             s->pairs.self_ring);
   PetscCheck(s->pairs.passes == 1 || s->pairs.passes == 2, s->comm, PETSC_ERR_USER_INPUT,
              "Option -contact_fe_passes must be 1 or 2, got %" PetscInt_FMT, s->pairs.passes);
   PetscCheck(s->pairs.pass2_drop < 1.0 && PetscIsNormalReal(s->pairs.pass2_drop + 2.0), s->comm, PETSC_ERR_USER_INPUT,
@@ -127,7 +134,7 @@ static PetscErrorCode CheckDetection(FCCollision s, PetscInt np, PetscReal mu[],
   PetscFunctionReturn(0);
 }
 
-/* The pairs "a:b" of -contact_pairs: two distinct bodies of the scene, not both kinematic */
+/* The pairs "a:b" of -contact_pairs: two bodies of the scene, not both kinematic; a:a, self-contact, an FE body */
 static PetscErrorCode SetPairs(FCCollision s, PetscInt np, char *pairs[], const PetscReal mu[], PetscInt nmu)
 {
   PetscFunctionBegin;
@@ -140,8 +147,11 @@ static PetscErrorCode SetPairs(FCCollision s, PetscInt np, char *pairs[], const 
     *colon = 0;
     PetscCall(BodyIndex(s, pairs[p], pairs[p], &s->pairs.body[p][0]));
     PetscCall(BodyIndex(s, colon + 1, pairs[p], &s->pairs.body[p][1]));
-    PetscCheck(s->pairs.body[p][0] != s->pairs.body[p][1], s->comm, PETSC_ERR_USER_INPUT,
-               "Contact pair '%s:%s' pairs a body with itself (self-contact is not supported)", pairs[p], colon + 1);
+    PetscCheck(s->pairs.body[p][0] != s->pairs.body[p][1] || FCBodyIsDeformable(s->bodies[s->pairs.body[p][0]]),
+               s->comm, PETSC_ERR_USER_INPUT,
+               "Contact pair '%s:%s' pairs body '%s' with itself: self-contact is for FE bodies (a rigid or kinematic "
+               "body cannot touch itself)",
+               pairs[p], colon + 1, pairs[p]);
     PetscCheck(
         !(FCBodyIsPrescribed(s->bodies[s->pairs.body[p][0]]) && FCBodyIsPrescribed(s->bodies[s->pairs.body[p][1]])),
         s->comm, PETSC_ERR_USER_INPUT, "Contact pair '%s:%s' joins two kinematic bodies: nothing can respond", pairs[p],
@@ -169,6 +179,7 @@ PetscErrorCode FCCollisionSetFromOptions(FCCollision s)
   s->pairs.facing             = PETSC_TRUE;
   s->pairs.intersection_depth = 1e-4;
   s->pairs.edges              = PETSC_TRUE;
+  s->pairs.self_ring          = 2;
   s->pairs.shape_points       = PETSC_TRUE;
   s->pairs.separation_speed   = 1.0;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");

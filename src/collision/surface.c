@@ -196,6 +196,7 @@ void FCSurfaceClosestFacing(const FCSurface *S, const PetscReal x[3], const Pets
   for (PetscInt k = b; k < e; k++) {
     const FCSurfaceTriangle *T = &S->tri[S->cells[k].tri];
     PetscReal                cp[3], w[3], d2 = 0.0;
+    if (S->self && FCCollisionSelfExcludes(S, S->cells[k].tri, x)) continue;
     if (nv) {
       PetscReal nt[3];
       FCTriangleNormal(T->x0, nt);

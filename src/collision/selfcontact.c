@@ -1,0 +1,173 @@
+/* Self-contact of an FE body (a pair a:a, docs/method.md section 2.2): the body's owned boundary
+   vertices against its own surface, in one pass (each vertex against every triangle covers both
+   directions of a fold), by the machinery of the two-body pairs (the nearest facing triangle
+   within the alarm distance, else the first one the vertex's motion reaches). A vertex is on its
+   own surface, so two rules keep a body's own shape from being taken for a contact:
+     - the ring: a vertex leaves out the triangles that touch a surface vertex within
+       -contact_self_ring - 1 edges of it in the reference configuration (ring 1: the triangles
+       around it, which it lies on; ring 2, the default, also those around its neighbours, which a
+       concave corner of the surface brings within the alarm distance at rest);
+     - -contact_facing (on by default for self-contact too): a vertex lands only on triangles whose
+       normal opposes its own, so the flat and convex parts of the surface around it are never
+       landing places, and a fold is (its two sides face each other).
+   A vertex of the surface lies on it, so the start-inside fallback of the two-body pairs (a point
+   inside the other body) does not apply; continuous detection keeps a fold from crossing. */
+#include "collisionimpl.h"
+
+struct _FCSelfRing {
+  PetscInt   nv, ntri, k;
+  PetscReal *X;             /* 3 nv: the surface's vertices by reference position, sorted */
+  PetscInt  *tv;            /* 3 ntri: each triangle's vertices */
+  PetscInt  *off, *vt;      /* vertex -> its triangles */
+  PetscInt  *mark, *queue;  /* nv: the BFS's marks and queue */
+  PetscInt  *skip, nskipmx; /* the current vertex's ring triangles (3 ntri + 1) */
+};
+
+static PetscInt VertexOf(const struct _FCSelfRing *r, const PetscReal X[3])
+{
+  const PetscReal *f = (const PetscReal *)bsearch(X, r->X, r->nv, 3 * sizeof(PetscReal), FCComparePoint);
+  return f ? (PetscInt)((f - r->X) / 3) : -1;
+}
+
+static int CompareInt(const void *a, const void *b)
+{
+  PetscInt x = *(const PetscInt *)a, y = *(const PetscInt *)b;
+  return x < y ? -1 : (x > y ? 1 : 0);
+}
+
+static PetscErrorCode RingCreate(const Surface *S, PetscInt k, struct _FCSelfRing **ring)
+{
+  struct _FCSelfRing *r;
+  PetscInt            m = 0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&r));
+  r->ntri = S->n;
+  r->k    = k;
+  PetscCall(PetscMalloc1(9 * S->n + 3, &r->X));
+  for (PetscInt t = 0; t < S->n; t++)
+    for (int a = 0; a < 3; a++)
+      for (int d = 0; d < 3; d++) r->X[9 * t + 3 * a + d] = S->tri[t].X[a][d];
+  if (S->n) qsort(r->X, 3 * S->n, 3 * sizeof(PetscReal), FCComparePoint);
+  for (PetscInt i = 0; i < 3 * S->n; i++)
+    if (!m || FCComparePoint(&r->X[3 * (m - 1)], &r->X[3 * i])) {
+      for (int d = 0; d < 3; d++) r->X[3 * m + d] = r->X[3 * i + d];
+      m++;
+    }
+  r->nv = m;
+  PetscCall(
+      PetscMalloc5(3 * S->n + 1, &r->tv, m + 1, &r->off, 3 * S->n + 1, &r->vt, m + 1, &r->mark, m + 1, &r->queue));
+  PetscCall(PetscArrayzero(r->off, m + 1));
+  for (PetscInt t = 0; t < S->n; t++)
+    for (int a = 0; a < 3; a++) {
+      r->tv[3 * t + a] = VertexOf(r, S->tri[t].X[a]);
+      r->off[r->tv[3 * t + a] + 1]++;
+    }
+  for (PetscInt v = 0; v < m; v++) r->off[v + 1] += r->off[v];
+  PetscCall(PetscArraycpy(r->mark, r->off, m)); /* as fill pointers */
+  for (PetscInt t = 0; t < S->n; t++)
+    for (int a = 0; a < 3; a++) r->vt[r->mark[r->tv[3 * t + a]]++] = t;
+  for (PetscInt v = 0; v < m; v++) r->mark[v] = -1;
+  r->nskipmx = 3 * S->n + 1; /* every triangle three times at most */
+  PetscCall(PetscMalloc1(r->nskipmx, &r->skip));
+  *ring = r;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode RingDestroy(struct _FCSelfRing **r)
+{
+  PetscFunctionBegin;
+  if (!*r) PetscFunctionReturn(0);
+  PetscCall(PetscFree((*r)->X));
+  PetscCall(PetscFree5((*r)->tv, (*r)->off, (*r)->vt, (*r)->mark, (*r)->queue));
+  PetscCall(PetscFree((*r)->skip));
+  PetscCall(PetscFree(*r));
+  PetscFunctionReturn(0);
+}
+
+/* The triangles around the vertices within k - 1 edges of X (a breadth-first walk over the
+   surface's triangles), sorted, as S->skip */
+void FCCollisionSelfSkip(Surface *S, const PetscReal X[3])
+{
+  struct _FCSelfRing *r  = S->ring;
+  PetscInt            v0 = VertexOf(r, X), head = 0, tail = 0, n = 0;
+
+  S->nskip = 0;
+  if (v0 < 0) return;
+  r->mark[v0]      = 0;
+  r->queue[tail++] = v0;
+  while (head < tail) {
+    PetscInt v = r->queue[head++];
+    for (PetscInt j = r->off[v]; j < r->off[v + 1]; j++) {
+      PetscInt t = r->vt[j];
+      if (n < r->nskipmx) r->skip[n++] = t; /* (a triangle repeats once per ring vertex it touches) */
+      if (r->mark[v] + 1 <= r->k - 1)
+        for (int a = 0; a < 3; a++) {
+          PetscInt w = r->tv[3 * t + a];
+          if (r->mark[w] < 0) {
+            r->mark[w]       = r->mark[v] + 1;
+            r->queue[tail++] = w;
+          }
+        }
+    }
+  }
+  for (PetscInt i = 0; i < tail; i++) r->mark[r->queue[i]] = -1;
+  qsort(r->skip, n, sizeof(PetscInt), CompareInt);
+  {
+    PetscInt u = 0;
+    for (PetscInt i = 0; i < n; i++)
+      if (!u || r->skip[u - 1] != r->skip[i]) r->skip[u++] = r->skip[i];
+    n = u;
+  }
+  S->skip  = r->skip;
+  S->nskip = n;
+  for (int d = 0; d < 3; d++) S->selfX[d] = X[d];
+}
+
+/* Behind triangle T (on the side its outward normal points away from) at p, T's corners c: the
+   signed distance from T's closest point along T's normal is negative */
+static PetscBool Behind(const PetscReal p[3], const PetscReal c[3][3])
+{
+  PetscReal cp[3], w[3], n[3], s = 0.0;
+  FCClosestPointTriangle(p, c[0], c[1], c[2], cp, w);
+  FCTriangleNormal(c, n);
+  for (int d = 0; d < 3; d++) s += (p[d] - cp[d]) * n[d];
+  return s < 0.0 ? PETSC_TRUE : PETSC_FALSE;
+}
+
+PetscBool FCCollisionSelfExcludes(const Surface *S, PetscInt t, const PetscReal x[3])
+{
+  PetscInt lo = 0, hi = S->nskip;
+  while (lo < hi) { /* the ring (sorted) */
+    PetscInt m = (lo + hi) / 2;
+    if (S->skip[m] == t) return PETSC_TRUE;
+    if (S->skip[m] < t)
+      lo = m + 1;
+    else
+      hi = m;
+  }
+  /* across the body's own thickness: behind the triangle now and in the reference configuration
+     (a fold that has crossed was in front of it there, and stays a landing place) */
+  return Behind(x, S->tri[t].x0) && Behind(S->selfX, S->tri[t].X) ? PETSC_TRUE : PETSC_FALSE;
+}
+
+PetscErrorCode FCCollisionSelfPair(MPI_Comm comm, FCBody b, PetscInt ib, PetscInt pair, const FCContactPairs *pairs,
+                                   PetscMPIInt rank, FCContactSet *set)
+{
+  Surface        *S   = NULL;
+  FCVertexNormal *vn  = NULL;
+  PetscInt        nvn = 0;
+
+  PetscFunctionBegin;
+  PetscCall(FCCollisionSurfaceBuild(comm, b, pairs, &S));
+  if (pairs->facing) PetscCall(FCCollisionVertexNormals(S->n, S->tri, &nvn, &vn));
+  PetscCall(RingCreate(S, pairs->self_ring, &S->ring));
+  S->self = PETSC_TRUE;
+  PetscCall(FCCollisionVerticesAgainstSurface(b, b, ib, ib, S, nvn, vn, pair, pairs, rank, set));
+  S->skip  = NULL;
+  S->nskip = 0;
+  PetscCall(RingDestroy(&S->ring));
+  PetscCall(FCSurfaceDestroy(&S));
+  PetscCall(PetscFree(vn));
+  PetscFunctionReturn(0);
+}
