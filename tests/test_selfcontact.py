@@ -1,0 +1,152 @@
+"""Self-contact of an FE body (-contact_pairs a:a, src/collision/selfcontact.c), on --np ranks:
+
+- a body at rest or turning freely has no self-contacts: the coarse cube, the finger, the hollow
+  sphere (a 0.5 m wall), the thin slab (0.02 m thick) and the bar, spinning at 3 rad/s without
+  gravity, with an alarm distance of 0.05 m and of 0.3 m (larger than the slab's thickness: the
+  rule that leaves out the triangles across the body's own thickness);
+- one body of two components is two bodies: the coarse cube and a copy of it 1.2 m above, in one
+  mesh (written here from meshes/cube_coarse.msh) paired with itself, fall on a plane and the upper
+  lands on the lower; the same two cubes as two bodies paired a:b (both passes, no dormant second
+  pass: a self pair has one pass, each vertex against the whole surface) give the same contacts at
+  every step, the same sum of normal forces (1e-6 relative: the contact solver's tolerance) and the
+  same positions (1e-5 of the displacement);
+- every compliance builder gives dense's contact forces to 1e-10 (relative) on that self-contact
+  scene, with plain PGS (whose iterates are a smooth function of W, tests/test_compliance.py);
+- --np > 1: the two-component scene's positions are the 1-rank ones to 1e-8 of the displacement;
+- bad input: a rigid and a kinematic body paired with itself, -contact_self_ring 0: errors naming
+  them."""
+import subprocess
+
+import h5py
+import numpy as np
+
+from fctest import run, out, Checker, np_from_argv, ROOT
+
+NP = np_from_argv()
+c = Checker("selfcontact np%d" % NP)
+
+# at rest and in free rotation
+for mesh in ["cube_coarse", "finger", "hollow_sphere", "thin_slab", "bar"]:
+    for d in [0.05, 0.3]:
+        f = out("rest_%s_%g.h5" % (mesh, d))
+        run(["-scene_bodies", "b", "-b_type", "fem", "-b_dm_plex_filename", "meshes/%s.msh" % mesh, "-b_material",
+             "corotational", "-b_young", 1e5, "-b_density", 1000, "-b_angular_velocity", "0,0,3", "-gravity", "0,0,0",
+             "-contact_pairs", "b:b", "-contact_distance", d, "-time_steps", 5, "-output_file", f, "-quiet"], NP)
+        h = h5py.File(f, "r")
+        c.check(h["steps/contacts"][:].max() == 0, "%s spinning, alarm distance %g m: %d self-contacts" %
+                (mesh, d, h["steps/contacts"][:].max()))
+
+
+def two_cubes(path, dz=1.2):
+    """meshes/cube_coarse.msh and a copy of it dz above, one mesh of two components (gmsh's 2.2 format)"""
+    m22 = out("cube_coarse22.msh")
+    subprocess.run(["gmsh", "meshes/cube_coarse.msh", "-save", "-format", "msh22", "-o", m22], cwd=ROOT, check=True,
+                   capture_output=True)
+    L = open(m22).read().split("\n")
+    i, j = L.index("$Nodes"), L.index("$Elements")
+    nodes = L[i + 2:L.index("$EndNodes")]
+    elems = L[j + 2:L.index("$EndElements")]
+    nn, ne = len(nodes), len(elems)
+    moved = []
+    for ln in nodes:
+        k, x, y, z = ln.split()
+        moved.append("%d %s %s %.17g" % (int(k) + nn, x, y, float(z) + dz))
+    copies = []
+    for ln in elems:
+        t = ln.split()
+        ntag = int(t[2])
+        head = [str(int(t[0]) + ne)] + t[1:3 + ntag]
+        copies.append(" ".join(head + [str(int(v) + nn) for v in t[3 + ntag:]]))
+    with open(path, "w") as g:
+        g.write("\n".join(L[:i + 1] + [str(2 * nn)] + nodes + moved + ["$EndNodes", "$Elements", str(2 * ne)] + elems +
+                          copies + ["$EndElements", ""]))
+
+
+TWO = out("two_cubes.msh")
+two_cubes(TWO)
+COMMON = ["-time_step", 0.01, "-time_steps", 26, "-output_every", 26, "-contact_mu", 0, "-contact_distance", 0.015,
+          "-contact_edge_edge", 0, "-pgs_tol", 1e-13, "-pgs_max_it", 5000, "-pgs_fail_residual", 1, "-quiet",
+          "-ground_type", "kinematic", "-ground_shape", "plane", "-ground_length", 3]
+FE = ["_type", "fem", "_material", "corotational", "_young", 2e5, "_density", 1000]
+
+
+def fe(name, mesh, z):
+    o = ["-%s_dm_plex_filename" % name, mesh, "-%s_translate" % name, "0,0,%g" % z]
+    for k in range(0, len(FE), 2):
+        o += ["-" + name + FE[k], FE[k + 1]]
+    return o
+
+
+def self_scene(np_, extra=()):
+    f = out("self_%d_%s.h5" % (np_, "_".join(str(e) for e in extra)))
+    run(COMMON + ["-scene_bodies", "stack,ground", "-contact_pairs", "stack:ground,stack:stack"] +
+        fe("stack", TWO, 0.5001) + ["-output_file", f] + list(extra), np_)
+    return h5py.File(f, "r")
+
+
+A = self_scene(NP)
+fb = out("two_bodies.h5")
+run(COMMON + ["-scene_bodies", "lo,hi,ground", "-contact_pairs", "lo:ground,hi:ground,lo:hi", "-contact_fe_pass2_dormant",
+              -1] + fe("lo", "meshes/cube_coarse.msh", 0.5001) + fe("hi", "meshes/cube_coarse.msh", 1.7001) +
+    ["-output_file", fb], NP)
+B = h5py.File(fb, "r")
+ra = A["bodies/stack/mesh/reference"][:]
+rb = np.vstack([B["bodies/lo/mesh/reference"][:], B["bodies/hi/mesh/reference"][:]])
+
+
+def order(r):
+    return np.lexsort(np.round(r, 9).T[::-1])
+
+
+ia, ib = order(ra), order(rb)
+pa = A["bodies/stack/positions"][-1][ia]
+pb = np.vstack([B["bodies/lo/positions"][-1], B["bodies/hi/positions"][-1]])[ib]
+disp = np.abs(pa - ra[ia]).max()
+na, nb = A["steps/contacts"][:], B["steps/contacts"][:]
+fa, fbb = A["contacts/force"][:], B["contacts/force"][:]
+sa, sb = fa[-na[-1]:, 0].sum(), fbb[-nb[-1]:, 0].sum()
+self_rows = A["contacts/bodies"][-na[-1]:]
+c.check(np.array_equal(na, nb) and (self_rows[:, 0] == self_rows[:, 1]).sum() > 0,
+        "two components = two bodies: the same contacts at every step (%d at the end, %d of them self-contacts)" %
+        (na[-1], (self_rows[:, 0] == self_rows[:, 1]).sum()))
+c.check(abs(sa - sb) <= 1e-6 * abs(sb) and np.abs(pa - pb).max() <= 1e-5 * disp,
+        "two components = two bodies: sum of normal forces %.10g against %.10g, positions to %.1e m of a %.2f m "
+        "displacement" % (sa, sb, np.abs(pa - pb).max(), disp))
+
+# every builder gives dense's forces: a linear body (precomputed is exact for it), to the first steps
+# with self-contacts, step 21 (later, the frictionless stack's mutual vertex-triangle constraints leave the
+# forces' split between them to the solver's path)
+PLAIN = ["-pgs_acceleration", "none", "-pgs_tol", 1e-10, "-pgs_max_it", 20000, "-stack_material", "linear",
+         "-time_steps", 21, "-output_every", 21]
+D = self_scene(NP, PLAIN + ["-compliance_type", "dense"])
+builders = (["sparse"] if NP == 1 else []) + ["schur", "inverse", "redundant", "condensed", "precomputed"]
+for b in builders:
+    H = self_scene(NP, PLAIN + ["-compliance_type", b])
+    fd, fh = D["contacts/force"][:], H["contacts/force"][:]
+    ok = fd.shape == fh.shape
+    err = np.abs(fd - fh).max() / np.abs(fd).max() if ok else np.inf
+    nself = (H["contacts/bodies"][:, 0] == H["contacts/bodies"][:, 1]).sum()
+    c.check(ok and err <= 1e-10 and nself > 0, "builder %s: dense's contact forces to %.1e (relative; %d self-contacts "
+            "at step 21)" % (b, err, nself))
+
+if NP > 1:
+    A1 = self_scene(1)
+    p1 = A1["bodies/stack/positions"][-1]
+    x = A["bodies/stack/positions"][-1]
+    r1 = A1["bodies/stack/mesh/reference"][:]
+    d = np.abs(x[ia] - p1[order(r1)]).max()
+    c.check(d <= 1e-8 * disp, "%d ranks: the 1-rank positions to %.1e m" % (NP, d))
+
+# bad input
+CUBE = ["-b_type", "fem", "-b_dm_plex_filename", "meshes/cube_coarse.msh", "-b_young", 1e5, "-b_density", 1000]
+for args, what in [(["-scene_bodies", "ball", "-ball_type", "rigid", "-ball_shape", "sphere", "-ball_radius", 0.1,
+                     "-ball_density", 1000, "-contact_pairs", "ball:ball"], "'ball' with itself"),
+                   (["-scene_bodies", "b,g", "-g_type", "kinematic", "-g_shape", "plane", "-contact_pairs", "g:g"] + CUBE,
+                    "'g' with itself"),
+                   (["-scene_bodies", "b", "-contact_pairs", "b:b", "-contact_self_ring", 0] + CUBE,
+                    "-contact_self_ring")]:
+    p = run(args + ["-time_steps", 1, "-output_file", out("bad.h5")], NP, check=False)
+    msg = p.stdout + p.stderr
+    c.check(p.returncode != 0 and what in msg, "refused (exit %d): %s" %
+            (p.returncode, [ln for ln in msg.splitlines() if what in ln][:1]))
+c.done()
