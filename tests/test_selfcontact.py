@@ -113,6 +113,31 @@ c.check(abs(sa - sb) <= 1e-6 * abs(sb) and np.abs(pa - pb).max() <= 1e-5 * disp,
         "two components = two bodies: sum of normal forces %.10g against %.10g, positions to %.1e m of a %.2f m "
         "displacement" % (sa, sb, np.abs(pa - pb).max(), disp))
 
+# self-intersections: the two cubes overlapping by 0.1 m in the mesh itself (no contact holds them: the
+# overlap is the reference configuration's, where every vertex of it is behind the other part); the
+# count is every surface vertex of each cube inside the other deeper than -contact_intersection_depth
+# (1e-4), counted here from the geometry of the two unit cubes
+OV = out("two_cubes_overlap.msh")
+two_cubes(OV, dz=0.9)
+f = out("overlap.h5")
+run(["-scene_bodies", "s", "-contact_pairs", "s:s", "-gravity", "0,0,0", "-time_steps", 1, "-output_file", f, "-quiet"] +
+    fe("s", OV, 0), NP)
+h = h5py.File(f, "r")
+P = h["bodies/s/positions"][-1]
+cells = h["bodies/s/mesh/cells"][:]
+faces = np.sort(np.concatenate([cells[:, [0, 1, 2]], cells[:, [0, 1, 3]], cells[:, [0, 2, 3]], cells[:, [1, 2, 3]]]), axis=1)
+u, n = np.unique(faces, axis=0, return_counts=True)
+surf = np.unique(u[n == 1])
+expect = 0
+for lo_z, other in [(-0.5, 0.9), (0.4, 0.0)]:  # each cube's vertices against the other cube's box
+    mine = surf[(P[surf, 2] > lo_z - 1e-9) & (P[surf, 2] < lo_z + 1.0 + 1e-9)]
+    q = P[mine] - [0, 0, other]
+    depth_in = np.min(np.hstack([0.5 - np.abs(q)]), axis=1)
+    expect += int((depth_in > 1e-4).sum())
+c.check(h["steps/intersections"][0] == expect and expect > 0,
+        "self-intersections of two overlapping cubes in one body: %d counted, %d surface vertices inside the other "
+        "cube deeper than 1e-4 m" % (h["steps/intersections"][0], expect))
+
 # every builder gives dense's forces: a linear body (precomputed is exact for it), to the first steps
 # with self-contacts, step 21 (later, the frictionless stack's mutual vertex-triangle constraints leave the
 # forces' split between them to the solver's path)

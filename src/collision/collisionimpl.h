@@ -81,8 +81,11 @@ PETSC_INTERN PetscErrorCode FCCollisionSelfPair(MPI_Comm, FCBody, PetscInt ib, P
                                                 PetscMPIInt rank, FCContactSet *);
 /* selfcontact.c: before vertex X's landing, the triangles of its ring in S (S->skip); then whether
    triangle t is not a landing place for it at x (its ring, or across the body's own thickness) */
+PETSC_INTERN PetscErrorCode FCCollisionSelfRingSetUp(Surface *, PetscInt k);
+PETSC_INTERN PetscErrorCode FCCollisionSelfRingReset(Surface *);
 PETSC_INTERN void           FCCollisionSelfSkip(Surface *, const PetscReal X[3]);
 PETSC_INTERN PetscBool      FCCollisionSelfExcludes(const Surface *, PetscInt t, const PetscReal x[3]);
+PETSC_INTERN PetscBool      FCCollisionSelfExcludesRing(const Surface *, PetscInt t);
 PETSC_INTERN PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp,
                                                               Surface *S, PetscInt nvn, const FCVertexNormal *vn,
                                                               PetscInt pair, const FCContactPairs *, PetscMPIInt rank,

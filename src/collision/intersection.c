@@ -270,6 +270,92 @@ static PetscErrorCode PointsInShape(PetscInt n, const PetscReal x[], FCBody B, P
   PetscFunctionReturn(0);
 }
 
+/* Self-intersection of a body's closed surface (a self-contact pair): a vertex inside another
+   part of its own body, deeper than depth. A vertex is on its own surface, where a ray's parity
+   says nothing; the point just inside it, x - eps n (n its outward normal, eps 1e-7 of the
+   surface's size), is inside its own part, winding number 1, and 2 inside another part too. The
+   winding number is the ray's signed crossings (+1 leaving through a triangle, -1 entering).
+   Deeper than depth: no triangle outside the vertex's ring within depth. */
+static PetscInt SelfWinding(const Closed *c, const PetscReal x[3])
+{
+  int64_t cell =
+      Key2((int64_t)PetscFloorReal(FCDot(x, c->G.u) / c->G.h), (int64_t)PetscFloorReal(FCDot(x, c->G.v) / c->G.h));
+  PetscInt lo = 0, hi = c->G.n, wind = 0;
+
+  while (lo < hi) {
+    PetscInt mid = (lo + hi) / 2;
+    if (c->G.cells[mid].key < cell)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  for (; lo < c->G.n && c->G.cells[lo].key == cell; lo++) {
+    const FCSurfaceTriangle *T = &c->S->tri[c->G.cells[lo].tri];
+    PetscReal                e1[3], e2[3], nt[3]; /* the outward normal, unnormalized: its side of the ray */
+    if (!FCRayHitsTriangle(x, RayDir, T->x0[0], T->x0[1], T->x0[2])) continue;
+    for (int d = 0; d < 3; d++) {
+      e1[d] = T->x0[1][d] - T->x0[0][d];
+      e2[d] = T->x0[2][d] - T->x0[0][d];
+    }
+    FCCross(e1, e2, nt);
+    wind += FCDot(nt, RayDir) > 0.0 ? 1 : -1;
+  }
+  return wind;
+}
+
+/* the squared distance from x to the nearest triangle outside the current ring among those hashed
+   in x's cell (PETSC_MAX_REAL: none) */
+static PetscReal SelfNearest(const Closed *c, const PetscReal x[3])
+{
+  PetscInt  cb, ce;
+  PetscReal bestd = PETSC_MAX_REAL;
+  FCSurfaceQueryPoint(c->S, x, &cb, &ce);
+  for (PetscInt e = cb; e < ce; e++) {
+    const FCSurfaceTriangle *T = &c->S->tri[c->S->cells[e].tri];
+    PetscReal                cp[3], w[3], d2 = 0.0;
+    if (FCCollisionSelfExcludesRing(c->S, c->S->cells[e].tri)) continue;
+    FCClosestPointTriangle(x, T->x0[0], T->x0[1], T->x0[2], cp, w);
+    for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
+    bestd = PetscMin(bestd, d2);
+  }
+  return bestd;
+}
+
+static PetscErrorCode SelfIntersections(MPI_Comm comm, FCBody b, const FCContactPairs *pairs, PetscInt *count)
+{
+  Closed          c;
+  PetscInt        nv, nvn;
+  PetscReal      *vx, depth = pairs->intersection_depth, eps = 0.0;
+  FCVertexNormal *vn;
+  PetscMPIInt     rank, size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(ClosedCreate(comm, b, depth, &c));
+  PetscCall(FCCollisionSelfRingSetUp(c.S, pairs->self_ring));
+  PetscCall(FCCollisionVertexNormals(c.S->n, c.S->tri, &nvn, &vn));
+  PetscCall(SurfaceVertices(c.S->n, c.S->tri, &nv, &vx));
+  for (int d = 0; d < 3; d++) eps = PetscMax(eps, 1e-7 * (c.G.hi[d] - c.G.lo[d]));
+  for (PetscInt k = rank; k < nv; k += size) {
+    const PetscReal *x = &vx[6 * k + 3];
+    PetscReal        xin[3];
+    FCVertexNormal   key, *own;
+    for (int d = 0; d < 3; d++) key.X[d] = vx[6 * k + d];
+    own = (FCVertexNormal *)bsearch(&key, vn, nvn, sizeof(FCVertexNormal), FCComparePoint);
+    if (!own) continue;
+    for (int d = 0; d < 3; d++) xin[d] = x[d] - eps * own->n[d];
+    if (SelfWinding(&c, xin) < 2) continue;
+    FCCollisionSelfSkip(c.S, key.X);
+    if (SelfNearest(&c, x) > depth * depth) (*count)++;
+  }
+  PetscCall(PetscFree(vx));
+  PetscCall(PetscFree(vn));
+  PetscCall(FCCollisionSelfRingReset(c.S));
+  PetscCall(ClosedDestroy(&c));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCCollisionCountPairIntersections(MPI_Comm comm, PetscInt nbodies, FCBody bodies[],
                                                  const FCContactPairs *pairs, PetscInt *count)
 {
@@ -278,6 +364,10 @@ PetscErrorCode FCCollisionCountPairIntersections(MPI_Comm comm, PetscInt nbodies
   PetscFunctionBegin;
   for (PetscInt p = 0; p < pairs->n; p++) {
     FCBody A = bodies[pairs->body[p][0]], B = bodies[pairs->body[p][1]];
+    if (A == B) { /* self-contact */
+      PetscCall(SelfIntersections(comm, A, pairs, &local));
+      continue;
+    }
     if (FCBodyHasSurfaceTriangles(A) && FCBodyHasSurfaceTriangles(B)) {
       Closed     ca, cb;
       PetscReal  depth = pairs->intersection_depth;

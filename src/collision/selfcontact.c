@@ -35,7 +35,7 @@ static int CompareInt(const void *a, const void *b)
   return x < y ? -1 : (x > y ? 1 : 0);
 }
 
-static PetscErrorCode RingCreate(const Surface *S, PetscInt k, struct _FCSelfRing **ring)
+PetscErrorCode FCCollisionSelfRingSetUp(Surface *S, PetscInt k)
 {
   struct _FCSelfRing *r;
   PetscInt            m = 0;
@@ -70,18 +70,22 @@ static PetscErrorCode RingCreate(const Surface *S, PetscInt k, struct _FCSelfRin
   for (PetscInt v = 0; v < m; v++) r->mark[v] = -1;
   r->nskipmx = 3 * S->n + 1; /* every triangle three times at most */
   PetscCall(PetscMalloc1(r->nskipmx, &r->skip));
-  *ring = r;
+  S->ring = r;
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode RingDestroy(struct _FCSelfRing **r)
+PetscErrorCode FCCollisionSelfRingReset(Surface *S)
 {
+  struct _FCSelfRing *r = S->ring;
+
   PetscFunctionBegin;
-  if (!*r) PetscFunctionReturn(0);
-  PetscCall(PetscFree((*r)->X));
-  PetscCall(PetscFree5((*r)->tv, (*r)->off, (*r)->vt, (*r)->mark, (*r)->queue));
-  PetscCall(PetscFree((*r)->skip));
-  PetscCall(PetscFree(*r));
+  S->skip  = NULL;
+  S->nskip = 0;
+  if (!r) PetscFunctionReturn(0);
+  PetscCall(PetscFree(r->X));
+  PetscCall(PetscFree5(r->tv, r->off, r->vt, r->mark, r->queue));
+  PetscCall(PetscFree(r->skip));
+  PetscCall(PetscFree(S->ring));
   PetscFunctionReturn(0);
 }
 
@@ -135,7 +139,7 @@ static PetscBool Behind(const PetscReal p[3], const PetscReal c[3][3])
   return s < 0.0 ? PETSC_TRUE : PETSC_FALSE;
 }
 
-PetscBool FCCollisionSelfExcludes(const Surface *S, PetscInt t, const PetscReal x[3])
+PetscBool FCCollisionSelfExcludesRing(const Surface *S, PetscInt t)
 {
   PetscInt lo = 0, hi = S->nskip;
   while (lo < hi) { /* the ring (sorted) */
@@ -146,6 +150,12 @@ PetscBool FCCollisionSelfExcludes(const Surface *S, PetscInt t, const PetscReal 
     else
       hi = m;
   }
+  return PETSC_FALSE;
+}
+
+PetscBool FCCollisionSelfExcludes(const Surface *S, PetscInt t, const PetscReal x[3])
+{
+  if (FCCollisionSelfExcludesRing(S, t)) return PETSC_TRUE;
   /* across the body's own thickness: behind the triangle now and in the reference configuration
      (a fold that has crossed was in front of it there, and stays a landing place) */
   return Behind(x, S->tri[t].x0) && Behind(S->selfX, S->tri[t].X) ? PETSC_TRUE : PETSC_FALSE;
@@ -161,12 +171,10 @@ PetscErrorCode FCCollisionSelfPair(MPI_Comm comm, FCBody b, PetscInt ib, PetscIn
   PetscFunctionBegin;
   PetscCall(FCCollisionSurfaceBuild(comm, b, pairs, &S));
   if (pairs->facing) PetscCall(FCCollisionVertexNormals(S->n, S->tri, &nvn, &vn));
-  PetscCall(RingCreate(S, pairs->self_ring, &S->ring));
+  PetscCall(FCCollisionSelfRingSetUp(S, pairs->self_ring));
   S->self = PETSC_TRUE;
   PetscCall(FCCollisionVerticesAgainstSurface(b, b, ib, ib, S, nvn, vn, pair, pairs, rank, set));
-  S->skip  = NULL;
-  S->nskip = 0;
-  PetscCall(RingDestroy(&S->ring));
+  PetscCall(FCCollisionSelfRingReset(S));
   PetscCall(FCSurfaceDestroy(&S));
   PetscCall(PetscFree(vn));
   PetscFunctionReturn(0);
