@@ -98,21 +98,30 @@ PetscErrorCode FCRayGridCreate(const FCSurface *S, FCRayGrid *G)
 }
 
 /* Odd number of crossings of the ray from x: inside the closed surface */
-PetscBool FCRayGridInside(const FCSurface *S, const FCRayGrid *G, const PetscReal x[3])
+/* The grid cell of the ray from x: its key, and the index of its first entry in G->cells */
+static PetscInt RayCell(const FCRayGrid *G, const PetscReal x[3], int64_t *key)
 {
-  int64_t  key = Key2((int64_t)PetscFloorReal(FCDot(x, G->u) / G->h), (int64_t)PetscFloorReal(FCDot(x, G->v) / G->h));
-  PetscInt lo = 0, hi = G->n, crossings = 0;
+  PetscInt lo = 0, hi = G->n;
 
-  for (int d = 0; d < 3; d++)
-    if (x[d] < G->lo[d] || x[d] > G->hi[d]) return PETSC_FALSE;
+  *key = Key2((int64_t)PetscFloorReal(FCDot(x, G->u) / G->h), (int64_t)PetscFloorReal(FCDot(x, G->v) / G->h));
   while (lo < hi) {
     PetscInt mid = (lo + hi) / 2;
-    if (G->cells[mid].key < key)
+    if (G->cells[mid].key < *key)
       lo = mid + 1;
     else
       hi = mid;
   }
-  for (; lo < G->n && G->cells[lo].key == key; lo++) {
+  return lo;
+}
+
+PetscBool FCRayGridInside(const FCSurface *S, const FCRayGrid *G, const PetscReal x[3])
+{
+  int64_t  key;
+  PetscInt lo, crossings = 0;
+
+  for (int d = 0; d < 3; d++)
+    if (x[d] < G->lo[d] || x[d] > G->hi[d]) return PETSC_FALSE;
+  for (lo = RayCell(G, x, &key); lo < G->n && G->cells[lo].key == key; lo++) {
     const FCSurfaceTriangle *T = &S->tri[G->cells[lo].tri];
     if (FCRayHitsTriangle(x, RayDir, T->x0[0], T->x0[1], T->x0[2])) crossings++;
   }
@@ -278,18 +287,10 @@ static PetscErrorCode PointsInShape(PetscInt n, const PetscReal x[], FCBody B, P
    Deeper than depth: no triangle outside the vertex's ring within depth. */
 static PetscInt SelfWinding(const Closed *c, const PetscReal x[3])
 {
-  int64_t cell =
-      Key2((int64_t)PetscFloorReal(FCDot(x, c->G.u) / c->G.h), (int64_t)PetscFloorReal(FCDot(x, c->G.v) / c->G.h));
-  PetscInt lo = 0, hi = c->G.n, wind = 0;
+  int64_t  cell;
+  PetscInt lo, wind = 0;
 
-  while (lo < hi) {
-    PetscInt mid = (lo + hi) / 2;
-    if (c->G.cells[mid].key < cell)
-      lo = mid + 1;
-    else
-      hi = mid;
-  }
-  for (; lo < c->G.n && c->G.cells[lo].key == cell; lo++) {
+  for (lo = RayCell(&c->G, x, &cell); lo < c->G.n && c->G.cells[lo].key == cell; lo++) {
     const FCSurfaceTriangle *T = &c->S->tri[c->G.cells[lo].tri];
     PetscReal                e1[3], e2[3], nt[3]; /* the outward normal, unnormalized: its side of the ray */
     if (!FCRayHitsTriangle(x, RayDir, T->x0[0], T->x0[1], T->x0[2])) continue;

@@ -2,14 +2,18 @@
    vertices against its own surface, in one pass (each vertex against every triangle covers both
    directions of a fold), by the machinery of the two-body pairs (the nearest facing triangle
    within the alarm distance, else the first one the vertex's motion reaches). A vertex is on its
-   own surface, so two rules keep a body's own shape from being taken for a contact:
+   own surface, so two rules keep a body's own shape from being taken for a contact (FCCollisionSelfExcludes):
      - the ring: a vertex leaves out the triangles that touch a surface vertex within
        -contact_self_ring - 1 edges of it in the reference configuration (ring 1: the triangles
        around it, which it lies on; ring 2, the default, also those around its neighbours, which a
        concave corner of the surface brings within the alarm distance at rest);
-     - -contact_facing (on by default for self-contact too): a vertex lands only on triangles whose
-       normal opposes its own, so the flat and convex parts of the surface around it are never
-       landing places, and a fold is (its two sides face each other).
+     - the body's own thickness: a triangle the vertex is behind (on the side its outward normal
+       points away from) both at the start of the step and in the reference configuration is the
+       other face of a wall or slab, never a landing place (a fold that has crossed was in front of
+       it in the reference configuration, and stays one).
+   With -contact_facing (on by default for self-contact too) a vertex lands only on triangles whose
+   normal opposes its own, so the flat and convex parts of the surface around it are never landing
+   places either, and a fold is (its two sides face each other).
    A vertex of the surface lies on it, so the start-inside fallback of the two-body pairs (a point
    inside the other body) does not apply; continuous detection keeps a fold from crossing. */
 #include "collisionimpl.h"
