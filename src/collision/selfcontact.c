@@ -101,6 +101,7 @@ void FCCollisionSelfSkip(Surface *S, const PetscReal X[3])
   PetscInt            v0 = VertexOf(r, X), head = 0, tail = 0, n = 0;
 
   S->nskip = 0;
+  for (int d = 0; d < 3; d++) S->selfX[d] = X[d];
   if (v0 < 0) return;
   r->mark[v0]      = 0;
   r->queue[tail++] = v0;
@@ -129,7 +130,6 @@ void FCCollisionSelfSkip(Surface *S, const PetscReal X[3])
   }
   S->skip  = r->skip;
   S->nskip = n;
-  for (int d = 0; d < 3; d++) S->selfX[d] = X[d];
 }
 
 /* Behind triangle T (on the side its outward normal points away from) at p, T's corners c: the
