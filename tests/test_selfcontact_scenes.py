@@ -1,0 +1,123 @@
+"""Self-contact scenes, on --np ranks: input/u_bend.opts (a soft bar bent into a U by two hands
+attached to its ends, whose arms close the U's neck below the hands) and the hard cases
+input/hard/u_bend_fast.opts (the same fold at 2 m/s) and input/hard/u_bend_stick.opts (a tighter
+fold with mu = 1).
+
+U-bend:
+- the neck closes and stays closed: self-contacts at every step from the first touch, between the
+  two arms (contact points on the bar's plane of symmetry, below the hands);
+- zero self-intersections at every step (/steps/intersections) and no contact deeper than
+  -contact_intersection_depth at the end of its step;
+- the contact forces balance the hands' reactions: a self-contact pushes both arms, equal and
+  opposite, so in the held pose the two end faces' reactions cancel, force and moment, while the
+  neck carries ~150 N (a contact applied to one side only would leave its force unbalanced);
+- every contact solve converged (residual <= 10 pgs_tol);
+- --np > 1: the 1-rank run's contacts at every step, their forces to 1e-10 (relative) and the
+  positions to 1e-10 m (the neck's contacts are well-conditioned: measured 3e-13 and 5e-15 m).
+
+Hard cases (1 rank): no self-intersection, the neck held closed to the end, every solve
+converged; with mu = 1, sticking contacts that carry tangential force inside the Coulomb cone and
+hold the neck without creeping."""
+import h5py
+import numpy as np
+
+from fctest import run, out, Checker, np_from_argv
+
+NP = np_from_argv()
+c = Checker("selfcontact scenes np%d" % NP)
+PGS_TOL, DEPTH = 1e-8, 1e-4
+
+
+def scene(opts, np_, name, extra=()):
+    f = out("%s_np%d.h5" % (name, np_))
+    run(["-options_file", opts, "-output_file", f, "-quiet"] + list(extra), np_)
+    return h5py.File(f, "r")
+
+
+def held(H, what):
+    """Self-contacts at every step from the first touch, and zero self-intersections at every step"""
+    n, ni = H["steps/contacts"][:], H["steps/intersections"][:]
+    first = int(np.argmax(n > 0))
+    gap = H["contacts/gap_end"][:].min()
+    c.check(n.max() > 0 and (n[first:] > 0).all(), "%s: the neck closes at t = %.3f s and stays closed (%d contacts "
+            "at the end)" % (what, H["steps/time"][first], n[-1]))
+    c.check(ni.max() == 0 and gap >= -DEPTH, "%s: no self-intersection at any step, the deepest contact at the end "
+            "of its step %.1e m (depth %g)" % (what, gap, DEPTH))
+    res = H["steps/residual"][:].max()
+    c.check(res <= 10 * PGS_TOL, "%s: every contact solve converged (largest residual %.1e)" % (what, res))
+    return first
+
+
+def last_step(H, name):
+    off = H["contacts/offset"][:]
+    return H["contacts/" + name][off[-2]:off[-1]]
+
+
+# the U-bend
+U = scene("input/u_bend.opts", NP, "u_bend")
+first = held(U, "U-bend")
+pt = last_step(U, "point")
+c.check((np.abs(pt[:, 0]) < 0.01).all() and (pt[:, 2] > 0.15).all() and (pt[:, 2] < 0.3).all(),
+        "U-bend: the contacts are between the arms, below the hands (|x| <= %.4f m, z in [%.3f, %.3f] m)" %
+        (np.abs(pt[:, 0]).max(), pt[:, 2].min(), pt[:, 2].max()))
+fn = last_step(U, "force")[:, 0].sum()
+X, P = U["bodies/bar/mesh/reference"][:], U["bodies/bar/positions"][-1]
+RL, RR = U["bodies/bar/reactions/xmin"][-1], U["bodies/bar/reactions/xmax"][-1]
+cL, cR = P[np.abs(X[:, 0] + 0.5) < 1e-9].mean(0), P[np.abs(X[:, 0] - 0.5) < 1e-9].mean(0)
+F = RL[:3] + RR[:3]
+M = RL[3:] + RR[3:] + np.cross(cL, RL[:3]) + np.cross(cR, RR[:3])
+c.check(fn > 50 and np.linalg.norm(F) <= 1e-3 * fn,
+        "U-bend, held: the end faces' reactions cancel, |F_xmin + F_xmax| = %.2e N against %.1f N of self-contact "
+        "force (bound 1e-3 of it; the hands pull with %.0f N)" % (np.linalg.norm(F), fn, np.linalg.norm(RL[:3])))
+ML = np.linalg.norm(RL[3:] + np.cross(cL, RL[:3]))
+c.check(np.linalg.norm(M) <= 1e-2 * ML, "U-bend, held: their moments about the origin cancel, |M| = %.2e N m of "
+        "%.1f N m (bound 1e-2 of it)" % (np.linalg.norm(M), ML))
+
+if NP > 1:
+    U1 = scene("input/u_bend.opts", 1, "u_bend")
+    o1, on = U1["contacts/offset"][:], U["contacts/offset"][:]
+    same = np.array_equal(o1, on)
+    ef = 0.0
+    for k in range(len(o1) - 1):
+        if not same:
+            break
+        p1, pn = U1["contacts/point"][o1[k]:o1[k + 1]], U["contacts/point"][on[k]:on[k + 1]]
+        f1, fn_ = U1["contacts/force"][o1[k]:o1[k + 1]], U["contacts/force"][on[k]:on[k + 1]]
+        i1, i_n = np.lexsort(np.round(p1, 8).T), np.lexsort(np.round(pn, 8).T)
+        scale = np.abs(f1).max() if len(f1) else 0.0
+        if scale > 0:
+            ef = max(ef, np.abs(f1[i1] - fn_[i_n]).max() / scale)
+    X1, Xn = U1["bodies/bar/mesh/reference"][:], X
+    dx = np.abs(U1["bodies/bar/positions"][-1][np.lexsort(X1.T)] - P[np.lexsort(Xn.T)]).max()
+    c.check(same and ef <= 1e-10 and dx <= 1e-10, "U-bend, %d ranks: the 1-rank contacts at every step (%s), forces "
+            "to %.1e (relative), positions to %.1e m" % (NP, "same" if same else "DIFFERENT", ef, dx))
+
+if NP == 1:
+    Fa = scene("input/hard/u_bend_fast.opts", 1, "u_bend_fast")
+    held(Fa, "fast fold (2 m/s)")
+    S = scene("input/hard/u_bend_stick.opts", 1, "u_bend_stick", ["-output_every", 1])
+    held(S, "fold with mu = 1")
+    st, ft, f = last_step(S, "state"), last_step(S, "force_tangential"), last_step(S, "force")
+    stick = st == 1
+    ratio = ft[stick] / f[stick, 0] if stick.any() else np.zeros(1)
+    c.check(stick.sum() >= 3 and ratio.max() >= 0.1 and (ft <= (1 + 1e-9) * f[:, 0]).all(),
+            "fold with mu = 1: %d sticking contacts at the end, tangential/normal up to %.2f, all inside the cone" %
+            (stick.sum(), ratio.max()))
+    # no creep: over the hold (t >= 1.1 s), the surface vertices nearest each loaded contact of the last
+    # step move together; frictionless, the same fold's arms slide along each other as the loop settles
+
+    def creep(H, which):
+        t, Ps, X = H["frames/time"][:], H["bodies/bar/positions"], H["bodies/bar/mesh/reference"][:]
+        k0 = int(np.argmax(t >= 1.1))
+        L, R = np.where(X[:, 0] < -0.05)[0], np.where(X[:, 0] > 0.05)[0]
+        p0, p1, m = Ps[k0], Ps[-1], 0.0
+        for q in last_step(H, "point")[which(H)]:
+            a, b = L[np.argmin(np.linalg.norm(p0[L] - q, axis=1))], R[np.argmin(np.linalg.norm(p0[R] - q, axis=1))]
+            m = max(m, np.linalg.norm((p1[a] - p0[a]) - (p1[b] - p0[b])))
+        return m
+
+    S0 = scene("input/hard/u_bend_stick.opts", 1, "u_bend_slide", ["-output_every", 1, "-contact_mu", 0])
+    c1, c0 = creep(S, lambda H: last_step(H, "state") == 1), creep(S0, lambda H: last_step(H, "force")[:, 0] > 0)
+    c.check(c1 <= 0.1 * c0, "fold with mu = 1: the sticking arms do not creep over the hold (t = 1.1 to 1.5 s), "
+            "%.1e m between facing vertices; frictionless %.1e m (bound a tenth of it)" % (c1, c0))
+c.done()
