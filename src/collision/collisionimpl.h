@@ -20,10 +20,9 @@ struct _FCSurface {
   PetscInt           nquery;  /* swept queries so far */
   PetscReal          inflate; /* what each triangle's box was inflated by */
   PetscReal          arc;     /* SurfaceBuild: how far a turning mesh's vertices leave their chords (FCCCDArcMargin) */
-  /* self-contact (selfcontact.c): the triangles the current vertex may not land on (sorted), and no
-     start-inside fallback (a vertex of the surface is on it, not inside it) */
-  const PetscInt     *skip;
-  PetscInt            nskip;
+  /* self-contact (selfcontact.c): the current vertex, whose ring of triangles it may not land on is
+     found at the first triangle it is tested against, and no start-inside fallback (a vertex of the
+     surface is on it, not inside it) */
   PetscBool           self;
   PetscReal           selfX[3]; /* the current vertex's reference position */
   struct _FCSelfRing *ring;
@@ -79,8 +78,8 @@ PETSC_INTERN PetscErrorCode FCCollisionVertexNormals(PetscInt ntri, const FCSurf
 /* selfcontact.c: an FE body against its own surface (a pair a:a) */
 PETSC_INTERN PetscErrorCode FCCollisionSelfPair(MPI_Comm, FCBody, PetscInt ib, PetscInt pair, const FCContactPairs *,
                                                 PetscMPIInt rank, FCContactSet *);
-/* selfcontact.c: before vertex X's landing, the triangles of its ring in S (S->skip); then whether
-   triangle t is not a landing place for it at x (its ring, or across the body's own thickness) */
+/* selfcontact.c: before vertex X's landing, X is the current vertex; then whether triangle t is not a
+   landing place for it at x (its ring, or across the body's own thickness) */
 PETSC_INTERN PetscErrorCode FCCollisionSelfRingSetUp(Surface *, PetscInt k);
 PETSC_INTERN PetscErrorCode FCCollisionSelfRingReset(Surface *);
 PETSC_INTERN void           FCCollisionSelfSkip(Surface *, const PetscReal X[3]);

@@ -334,7 +334,6 @@ static PetscErrorCode SelfIntersections(MPI_Comm comm, FCBody b, const FCContact
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(ClosedCreate(comm, b, depth, &c));
-  PetscCall(FCCollisionSelfRingSetUp(c.S, pairs->self_ring));
   PetscCall(FCCollisionVertexNormals(c.S->n, c.S->tri, &nvn, &vn));
   PetscCall(SurfaceVertices(c.S->n, c.S->tri, &nv, &vx));
   for (int d = 0; d < 3; d++) eps = PetscMax(eps, 1e-7 * (c.G.hi[d] - c.G.lo[d]));
@@ -347,6 +346,7 @@ static PetscErrorCode SelfIntersections(MPI_Comm comm, FCBody b, const FCContact
     if (!own) continue;
     for (int d = 0; d < 3; d++) xin[d] = x[d] - eps * own->n[d];
     if (SelfWinding(&c, xin) < 2) continue;
+    if (!c.S->ring) PetscCall(FCCollisionSelfRingSetUp(c.S, pairs->self_ring)); /* at the first such vertex */
     FCCollisionSelfSkip(c.S, key.X);
     if (SelfNearest(&c, x) > depth * depth) (*count)++;
   }

@@ -24,7 +24,9 @@ struct _FCSelfRing {
   PetscInt  *tv;            /* 3 ntri: each triangle's vertices */
   PetscInt  *off, *vt;      /* vertex -> its triangles */
   PetscInt  *mark, *queue;  /* nv: the BFS's marks and queue */
-  PetscInt  *skip, nskipmx; /* the current vertex's ring triangles (3 ntri + 1) */
+  PetscInt  *skip, nskipmx; /* the current vertex's ring triangles (3 ntri + 1), sorted */
+  PetscInt   nskip;
+  PetscBool  pending; /* the current vertex's ring is still to be found */
 };
 
 static PetscInt VertexOf(const struct _FCSelfRing *r, const PetscReal X[3])
@@ -83,8 +85,6 @@ PetscErrorCode FCCollisionSelfRingReset(Surface *S)
   struct _FCSelfRing *r = S->ring;
 
   PetscFunctionBegin;
-  S->skip  = NULL;
-  S->nskip = 0;
   if (!r) PetscFunctionReturn(0);
   PetscCall(PetscFree(r->X));
   PetscCall(PetscFree5(r->tv, r->off, r->vt, r->mark, r->queue));
@@ -93,15 +93,22 @@ PetscErrorCode FCCollisionSelfRingReset(Surface *S)
   PetscFunctionReturn(0);
 }
 
-/* The triangles around the vertices within k - 1 edges of X (a breadth-first walk over the
-   surface's triangles), sorted, as S->skip */
+/* X is the current vertex: its ring is found when a triangle is first tested against it (most
+   vertices of a body that does not fold have no candidate triangle that faces them) */
 void FCCollisionSelfSkip(Surface *S, const PetscReal X[3])
 {
-  struct _FCSelfRing *r  = S->ring;
-  PetscInt            v0 = VertexOf(r, X), head = 0, tail = 0, n = 0;
-
-  S->nskip = 0;
   for (int d = 0; d < 3; d++) S->selfX[d] = X[d];
+  S->ring->pending = PETSC_TRUE;
+}
+
+/* The triangles around the vertices within k - 1 edges of the current vertex X (a breadth-first
+   walk over the surface's triangles), sorted, as r->skip */
+static void RingFind(struct _FCSelfRing *r, const PetscReal X[3])
+{
+  PetscInt v0 = VertexOf(r, X), head = 0, tail = 0, n = 0;
+
+  r->nskip   = 0;
+  r->pending = PETSC_FALSE;
   if (v0 < 0) return;
   r->mark[v0]      = 0;
   r->queue[tail++] = v0;
@@ -128,8 +135,7 @@ void FCCollisionSelfSkip(Surface *S, const PetscReal X[3])
       if (!u || r->skip[u - 1] != r->skip[i]) r->skip[u++] = r->skip[i];
     n = u;
   }
-  S->skip  = r->skip;
-  S->nskip = n;
+  r->nskip = n;
 }
 
 /* Behind triangle T (on the side its outward normal points away from) at p, T's corners c: the
@@ -145,11 +151,14 @@ static PetscBool Behind(const PetscReal p[3], const PetscReal c[3][3])
 
 PetscBool FCCollisionSelfExcludesRing(const Surface *S, PetscInt t)
 {
-  PetscInt lo = 0, hi = S->nskip;
+  struct _FCSelfRing *r  = S->ring;
+  PetscInt            lo = 0, hi;
+  if (r->pending) RingFind(r, S->selfX);
+  hi = r->nskip;
   while (lo < hi) { /* the ring (sorted) */
     PetscInt m = (lo + hi) / 2;
-    if (S->skip[m] == t) return PETSC_TRUE;
-    if (S->skip[m] < t)
+    if (r->skip[m] == t) return PETSC_TRUE;
+    if (r->skip[m] < t)
       lo = m + 1;
     else
       hi = m;

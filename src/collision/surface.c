@@ -196,12 +196,12 @@ void FCSurfaceClosestFacing(const FCSurface *S, const PetscReal x[3], const Pets
   for (PetscInt k = b; k < e; k++) {
     const FCSurfaceTriangle *T = &S->tri[S->cells[k].tri];
     PetscReal                cp[3], w[3], d2 = 0.0;
-    if (S->self && FCCollisionSelfExcludes(S, S->cells[k].tri, x)) continue;
     if (nv) {
       PetscReal nt[3];
       FCTriangleNormal(T->x0, nt);
       if (nt[0] * nv[0] + nt[1] * nv[1] + nt[2] * nv[2] > -FC_FACING_COS) continue;
     }
+    if (S->self && FCCollisionSelfExcludes(S, S->cells[k].tri, x)) continue; /* after the cheaper test */
     FCClosestPointTriangle(x, T->x0[0], T->x0[1], T->x0[2], cp, w);
     for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
     if (d2 < *bestd) {
