@@ -72,11 +72,7 @@ static void SweptVertexHit(Surface *S, const PetscReal x0[3], const PetscReal xf
   for (PetscInt k = 0; k < nc; k++) {
     const FCSurfaceTriangle *T = &S->tri[cand[k]];
     PetscReal                t;
-    if (nv) {
-      PetscReal nt[3];
-      FCTriangleNormal(T->x0, nt);
-      if (FCDot(nt, nv) > -FC_FACING_COS) continue;
-    }
+    if (nv && FCDot(&S->nrm[3 * cand[k]], nv) > -FC_FACING_COS) continue;
     if (S->self && FCCollisionSelfExcludes(S, cand[k], x0)) continue; /* after the cheaper test */
     if (FCCCDPointTriangle(x0, xf, T->x0, T->xf, tau, &t) && (t < tbest || (t == tbest && cand[k] < *best))) {
       tbest = t;

@@ -10,10 +10,13 @@ typedef struct {
   PetscInt tri;
 } FCCellEntry;
 
+PETSC_INTERN PetscErrorCode FCCellEntrySort(PetscInt, FCCellEntry[]); /* surface.c: by key, stably */
+
 struct _FCSurface {
   PetscInt           n, nentries;
   FCSurfaceTriangle *tri;
   FCCellEntry       *cells;
+  PetscReal         *nrm;     /* 3 n: each triangle's unit normal at the start of the step */
   PetscReal          h;       /* cell size */
   PetscBool          swept;   /* triangles hashed by their boxes over the step (x0 and xf) */
   PetscInt          *stamp;   /* per triangle: the last query that visited it (swept queries) */

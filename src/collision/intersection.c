@@ -33,13 +33,6 @@ static const PetscReal RayDir[3] = {0.2672612419124244, 0.5345224838248488, 0.80
 
 typedef FCRayGrid RayGrid;
 
-static int CompareEntry(const void *a, const void *b)
-{
-  const FCCellEntry *x = (const FCCellEntry *)a, *y = (const FCCellEntry *)b;
-  if (x->key != y->key) return x->key < y->key ? -1 : 1;
-  return (x->tri > y->tri) - (x->tri < y->tri);
-}
-
 static int64_t Key2(int64_t i, int64_t j)
 {
   return ((i + ((int64_t)1 << 30)) << 32) | ((j + ((int64_t)1 << 30)) & 0xffffffff);
@@ -93,7 +86,7 @@ PetscErrorCode FCRayGridCreate(const FCSurface *S, FCRayGrid *G)
       PetscCall(PetscMalloc1(e + 1, &G->cells));
     }
   }
-  qsort(G->cells, G->n, sizeof(FCCellEntry), CompareEntry);
+  PetscCall(FCCellEntrySort(G->n, G->cells));
   PetscFunctionReturn(0);
 }
 

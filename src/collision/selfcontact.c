@@ -19,14 +19,16 @@
 #include "collisionimpl.h"
 
 struct _FCSelfRing {
-  PetscInt   nv, ntri, k;
-  PetscReal *X;             /* 3 nv: the surface's vertices by reference position, sorted */
-  PetscInt  *tv;            /* 3 ntri: each triangle's vertices */
-  PetscInt  *off, *vt;      /* vertex -> its triangles */
-  PetscInt  *mark, *queue;  /* nv: the BFS's marks and queue */
-  PetscInt  *skip, nskipmx; /* the current vertex's ring triangles (3 ntri + 1), sorted */
-  PetscInt   nskip;
-  PetscBool  pending; /* the current vertex's ring is still to be found */
+  const Surface *S;     /* whose triangles */
+  PetscBool      built; /* the topology below is built (at the first ring a vertex needs) */
+  PetscInt       nv, ntri, k;
+  PetscReal     *X;             /* 3 nv: the surface's vertices by reference position, sorted */
+  PetscInt      *tv;            /* 3 ntri: each triangle's vertices */
+  PetscInt      *off, *vt;      /* vertex -> its triangles */
+  PetscInt      *mark, *queue;  /* nv: the BFS's marks and queue */
+  PetscInt      *skip, nskipmx; /* the current vertex's ring triangles (3 ntri + 1), sorted */
+  PetscInt       nskip;
+  PetscBool      pending; /* the current vertex's ring is still to be found */
 };
 
 static PetscInt VertexOf(const struct _FCSelfRing *r, const PetscReal X[3])
@@ -41,16 +43,14 @@ static int CompareInt(const void *a, const void *b)
   return x < y ? -1 : (x > y ? 1 : 0);
 }
 
-PetscErrorCode FCCollisionSelfRingSetUp(Surface *S, PetscInt k)
+/* The surface's topology in the reference configuration: its vertices by reference position
+   (sorted), each triangle's vertices and each vertex's triangles */
+static void RingBuild(struct _FCSelfRing *r)
 {
-  struct _FCSelfRing *r;
-  PetscInt            m = 0;
+  const Surface *S = r->S;
+  PetscInt       m = 0;
 
-  PetscFunctionBegin;
-  PetscCall(PetscNew(&r));
-  r->ntri = S->n;
-  r->k    = k;
-  PetscCall(PetscMalloc1(9 * S->n + 3, &r->X));
+  r->built = PETSC_TRUE;
   for (PetscInt t = 0; t < S->n; t++)
     for (int a = 0; a < 3; a++)
       for (int d = 0; d < 3; d++) r->X[9 * t + 3 * a + d] = S->tri[t].X[a][d];
@@ -61,20 +61,35 @@ PetscErrorCode FCCollisionSelfRingSetUp(Surface *S, PetscInt k)
       m++;
     }
   r->nv = m;
-  PetscCall(
-      PetscMalloc5(3 * S->n + 1, &r->tv, m + 1, &r->off, 3 * S->n + 1, &r->vt, m + 1, &r->mark, m + 1, &r->queue));
-  PetscCall(PetscArrayzero(r->off, m + 1));
+  for (PetscInt v = 0; v <= m; v++) r->off[v] = 0;
   for (PetscInt t = 0; t < S->n; t++)
     for (int a = 0; a < 3; a++) {
       r->tv[3 * t + a] = VertexOf(r, S->tri[t].X[a]);
       r->off[r->tv[3 * t + a] + 1]++;
     }
   for (PetscInt v = 0; v < m; v++) r->off[v + 1] += r->off[v];
-  PetscCall(PetscArraycpy(r->mark, r->off, m)); /* as fill pointers */
+  for (PetscInt v = 0; v < m; v++) r->mark[v] = r->off[v]; /* as fill pointers */
   for (PetscInt t = 0; t < S->n; t++)
     for (int a = 0; a < 3; a++) r->vt[r->mark[r->tv[3 * t + a]]++] = t;
   for (PetscInt v = 0; v < m; v++) r->mark[v] = -1;
-  r->nskipmx = 3 * S->n + 1; /* every triangle three times at most */
+}
+
+/* The ring's storage for S (3 ntri vertices at most); its topology is built at the first ring a
+   vertex needs: a body that does not fold needs none in most steps */
+PetscErrorCode FCCollisionSelfRingSetUp(Surface *S, PetscInt k)
+{
+  struct _FCSelfRing *r;
+  PetscInt            n = S->n;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&r));
+  r->S    = S;
+  r->ntri = n;
+  r->k    = k;
+  PetscCall(PetscMalloc1(9 * n + 3, &r->X));
+  PetscCall(PetscMalloc5(3 * n + 1, &r->tv, 3 * n + 2, &r->off, 3 * n + 1, &r->vt, 3 * n + 1, &r->mark, 3 * n + 1,
+                         &r->queue));
+  r->nskipmx = 3 * n + 1; /* every triangle three times at most */
   PetscCall(PetscMalloc1(r->nskipmx, &r->skip));
   S->ring = r;
   PetscFunctionReturn(0);
@@ -105,8 +120,10 @@ void FCCollisionSelfSkip(Surface *S, const PetscReal X[3])
    walk over the surface's triangles), sorted, as r->skip */
 static void RingFind(struct _FCSelfRing *r, const PetscReal X[3])
 {
-  PetscInt v0 = VertexOf(r, X), head = 0, tail = 0, n = 0;
+  PetscInt v0, head = 0, tail = 0, n = 0;
 
+  if (!r->built) RingBuild(r);
+  v0         = VertexOf(r, X);
   r->nskip   = 0;
   r->pending = PETSC_FALSE;
   if (v0 < 0) return;

@@ -5,11 +5,44 @@
    the start of the step, or over the whole step for continuous detection (swept). */
 #include "collisionimpl.h"
 
-static int CompareCell(const void *a, const void *b)
+/* digit k (11 bits from shift) of a key, its sign bit flipped so that unsigned order is signed order */
+static inline PetscInt Digit(int64_t key, int shift)
 {
-  const FCCellEntry *x = (const FCCellEntry *)a, *y = (const FCCellEntry *)b;
-  if (x->key != y->key) return x->key < y->key ? -1 : 1;
-  return (x->tri > y->tri) - (x->tri < y->tri);
+  return (PetscInt)((((uint64_t)key ^ ((uint64_t)1 << 63)) >> shift) & 2047);
+}
+
+/* Sorts n cell entries by key, stably, by least-significant-digit radix sort (O(n): a comparison
+   sort was the hash's largest cost). Filled by ascending triangle, the entries of a cell keep that
+   order: the order of (key, triangle). */
+PetscErrorCode FCCellEntrySort(PetscInt n, FCCellEntry e[])
+{
+  FCCellEntry *tmp, *src = e, *dst;
+  PetscInt     count[2048];
+
+  PetscFunctionBegin;
+  if (n < 2) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(n, &tmp));
+  dst = tmp;
+  for (int shift = 0; shift < 64; shift += 11) {
+    PetscInt sum = 0;
+    PetscCall(PetscArrayzero(count, 2048));
+    for (PetscInt i = 0; i < n; i++) count[Digit(src[i].key, shift)]++;
+    if (count[Digit(src[0].key, shift)] == n) continue; /* one digit for all: nothing to move */
+    for (PetscInt d = 0; d < 2048; d++) {
+      PetscInt c = count[d];
+      count[d]   = sum;
+      sum += c;
+    }
+    for (PetscInt i = 0; i < n; i++) dst[count[Digit(src[i].key, shift)]++] = src[i];
+    {
+      FCCellEntry *s = src;
+      src            = dst;
+      dst            = s;
+    }
+  }
+  if (src != e) PetscCall(PetscArraycpy(e, src, n));
+  PetscCall(PetscFree(tmp));
+  PetscFunctionReturn(0);
 }
 
 static int64_t CellKey(int64_t i, int64_t j, int64_t k)
@@ -89,7 +122,9 @@ static PetscErrorCode SurfaceCreate(PetscInt n, FCSurfaceTriangle *tri, PetscRea
       PetscCall(PetscMalloc1(e + 1, &S->cells));
     }
   }
-  qsort(S->cells, S->nentries, sizeof(FCCellEntry), CompareCell);
+  PetscCall(FCCellEntrySort(S->nentries, S->cells));
+  PetscCall(PetscMalloc1(3 * S->n + 1, &S->nrm));
+  for (PetscInt t = 0; t < S->n; t++) FCTriangleNormal(S->tri[t].x0, &S->nrm[3 * t]);
   if (swept) PetscCall(PetscCalloc1(S->n + 1, &S->stamp));
   *surface = S;
   PetscFunctionReturn(0);
@@ -170,6 +205,7 @@ PetscErrorCode FCSurfaceDestroy(FCSurface **S)
   if (!*S) PetscFunctionReturn(0);
   PetscCall(PetscFree((*S)->tri));
   PetscCall(PetscFree((*S)->cells));
+  PetscCall(PetscFree((*S)->nrm));
   PetscCall(PetscFree((*S)->stamp));
   PetscCall(PetscFree(*S));
   PetscFunctionReturn(0);
@@ -196,11 +232,7 @@ void FCSurfaceClosestFacing(const FCSurface *S, const PetscReal x[3], const Pets
   for (PetscInt k = b; k < e; k++) {
     const FCSurfaceTriangle *T = &S->tri[S->cells[k].tri];
     PetscReal                cp[3], w[3], d2 = 0.0;
-    if (nv) {
-      PetscReal nt[3];
-      FCTriangleNormal(T->x0, nt);
-      if (nt[0] * nv[0] + nt[1] * nv[1] + nt[2] * nv[2] > -FC_FACING_COS) continue;
-    }
+    if (nv && FCDot(&S->nrm[3 * S->cells[k].tri], nv) > -FC_FACING_COS) continue;
     if (S->self && FCCollisionSelfExcludes(S, S->cells[k].tri, x)) continue; /* after the cheaper test */
     FCClosestPointTriangle(x, T->x0[0], T->x0[1], T->x0[2], cp, w);
     for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
