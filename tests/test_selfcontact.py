@@ -12,6 +12,10 @@
   same positions (1e-5 of the displacement);
 - every compliance builder gives dense's contact forces to 1e-10 (relative) on that self-contact
   scene, with plain PGS (whose iterates are a smooth function of W, tests/test_compliance.py);
+- edge-edge: the crossed bars of input/hard/crossed_bars.opts in one mesh paired with itself: the one
+  edge-edge contact at every step that holds the top bar as two bodies do, the same force and positions
+  at the first step it pushes (1e-10), no self-intersection; without edge-edge contacts the edges pass
+  through each other, and the count sees it as for two bodies;
 - self-intersections: two cubes overlapping by 0.1 m in one mesh: the count is the number of surface
   vertices of each inside the other deeper than the depth, counted from the geometry;
 - --np > 1: to the first self-contact step, the contact forces and positions are the 1-rank ones to
@@ -168,6 +172,85 @@ if NP > 1:  # at the first self-contact step (later, the stack's nearly redundan
     dx = np.abs(xn[order(D["bodies/stack/mesh/reference"][:])] - x1[order(r1)]).max()
     c.check(ef <= 1e-10 and dx <= 1e-10, "%d ranks: the 1-rank contact forces to %.1e (relative) and positions to "
             "%.1e m, to the first self-contact step" % (NP, ef, dx))
+
+# edge-edge: the crossed bars of input/hard/crossed_bars.opts (the top bar rests on the bottom one edge on
+# edge, where neither has a vertex) as one body of two components paired with itself
+
+
+def rotation(axis, deg):
+    a = np.array(axis, float) / np.linalg.norm(axis)
+    K, th = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]]), np.radians(deg)
+    return np.eye(3) + np.sin(th) * K + (1 - np.cos(th)) * K @ K
+
+
+def crossed_bars(path):
+    """meshes/bar.msh twice, placed as the two bodies of crossed_bars.opts, one mesh (gmsh 2.2)"""
+    m22 = out("bar22.msh")
+    subprocess.run(["gmsh", "meshes/bar.msh", "-save", "-format", "msh22", "-o", m22], cwd=ROOT, check=True,
+                   capture_output=True)
+    L = open(m22).read().split("\n")
+    i, j = L.index("$Nodes"), L.index("$Elements")
+    nodes, elems = L[i + 2:L.index("$EndNodes")], L[j + 2:L.index("$EndElements")]
+    nn, ne, c = len(nodes), len(elems), np.array([0, 0, 0.05])  # -<bar>_center
+    poses = [(rotation([1, 0, 0], 45), [0, 0, 0]),  # -bottom_rotate; -top_rotate, -top_translate
+             (rotation([0.38268343, 0.38268343, 0.92387953], 98.42105), [0, 0, 0.1514])]
+    on, oe = [], []
+    for b, (R, t) in enumerate(poses):
+        for ln in nodes:
+            k, x, y, z = ln.split()
+            on.append("%d %.17g %.17g %.17g" % (int(k) + b * nn, *(c + R @ (np.array([x, y, z], float) - c) + t)))
+        for ln in elems:
+            e = ln.split()
+            ntag = int(e[2])
+            oe.append(" ".join([str(int(e[0]) + b * ne)] + e[1:3 + ntag] + [str(int(v) + b * nn) for v in e[3 + ntag:]]))
+    with open(path, "w") as g:
+        g.write("\n".join(L[:i + 1] + [str(2 * nn)] + on + ["$EndNodes", "$Elements", str(2 * ne)] + oe +
+                          ["$EndElements", ""]))
+
+
+BARS = out("crossed_bars_one.msh")
+crossed_bars(BARS)
+
+
+def bars(one, extra=()):
+    f = out("bars_%s_%s.h5" % ("one" if one else "two", "_".join(str(e) for e in extra)))
+    if one:
+        o = ["-scene_bodies", "bars", "-bars_dm_plex_filename", BARS, "-bars_fixed_box", "-1,-1,-0.03,1,1,-0.02",
+             "-contact_pairs", "bars:bars", "-contact_mu", 0.3, "-time_step", 0.01, "-time_steps", 40]
+        for k, v in [("type", "fem"), ("material", "corotational"), ("young", 1e6), ("poisson", 0.3), ("density", 1000)]:
+            o += ["-bars_" + k, v]
+    else:
+        o = ["-options_file", "input/hard/crossed_bars.opts"]
+    run(o + ["-output_every", 1, "-output_file", f, "-quiet"] + list(extra), NP)
+    h = h5py.File(f, "r")
+    return h, (h["bodies/bars/mesh/reference"][:] if one else
+               np.vstack([h["bodies/bottom/mesh/reference"][:], h["bodies/top/mesh/reference"][:]]))
+
+
+def bar_positions(h, one, k):
+    return h["bodies/bars/positions"][k] if one else np.vstack([h["bodies/bottom/positions"][k],
+                                                               h["bodies/top/positions"][k]])
+
+
+(O, ro), (T, rt) = bars(True), bars(False)
+io, it = np.lexsort(np.round(ro, 9).T), np.lexsort(np.round(rt, 9).T)
+no, nt = O["steps/contacts"][:], T["steps/contacts"][:]
+oo, ot = O["contacts/offset"][:], T["contacts/offset"][:]
+fsum = np.add.reduceat(np.abs(O["contacts/force"][:, 0]), oo[:-1]) * (np.diff(oo) > 0) if oo[-1] else np.zeros(1)
+k1 = int(np.argmax(fsum > 0))  # the first step whose contact pushes (the first are speculative, at rest)
+fo, ft = O["contacts/force"][oo[k1]:oo[k1 + 1], 0], T["contacts/force"][ot[k1]:ot[k1 + 1], 0]
+dx = np.abs(bar_positions(O, True, k1 + 1)[io] - bar_positions(T, False, k1 + 1)[it]).max()
+ef = np.abs(fo - ft).max() / np.abs(ft).max() if fo.shape == ft.shape and len(ft) else np.inf
+c.check(np.array_equal(no, nt) and (no[k1:] == 1).all() and fsum[k1] > 0 and ef <= 1e-10 and dx <= 1e-10,
+        "crossed bars in one body: one edge-edge self-contact at every step, as two bodies; at the first that pushes "
+        "(step %d) the same normal force to %.1e (relative) and positions to %.1e m" % (k1 + 1, ef, dx))
+ni = O["steps/intersections"][:]
+c.check(ni.max() == 0, "crossed bars in one body: no self-intersection over %d steps (the top bar rests on the "
+        "bottom one, %.1f N)" % (len(ni), O["contacts/force"][oo[-2]:oo[-1], 0].sum()))
+(O0, _), (T0, _) = bars(True, ["-contact_edge_edge", 0]), bars(False, ["-contact_edge_edge", 0])
+n0, t0 = O0["steps/intersections"][:].max(), T0["steps/intersections"][:].max()
+c.check(n0 > 0 and n0 == t0, "crossed bars, -contact_edge_edge 0: the edges pass through each other, %d "
+        "self-intersections counted (%d as two bodies)" % (n0, t0))
 
 # bad input
 CUBE = ["-b_type", "fem", "-b_dm_plex_filename", "meshes/cube_coarse.msh", "-b_young", 1e5, "-b_density", 1000]

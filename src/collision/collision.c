@@ -305,8 +305,10 @@ static PetscErrorCode MeshedPair(MPI_Comm comm, FCBody bodies[], PetscInt p, con
   PetscInt        nvn[2] = {0, 0};
 
   PetscFunctionBegin;
-  if (pairs->body[p][0] == pairs->body[p][1]) {
-    PetscCall(FCCollisionSelfPair(comm, bodies[pairs->body[p][0]], pairs->body[p][0], p, pairs, rank, set));
+  if (pairs->body[p][0] == pairs->body[p][1]) { /* self-contact: vertices, then sharp edges */
+    PetscInt b = pairs->body[p][0];
+    PetscCall(FCCollisionSelfPair(comm, bodies[b], b, p, pairs, rank, set));
+    if (pairs->edges) PetscCall(FCCollisionEdgeEdge(comm, bodies[b], bodies[b], b, b, p, pairs, set));
     PetscFunctionReturn(0);
   }
   for (int side = 0; side < 2; side++) {

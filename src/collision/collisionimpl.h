@@ -88,6 +88,8 @@ PETSC_INTERN PetscErrorCode FCCollisionSelfRingReset(Surface *);
 PETSC_INTERN void           FCCollisionSelfSkip(Surface *, const PetscReal X[3]);
 PETSC_INTERN PetscBool      FCCollisionSelfExcludes(const Surface *, PetscInt t, const PetscReal x[3]);
 PETSC_INTERN PetscBool      FCCollisionSelfExcludesRing(const Surface *, PetscInt t);
+/* whether edge b (reference ends Xb) has a vertex on a triangle of the ring of either end of edge a */
+PETSC_INTERN PetscBool FCCollisionSelfEdgeInRing(const Surface *, const PetscReal Xa[2][3], const PetscReal Xb[2][3]);
 PETSC_INTERN PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp,
                                                               Surface *S, PetscInt nvn, const FCVertexNormal *vn,
                                                               PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
@@ -166,9 +168,10 @@ PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, Pe
                                                 const FCContactPairs *, FCContactSet *);
 
 /* The sharp edges of a closed surface (as edge-edge contacts take them) by their two ends' positions
-   x0: ends[6 k .. 6 k + 5] (to be freed) */
-PETSC_INTERN PetscErrorCode FCSurfaceSharpEdgeEnds(PetscInt ntri, const FCSurfaceTriangle *, PetscInt *ne,
-                                                   PetscReal **ends);
+   x0: ends[6 k .. 6 k + 5]; full: 15 a row, then the ends' reference positions X and the sum of the
+   two adjacent triangles' outward normals (to be freed) */
+PETSC_INTERN PetscErrorCode FCSurfaceSharpEdgeEnds(PetscInt ntri, const FCSurfaceTriangle *, PetscBool full,
+                                                   PetscInt *ne, PetscReal **ends);
 
 /* geometry.c: closest point to p on triangle (a, b, c) with its barycentric weights (Ericson,
    5.1.5); the unit normal of a triangle (x[0], x[1], x[2]), counter-clockwise = outward; the

@@ -20,6 +20,7 @@
 typedef struct {
   PetscInt  gdof[2];
   PetscReal X[2][3], x0[2][3], xf[2][3], nout[3]; /* nout: sum of the two adjacent outward normals */
+  PetscReal nref[3];                              /* the same in the reference configuration */
 } Edge;
 
 typedef struct {
@@ -71,7 +72,7 @@ static PetscErrorCode SharpEdges(PetscInt ntri, const FCSurfaceTriangle *tri, Pe
   qsort(h, 3 * ntri, sizeof(HalfEdge), CompareHalf);
   PetscCall(PetscMalloc1(3 * ntri / 2 + 1, edges));
   for (PetscInt k = 0; k + 1 < 3 * ntri; k++) {
-    PetscReal n1[3], n2[3];
+    PetscReal n1[3], n2[3], r1[3], r2[3];
     if (CompareHalf(&h[k], &h[k + 1])) continue;
     FCTriangleNormal(tri[h[k].tri].x0, n1);
     FCTriangleNormal(tri[h[k + 1].tri].x0, n2);
@@ -87,7 +88,12 @@ static PetscErrorCode SharpEdges(PetscInt ntri, const FCSurfaceTriangle *tri, Pe
           E->xf[j][i] = T->xf[v][i];
         }
       }
-      for (int i = 0; i < 3; i++) E->nout[i] = n1[i] + n2[i];
+      FCTriangleNormal(tri[h[k].tri].X, r1);
+      FCTriangleNormal(tri[h[k + 1].tri].X, r2);
+      for (int i = 0; i < 3; i++) {
+        E->nout[i] = n1[i] + n2[i];
+        E->nref[i] = r1[i] + r2[i];
+      }
       n++;
     }
     k++;
@@ -184,6 +190,21 @@ static PetscBool EdgeNormal(const Edge *a, const Edge *b, PetscReal n[3])
   return FCDot(n, b->nout) > 0 && FCDot(n, a->nout) < 0 ? PETSC_TRUE : PETSC_FALSE;
 }
 
+/* A self pair's edge b at t is edge a's own shape at s (a's end vertices those of R's triangles): a
+   vertex of b on a triangle of the ring of either end of a (selfcontact.c), or a behind b in the
+   reference configuration (the other side of the body's own thickness; a fold that has crossed was
+   in front there) */
+static PetscBool SelfExcluded(const Surface *R, const Edge *a, const Edge *b, PetscReal s, PetscReal t)
+{
+  PetscReal d = 0.0;
+  if (FCCollisionSelfEdgeInRing(R, a->X, b->X)) return PETSC_TRUE;
+  for (int i = 0; i < 3; i++)
+    d += ((1 - s) * a->X[0][i] + s * a->X[1][i] - (1 - t) * b->X[0][i] - t * b->X[1][i]) * b->nref[i];
+  return d < 0.0 ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* A against B; A == B (a self pair): each crossing once, found from its edge of lower index, the
+   edges of the body's own shape left out (SelfExcluded) */
 PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt pair,
                                    const FCContactPairs *pairs, FCContactSet *set)
 {
@@ -191,16 +212,25 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
   FCSurfaceTriangle *ta, *tb;
   Edge              *ea, *eb;
   FCSurface         *S;
+  Surface            R; /* a self pair's surface, for its ring */
   PetscMPIInt        rank, size;
+  PetscBool          self = A == B ? PETSC_TRUE : PETSC_FALSE;
   PetscReal          dist = pairs->distance, tau = FCCCDThreshold(dist), lo = FC_EDGE_INTERIOR, hi = 1 - lo;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(FCSurfaceGather(comm, A, &nta, &ta));
-  PetscCall(FCSurfaceGather(comm, B, &ntb, &tb));
   PetscCall(SharpEdges(nta, ta, &nea, &ea));
-  PetscCall(SharpEdges(ntb, tb, &neb, &eb));
+  ntb = nta, tb = ta, neb = nea, eb = ea;
+  if (!self) {
+    PetscCall(FCSurfaceGather(comm, B, &ntb, &tb));
+    PetscCall(SharpEdges(ntb, tb, &neb, &eb));
+  }
+  PetscCall(PetscMemzero(&R, sizeof(R)));
+  R.n   = nta;
+  R.tri = ta;
+  if (self) PetscCall(FCCollisionSelfRingSetUp(&R, pairs->self_ring));
   { /* B a turning mesh: its edges' ends leave their chords (FCCCDArcMargin) */
     PetscReal arc;
     PetscCall(FCCCDArcMargin(B, ntb, tb, &arc));
@@ -234,6 +264,7 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
       else
         continue; /* (continuous: the first edge reached, after every edge within the distance) */
       if (s <= lo || s >= hi || t <= lo || t >= hi || !EdgeNormal(a, b, n) || rank_key >= best) continue;
+      if (self && (cand[m] <= k || SelfExcluded(&R, a, b, s, t))) continue;
       best = rank_key;
       bj   = cand[m];
       bs   = s;
@@ -244,23 +275,35 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
   }
   PetscCall(PetscFree(cand));
   PetscCall(FCSurfaceDestroy(&S));
+  PetscCall(FCCollisionSelfRingReset(&R));
+  if (!self) {
+    PetscCall(PetscFree(tb));
+    PetscCall(PetscFree(eb));
+  }
   PetscCall(PetscFree(ta));
-  PetscCall(PetscFree(tb));
   PetscCall(PetscFree(ea));
-  PetscCall(PetscFree(eb));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSurfaceSharpEdgeEnds(PetscInt ntri, const FCSurfaceTriangle *tri, PetscInt *ne, PetscReal **ends)
+PetscErrorCode FCSurfaceSharpEdgeEnds(PetscInt ntri, const FCSurfaceTriangle *tri, PetscBool full, PetscInt *ne,
+                                      PetscReal **ends)
 {
-  Edge *E;
+  Edge    *E;
+  PetscInt m = full ? 15 : 6;
 
   PetscFunctionBegin;
   PetscCall(SharpEdges(ntri, tri, ne, &E));
-  PetscCall(PetscMalloc1(6 * (*ne) + 1, ends));
-  for (PetscInt k = 0; k < *ne; k++)
+  PetscCall(PetscMalloc1(m * (*ne) + 1, ends));
+  for (PetscInt k = 0; k < *ne; k++) {
+    PetscReal *e = &(*ends)[m * k];
     for (int j = 0; j < 2; j++)
-      for (int i = 0; i < 3; i++) (*ends)[6 * k + 3 * j + i] = E[k].x0[j][i];
+      for (int i = 0; i < 3; i++) {
+        e[3 * j + i] = E[k].x0[j][i];
+        if (full) e[6 + 3 * j + i] = E[k].X[j][i];
+      }
+    if (full)
+      for (int i = 0; i < 3; i++) e[12 + i] = E[k].nout[i];
+  }
   PetscCall(PetscFree(E));
   PetscFunctionReturn(0);
 }

@@ -242,7 +242,7 @@ static PetscErrorCode EdgesThroughSurface(MPI_Comm comm, const Closed *P, const 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(FCSurfaceSharpEdgeEnds(P->S->n, P->S->tri, &ne, &ends));
+  PetscCall(FCSurfaceSharpEdgeEnds(P->S->n, P->S->tri, PETSC_FALSE, &ne, &ends));
   for (PetscInt k = rank; k < ne; k += size) {
     const PetscReal *a = &ends[6 * k], *b = &ends[6 * k + 3];
     if (FCRayGridInside(B->S, &B->G, a) || FCRayGridInside(B->S, &B->G, b))
@@ -315,34 +315,79 @@ static PetscReal SelfNearest(const Closed *c, const PetscReal x[3])
   return bestd;
 }
 
+/* Whether x on the surface (outward normal n, not unit) is inside another part of the body deeper
+   than depth: the winding number just inside x is 2, and no triangle outside the ring of the
+   surface vertex X is within depth */
+static PetscErrorCode SelfDeep(Closed *c, const FCContactPairs *pairs, const PetscReal x[3], const PetscReal n[3],
+                               const PetscReal X[3], PetscReal eps, PetscBool *deep)
+{
+  PetscReal xin[3], ln = PetscSqrtReal(FCDot(n, n));
+
+  PetscFunctionBegin;
+  *deep = PETSC_FALSE;
+  for (int d = 0; d < 3; d++) xin[d] = x[d] - eps * n[d] / (ln > 0 ? ln : 1.0);
+  if (SelfWinding(c, xin) < 2) PetscFunctionReturn(0);
+  if (!c->S->ring) PetscCall(FCCollisionSelfRingSetUp(c->S, pairs->self_ring)); /* at the first such point */
+  FCCollisionSelfSkip(c->S, X);
+  *deep = SelfNearest(c, x) > pairs->intersection_depth * pairs->intersection_depth ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The sharp edges of a self pair's body through another part of it: both ends not counted as
+   vertices inside, a point of the edge inside deeper than depth (as EdgesThroughSurface) */
+static PetscErrorCode SelfEdgesThrough(MPI_Comm comm, Closed *c, const FCContactPairs *pairs, PetscReal eps,
+                                       PetscInt *count)
+{
+  PetscInt    ne;
+  PetscReal  *ed;
+  PetscMPIInt rank, size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(FCSurfaceSharpEdgeEnds(c->S->n, c->S->tri, PETSC_TRUE, &ne, &ed));
+  for (PetscInt k = rank; k < ne; k += size) {
+    const PetscReal *a = &ed[15 * k], *b = a + 3, *Xa = a + 6, *Xb = a + 9, *n = a + 12;
+    PetscBool        deep;
+    PetscCall(SelfDeep(c, pairs, a, n, Xa, eps, &deep));
+    if (!deep) PetscCall(SelfDeep(c, pairs, b, n, Xb, eps, &deep));
+    if (deep) continue; /* a vertex inside: counted as one */
+    for (int q = 1; q <= 3 && !deep; q++) {
+      PetscReal x[3];
+      for (int i = 0; i < 3; i++) x[i] = a[i] + 0.25 * q * (b[i] - a[i]);
+      PetscCall(SelfDeep(c, pairs, x, n, q < 2 ? Xa : Xb, eps, &deep));
+      if (deep) (*count)++;
+    }
+  }
+  PetscCall(PetscFree(ed));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SelfIntersections(MPI_Comm comm, FCBody b, const FCContactPairs *pairs, PetscInt *count)
 {
   Closed          c;
   PetscInt        nv, nvn;
-  PetscReal      *vx, depth = pairs->intersection_depth, eps = 0.0;
+  PetscReal      *vx, eps = 0.0;
   FCVertexNormal *vn;
   PetscMPIInt     rank, size;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(ClosedCreate(comm, b, depth, &c));
+  PetscCall(ClosedCreate(comm, b, pairs->intersection_depth, &c));
   PetscCall(FCCollisionVertexNormals(c.S->n, c.S->tri, &nvn, &vn));
   PetscCall(SurfaceVertices(c.S->n, c.S->tri, &nv, &vx));
   for (int d = 0; d < 3; d++) eps = PetscMax(eps, 1e-7 * (c.G.hi[d] - c.G.lo[d]));
   for (PetscInt k = rank; k < nv; k += size) {
-    const PetscReal *x = &vx[6 * k + 3];
-    PetscReal        xin[3];
-    FCVertexNormal   key, *own;
+    FCVertexNormal key, *own;
+    PetscBool      deep;
     for (int d = 0; d < 3; d++) key.X[d] = vx[6 * k + d];
     own = (FCVertexNormal *)bsearch(&key, vn, nvn, sizeof(FCVertexNormal), FCComparePoint);
     if (!own) continue;
-    for (int d = 0; d < 3; d++) xin[d] = x[d] - eps * own->n[d];
-    if (SelfWinding(&c, xin) < 2) continue;
-    if (!c.S->ring) PetscCall(FCCollisionSelfRingSetUp(c.S, pairs->self_ring)); /* at the first such vertex */
-    FCCollisionSelfSkip(c.S, key.X);
-    if (SelfNearest(&c, x) > depth * depth) (*count)++;
+    PetscCall(SelfDeep(&c, pairs, &vx[6 * k + 3], own->n, key.X, eps, &deep));
+    if (deep) (*count)++;
   }
+  PetscCall(SelfEdgesThrough(comm, &c, pairs, eps, count));
   PetscCall(PetscFree(vx));
   PetscCall(PetscFree(vn));
   PetscCall(FCCollisionSelfRingReset(c.S));

@@ -183,6 +183,25 @@ PetscBool FCCollisionSelfExcludesRing(const Surface *S, PetscInt t)
   return PETSC_FALSE;
 }
 
+PetscBool FCCollisionSelfEdgeInRing(const Surface *S, const PetscReal Xa[2][3], const PetscReal Xb[2][3])
+{
+  struct _FCSelfRing *r = S->ring;
+  PetscInt            vb[2];
+  PetscBool           in = PETSC_FALSE;
+
+  if (!r->built) RingBuild(r);
+  vb[0] = VertexOf(r, Xb[0]);
+  vb[1] = VertexOf(r, Xb[1]);
+  for (int e = 0; e < 2 && !in; e++) {
+    RingFind(r, Xa[e]);
+    for (PetscInt i = 0; i < r->nskip && !in; i++)
+      for (int a = 0; a < 3; a++)
+        if (r->tv[3 * r->skip[i] + a] == vb[0] || r->tv[3 * r->skip[i] + a] == vb[1]) in = PETSC_TRUE;
+  }
+  r->pending = PETSC_TRUE; /* r->skip no longer holds the current vertex's ring */
+  return in;
+}
+
 PetscBool FCCollisionSelfExcludes(const Surface *S, PetscInt t, const PetscReal x[3])
 {
   if (FCCollisionSelfExcludesRing(S, t)) return PETSC_TRUE;
