@@ -348,16 +348,16 @@ static PetscErrorCode SelfEdgesThrough(MPI_Comm comm, Closed *c, const FCContact
   PetscCall(FCSurfaceSharpEdgeEnds(c->S->n, c->S->tri, PETSC_TRUE, &ne, &ed));
   for (PetscInt k = rank; k < ne; k += size) {
     const PetscReal *a = &ed[15 * k], *b = a + 3, *Xa = a + 6, *Xb = a + 9, *n = a + 12;
-    PetscBool        deep;
-    PetscCall(SelfDeep(c, pairs, a, n, Xa, eps, &deep));
-    if (!deep) PetscCall(SelfDeep(c, pairs, b, n, Xb, eps, &deep));
-    if (deep) continue; /* a vertex inside: counted as one */
+    PetscBool        deep = PETSC_FALSE, end = PETSC_FALSE;
     for (int q = 1; q <= 3 && !deep; q++) {
       PetscReal x[3];
       for (int i = 0; i < 3; i++) x[i] = a[i] + 0.25 * q * (b[i] - a[i]);
       PetscCall(SelfDeep(c, pairs, x, n, q < 2 ? Xa : Xb, eps, &deep));
-      if (deep) (*count)++;
     }
+    if (!deep) continue;
+    PetscCall(SelfDeep(c, pairs, a, n, Xa, eps, &end)); /* a vertex inside: counted as one */
+    if (!end) PetscCall(SelfDeep(c, pairs, b, n, Xb, eps, &end));
+    if (!end) (*count)++;
   }
   PetscCall(PetscFree(ed));
   PetscFunctionReturn(0);
