@@ -207,7 +207,7 @@ PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt i
       for (int d = 0; d < 3; d++) key1.X[d] = prox[i].X[0][d];
       own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), FCComparePoint);
     }
-    if (S->self) FCCollisionSelfSkip(S, prox[i].X[0]);
+    if (S->self) FCCollisionSelfVertex(S, prox[i].X[0]);
     PetscCall(FCCollisionLandingTriangle(S, &x0[3 * i], &xf[3 * i], own ? own->n : NULL, distance, pairs->continuous,
                                          tau, cand, &grid, &best, bw, bcp));
     if (best < 0) continue;

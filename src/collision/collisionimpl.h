@@ -85,7 +85,7 @@ PETSC_INTERN PetscErrorCode FCCollisionSelfPair(MPI_Comm, FCBody, PetscInt ib, P
    landing place for it at x (its ring, or across the body's own thickness) */
 PETSC_INTERN PetscErrorCode FCCollisionSelfRingSetUp(Surface *, PetscInt k);
 PETSC_INTERN PetscErrorCode FCCollisionSelfRingReset(Surface *);
-PETSC_INTERN void           FCCollisionSelfSkip(Surface *, const PetscReal X[3]);
+PETSC_INTERN void           FCCollisionSelfVertex(Surface *, const PetscReal X[3]);
 PETSC_INTERN PetscBool      FCCollisionSelfExcludes(const Surface *, PetscInt t, const PetscReal x[3]);
 PETSC_INTERN PetscBool      FCCollisionSelfExcludesRing(const Surface *, PetscInt t);
 /* whether edge b (reference ends Xb) has a vertex on a triangle of the ring of either end of edge a */

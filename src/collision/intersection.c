@@ -328,7 +328,7 @@ static PetscErrorCode SelfDeep(Closed *c, const FCContactPairs *pairs, const Pet
   for (int d = 0; d < 3; d++) xin[d] = x[d] - eps * n[d] / (ln > 0 ? ln : 1.0);
   if (SelfWinding(c, xin) < 2) PetscFunctionReturn(0);
   if (!c->S->ring) PetscCall(FCCollisionSelfRingSetUp(c->S, pairs->self_ring)); /* at the first such point */
-  FCCollisionSelfSkip(c->S, X);
+  FCCollisionSelfVertex(c->S, X);
   *deep = SelfNearest(c, x) > pairs->intersection_depth * pairs->intersection_depth ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }

@@ -15,7 +15,9 @@
    normal opposes its own, so the flat and convex parts of the surface around it are never landing
    places either, and a fold is (its two sides face each other).
    A vertex of the surface lies on it, so the start-inside fallback of the two-body pairs (a point
-   inside the other body) does not apply; continuous detection keeps a fold from crossing. */
+   inside the other body) does not apply; continuous detection keeps a fold from crossing.
+   The sharp edges of the body meet its own in edges.c, with the same two rules for edges
+   (FCCollisionSelfEdgeInRing here). */
 #include "collisionimpl.h"
 
 struct _FCSelfRing {
@@ -110,7 +112,7 @@ PetscErrorCode FCCollisionSelfRingReset(Surface *S)
 
 /* X is the current vertex: its ring is found when a triangle is first tested against it (most
    vertices of a body that does not fold have no candidate triangle that faces them) */
-void FCCollisionSelfSkip(Surface *S, const PetscReal X[3])
+void FCCollisionSelfVertex(Surface *S, const PetscReal X[3])
 {
   for (int d = 0; d < 3; d++) S->selfX[d] = X[d];
   S->ring->pending = PETSC_TRUE;
