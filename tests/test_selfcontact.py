@@ -18,9 +18,12 @@
   through each other, and the count sees it as for two bodies;
 - self-intersections: two cubes overlapping by 0.1 m in one mesh: the count is the number of surface
   vertices of each inside the other deeper than the depth, counted from the geometry;
-- --np > 1: to the first self-contact step, the contact forces and positions are the 1-rank ones to
-  1e-10 (later, the stack's nearly redundant mutual contacts leave the positions to the solver's
-  tolerance over W's conditioning: 1e-7 to 8e-7 m between 1 and 2 ranks, two bodies too);
+- mutual self-contacts (each vertex a corner of the other's triangle) leave one active, the other
+  dormant (the default): the stack holds as with every contact active (1e-3 of the displacement);
+- --np > 1: with the dormant rule, the 1-rank positions to 1e-10 m over the whole run; with every
+  contact active, to the first self-contact step, the contact forces and positions to 1e-10 (later,
+  the stack's nearly redundant mutual contacts leave the positions to the solver's tolerance over
+  W's conditioning: 1e-7 to 8e-7 m between 1 and 2 ranks, two bodies too);
 - bad input: a rigid and a kinematic body paired with itself, -contact_self_ring 0: errors naming
   them."""
 import subprocess
@@ -92,7 +95,7 @@ def self_scene(np_, extra=()):
     return h5py.File(f, "r")
 
 
-A = self_scene(NP)
+A = self_scene(NP, ["-contact_fe_pass2_dormant", -1])  # every contact active, as the two bodies' below
 fb = out("two_bodies.h5")
 run(COMMON + ["-scene_bodies", "lo,hi,ground", "-contact_pairs", "lo:ground,hi:ground,lo:hi", "-contact_fe_pass2_dormant",
               -1] + fe("lo", "meshes/cube_coarse.msh", 0.5001) + fe("hi", "meshes/cube_coarse.msh", 1.7001) +
@@ -120,6 +123,15 @@ c.check(np.array_equal(na, nb) and (self_rows[:, 0] == self_rows[:, 1]).sum() > 
 c.check(abs(sa - sb) <= 1e-6 * abs(sb) and np.abs(pa - pb).max() <= 1e-5 * disp,
         "two components = two bodies: sum of normal forces %.10g against %.10g, positions to %.1e m of a %.2f m "
         "displacement" % (sa, sb, np.abs(pa - pb).max(), disp))
+
+# the dormant rule (the default): of two mutual self-contacts (each vertex a corner of the other's
+# triangle) the one whose vertex comes later is dormant; the stack then holds as it does with every
+# contact active, and its positions no longer depend on the solver's path (2 ranks below)
+Dm = self_scene(NP)
+pd = Dm["bodies/stack/positions"][-1][order(Dm["bodies/stack/mesh/reference"][:])]
+c.check(Dm["steps/intersections"][:].max() == 0 and np.abs(pd - pa).max() <= 1e-3 * disp,
+        "dormant mutual self-contacts: no self-intersection, positions %.1e m from every contact active's" %
+        np.abs(pd - pa).max())
 
 # self-intersections: the two cubes overlapping by 0.1 m in the mesh itself (no contact holds them: the
 # overlap is the reference configuration's, where every vertex of it is behind the other part); the
@@ -162,7 +174,13 @@ for b in builders:
     c.check(ok and err <= 1e-10 and nself > 0, "builder %s: dense's contact forces to %.1e (relative; %d self-contacts "
             "at step 21)" % (b, err, nself))
 
-if NP > 1:  # at the first self-contact step (later, the stack's nearly redundant mutual contacts leave the
+if NP > 1:  # with the dormant rule, over the whole run
+    Dm1 = self_scene(1)
+    d1 = np.abs(Dm1["bodies/stack/positions"][-1][order(Dm1["bodies/stack/mesh/reference"][:])] - pd).max()
+    c.check(d1 <= 1e-10, "%d ranks, dormant mutual self-contacts: the 1-rank positions to %.1e m after %d steps "
+            "(every contact active: 1e-7 to 8e-7 m, the stack's mutual contacts nearly redundant)" %
+            (NP, d1, len(Dm1["steps/contacts"])))
+    # at the first self-contact step (later, the stack's nearly redundant mutual contacts leave the
     # positions to the solver's tolerance over W's conditioning: 1e-7 to 8e-7 m between 1 and 2 ranks, for the
     # same two cubes as two bodies too)
     D1 = self_scene(1, PLAIN + ["-compliance_type", "dense"])

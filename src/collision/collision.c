@@ -445,6 +445,7 @@ PetscErrorCode FCCollisionDetectPairs(MPI_Comm comm, PetscInt nbodies, FCBody bo
   set->dormant_depth = pairs->dormant_depth;
   if (pairs->passes == 2 && (pairs->pass2_drop >= 0.0 || pairs->pass2_dormant >= 0.0))
     PetscCall(HeldSecondPass(pairs, set));
+  if (pairs->pass2_dormant >= 0.0) PetscCall(FCCollisionSelfHeld(pairs->pass2_dormant, set));
   /* The start-inside rule: a contact that starts d deep is not asked to close in one step (an
      impulse of d / h, the energy burst of bodies placed inside each other) but by at most
      -contact_separation_speed v per step: the step may leave max(0, d - v h) of it (q_n += slack,

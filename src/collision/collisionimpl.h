@@ -88,6 +88,8 @@ PETSC_INTERN PetscErrorCode FCCollisionSelfRingReset(Surface *);
 PETSC_INTERN void           FCCollisionSelfVertex(Surface *, const PetscReal X[3]);
 PETSC_INTERN PetscBool      FCCollisionSelfExcludes(const Surface *, PetscInt t, const PetscReal x[3]);
 PETSC_INTERN PetscBool      FCCollisionSelfExcludesRing(const Surface *, PetscInt t);
+/* the self-contacts another one holds (barycentric weight > w) made dormant */
+PETSC_INTERN PetscErrorCode FCCollisionSelfHeld(PetscReal w, FCContactSet *);
 /* whether edge b (reference ends Xb) has a vertex on a triangle of the ring of either end of edge a */
 PETSC_INTERN PetscBool FCCollisionSelfEdgeInRing(const Surface *, const PetscReal Xa[2][3], const PetscReal Xb[2][3]);
 PETSC_INTERN PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp,

@@ -48,10 +48,12 @@ static PetscErrorCode ReadDetection(FCCollision s, PetscOptionItems *PetscOption
                           "With 2 passes: drop a second-pass contact whose vertex has a weight > w in a first-pass "
                           "contact of the pair (< 0: keep all)",
                           &s->pairs.pass2_drop, NULL));
-  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_dormant",
-                          "With 2 passes: a second-pass contact whose vertex has a weight > w in a first-pass contact "
-                          "is dormant, solved only where the solution without it leaves the vertex inside (< 0: off)",
-                          &s->pairs.pass2_dormant, NULL));
+  PetscCall(
+      FCOptionsReal(PetscOptionsObject, "-contact_fe_pass2_dormant",
+                    "With 2 passes: a second-pass contact whose vertex has a weight > w in a first-pass contact "
+                    "is dormant, solved only where the solution without it leaves the vertex inside; a self pair: "
+                    "a self-contact whose vertex has a weight > w in one whose vertex comes first (< 0: off)",
+                    &s->pairs.pass2_dormant, NULL));
   PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_dormant_depth",
                           "Depth inside the other body at which a dormant contact wakes (m)", &s->pairs.dormant_depth,
                           NULL));

@@ -230,3 +230,44 @@ PetscErrorCode FCCollisionSelfPair(MPI_Comm comm, FCBody b, PetscInt ib, PetscIn
   PetscCall(PetscFree(vn));
   PetscFunctionReturn(0);
 }
+
+/* A self-contact is a vertex of a fold against a triangle of its other side; the other side's
+   vertices land back on the first side's triangles, and a vertex of the one is a corner of the
+   other's triangle: the two constraints are nearly redundant, as those of a two-body pair's two
+   passes (HeldSecondPass, collision.c). Of such a pair the contact whose vertex comes later in the
+   order of reference positions is dormant: a self-contact whose vertex has a barycentric weight
+   > w (-contact_fe_pass2_dormant) in another self-contact of the body whose vertex comes first.
+   Runs on the gathered set, the same on every rank. */
+PetscErrorCode FCCollisionSelfHeld(PetscReal w, FCContactSet *set)
+{
+  PetscReal *rec; /* 6 a row: a held corner's reference position, then its holder's */
+  PetscInt   n = 0;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(18 * set->n + 6, &rec));
+  for (PetscInt k = 0; k < set->n; k++) {
+    const FCContact *c = &set->c[k];
+    if (c->body[0] != c->body[1] || c->side2 != FC_SIDE_FE_TRIANGLE || c->prox[0].nv != 1) continue;
+    for (int a = 0; a < 3; a++)
+      if (c->prox[1].w[a] > w) {
+        for (int d = 0; d < 3; d++) {
+          rec[6 * n + d]     = c->prox[1].X[a][d];
+          rec[6 * n + 3 + d] = c->prox[0].X[0][d];
+        }
+        n++;
+      }
+  }
+  if (n > 1) qsort(rec, n, 6 * sizeof(PetscReal), FCComparePoint); /* by the held corner */
+  for (PetscInt k = 0; k < set->n && n; k++) {
+    FCContact       *c = &set->c[k];
+    const PetscReal *f;
+    if (c->body[0] != c->body[1] || c->side2 != FC_SIDE_FE_TRIANGLE || c->prox[0].nv != 1) continue;
+    f = (const PetscReal *)bsearch(c->prox[0].X[0], rec, n, 6 * sizeof(PetscReal), FCComparePoint);
+    if (!f) continue;
+    while (f > rec && !FCComparePoint(f - 6, c->prox[0].X[0])) f -= 6; /* the first record of this corner */
+    for (; f < rec + 6 * n && !FCComparePoint(f, c->prox[0].X[0]); f += 6)
+      if (FCComparePoint(f + 3, c->prox[0].X[0]) < 0) c->dormant = PETSC_TRUE;
+  }
+  PetscCall(PetscFree(rec));
+  PetscFunctionReturn(0);
+}
