@@ -57,6 +57,7 @@ MESHES=(
   "slide_slab_fine table1.geo nx 81 ny 25 nz 5 d 0.0125"
   "bar          table1.geo    nx 12 ny 3 nz 3 d 0.05"
   "u_bar        table1.geo    nx 41 ny 5 nz 3 d 0.025"
+  "sheet        table1.geo    nx 49 ny 9 nz 2 d 0.025"
   "hertz_sphere_1  hertz_sphere.geo  lc_min 0.04"
   "hertz_sphere_2  hertz_sphere.geo  lc_min 0.02"
   "hertz_sphere_3  hertz_sphere.geo  lc_min 0.01"

@@ -1,9 +1,12 @@
 """Self-contact of an FE body (-contact_pairs a:a, src/collision/selfcontact.c), on --np ranks:
 
 - a body at rest or turning freely has no self-contacts: the coarse cube, the finger, the hollow
-  sphere (a 0.5 m wall), the thin slab (0.02 m thick) and the bar, spinning at 3 rad/s without
+  sphere (a 0.5 m wall), the thin slab (0.02 m thick), the bar and the sheet (one element, 0.025 m,
+  thick; also at rest), spinning at 3 rad/s without
   gravity, with an alarm distance of 0.05 m and of 0.3 m (larger than the slab's thickness: the
-  rule that leaves out the triangles across the body's own thickness);
+  rule that leaves out the triangles across the body's own thickness), and no self-intersection
+  counted (the sheet at rest is where a ray from just inside a face vertex crossed that face again
+  where its triangles meet: the count casts it from just outside, away from the face);
 - one body of two components is two bodies: the coarse cube and a copy of it 1.2 m above, in one
   mesh (written here from meshes/cube_coarse.msh) paired with itself, fall on a plane and the upper
   lands on the lower; the same two cubes as two bodies paired a:b (both passes, no dormant second
@@ -37,15 +40,18 @@ NP = np_from_argv()
 c = Checker("selfcontact np%d" % NP)
 
 # at rest and in free rotation
-for mesh in ["cube_coarse", "finger", "hollow_sphere", "thin_slab", "bar"]:
+for mesh, w in [(m, "0,0,3") for m in ["cube_coarse", "finger", "hollow_sphere", "thin_slab", "bar", "sheet"]] + \
+        [("sheet", "0,0,0")]:
     for d in [0.05, 0.3]:
-        f = out("rest_%s_%g.h5" % (mesh, d))
+        f = out("rest_%s_%s_%g.h5" % (mesh, w, d))
         run(["-scene_bodies", "b", "-b_type", "fem", "-b_dm_plex_filename", "meshes/%s.msh" % mesh, "-b_material",
-             "corotational", "-b_young", 1e5, "-b_density", 1000, "-b_angular_velocity", "0,0,3", "-gravity", "0,0,0",
+             "corotational", "-b_young", 1e5, "-b_density", 1000, "-b_angular_velocity", w, "-gravity", "0,0,0",
              "-contact_pairs", "b:b", "-contact_distance", d, "-time_steps", 5, "-output_file", f, "-quiet"], NP)
         h = h5py.File(f, "r")
-        c.check(h["steps/contacts"][:].max() == 0, "%s spinning, alarm distance %g m: %d self-contacts" %
-                (mesh, d, h["steps/contacts"][:].max()))
+        c.check(h["steps/contacts"][:].max() == 0 and h["steps/intersections"][:].max() == 0,
+                "%s %s, alarm distance %g m: %d self-contacts, %d self-intersections counted" %
+                (mesh, "at rest" if w == "0,0,0" else "spinning", d, h["steps/contacts"][:].max(),
+                 h["steps/intersections"][:].max()))
 
 
 def two_cubes(path, dz=1.2):

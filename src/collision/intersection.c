@@ -274,25 +274,29 @@ static PetscErrorCode PointsInShape(PetscInt n, const PetscReal x[], FCBody B, P
 
 /* Self-intersection of a body's closed surface (a self-contact pair): a vertex inside another
    part of its own body, deeper than depth. A vertex is on its own surface, where a ray's parity
-   says nothing; the point just inside it, x - eps n (n its outward normal, eps 1e-7 of the
-   surface's size), is inside its own part, winding number 1, and 2 inside another part too. The
-   winding number is the ray's signed crossings (+1 leaving through a triangle, -1 entering).
-   Deeper than depth: no triangle outside the vertex's ring within depth. */
-static PetscInt SelfWinding(const Closed *c, const PetscReal x[3])
+   says nothing; the point just outside it, x + eps n (n its outward normal, eps 1e-7 of the
+   surface's size), is outside its own part, winding number 0, and 1 inside another part. The
+   winding number is the ray's signed crossings (+1 leaving through a triangle, -1 entering), the
+   ray along RayDir or its opposite, whichever leaves the vertex's own surface (a ray that starts
+   into it would cross it within eps of the vertex, where its triangles meet: a crossing counted
+   twice or not at all). Deeper than depth: no triangle outside the vertex's ring within depth. */
+static PetscInt SelfWinding(const Closed *c, const PetscReal x[3], const PetscReal n[3])
 {
-  int64_t  cell;
-  PetscInt lo, wind = 0;
+  int64_t   cell;
+  PetscInt  lo, wind  = 0;
+  PetscReal dir[3], s = FCDot(RayDir, n) >= 0.0 ? 1.0 : -1.0;
 
+  for (int d = 0; d < 3; d++) dir[d] = s * RayDir[d];
   for (lo = RayCell(&c->G, x, &cell); lo < c->G.n && c->G.cells[lo].key == cell; lo++) {
     const FCSurfaceTriangle *T = &c->S->tri[c->G.cells[lo].tri];
     PetscReal                e1[3], e2[3], nt[3]; /* the outward normal, unnormalized: its side of the ray */
-    if (!FCRayHitsTriangle(x, RayDir, T->x0[0], T->x0[1], T->x0[2])) continue;
+    if (!FCRayHitsTriangle(x, dir, T->x0[0], T->x0[1], T->x0[2])) continue;
     for (int d = 0; d < 3; d++) {
       e1[d] = T->x0[1][d] - T->x0[0][d];
       e2[d] = T->x0[2][d] - T->x0[0][d];
     }
     FCCross(e1, e2, nt);
-    wind += FCDot(nt, RayDir) > 0.0 ? 1 : -1;
+    wind += FCDot(nt, dir) > 0.0 ? 1 : -1;
   }
   return wind;
 }
@@ -316,17 +320,17 @@ static PetscReal SelfNearest(const Closed *c, const PetscReal x[3])
 }
 
 /* Whether x on the surface (outward normal n, not unit) is inside another part of the body deeper
-   than depth: the winding number just inside x is 2, and no triangle outside the ring of the
+   than depth: the winding number just outside x is 1, and no triangle outside the ring of the
    surface vertex X is within depth */
 static PetscErrorCode SelfDeep(Closed *c, const FCContactPairs *pairs, const PetscReal x[3], const PetscReal n[3],
                                const PetscReal X[3], PetscReal eps, PetscBool *deep)
 {
-  PetscReal xin[3], ln = PetscSqrtReal(FCDot(n, n));
+  PetscReal xout[3], ln = PetscSqrtReal(FCDot(n, n));
 
   PetscFunctionBegin;
   *deep = PETSC_FALSE;
-  for (int d = 0; d < 3; d++) xin[d] = x[d] - eps * n[d] / (ln > 0 ? ln : 1.0);
-  if (SelfWinding(c, xin) < 2) PetscFunctionReturn(0);
+  for (int d = 0; d < 3; d++) xout[d] = x[d] + eps * n[d] / (ln > 0 ? ln : 1.0);
+  if (SelfWinding(c, xout, n) < 1) PetscFunctionReturn(0);
   if (!c->S->ring) PetscCall(FCCollisionSelfRingSetUp(c->S, pairs->self_ring)); /* at the first such point */
   FCCollisionSelfVertex(c->S, X);
   *deep = SelfNearest(c, x) > pairs->intersection_depth * pairs->intersection_depth ? PETSC_TRUE : PETSC_FALSE;
