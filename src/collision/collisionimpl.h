@@ -27,7 +27,8 @@ struct _FCSurface {
      found at the first triangle it is tested against, and no start-inside fallback (a vertex of the
      surface is on it, not inside it) */
   PetscBool           self;
-  PetscReal           selfX[3]; /* the current vertex's reference position */
+  PetscReal           selfX[3];  /* the current vertex's reference position */
+  PetscReal           selfdepth; /* behind a triangle now: deeper than this (-contact_intersection_depth) */
   struct _FCSelfRing *ring;
 };
 

@@ -8,9 +8,10 @@
        around it, which it lies on; ring 2, the default, also those around its neighbours, which a
        concave corner of the surface brings within the alarm distance at rest);
      - the body's own thickness: a triangle the vertex is behind (on the side its outward normal
-       points away from) both at the start of the step and in the reference configuration is the
-       other face of a wall or slab, never a landing place (a fold that has crossed was in front of
-       it in the reference configuration, and stays one).
+       points away from) in the reference configuration and at the start of the step, there deeper
+       than -contact_intersection_depth, is the other face of a wall or slab, never a landing place
+       (a fold that has crossed was in front of it in the reference configuration, and stays one;
+       a vertex held a little behind a fold's other side stays in contact with it).
    With -contact_facing (on by default for self-contact too) a vertex lands only on triangles whose
    normal opposes its own, so the flat and convex parts of the surface around it are never landing
    places either, and a fold is (its two sides face each other).
@@ -158,14 +159,14 @@ static void RingFind(struct _FCSelfRing *r, const PetscReal X[3])
 }
 
 /* Behind triangle T (on the side its outward normal points away from) at p, T's corners c: the
-   signed distance from T's closest point along T's normal is negative */
-static PetscBool Behind(const PetscReal p[3], const PetscReal c[3][3])
+   signed distance from T's closest point along T's normal is below -tol */
+static PetscBool Behind(const PetscReal p[3], const PetscReal c[3][3], PetscReal tol)
 {
   PetscReal cp[3], w[3], n[3], s = 0.0;
   FCClosestPointTriangle(p, c[0], c[1], c[2], cp, w);
   FCTriangleNormal(c, n);
   for (int d = 0; d < 3; d++) s += (p[d] - cp[d]) * n[d];
-  return s < 0.0 ? PETSC_TRUE : PETSC_FALSE;
+  return s < -tol ? PETSC_TRUE : PETSC_FALSE;
 }
 
 PetscBool FCCollisionSelfExcludesRing(const Surface *S, PetscInt t)
@@ -208,8 +209,10 @@ PetscBool FCCollisionSelfExcludes(const Surface *S, PetscInt t, const PetscReal 
 {
   if (FCCollisionSelfExcludesRing(S, t)) return PETSC_TRUE;
   /* across the body's own thickness: behind the triangle now and in the reference configuration
-     (a fold that has crossed was in front of it there, and stays a landing place) */
-  return Behind(x, S->tri[t].x0) && Behind(S->selfX, S->tri[t].X) ? PETSC_TRUE : PETSC_FALSE;
+     (a fold that has crossed was in front of it there, and stays a landing place). Now: deeper
+     than -contact_intersection_depth, so that a vertex of a fold that a contact holds a little
+     behind its other side (within the solver's tolerance) stays in contact with it */
+  return Behind(x, S->tri[t].x0, S->selfdepth) && Behind(S->selfX, S->tri[t].X, 0.0) ? PETSC_TRUE : PETSC_FALSE;
 }
 
 PetscErrorCode FCCollisionSelfPair(MPI_Comm comm, FCBody b, PetscInt ib, PetscInt pair, const FCContactPairs *pairs,
@@ -223,7 +226,8 @@ PetscErrorCode FCCollisionSelfPair(MPI_Comm comm, FCBody b, PetscInt ib, PetscIn
   PetscCall(FCCollisionSurfaceBuild(comm, b, pairs, &S));
   if (pairs->facing) PetscCall(FCCollisionVertexNormals(S->n, S->tri, &nvn, &vn));
   PetscCall(FCCollisionSelfRingSetUp(S, pairs->self_ring));
-  S->self = PETSC_TRUE;
+  S->self      = PETSC_TRUE;
+  S->selfdepth = pairs->intersection_depth;
   PetscCall(FCCollisionVerticesAgainstSurface(b, b, ib, ib, S, nvn, vn, pair, pairs, rank, set));
   PetscCall(FCCollisionSelfRingReset(S));
   PetscCall(FCSurfaceDestroy(&S));
