@@ -137,45 +137,6 @@ void FCCollisionTrianglePoint(const FCSurfaceTriangle *T, const PetscReal w[3], 
   for (int d = 0; d < 3; d++) xf[d] = w[0] * T->xf[0][d] + w[1] * T->xf[1][d] + w[2] * T->xf[2][d];
 }
 
-/* The outward normals of the vertices of a surface's ntri triangles at the start of the step
-   (sums of their triangles' normals weighted by area), sorted by reference position */
-PetscErrorCode FCCollisionVertexNormals(PetscInt ntri, const FCSurfaceTriangle tri[], PetscInt *nvn,
-                                        FCVertexNormal **vn)
-{
-  FCVertexNormal *all;
-  PetscInt        m = 0;
-
-  PetscFunctionBegin;
-  PetscCall(PetscMalloc1(3 * ntri + 1, &all));
-  for (PetscInt t = 0; t < ntri; t++) {
-    PetscReal e1[3], e2[3], c[3];
-    for (int d = 0; d < 3; d++) {
-      e1[d] = tri[t].x0[1][d] - tri[t].x0[0][d];
-      e2[d] = tri[t].x0[2][d] - tri[t].x0[0][d];
-    }
-    FCCross(e1, e2, c); /* twice the area times the unit normal */
-    for (int a = 0; a < 3; a++)
-      for (int d = 0; d < 3; d++) {
-        all[3 * t + a].X[d] = tri[t].X[a][d];
-        all[3 * t + a].n[d] = c[d];
-      }
-  }
-  if (ntri) qsort(all, 3 * ntri, sizeof(FCVertexNormal), FCComparePoint);
-  for (PetscInt k = 0; k < 3 * ntri; k++) {
-    if (m && !FCComparePoint(&all[m - 1], &all[k]))
-      for (int d = 0; d < 3; d++) all[m - 1].n[d] += all[k].n[d];
-    else
-      all[m++] = all[k];
-  }
-  for (PetscInt k = 0; k < m; k++) {
-    PetscReal l = PetscSqrtReal(FCDot(all[k].n, all[k].n));
-    for (int d = 0; d < 3; d++) all[k].n[d] = l > 0.0 ? all[k].n[d] / l : 0.0;
-  }
-  *nvn = m;
-  *vn  = all;
-  PetscFunctionReturn(0);
-}
-
 /* Owned boundary vertices of body P (index ipts) against the surface S of body ishp: the nearest
    triangle within the alarm distance at the start of the step gives the contact; with continuous
    detection, a vertex that has none gets the first triangle its motion over the step reaches, as
@@ -245,7 +206,7 @@ PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt i
     }
   }
   PetscCall(PetscFree(cand));
-  PetscCall(PetscFree(grid.cells));
+  PetscCall(FCRayGridDestroy(&grid));
   PetscFunctionReturn(0);
 }
 
@@ -300,9 +261,10 @@ static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *
 static PetscErrorCode MeshedPair(MPI_Comm comm, FCBody bodies[], PetscInt p, const FCContactPairs *pairs,
                                  PetscMPIInt rank, FCContactSet *set)
 {
-  Surface        *Sf[2]  = {NULL, NULL};
-  FCVertexNormal *vn[2]  = {NULL, NULL};
-  PetscInt        nvn[2] = {0, 0};
+  Surface           *Sf[2]  = {NULL, NULL};
+  FCVertexNormal    *vn[2]  = {NULL, NULL};
+  PetscInt           nvn[2] = {0, 0};
+  FCSurfaceTopology *T;
 
   PetscFunctionBegin;
   if (pairs->body[p][0] == pairs->body[p][1]) { /* self-contact: vertices, then sharp edges */
@@ -315,13 +277,18 @@ static PetscErrorCode MeshedPair(MPI_Comm comm, FCBody bodies[], PetscInt p, con
     FCBody b = bodies[pairs->body[p][side]];
     if (side == 1 || pairs->passes == 2) { /* a surface some vertex lands on */
       PetscCall(FCCollisionSurfaceBuild(comm, b, pairs, &Sf[side]));
-      if (pairs->facing && FCBodyIsDeformable(b))
-        PetscCall(FCCollisionVertexNormals(Sf[side]->n, Sf[side]->tri, &nvn[side], &vn[side]));
+      if (pairs->facing && FCBodyIsDeformable(b)) {
+        PetscCall(FCSurfaceTopologyGet(pairs, pairs->body[p][side], Sf[side]->n, Sf[side]->tri, &T));
+        PetscCall(FCCollisionVertexNormals(T, Sf[side]->tri, &nvn[side], &vn[side]));
+        PetscCall(FCSurfaceTopologyRestore(pairs, &T));
+      }
     } else if (pairs->facing && FCBodyIsDeformable(b)) { /* one pass: only the normals of its vertices */
       PetscInt           ntri;
       FCSurfaceTriangle *tri;
       PetscCall(FCSurfaceGather(comm, b, &ntri, &tri));
-      PetscCall(FCCollisionVertexNormals(ntri, tri, &nvn[side], &vn[side]));
+      PetscCall(FCSurfaceTopologyGet(pairs, pairs->body[p][side], ntri, tri, &T));
+      PetscCall(FCCollisionVertexNormals(T, tri, &nvn[side], &vn[side]));
+      PetscCall(FCSurfaceTopologyRestore(pairs, &T));
       PetscCall(PetscFree(tri));
     }
   }
@@ -386,7 +353,12 @@ static PetscErrorCode SurfaceShapePair(MPI_Comm comm, FCBody P, FCBody S, PetscI
   if (FCBodyIsDeformable(P) && FCBodyHasBoundedShape(S) && !FCBodyHasSurfaceTriangles(S) &&
       (pairs->shape_points || pairs->facing)) {
     PetscCall(FCCollisionSurfaceBuild(comm, P, pairs, &Sf));
-    if (pairs->facing) PetscCall(FCCollisionVertexNormals(Sf->n, Sf->tri, &nvn, &vn));
+    if (pairs->facing) {
+      FCSurfaceTopology *T;
+      PetscCall(FCSurfaceTopologyGet(pairs, ipts, Sf->n, Sf->tri, &T));
+      PetscCall(FCCollisionVertexNormals(T, Sf->tri, &nvn, &vn));
+      PetscCall(FCSurfaceTopologyRestore(pairs, &T));
+    }
   }
   if (Sf && pairs->shape_points) PetscCall(FCCollisionRoundedFollows(S, Sf, pairs, &atfree));
   if (atfree && !FCBodyHasSmoothShape(S)) PetscCall(FCCollisionCylinderLies(S, Sf, pairs, &lies));

@@ -3,6 +3,9 @@
 
 #include "../body/body.h"
 
+/* the topology of a body's gathered surface, kept per body for the run (src/collision/topology.c) */
+typedef struct _FCSurfaceTopology FCSurfaceTopology;
+
 typedef struct {
   PetscInt n;
   PetscInt (*body)[2]; /* scene body indices */
@@ -20,8 +23,9 @@ typedef struct {
   PetscBool  rounded_exact; /* -contact_rounded_surface exact: a sphere's or capsule's nearest FE surface points */
   PetscReal
       separation_speed; /* -contact_separation_speed: bodies that start inside each other part at most this fast */
-  PetscReal intersection_depth;   /* a point deeper than this inside another body is an intersection */
-  PetscBool fail_on_intersection; /* -contact_fail_on_intersection: stop the run at the first one */
+  PetscReal           intersection_depth;   /* a point deeper than this inside another body is an intersection */
+  PetscBool           fail_on_intersection; /* -contact_fail_on_intersection: stop the run at the first one */
+  FCSurfaceTopology **topo; /* per scene body: its surface's topology, built at its first use (NULL: none kept) */
 } FCContactPairs;
 /* Discrete collision detection at the start of the step (after the free motion has been
    computed, so that every contact also carries its free-motion positions) */

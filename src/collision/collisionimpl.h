@@ -3,12 +3,15 @@
    surface (edges.c). */
 #pragma once
 #include "../fcimpl.h"
+#include "topology.h"
 #include <stdint.h>
 
 typedef struct {
   int64_t  key;
   PetscInt tri;
 } FCCellEntry;
+
+typedef struct _FCSelfRing FCSelfRing; /* selfcontact.c */
 
 PETSC_INTERN PetscErrorCode FCCellEntrySort(PetscInt, FCCellEntry[]); /* surface.c: by key, stably */
 
@@ -26,10 +29,10 @@ struct _FCSurface {
   /* self-contact (selfcontact.c): the current vertex, whose ring of triangles it may not land on is
      found at the first triangle it is tested against, and no start-inside fallback (a vertex of the
      surface is on it, not inside it) */
-  PetscBool           self;
-  PetscReal           selfX[3];  /* the current vertex's reference position */
-  PetscReal           selfdepth; /* behind a triangle now: deeper than this (-contact_intersection_depth) */
-  struct _FCSelfRing *ring;
+  PetscBool   self;
+  PetscReal   selfX[3];  /* the current vertex's reference position */
+  PetscReal   selfdepth; /* behind a triangle now: deeper than this (-contact_intersection_depth) */
+  FCSelfRing *ring;
 };
 
 /* The surface triangles of a body (FE or mesh shape) as they are now, gathered on every rank
@@ -53,9 +56,11 @@ typedef struct {
   PetscReal    u[3], v[3], h; /* the grid's axes across the ray and its cell size */
   PetscInt     n;
   FCCellEntry *cells;
+  PetscReal   *along;        /* 2 per triangle: its extent along the ray, lowest and highest */
   PetscReal    lo[3], hi[3]; /* bounding box of the surface */
 } FCRayGrid;
 PETSC_INTERN PetscErrorCode FCRayGridCreate(const FCSurface *, FCRayGrid *);
+PETSC_INTERN PetscErrorCode FCRayGridDestroy(FCRayGrid *);
 PETSC_INTERN PetscBool      FCRayGridInside(const FCSurface *, const FCRayGrid *, const PetscReal x[3]);
 
 /* collision.c, what the vertex contacts share with the shape points (shapepoints.c): the triangle
@@ -75,24 +80,28 @@ PETSC_INTERN PetscErrorCode FCCollisionLandingTriangle(Surface *, const PetscRea
                                                        PetscReal w[3], PetscReal cp[3]);
 PETSC_INTERN void           FCCollisionTrianglePoint(const FCSurfaceTriangle *, const PetscReal w[3], FCProximity *,
                                                      PetscReal xf[3]);
-/* collision.c: a body's surface gathered and hashed for the step; the vertex normals of ntri triangles */
+/* collision.c: a body's surface gathered and hashed for the step; topology.c: the vertex normals of
+   the triangles tri of topology T, in its vertex order */
 PETSC_INTERN PetscErrorCode FCCollisionSurfaceBuild(MPI_Comm, FCBody, const FCContactPairs *, Surface **);
-PETSC_INTERN PetscErrorCode FCCollisionVertexNormals(PetscInt ntri, const FCSurfaceTriangle[], PetscInt *nvn,
-                                                     FCVertexNormal **vn);
+PETSC_INTERN PetscErrorCode FCCollisionVertexNormals(const FCSurfaceTopology *T, const FCSurfaceTriangle tri[],
+                                                     PetscInt *nvn, FCVertexNormal **vn);
 /* selfcontact.c: an FE body against its own surface (a pair a:a) */
 PETSC_INTERN PetscErrorCode FCCollisionSelfPair(MPI_Comm, FCBody, PetscInt ib, PetscInt pair, const FCContactPairs *,
                                                 PetscMPIInt rank, FCContactSet *);
+/* selfcontact.c: the ring of the current vertex (the triangles it may not land on) over topology T:
+   RingVertex sets the current vertex X; RingHas: whether triangle t is on its ring; RingEdgeIn:
+   whether edge b (reference ends Xb) has a vertex on a triangle of the ring of either end of edge a */
+PETSC_INTERN PetscErrorCode FCSelfRingCreate(const FCSurfaceTopology *T, PetscInt k, FCSelfRing **);
+PETSC_INTERN PetscErrorCode FCSelfRingDestroy(FCSelfRing **);
+PETSC_INTERN void           FCSelfRingVertex(FCSelfRing *, const PetscReal X[3]);
+PETSC_INTERN PetscBool      FCSelfRingHas(FCSelfRing *, PetscInt t);
+PETSC_INTERN PetscBool      FCSelfRingEdgeIn(FCSelfRing *, const PetscReal Xa[2][3], const PetscReal Xb[2][3]);
 /* selfcontact.c: before vertex X's landing, X is the current vertex; then whether triangle t is not a
    landing place for it at x (its ring, or across the body's own thickness) */
-PETSC_INTERN PetscErrorCode FCCollisionSelfRingSetUp(Surface *, PetscInt k);
-PETSC_INTERN PetscErrorCode FCCollisionSelfRingReset(Surface *);
-PETSC_INTERN void           FCCollisionSelfVertex(Surface *, const PetscReal X[3]);
-PETSC_INTERN PetscBool      FCCollisionSelfExcludes(const Surface *, PetscInt t, const PetscReal x[3]);
-PETSC_INTERN PetscBool      FCCollisionSelfExcludesRing(const Surface *, PetscInt t);
+PETSC_INTERN void      FCCollisionSelfVertex(Surface *, const PetscReal X[3]);
+PETSC_INTERN PetscBool FCCollisionSelfExcludes(const Surface *, PetscInt t, const PetscReal x[3]);
 /* the self-contacts another one holds (barycentric weight > w) made dormant */
 PETSC_INTERN PetscErrorCode FCCollisionSelfHeld(PetscReal w, FCContactSet *);
-/* whether edge b (reference ends Xb) has a vertex on a triangle of the ring of either end of edge a */
-PETSC_INTERN PetscBool FCCollisionSelfEdgeInRing(const Surface *, const PetscReal Xa[2][3], const PetscReal Xb[2][3]);
 PETSC_INTERN PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt ipts, PetscInt ishp,
                                                               Surface *S, PetscInt nvn, const FCVertexNormal *vn,
                                                               PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
@@ -173,7 +182,7 @@ PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, Pe
 /* The sharp edges of a closed surface (as edge-edge contacts take them) by their two ends' positions
    x0: ends[6 k .. 6 k + 5]; full: 15 a row, then the ends' reference positions X and the sum of the
    two adjacent triangles' outward normals (to be freed) */
-PETSC_INTERN PetscErrorCode FCSurfaceSharpEdgeEnds(PetscInt ntri, const FCSurfaceTriangle *, PetscBool full,
+PETSC_INTERN PetscErrorCode FCSurfaceSharpEdgeEnds(const FCSurfaceTopology *, const FCSurfaceTriangle *, PetscBool full,
                                                    PetscInt *ne, PetscReal **ends);
 
 /* geometry.c: closest point to p on triangle (a, b, c) with its barycentric weights (Ericson,

@@ -23,82 +23,41 @@ typedef struct {
   PetscReal nref[3];                              /* the same in the reference configuration */
 } Edge;
 
-typedef struct {
-  PetscReal key[6]; /* the reference ends, smaller first */
-  PetscInt  tri, a; /* triangle and its local edge a -> a + 1 */
-} HalfEdge;
-
-static int CompareHalf(const void *x, const void *y)
+/* The sharp edges of a closed surface: its interior edges (topology.c, in their order) whose two
+   triangles' normals at the start of the step turn more than FC_SHARP_DEG */
+static PetscErrorCode SharpEdges(const FCSurfaceTopology *T, const FCSurfaceTriangle *tri, PetscInt *ne, Edge **edges)
 {
-  const HalfEdge *a = (const HalfEdge *)x, *b = (const HalfEdge *)y;
-  for (int i = 0; i < 6; i++)
-    if (a->key[i] != b->key[i]) return a->key[i] < b->key[i] ? -1 : 1;
-  return 0;
-}
-
-static int CompareX(const PetscReal a[3], const PetscReal b[3])
-{
-  for (int i = 0; i < 3; i++)
-    if (a[i] != b[i]) return a[i] < b[i] ? -1 : 1;
-  return 0;
-}
-
-/* The sharp edges of a closed surface: the half-edges sorted by their reference ends, each
-   interior edge seen twice (a boundary edge, seen once, is skipped) */
-static PetscErrorCode SharpEdges(PetscInt ntri, const FCSurfaceTriangle *tri, PetscInt *ne, Edge **edges)
-{
-  HalfEdge *h;
-  PetscReal cmax = PetscCosReal(FC_SHARP_DEG * PETSC_PI / 180.0);
+  PetscReal cmax = PetscCosReal(FC_SHARP_DEG * PETSC_PI / 180.0), *nrm;
   PetscInt  n    = 0;
 
   PetscFunctionBegin;
-  PetscCall(PetscMalloc1(3 * ntri + 1, &h));
-  for (PetscInt t = 0; t < ntri; t++)
-    for (int a = 0; a < 3; a++) {
-      const PetscReal *p = tri[t].X[a], *q = tri[t].X[(a + 1) % 3];
-      HalfEdge        *e = &h[3 * t + a];
-      if (CompareX(p, q) > 0) {
-        const PetscReal *s = p;
-        p                  = q;
-        q                  = s;
-      }
+  PetscCall(PetscMalloc1(T->ne + 1, edges));
+  PetscCall(PetscMalloc1(3 * T->ntri + 1, &nrm));
+  for (PetscInt t = 0; t < T->ntri; t++) FCTriangleNormal(tri[t].x0, &nrm[3 * t]);
+  for (PetscInt k = 0; k < T->ne; k++) {
+    PetscInt                 t1 = T->edge[k][0] / 3, a1 = T->edge[k][0] % 3, t2 = T->edge[k][1] / 3;
+    PetscReal               *n1 = &nrm[3 * t1], *n2 = &nrm[3 * t2], r1[3], r2[3];
+    const FCSurfaceTriangle *Tr = &tri[t1];
+    Edge                    *E  = &(*edges)[n];
+    if (FCDot(n1, n2) > cmax) continue;
+    for (int j = 0; j < 2; j++) {
+      int v      = (a1 + j) % 3;
+      E->gdof[j] = Tr->gdof[v];
       for (int i = 0; i < 3; i++) {
-        e->key[i]     = p[i];
-        e->key[3 + i] = q[i];
+        E->X[j][i]  = Tr->X[v][i];
+        E->x0[j][i] = Tr->x0[v][i];
+        E->xf[j][i] = Tr->xf[v][i];
       }
-      e->tri = t;
-      e->a   = a;
     }
-  qsort(h, 3 * ntri, sizeof(HalfEdge), CompareHalf);
-  PetscCall(PetscMalloc1(3 * ntri / 2 + 1, edges));
-  for (PetscInt k = 0; k + 1 < 3 * ntri; k++) {
-    PetscReal n1[3], n2[3], r1[3], r2[3];
-    if (CompareHalf(&h[k], &h[k + 1])) continue;
-    FCTriangleNormal(tri[h[k].tri].x0, n1);
-    FCTriangleNormal(tri[h[k + 1].tri].x0, n2);
-    if (FCDot(n1, n2) <= cmax) {
-      Edge                    *E = &(*edges)[n];
-      const FCSurfaceTriangle *T = &tri[h[k].tri];
-      for (int j = 0; j < 2; j++) {
-        int v      = (h[k].a + j) % 3;
-        E->gdof[j] = T->gdof[v];
-        for (int i = 0; i < 3; i++) {
-          E->X[j][i]  = T->X[v][i];
-          E->x0[j][i] = T->x0[v][i];
-          E->xf[j][i] = T->xf[v][i];
-        }
-      }
-      FCTriangleNormal(tri[h[k].tri].X, r1);
-      FCTriangleNormal(tri[h[k + 1].tri].X, r2);
-      for (int i = 0; i < 3; i++) {
-        E->nout[i] = n1[i] + n2[i];
-        E->nref[i] = r1[i] + r2[i];
-      }
-      n++;
+    FCTriangleNormal(tri[t1].X, r1);
+    FCTriangleNormal(tri[t2].X, r2);
+    for (int i = 0; i < 3; i++) {
+      E->nout[i] = n1[i] + n2[i];
+      E->nref[i] = r1[i] + r2[i];
     }
-    k++;
+    n++;
   }
-  PetscCall(PetscFree(h));
+  PetscCall(PetscFree(nrm));
   *ne = n;
   PetscFunctionReturn(0);
 }
@@ -190,14 +149,13 @@ static PetscBool EdgeNormal(const Edge *a, const Edge *b, PetscReal n[3])
   return FCDot(n, b->nout) > 0 && FCDot(n, a->nout) < 0 ? PETSC_TRUE : PETSC_FALSE;
 }
 
-/* A self pair's edge b at t is edge a's own shape at s (a's end vertices those of R's triangles): a
-   vertex of b on a triangle of the ring of either end of a (selfcontact.c), or a behind b in the
-   reference configuration (the other side of the body's own thickness; a fold that has crossed was
-   in front there) */
-static PetscBool SelfExcluded(const Surface *R, const Edge *a, const Edge *b, PetscReal s, PetscReal t)
+/* A self pair's edge b at t is edge a's own shape at s: a vertex of b on a triangle of the ring of
+   either end of a (selfcontact.c), or a behind b in the reference configuration (the other side of
+   the body's own thickness; a fold that has crossed was in front there) */
+static PetscBool SelfExcluded(FCSelfRing *R, const Edge *a, const Edge *b, PetscReal s, PetscReal t)
 {
   PetscReal d = 0.0;
-  if (FCCollisionSelfEdgeInRing(R, a->X, b->X)) return PETSC_TRUE;
+  if (FCSelfRingEdgeIn(R, a->X, b->X)) return PETSC_TRUE;
   for (int i = 0; i < 3; i++)
     d += ((1 - s) * a->X[0][i] + s * a->X[1][i] - (1 - t) * b->X[0][i] - t * b->X[1][i]) * b->nref[i];
   return d < 0.0 ? PETSC_TRUE : PETSC_FALSE;
@@ -210,9 +168,10 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
 {
   PetscInt           nta, ntb, nea, neb, *cand;
   FCSurfaceTriangle *ta, *tb;
+  FCSurfaceTopology *Ta, *Tb;
   Edge              *ea, *eb;
   FCSurface         *S;
-  Surface            R; /* a self pair's surface, for its ring */
+  FCSelfRing        *R = NULL; /* a self pair's ring */
   PetscMPIInt        rank, size;
   PetscBool          self = A == B ? PETSC_TRUE : PETSC_FALSE;
   PetscReal          dist = pairs->distance, tau = FCCCDThreshold(dist), lo = FC_EDGE_INTERIOR, hi = 1 - lo;
@@ -221,16 +180,15 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(FCSurfaceGather(comm, A, &nta, &ta));
-  PetscCall(SharpEdges(nta, ta, &nea, &ea));
-  ntb = nta, tb = ta, neb = nea, eb = ea;
+  PetscCall(FCSurfaceTopologyGet(pairs, ia, nta, ta, &Ta));
+  PetscCall(SharpEdges(Ta, ta, &nea, &ea));
+  ntb = nta, tb = ta, neb = nea, eb = ea, Tb = Ta;
   if (!self) {
     PetscCall(FCSurfaceGather(comm, B, &ntb, &tb));
-    PetscCall(SharpEdges(ntb, tb, &neb, &eb));
+    PetscCall(FCSurfaceTopologyGet(pairs, ib, ntb, tb, &Tb));
+    PetscCall(SharpEdges(Tb, tb, &neb, &eb));
   }
-  PetscCall(PetscMemzero(&R, sizeof(R)));
-  R.n   = nta;
-  R.tri = ta;
-  if (self) PetscCall(FCCollisionSelfRingSetUp(&R, pairs->self_ring));
+  if (self) PetscCall(FCSelfRingCreate(Ta, pairs->self_ring, &R));
   { /* B a turning mesh: its edges' ends leave their chords (FCCCDArcMargin) */
     PetscReal arc;
     PetscCall(FCCCDArcMargin(B, ntb, tb, &arc));
@@ -264,7 +222,7 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
       else
         continue; /* (continuous: the first edge reached, after every edge within the distance) */
       if (s <= lo || s >= hi || t <= lo || t >= hi || !EdgeNormal(a, b, n) || rank_key >= best) continue;
-      if (self && (cand[m] <= k || SelfExcluded(&R, a, b, s, t))) continue;
+      if (self && (cand[m] <= k || SelfExcluded(R, a, b, s, t))) continue;
       best = rank_key;
       bj   = cand[m];
       bs   = s;
@@ -275,24 +233,26 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
   }
   PetscCall(PetscFree(cand));
   PetscCall(FCSurfaceDestroy(&S));
-  PetscCall(FCCollisionSelfRingReset(&R));
+  PetscCall(FCSelfRingDestroy(&R));
   if (!self) {
+    PetscCall(FCSurfaceTopologyRestore(pairs, &Tb));
     PetscCall(PetscFree(tb));
     PetscCall(PetscFree(eb));
   }
+  PetscCall(FCSurfaceTopologyRestore(pairs, &Ta));
   PetscCall(PetscFree(ta));
   PetscCall(PetscFree(ea));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSurfaceSharpEdgeEnds(PetscInt ntri, const FCSurfaceTriangle *tri, PetscBool full, PetscInt *ne,
-                                      PetscReal **ends)
+PetscErrorCode FCSurfaceSharpEdgeEnds(const FCSurfaceTopology *T, const FCSurfaceTriangle *tri, PetscBool full,
+                                      PetscInt *ne, PetscReal **ends)
 {
   Edge    *E;
   PetscInt m = full ? 15 : 6;
 
   PetscFunctionBegin;
-  PetscCall(SharpEdges(ntri, tri, ne, &E));
+  PetscCall(SharpEdges(T, tri, ne, &E));
   PetscCall(PetscMalloc1(m * (*ne) + 1, ends));
   for (PetscInt k = 0; k < *ne; k++) {
     PetscReal *e = &(*ends)[m * k];

@@ -56,6 +56,16 @@ PetscErrorCode FCRayGridCreate(const FCSurface *S, FCRayGrid *G)
   }
   G->n     = 0;
   G->cells = NULL;
+  PetscCall(PetscMalloc1(2 * S->n + 1, &G->along));
+  for (PetscInt t = 0; t < S->n; t++) {
+    G->along[2 * t]     = PETSC_MAX_REAL;
+    G->along[2 * t + 1] = -PETSC_MAX_REAL;
+    for (int a = 0; a < 3; a++) {
+      PetscReal s         = FCDot(S->tri[t].x0[a], RayDir);
+      G->along[2 * t]     = PetscMin(G->along[2 * t], s);
+      G->along[2 * t + 1] = PetscMax(G->along[2 * t + 1], s);
+    }
+  }
   for (int pass = 0; pass < 2; pass++) {
     PetscInt e = 0;
     for (PetscInt t = 0; t < S->n; t++) {
@@ -90,6 +100,23 @@ PetscErrorCode FCRayGridCreate(const FCSurface *S, FCRayGrid *G)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCRayGridDestroy(FCRayGrid *G)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscFree(G->cells));
+  PetscCall(PetscFree(G->along));
+  PetscFunctionReturn(0);
+}
+
+/* Whether triangle t lies wholly behind the start of a ray along s RayDir (s = +-1) from x (xs:
+   x . RayDir), by more than a thousandth of its extent along the ray (a margin far above the
+   round-off of the crossing test): the ray cannot cross it */
+static inline PetscBool Behind(const FCRayGrid *G, PetscInt t, PetscReal xs, PetscReal s)
+{
+  PetscReal lo = G->along[2 * t], hi = G->along[2 * t + 1], m = 1e-3 * (hi - lo);
+  return s > 0 ? hi < xs - m : lo > xs + m;
+}
+
 /* Odd number of crossings of the ray from x: inside the closed surface */
 /* The grid cell of the ray from x: its key, and the index of its first entry in G->cells */
 static PetscInt RayCell(const FCRayGrid *G, const PetscReal x[3], int64_t *key)
@@ -109,13 +136,15 @@ static PetscInt RayCell(const FCRayGrid *G, const PetscReal x[3], int64_t *key)
 
 PetscBool FCRayGridInside(const FCSurface *S, const FCRayGrid *G, const PetscReal x[3])
 {
-  int64_t  key;
-  PetscInt lo, crossings = 0;
+  int64_t   key;
+  PetscInt  lo, crossings = 0;
+  PetscReal xs = FCDot(x, RayDir);
 
   for (int d = 0; d < 3; d++)
     if (x[d] < G->lo[d] || x[d] > G->hi[d]) return PETSC_FALSE;
   for (lo = RayCell(G, x, &key); lo < G->n && G->cells[lo].key == key; lo++) {
     const FCSurfaceTriangle *T = &S->tri[G->cells[lo].tri];
+    if (Behind(G, G->cells[lo].tri, xs, 1.0)) continue;
     if (FCRayHitsTriangle(x, RayDir, T->x0[0], T->x0[1], T->x0[2])) crossings++;
   }
   return crossings % 2 ? PETSC_TRUE : PETSC_FALSE;
@@ -124,26 +153,30 @@ PetscBool FCRayGridInside(const FCSurface *S, const FCRayGrid *G, const PetscRea
 /* A body's closed surface, gathered, hashed and bucketed across the ray once per check: its points
    are tested against the other body's, and its sharp edges come from its triangles (S->tri) */
 typedef struct {
-  FCSurface *S;
-  RayGrid    G;
+  FCSurface         *S;
+  RayGrid            G;
+  FCSurfaceTopology *T; /* its topology (topology.c) */
 } Closed;
 
-static PetscErrorCode ClosedCreate(MPI_Comm comm, FCBody b, PetscReal depth, Closed *c)
+/* the closed surface of body ib of the scene */
+static PetscErrorCode ClosedCreate(MPI_Comm comm, FCBody bodies[], PetscInt ib, const FCContactPairs *pairs, Closed *c)
 {
   PetscInt           n;
   FCSurfaceTriangle *tri;
 
   PetscFunctionBegin;
-  PetscCall(FCSurfaceGather(comm, b, &n, &tri));
-  PetscCall(FCSurfaceCreate(n, tri, depth, &c->S));
+  PetscCall(FCSurfaceGather(comm, bodies[ib], &n, &tri));
+  PetscCall(FCSurfaceCreate(n, tri, pairs->intersection_depth, &c->S));
   PetscCall(FCRayGridCreate(c->S, &c->G));
+  PetscCall(FCSurfaceTopologyGet(pairs, ib, c->S->n, c->S->tri, &c->T));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ClosedDestroy(Closed *c)
+static PetscErrorCode ClosedDestroy(const FCContactPairs *pairs, Closed *c)
 {
   PetscFunctionBegin;
-  PetscCall(PetscFree(c->G.cells));
+  PetscCall(FCSurfaceTopologyRestore(pairs, &c->T));
+  PetscCall(FCRayGridDestroy(&c->G));
   PetscCall(FCSurfaceDestroy(&c->S));
   PetscFunctionReturn(0);
 }
@@ -158,53 +191,52 @@ static PetscBool DeepInside(const Closed *c, const PetscReal x[3], PetscReal dep
   return best < 0 || d2 > depth * depth ? PETSC_TRUE : PETSC_FALSE;
 }
 
-/* The distinct vertices of ntri gathered triangles (the same on every rank), by reference
-   position, as [X (3), x now (3)] each: *nv of them in *vx (to be freed) */
-static PetscErrorCode SurfaceVertices(PetscInt ntri, const FCSurfaceTriangle tri[], PetscInt *nv, PetscReal **vx)
+/* The vertices of the gathered triangles tri of topology T, in its order (by reference position),
+   as [X (3), x now (3)] each: T->nv of them in *vx (to be freed) */
+static PetscErrorCode SurfaceVertices(const FCSurfaceTopology *T, const FCSurfaceTriangle *tri, PetscReal **vx)
 {
   PetscReal *v;
-  PetscInt   m = 0;
 
   PetscFunctionBegin;
-  PetscCall(PetscMalloc1(18 * ntri + 1, &v));
-  for (PetscInt t = 0; t < ntri; t++)
-    for (int a = 0; a < 3; a++)
-      for (int d = 0; d < 3; d++) {
-        v[18 * t + 6 * a + d]     = tri[t].X[a][d];
-        v[18 * t + 6 * a + 3 + d] = tri[t].x0[a][d];
-      }
-  if (ntri) qsort(v, 3 * ntri, 6 * sizeof(PetscReal), FCComparePoint);
-  for (PetscInt k = 0; k < 3 * ntri; k++)
-    if (!m || FCComparePoint(&v[6 * (m - 1)], &v[6 * k])) {
-      if (m != k) PetscCall(PetscArraycpy(&v[6 * m], &v[6 * k], 6));
-      m++;
+  PetscCall(PetscMalloc1(6 * T->nv + 1, &v));
+  for (PetscInt k = 0; k < T->nv; k++)
+    for (int d = 0; d < 3; d++) {
+      v[6 * k + d]     = T->V[3 * k + d];
+      v[6 * k + 3 + d] = tri[T->first[k] / 3].x0[T->first[k] % 3][d];
     }
-  *nv = m;
   *vx = v;
   PetscFunctionReturn(0);
 }
 
-/* The points of a body that this rank checks: the vertices of its surface (the gathered triangles
-   S, or gathered here when S is NULL), each checked by one rank (k % size); or, for a body without
+/* The points of a body that this rank checks: the vertices of its closed surface c (body ib,
+   gathered here when c is NULL), each checked by one rank (k % size); or, for a body without
    surface triangles (a bounded analytic shape), the points of its picture (FCBodyGetContactPoints).
    x: 3 per point (to be freed) */
-static PetscErrorCode CheckedPoints(MPI_Comm comm, FCBody body, const FCSurface *S, PetscInt *n, PetscReal **x)
+static PetscErrorCode CheckedPoints(MPI_Comm comm, FCBody bodies[], PetscInt ib, const FCContactPairs *pairs,
+                                    const Closed *c, PetscInt *n, PetscReal **x)
 {
+  FCBody body = bodies[ib];
+
   PetscFunctionBegin;
   if (FCBodyHasSurfaceTriangles(body)) {
-    PetscInt           nv, m = 0, ntri;
-    FCSurfaceTriangle *tri = NULL;
+    PetscInt           m = 0, nv;
     PetscReal         *vx;
     PetscMPIInt        rank, size;
+    FCSurfaceTriangle *tri = NULL;
+    FCSurfaceTopology *T   = NULL;
     PetscCallMPI(MPI_Comm_rank(comm, &rank));
     PetscCallMPI(MPI_Comm_size(comm, &size));
-    if (S)
-      PetscCall(SurfaceVertices(S->n, S->tri, &nv, &vx));
+    if (c)
+      PetscCall(SurfaceVertices(c->T, c->S->tri, &vx));
     else {
+      PetscInt ntri;
       PetscCall(FCSurfaceGather(comm, body, &ntri, &tri));
-      PetscCall(SurfaceVertices(ntri, tri, &nv, &vx));
-      PetscCall(PetscFree(tri));
+      PetscCall(FCSurfaceTopologyGet(pairs, ib, ntri, tri, &T));
+      PetscCall(SurfaceVertices(T, tri, &vx));
     }
+    nv = c ? c->T->nv : T->nv;
+    PetscCall(FCSurfaceTopologyRestore(pairs, &T));
+    PetscCall(PetscFree(tri));
     for (PetscInt k = rank; k < nv; k += size, m++)
       for (int d = 0; d < 3; d++) vx[3 * m + d] = vx[6 * k + 3 + d];
     *n = m;
@@ -242,7 +274,7 @@ static PetscErrorCode EdgesThroughSurface(MPI_Comm comm, const Closed *P, const 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(FCSurfaceSharpEdgeEnds(P->S->n, P->S->tri, PETSC_FALSE, &ne, &ends));
+  PetscCall(FCSurfaceSharpEdgeEnds(P->T, P->S->tri, PETSC_FALSE, &ne, &ends));
   for (PetscInt k = rank; k < ne; k += size) {
     const PetscReal *a = &ends[6 * k], *b = &ends[6 * k + 3];
     if (FCRayGridInside(B->S, &B->G, a) || FCRayGridInside(B->S, &B->G, b))
@@ -284,12 +316,13 @@ static PetscInt SelfWinding(const Closed *c, const PetscReal x[3], const PetscRe
 {
   int64_t   cell;
   PetscInt  lo, wind  = 0;
-  PetscReal dir[3], s = FCDot(RayDir, n) >= 0.0 ? 1.0 : -1.0;
+  PetscReal dir[3], s = FCDot(RayDir, n) >= 0.0 ? 1.0 : -1.0, xs = FCDot(x, RayDir);
 
   for (int d = 0; d < 3; d++) dir[d] = s * RayDir[d];
   for (lo = RayCell(&c->G, x, &cell); lo < c->G.n && c->G.cells[lo].key == cell; lo++) {
     const FCSurfaceTriangle *T = &c->S->tri[c->G.cells[lo].tri];
     PetscReal                e1[3], e2[3], nt[3]; /* the outward normal, unnormalized: its side of the ray */
+    if (Behind(&c->G, c->G.cells[lo].tri, xs, s)) continue;
     if (!FCRayHitsTriangle(x, dir, T->x0[0], T->x0[1], T->x0[2])) continue;
     for (int d = 0; d < 3; d++) {
       e1[d] = T->x0[1][d] - T->x0[0][d];
@@ -311,7 +344,7 @@ static PetscReal SelfNearest(const Closed *c, const PetscReal x[3])
   for (PetscInt e = cb; e < ce; e++) {
     const FCSurfaceTriangle *T = &c->S->tri[c->S->cells[e].tri];
     PetscReal                cp[3], w[3], d2 = 0.0;
-    if (FCCollisionSelfExcludesRing(c->S, c->S->cells[e].tri)) continue;
+    if (FCSelfRingHas(c->S->ring, c->S->cells[e].tri)) continue;
     FCClosestPointTriangle(x, T->x0[0], T->x0[1], T->x0[2], cp, w);
     for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
     bestd = PetscMin(bestd, d2);
@@ -331,8 +364,8 @@ static PetscErrorCode SelfDeep(Closed *c, const FCContactPairs *pairs, const Pet
   *deep = PETSC_FALSE;
   for (int d = 0; d < 3; d++) xout[d] = x[d] + eps * n[d] / (ln > 0 ? ln : 1.0);
   if (SelfWinding(c, xout, n) < 1) PetscFunctionReturn(0);
-  if (!c->S->ring) PetscCall(FCCollisionSelfRingSetUp(c->S, pairs->self_ring)); /* at the first such point */
-  FCCollisionSelfVertex(c->S, X);
+  if (!c->S->ring) PetscCall(FCSelfRingCreate(c->T, pairs->self_ring, &c->S->ring)); /* at the first such point */
+  FCSelfRingVertex(c->S->ring, X);
   *deep = SelfNearest(c, x) > pairs->intersection_depth * pairs->intersection_depth ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
@@ -349,7 +382,7 @@ static PetscErrorCode SelfEdgesThrough(MPI_Comm comm, Closed *c, const FCContact
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(FCSurfaceSharpEdgeEnds(c->S->n, c->S->tri, PETSC_TRUE, &ne, &ed));
+  PetscCall(FCSurfaceSharpEdgeEnds(c->T, c->S->tri, PETSC_TRUE, &ne, &ed));
   for (PetscInt k = rank; k < ne; k += size) {
     const PetscReal *a = &ed[15 * k], *b = a + 3, *Xa = a + 6, *Xb = a + 9, *n = a + 12;
     PetscBool        deep = PETSC_FALSE, end = PETSC_FALSE;
@@ -367,10 +400,11 @@ static PetscErrorCode SelfEdgesThrough(MPI_Comm comm, Closed *c, const FCContact
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SelfIntersections(MPI_Comm comm, FCBody b, const FCContactPairs *pairs, PetscInt *count)
+static PetscErrorCode SelfIntersections(MPI_Comm comm, FCBody bodies[], PetscInt ib, const FCContactPairs *pairs,
+                                        PetscInt *count)
 {
   Closed          c;
-  PetscInt        nv, nvn;
+  PetscInt        nvn;
   PetscReal      *vx, eps = 0.0;
   FCVertexNormal *vn;
   PetscMPIInt     rank, size;
@@ -378,24 +412,20 @@ static PetscErrorCode SelfIntersections(MPI_Comm comm, FCBody b, const FCContact
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(ClosedCreate(comm, b, pairs->intersection_depth, &c));
-  PetscCall(FCCollisionVertexNormals(c.S->n, c.S->tri, &nvn, &vn));
-  PetscCall(SurfaceVertices(c.S->n, c.S->tri, &nv, &vx));
+  PetscCall(ClosedCreate(comm, bodies, ib, pairs, &c));
+  PetscCall(FCCollisionVertexNormals(c.T, c.S->tri, &nvn, &vn));
+  PetscCall(SurfaceVertices(c.T, c.S->tri, &vx));
   for (int d = 0; d < 3; d++) eps = PetscMax(eps, 1e-7 * (c.G.hi[d] - c.G.lo[d]));
-  for (PetscInt k = rank; k < nv; k += size) {
-    FCVertexNormal key, *own;
-    PetscBool      deep;
-    for (int d = 0; d < 3; d++) key.X[d] = vx[6 * k + d];
-    own = (FCVertexNormal *)bsearch(&key, vn, nvn, sizeof(FCVertexNormal), FCComparePoint);
-    if (!own) continue;
-    PetscCall(SelfDeep(&c, pairs, &vx[6 * k + 3], own->n, key.X, eps, &deep));
+  for (PetscInt k = rank; k < nvn; k += size) { /* vn: the same vertices in the same order */
+    PetscBool deep;
+    PetscCall(SelfDeep(&c, pairs, &vx[6 * k + 3], vn[k].n, vn[k].X, eps, &deep));
     if (deep) (*count)++;
   }
   PetscCall(SelfEdgesThrough(comm, &c, pairs, eps, count));
   PetscCall(PetscFree(vx));
   PetscCall(PetscFree(vn));
-  PetscCall(FCCollisionSelfRingReset(c.S));
-  PetscCall(ClosedDestroy(&c));
+  PetscCall(FCSelfRingDestroy(&c.S->ring));
+  PetscCall(ClosedDestroy(pairs, &c));
   PetscFunctionReturn(0);
 }
 
@@ -408,7 +438,7 @@ PetscErrorCode FCCollisionCountPairIntersections(MPI_Comm comm, PetscInt nbodies
   for (PetscInt p = 0; p < pairs->n; p++) {
     FCBody A = bodies[pairs->body[p][0]], B = bodies[pairs->body[p][1]];
     if (A == B) { /* self-contact */
-      PetscCall(SelfIntersections(comm, A, pairs, &local));
+      PetscCall(SelfIntersections(comm, bodies, pairs->body[p][0], pairs, &local));
       continue;
     }
     if (FCBodyHasSurfaceTriangles(A) && FCBodyHasSurfaceTriangles(B)) {
@@ -416,34 +446,35 @@ PetscErrorCode FCCollisionCountPairIntersections(MPI_Comm comm, PetscInt nbodies
       PetscReal  depth = pairs->intersection_depth;
       PetscInt   n;
       PetscReal *x;
-      PetscCall(ClosedCreate(comm, A, depth, &ca));
-      PetscCall(ClosedCreate(comm, B, depth, &cb));
-      PetscCall(CheckedPoints(comm, A, ca.S, &n, &x));
+      PetscCall(ClosedCreate(comm, bodies, pairs->body[p][0], pairs, &ca));
+      PetscCall(ClosedCreate(comm, bodies, pairs->body[p][1], pairs, &cb));
+      PetscCall(CheckedPoints(comm, bodies, pairs->body[p][0], pairs, &ca, &n, &x));
       PetscCall(PointsInSurface(n, x, &cb, depth, &local));
       PetscCall(PetscFree(x));
-      PetscCall(CheckedPoints(comm, B, cb.S, &n, &x));
+      PetscCall(CheckedPoints(comm, bodies, pairs->body[p][1], pairs, &cb, &n, &x));
       PetscCall(PointsInSurface(n, x, &ca, depth, &local));
       PetscCall(PetscFree(x));
       PetscCall(EdgesThroughSurface(comm, &ca, &cb, depth, &local));
       PetscCall(EdgesThroughSurface(comm, &cb, &ca, depth, &local));
-      PetscCall(ClosedDestroy(&ca));
-      PetscCall(ClosedDestroy(&cb));
+      PetscCall(ClosedDestroy(pairs, &ca));
+      PetscCall(ClosedDestroy(pairs, &cb));
       continue;
     }
     for (int s = 0; s < 2; s++) { /* a body with points against the other's analytic shape */
-      FCBody     X = s ? B : A, Y = s ? A : B;
+      PetscInt   ix = pairs->body[p][s], iy = pairs->body[p][1 - s];
+      FCBody     X = bodies[ix], Y = bodies[iy];
       PetscInt   n;
       PetscReal *x, depth = pairs->intersection_depth;
       if (!FCBodyIsDeformable(X) && !FCBodyHasBoundedShape(X)) continue; /* a plane has no points */
       if (!FCBodyHasShape(Y) && !FCBodyHasSurfaceTriangles(Y)) continue;
-      PetscCall(CheckedPoints(comm, X, NULL, &n, &x));
+      PetscCall(CheckedPoints(comm, bodies, ix, pairs, NULL, &n, &x));
       if (FCBodyHasShape(Y))
         PetscCall(PointsInShape(n, x, Y, depth, &local));
       else { /* an analytic shape's points in a meshed body */
         Closed cy;
-        PetscCall(ClosedCreate(comm, Y, depth, &cy));
+        PetscCall(ClosedCreate(comm, bodies, iy, pairs, &cy));
         PetscCall(PointsInSurface(n, x, &cy, depth, &local));
-        PetscCall(ClosedDestroy(&cy));
+        PetscCall(ClosedDestroy(pairs, &cy));
       }
       PetscCall(PetscFree(x));
     }

@@ -21,6 +21,7 @@ PetscErrorCode FCCollisionCreate(MPI_Comm comm, PetscInt nbodies, FCBody bodies[
   c->comm    = comm;
   c->nbodies = nbodies;
   c->bodies  = bodies;
+  PetscCall(PetscCalloc1(nbodies + 1, &c->pairs.topo));
   *collision = c;
   PetscFunctionReturn(0);
 }
@@ -229,6 +230,8 @@ PetscErrorCode FCCollisionDestroy(FCCollision *c)
   PetscFunctionBegin;
   if (!*c) PetscFunctionReturn(0);
   PetscCall(PetscFree2((*c)->pairs.body, (*c)->pairs.mu));
+  for (PetscInt b = 0; b < (*c)->nbodies; b++) PetscCall(FCSurfaceTopologyDestroy(&(*c)->pairs.topo[b]));
+  PetscCall(PetscFree((*c)->pairs.topo));
   PetscCall(PetscFree(*c));
   PetscFunctionReturn(0);
 }

@@ -18,128 +18,82 @@
    A vertex of the surface lies on it, so the start-inside fallback of the two-body pairs (a point
    inside the other body) does not apply; continuous detection keeps a fold from crossing.
    The sharp edges of the body meet its own in edges.c, with the same two rules for edges
-   (FCCollisionSelfEdgeInRing here). */
+   (FCSelfRingEdgeIn here). The ring walks the surface's topology (topology.c), built once per run. */
 #include "collisionimpl.h"
 
 struct _FCSelfRing {
-  const Surface *S;     /* whose triangles */
-  PetscBool      built; /* the topology below is built (at the first ring a vertex needs) */
-  PetscInt       nv, ntri, k;
-  PetscReal     *X;             /* 3 nv: the surface's vertices by reference position, sorted */
-  PetscInt      *tv;            /* 3 ntri: each triangle's vertices */
-  PetscInt      *off, *vt;      /* vertex -> its triangles */
-  PetscInt      *mark, *queue;  /* nv: the BFS's marks and queue */
-  PetscInt      *skip, nskipmx; /* the current vertex's ring triangles (3 ntri + 1), sorted */
-  PetscInt       nskip;
-  PetscBool      pending; /* the current vertex's ring is still to be found */
+  const FCSurfaceTopology *T; /* the surface's (borrowed) */
+  PetscInt                 k;
+  PetscReal                X[3];         /* the current vertex */
+  PetscInt                *mark, *queue; /* nv: the BFS's marks and queue */
+  PetscInt                *skip, nskip;  /* the current vertex's ring triangles, each once */
+  PetscInt                *in, walk;     /* ntri: the last walk that put the triangle on skip */
+  PetscBool                pending;      /* the current vertex's ring is still to be found */
 };
 
-static PetscInt VertexOf(const struct _FCSelfRing *r, const PetscReal X[3])
+static PetscInt VertexOf(const FCSurfaceTopology *T, const PetscReal X[3])
 {
-  const PetscReal *f = (const PetscReal *)bsearch(X, r->X, r->nv, 3 * sizeof(PetscReal), FCComparePoint);
-  return f ? (PetscInt)((f - r->X) / 3) : -1;
+  const PetscReal *f = (const PetscReal *)bsearch(X, T->V, T->nv, 3 * sizeof(PetscReal), FCComparePoint);
+  return f ? (PetscInt)((f - T->V) / 3) : -1;
 }
 
-static int CompareInt(const void *a, const void *b)
+PetscErrorCode FCSelfRingCreate(const FCSurfaceTopology *T, PetscInt k, FCSelfRing **ring)
 {
-  PetscInt x = *(const PetscInt *)a, y = *(const PetscInt *)b;
-  return x < y ? -1 : (x > y ? 1 : 0);
-}
-
-/* The surface's topology in the reference configuration: its vertices by reference position
-   (sorted), each triangle's vertices and each vertex's triangles */
-static void RingBuild(struct _FCSelfRing *r)
-{
-  const Surface *S = r->S;
-  PetscInt       m = 0;
-
-  r->built = PETSC_TRUE;
-  for (PetscInt t = 0; t < S->n; t++)
-    for (int a = 0; a < 3; a++)
-      for (int d = 0; d < 3; d++) r->X[9 * t + 3 * a + d] = S->tri[t].X[a][d];
-  if (S->n) qsort(r->X, 3 * S->n, 3 * sizeof(PetscReal), FCComparePoint);
-  for (PetscInt i = 0; i < 3 * S->n; i++)
-    if (!m || FCComparePoint(&r->X[3 * (m - 1)], &r->X[3 * i])) {
-      for (int d = 0; d < 3; d++) r->X[3 * m + d] = r->X[3 * i + d];
-      m++;
-    }
-  r->nv = m;
-  for (PetscInt v = 0; v <= m; v++) r->off[v] = 0;
-  for (PetscInt t = 0; t < S->n; t++)
-    for (int a = 0; a < 3; a++) {
-      r->tv[3 * t + a] = VertexOf(r, S->tri[t].X[a]);
-      r->off[r->tv[3 * t + a] + 1]++;
-    }
-  for (PetscInt v = 0; v < m; v++) r->off[v + 1] += r->off[v];
-  for (PetscInt v = 0; v < m; v++) r->mark[v] = r->off[v]; /* as fill pointers */
-  for (PetscInt t = 0; t < S->n; t++)
-    for (int a = 0; a < 3; a++) r->vt[r->mark[r->tv[3 * t + a]]++] = t;
-  for (PetscInt v = 0; v < m; v++) r->mark[v] = -1;
-}
-
-/* The ring's storage for S (3 ntri vertices at most); its topology is built at the first ring a
-   vertex needs: a body that does not fold needs none in most steps */
-PetscErrorCode FCCollisionSelfRingSetUp(Surface *S, PetscInt k)
-{
-  struct _FCSelfRing *r;
-  PetscInt            n = S->n;
+  FCSelfRing *r;
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&r));
-  r->S    = S;
-  r->ntri = n;
-  r->k    = k;
-  PetscCall(PetscMalloc1(9 * n + 3, &r->X));
-  PetscCall(PetscMalloc5(3 * n + 1, &r->tv, 3 * n + 2, &r->off, 3 * n + 1, &r->vt, 3 * n + 1, &r->mark, 3 * n + 1,
-                         &r->queue));
-  r->nskipmx = 3 * n + 1; /* every triangle three times at most */
-  PetscCall(PetscMalloc1(r->nskipmx, &r->skip));
-  S->ring = r;
+  r->T = T;
+  r->k = k;
+  PetscCall(PetscMalloc4(T->nv + 1, &r->mark, T->nv + 1, &r->queue, T->ntri + 1, &r->skip, T->ntri + 1, &r->in));
+  for (PetscInt v = 0; v < T->nv; v++) r->mark[v] = -1;
+  for (PetscInt t = 0; t < T->ntri; t++) r->in[t] = -1;
+  *ring = r;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCCollisionSelfRingReset(Surface *S)
+PetscErrorCode FCSelfRingDestroy(FCSelfRing **ring)
 {
-  struct _FCSelfRing *r = S->ring;
-
   PetscFunctionBegin;
-  if (!r) PetscFunctionReturn(0);
-  PetscCall(PetscFree(r->X));
-  PetscCall(PetscFree5(r->tv, r->off, r->vt, r->mark, r->queue));
-  PetscCall(PetscFree(r->skip));
-  PetscCall(PetscFree(S->ring));
+  if (!*ring) PetscFunctionReturn(0);
+  PetscCall(PetscFree4((*ring)->mark, (*ring)->queue, (*ring)->skip, (*ring)->in));
+  PetscCall(PetscFree(*ring));
   PetscFunctionReturn(0);
 }
 
 /* X is the current vertex: its ring is found when a triangle is first tested against it (most
    vertices of a body that does not fold have no candidate triangle that faces them) */
-void FCCollisionSelfVertex(Surface *S, const PetscReal X[3])
+void FCSelfRingVertex(FCSelfRing *r, const PetscReal X[3])
 {
-  for (int d = 0; d < 3; d++) S->selfX[d] = X[d];
-  S->ring->pending = PETSC_TRUE;
+  for (int d = 0; d < 3; d++) r->X[d] = X[d];
+  r->pending = PETSC_TRUE;
 }
 
-/* The triangles around the vertices within k - 1 edges of the current vertex X (a breadth-first
-   walk over the surface's triangles), sorted, as r->skip */
-static void RingFind(struct _FCSelfRing *r, const PetscReal X[3])
+/* The triangles around the vertices within k - 1 edges of the vertex X (a breadth-first walk over
+   the surface's triangles), as r->skip, each marked by the walk's number in r->in */
+static void RingFind(FCSelfRing *r, const PetscReal X[3])
 {
-  PetscInt v0, head = 0, tail = 0, n = 0;
+  const FCSurfaceTopology *T = r->T;
+  PetscInt                 v0, head = 0, tail = 0, n = 0;
 
-  if (!r->built) RingBuild(r);
-  v0         = VertexOf(r, X);
+  v0         = VertexOf(T, X);
   r->nskip   = 0;
   r->pending = PETSC_FALSE;
+  r->walk++;
   if (v0 < 0) return;
   r->mark[v0]      = 0;
   r->queue[tail++] = v0;
   while (head < tail) {
     PetscInt v = r->queue[head++];
-    for (PetscInt j = r->off[v]; j < r->off[v + 1]; j++) {
-      PetscInt t = r->vt[j];
-      if (n < r->nskipmx) r->skip[n++] = t; /* (a triangle repeats once per ring vertex it touches) */
+    for (PetscInt j = T->off[v]; j < T->off[v + 1]; j++) {
+      PetscInt t = T->vt[j];
+      if (r->in[t] != r->walk) {
+        r->in[t]     = r->walk;
+        r->skip[n++] = t;
+      }
       if (r->mark[v] + 1 <= r->k - 1)
         for (int a = 0; a < 3; a++) {
-          PetscInt w = r->tv[3 * t + a];
+          PetscInt w = T->tv[3 * t + a];
           if (r->mark[w] < 0) {
             r->mark[w]       = r->mark[v] + 1;
             r->queue[tail++] = w;
@@ -148,14 +102,38 @@ static void RingFind(struct _FCSelfRing *r, const PetscReal X[3])
     }
   }
   for (PetscInt i = 0; i < tail; i++) r->mark[r->queue[i]] = -1;
-  qsort(r->skip, n, sizeof(PetscInt), CompareInt);
-  {
-    PetscInt u = 0;
-    for (PetscInt i = 0; i < n; i++)
-      if (!u || r->skip[u - 1] != r->skip[i]) r->skip[u++] = r->skip[i];
-    n = u;
-  }
   r->nskip = n;
+}
+
+PetscBool FCSelfRingHas(FCSelfRing *r, PetscInt t)
+{
+  if (r->pending) RingFind(r, r->X);
+  return r->in[t] == r->walk ? PETSC_TRUE : PETSC_FALSE;
+}
+
+PetscBool FCSelfRingEdgeIn(FCSelfRing *r, const PetscReal Xa[2][3], const PetscReal Xb[2][3])
+{
+  const FCSurfaceTopology *T = r->T;
+  PetscInt                 vb[2];
+  PetscBool                in = PETSC_FALSE;
+
+  vb[0] = VertexOf(T, Xb[0]);
+  vb[1] = VertexOf(T, Xb[1]);
+  for (int e = 0; e < 2 && !in; e++) {
+    RingFind(r, Xa[e]);
+    for (PetscInt i = 0; i < r->nskip && !in; i++)
+      for (int a = 0; a < 3; a++)
+        if (T->tv[3 * r->skip[i] + a] == vb[0] || T->tv[3 * r->skip[i] + a] == vb[1]) in = PETSC_TRUE;
+  }
+  r->pending = PETSC_TRUE; /* r->skip no longer holds the current vertex's ring */
+  return in;
+}
+
+/* Before vertex X's landing: X is the current vertex of S's ring */
+void FCCollisionSelfVertex(Surface *S, const PetscReal X[3])
+{
+  for (int d = 0; d < 3; d++) S->selfX[d] = X[d];
+  FCSelfRingVertex(S->ring, X);
 }
 
 /* Behind triangle T (on the side its outward normal points away from) at p, T's corners c: the
@@ -169,45 +147,9 @@ static PetscBool Behind(const PetscReal p[3], const PetscReal c[3][3], PetscReal
   return s < -tol ? PETSC_TRUE : PETSC_FALSE;
 }
 
-PetscBool FCCollisionSelfExcludesRing(const Surface *S, PetscInt t)
-{
-  struct _FCSelfRing *r  = S->ring;
-  PetscInt            lo = 0, hi;
-  if (r->pending) RingFind(r, S->selfX);
-  hi = r->nskip;
-  while (lo < hi) { /* the ring (sorted) */
-    PetscInt m = (lo + hi) / 2;
-    if (r->skip[m] == t) return PETSC_TRUE;
-    if (r->skip[m] < t)
-      lo = m + 1;
-    else
-      hi = m;
-  }
-  return PETSC_FALSE;
-}
-
-PetscBool FCCollisionSelfEdgeInRing(const Surface *S, const PetscReal Xa[2][3], const PetscReal Xb[2][3])
-{
-  struct _FCSelfRing *r = S->ring;
-  PetscInt            vb[2];
-  PetscBool           in = PETSC_FALSE;
-
-  if (!r->built) RingBuild(r);
-  vb[0] = VertexOf(r, Xb[0]);
-  vb[1] = VertexOf(r, Xb[1]);
-  for (int e = 0; e < 2 && !in; e++) {
-    RingFind(r, Xa[e]);
-    for (PetscInt i = 0; i < r->nskip && !in; i++)
-      for (int a = 0; a < 3; a++)
-        if (r->tv[3 * r->skip[i] + a] == vb[0] || r->tv[3 * r->skip[i] + a] == vb[1]) in = PETSC_TRUE;
-  }
-  r->pending = PETSC_TRUE; /* r->skip no longer holds the current vertex's ring */
-  return in;
-}
-
 PetscBool FCCollisionSelfExcludes(const Surface *S, PetscInt t, const PetscReal x[3])
 {
-  if (FCCollisionSelfExcludesRing(S, t)) return PETSC_TRUE;
+  if (FCSelfRingHas(S->ring, t)) return PETSC_TRUE;
   /* across the body's own thickness: behind the triangle now and in the reference configuration
      (a fold that has crossed was in front of it there, and stays a landing place). Now: deeper
      than -contact_intersection_depth, so that a vertex of a fold that a contact holds a little
@@ -218,18 +160,21 @@ PetscBool FCCollisionSelfExcludes(const Surface *S, PetscInt t, const PetscReal 
 PetscErrorCode FCCollisionSelfPair(MPI_Comm comm, FCBody b, PetscInt ib, PetscInt pair, const FCContactPairs *pairs,
                                    PetscMPIInt rank, FCContactSet *set)
 {
-  Surface        *S   = NULL;
-  FCVertexNormal *vn  = NULL;
-  PetscInt        nvn = 0;
+  Surface           *S   = NULL;
+  FCVertexNormal    *vn  = NULL;
+  FCSurfaceTopology *T   = NULL;
+  PetscInt           nvn = 0;
 
   PetscFunctionBegin;
   PetscCall(FCCollisionSurfaceBuild(comm, b, pairs, &S));
-  if (pairs->facing) PetscCall(FCCollisionVertexNormals(S->n, S->tri, &nvn, &vn));
-  PetscCall(FCCollisionSelfRingSetUp(S, pairs->self_ring));
+  PetscCall(FCSurfaceTopologyGet(pairs, ib, S->n, S->tri, &T));
+  if (pairs->facing) PetscCall(FCCollisionVertexNormals(T, S->tri, &nvn, &vn));
+  PetscCall(FCSelfRingCreate(T, pairs->self_ring, &S->ring));
   S->self      = PETSC_TRUE;
   S->selfdepth = pairs->intersection_depth;
   PetscCall(FCCollisionVerticesAgainstSurface(b, b, ib, ib, S, nvn, vn, pair, pairs, rank, set));
-  PetscCall(FCCollisionSelfRingReset(S));
+  PetscCall(FCSelfRingDestroy(&S->ring));
+  PetscCall(FCSurfaceTopologyRestore(pairs, &T));
   PetscCall(FCSurfaceDestroy(&S));
   PetscCall(PetscFree(vn));
   PetscFunctionReturn(0);

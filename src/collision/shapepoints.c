@@ -54,7 +54,7 @@ PetscErrorCode FCCollisionPictureLandings(FCBody Sh, Surface *S, const FCContact
     nmade++;
   }
   PetscCall(PetscFree2(cand, made));
-  PetscCall(PetscFree(grid.cells));
+  PetscCall(FCRayGridDestroy(&grid));
   PetscFunctionReturn(0);
 }
 
