@@ -19,6 +19,10 @@
   edge-edge contact at every step that holds the top bar as two bodies do, the same force and positions
   at the first step it pushes (1e-10), no self-intersection; without edge-edge contacts the edges pass
   through each other, and the count sees it as for two bodies;
+- the start-inside rule: the same two cubes 0.6 m apart, with discrete detection and a long step,
+  so that the upper falls 6 cm into the lower within a step: the vertices inside get contacts
+  (deeper than the alarm distance) that push them out by about -contact_separation_speed x h a
+  step (the contacts' slack), and none is left inside, as for two bodies;
 - self-intersections: two cubes overlapping by 0.1 m in one mesh: the count is the number of surface
   vertices of each inside the other deeper than the depth, counted from the geometry;
 - mutual self-contacts (each vertex a corner of the other's triangle) leave one active, the other
@@ -196,6 +200,53 @@ if NP > 1:  # with the dormant rule, over the whole run
     dx = np.abs(xn[order(D["bodies/stack/mesh/reference"][:])] - x1[order(r1)]).max()
     c.check(ef <= 1e-10 and dx <= 1e-10, "%d ranks: the 1-rank contact forces to %.1e (relative) and positions to "
             "%.1e m, to the first self-contact step" % (NP, ef, dx))
+
+# the start-inside rule: the two cubes 0.6 m apart in one mesh, with discrete detection and a step of 0.05 s, so that
+# the upper one falls 6 cm deep into the lower one within a step; then the contacts of the vertices inside (deeper
+# than the alarm distance: the start-inside rule) push it back out by about -contact_separation_speed x h a step, as
+# for the same two cubes as two bodies, the deepest gap a step to a quarter of v h (the two bodies' own deepest gaps
+# on 1 and on 2 ranks differ by 1.3e-3 m: which vertices the solver leaves deepest depends on its path)
+SI = out("two_cubes_apart.msh")
+two_cubes(SI, dz=1.6)
+V, H = 0.2, 0.05
+SIO = ["-time_step", H, "-time_steps", 20, "-output_every", 1, "-contact_detection", "discrete", "-contact_fe_pass2_dormant",
+       -1, "-contact_separation_speed", V]
+f = out("start_inside_self.h5")
+run(COMMON + SIO + ["-scene_bodies", "stack,ground", "-contact_pairs", "stack:ground,stack:stack"] + fe("stack", SI, 0.5001) +
+    ["-output_file", f], NP)
+S1 = h5py.File(f, "r")
+f = out("start_inside_two.h5")
+run(COMMON + SIO + ["-scene_bodies", "lo,hi,ground", "-contact_pairs", "lo:ground,hi:ground,lo:hi"] +
+    fe("lo", "meshes/cube_coarse.msh", 0.5001) + fe("hi", "meshes/cube_coarse.msh", 2.1001) + ["-output_file", f], NP)
+S2 = h5py.File(f, "r")
+
+
+def deepest(h, self_pair):
+    """per step: the number of contacts between the two cubes and the deepest start gap among them"""
+    n, b, g = h["steps/contacts"][:], h["contacts/bodies"][:], h["contacts/gap"][:]
+    off, res = np.concatenate([[0], np.cumsum(n)]), []
+    for s in range(len(n)):
+        bb, gg = b[off[s]:off[s + 1]], g[off[s]:off[s + 1]]
+        m = (bb[:, 0] == bb[:, 1]) if self_pair else ((bb[:, 0] != bb[:, 1]) & (bb.max(axis=1) < 2))
+        res.append((int(m.sum()), gg[m].min() if m.any() else 0.0))
+    return res
+
+
+d1, d2 = deepest(S1, True), deepest(S2, False)
+i1, i2 = S1["steps/intersections"][:], S2["steps/intersections"][:]
+k = next(s for s in range(len(d1)) if d1[s][0])  # the first step with contacts between the cubes
+gaps, gaps2 = np.array([g for _, g in d1[k:k + 6]]), np.array([g for _, g in d2[k:k + 6]])
+c.check(d1[k][1] < -3 * 0.015 and d1[k][0] == d2[k][0] and abs(d1[k][1] - d2[k][1]) <= 1e-6 and i1[k - 1] > 0,
+        "start inside, self pair: at step %d, %d vertices inside the other cube (counted), %d contacts, the deepest "
+        "%.4f m (two bodies: %d contacts, %.4f m)" % (k + 1, i1[k - 1], d1[k][0], d1[k][1], d2[k][0], d2[k][1]))
+c.check(np.all(np.diff(gaps) <= 1.1 * V * H) and np.all(np.diff(gaps) > 0.5 * V * H) and
+        np.abs(gaps - gaps2).max() <= 0.25 * V * H,
+        "start inside, self pair: pushed out by about v h = %.3f m a step (the constraint's own slack; the cubes' "
+        "elastic rebound adds a little), the deepest gap %s (two bodies: %s)" %
+        (V * H, " ".join("%.4f" % g for g in gaps), " ".join("%.4f" % g for g in gaps2)))
+z1, z2 = int(np.argmax(i1[k:] == 0)) + k, int(np.argmax(i2[k:] == 0)) + k
+c.check(i1[k:].min() == 0 and abs(z1 - z2) <= 1, "start inside, self pair: no vertex inside from step %d (two bodies: "
+        "%d)" % (z1 + 1, z2 + 1))
 
 # edge-edge: the crossed bars of input/hard/crossed_bars.opts (the top bar rests on the bottom one edge on
 # edge, where neither has a vertex) as one body of two components paired with itself

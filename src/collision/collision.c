@@ -81,13 +81,15 @@ static void SweptVertexHit(Surface *S, const PetscReal x0[3], const PetscReal xf
   }
 }
 
-/* The nearest triangle of S to x, over all of them: for the rare vertex that starts inside */
+/* The nearest triangle of S to x, over all of them (a self pair: but those of the body's own shape,
+   FCCollisionSelfExcludes): for the rare vertex that starts inside */
 static void NearestTriangle(const Surface *S, const PetscReal x[3], PetscInt *best)
 {
   PetscReal bestd = PETSC_MAX_REAL;
   *best           = -1;
   for (PetscInt t = 0; t < S->n; t++) {
     PetscReal cp[3], w[3], d2 = 0.0;
+    if (S->self && FCCollisionSelfExcludes(S, t, x)) continue;
     FCClosestPointTriangle(x, S->tri[t].x0[0], S->tri[t].x0[1], S->tri[t].x0[2], cp, w);
     for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
     if (d2 < bestd) {
@@ -101,8 +103,10 @@ static void NearestTriangle(const Surface *S, const PetscReal x[3], PetscInt *be
    within the alarm distance (with nv, the normal of the point's own surface, the nearest among the
    triangles that face it: -contact_facing); else, with continuous detection, the first its motion reaches; else,
    for a point that starts inside the body deeper than the alarm distance, its nearest (the ray
-   grid is built at the first such test); -1 if none. w, cp: the barycentric weights and the point
-   of that triangle closest to x0 at the start. */
+   grid is built at the first such test); a self pair's vertex (on S itself), when it starts inside
+   another part of its body (the winding number just outside it, along its normal nv: none without
+   one), its nearest triangle but those of the body's own shape; -1 if none. w, cp: the barycentric
+   weights and the point of that triangle closest to x0 at the start. */
 PetscErrorCode FCCollisionLandingTriangle(Surface *S, const PetscReal x0[3], const PetscReal xf[3],
                                           const PetscReal nv[3], PetscReal distance, PetscBool continuous,
                                           PetscReal tau, PetscInt cand[], FCRayGrid *grid, PetscInt *best,
@@ -113,12 +117,14 @@ PetscErrorCode FCCollisionLandingTriangle(Surface *S, const PetscReal x0[3], con
   PetscFunctionBegin;
   FCSurfaceClosestFacing(S, x0, nv, best, w, cp, &d2);
   if (*best >= 0 && d2 <= distance * distance) PetscFunctionReturn(0);
+  *best = -1; /* (the nearest farther than the alarm distance is no contact) */
   if (continuous) SweptVertexHit(S, x0, xf, nv, tau, cand, best);
   if (*best < 0) {
-    if (S->self) PetscFunctionReturn(0); /* a vertex of S is on it: the start-inside fallback does not apply */
+    if (S->self && (!nv || !S->selfstart)) PetscFunctionReturn(0);
     if (!grid->cells) PetscCall(FCRayGridCreate(S, grid));
-    if (!FCRayGridInside(S, grid, x0)) PetscFunctionReturn(0);
+    if (S->self ? !FCRayGridSelfInside(S, grid, x0, nv) : !FCRayGridInside(S, grid, x0)) PetscFunctionReturn(0);
     NearestTriangle(S, x0, best);
+    if (*best < 0) PetscFunctionReturn(0);
   }
   FCClosestPointTriangle(x0, S->tri[*best].x0[0], S->tri[*best].x0[1], S->tri[*best].x0[2], cp, w);
   PetscFunctionReturn(0);

@@ -26,6 +26,8 @@ typedef struct {
   PetscReal           intersection_depth;   /* a point deeper than this inside another body is an intersection */
   PetscBool           fail_on_intersection; /* -contact_fail_on_intersection: stop the run at the first one */
   FCSurfaceTopology **topo; /* per scene body: its surface's topology, built at its first use (NULL: none kept) */
+  PetscBool *self_inside;   /* per pair: a self pair's body was inside itself at the last intersection count (PETSC_TRUE
+                               before the first; NULL: always), where its start-inside rule is needed */
 } FCContactPairs;
 /* Discrete collision detection at the start of the step (after the free motion has been
    computed, so that every contact also carries its free-motion positions) */

@@ -32,6 +32,7 @@ struct _FCSurface {
   PetscBool   self;
   PetscReal   selfX[3];  /* the current vertex's reference position */
   PetscReal   selfdepth; /* behind a triangle now: deeper than this (-contact_intersection_depth) */
+  PetscBool   selfstart; /* the start-inside rule applies (the body may be inside itself) */
   FCSelfRing *ring;
 };
 
@@ -62,6 +63,10 @@ typedef struct {
 PETSC_INTERN PetscErrorCode FCRayGridCreate(const FCSurface *, FCRayGrid *);
 PETSC_INTERN PetscErrorCode FCRayGridDestroy(FCRayGrid *);
 PETSC_INTERN PetscBool      FCRayGridInside(const FCSurface *, const FCRayGrid *, const PetscReal x[3]);
+/* Whether the point x of the closed surface S (its outward normal there n, not unit) is inside another part of
+   S's body: the winding number just outside x is 1 or more */
+PETSC_INTERN PetscBool FCRayGridSelfInside(const FCSurface *, const FCRayGrid *, const PetscReal x[3],
+                                           const PetscReal n[3]);
 
 /* collision.c, what the vertex contacts share with the shape points (shapepoints.c): the triangle
    of S a point moving x0 -> xf lands on (nv: the normal of the point's own surface, for

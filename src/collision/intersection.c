@@ -312,17 +312,17 @@ static PetscErrorCode PointsInShape(PetscInt n, const PetscReal x[], FCBody B, P
    ray along RayDir or its opposite, whichever leaves the vertex's own surface (a ray that starts
    into it would cross it within eps of the vertex, where its triangles meet: a crossing counted
    twice or not at all). Deeper than depth: no triangle outside the vertex's ring within depth. */
-static PetscInt SelfWinding(const Closed *c, const PetscReal x[3], const PetscReal n[3])
+static PetscInt SelfWinding(const FCSurface *S, const FCRayGrid *G, const PetscReal x[3], const PetscReal n[3])
 {
   int64_t   cell;
   PetscInt  lo, wind  = 0;
   PetscReal dir[3], s = FCDot(RayDir, n) >= 0.0 ? 1.0 : -1.0, xs = FCDot(x, RayDir);
 
   for (int d = 0; d < 3; d++) dir[d] = s * RayDir[d];
-  for (lo = RayCell(&c->G, x, &cell); lo < c->G.n && c->G.cells[lo].key == cell; lo++) {
-    const FCSurfaceTriangle *T = &c->S->tri[c->G.cells[lo].tri];
+  for (lo = RayCell(G, x, &cell); lo < G->n && G->cells[lo].key == cell; lo++) {
+    const FCSurfaceTriangle *T = &S->tri[G->cells[lo].tri];
     PetscReal                e1[3], e2[3], nt[3]; /* the outward normal, unnormalized: its side of the ray */
-    if (Behind(&c->G, c->G.cells[lo].tri, xs, s)) continue;
+    if (Behind(G, G->cells[lo].tri, xs, s)) continue;
     if (!FCRayHitsTriangle(x, dir, T->x0[0], T->x0[1], T->x0[2])) continue;
     for (int d = 0; d < 3; d++) {
       e1[d] = T->x0[1][d] - T->x0[0][d];
@@ -332,6 +332,15 @@ static PetscInt SelfWinding(const Closed *c, const PetscReal x[3], const PetscRe
     wind += FCDot(nt, dir) > 0.0 ? 1 : -1;
   }
   return wind;
+}
+
+PetscBool FCRayGridSelfInside(const FCSurface *S, const FCRayGrid *G, const PetscReal x[3], const PetscReal n[3])
+{
+  PetscReal xout[3], ln = PetscSqrtReal(FCDot(n, n)), eps = 0.0;
+
+  for (int d = 0; d < 3; d++) eps = PetscMax(eps, 1e-7 * (G->hi[d] - G->lo[d]));
+  for (int d = 0; d < 3; d++) xout[d] = x[d] + eps * n[d] / (ln > 0 ? ln : 1.0);
+  return SelfWinding(S, G, xout, n) >= 1 ? PETSC_TRUE : PETSC_FALSE;
 }
 
 /* the squared distance from x to the nearest triangle outside the current ring among those hashed
@@ -356,14 +365,11 @@ static PetscReal SelfNearest(const Closed *c, const PetscReal x[3])
    than depth: the winding number just outside x is 1, and no triangle outside the ring of the
    surface vertex X is within depth */
 static PetscErrorCode SelfDeep(Closed *c, const FCContactPairs *pairs, const PetscReal x[3], const PetscReal n[3],
-                               const PetscReal X[3], PetscReal eps, PetscBool *deep)
+                               const PetscReal X[3], PetscBool *deep)
 {
-  PetscReal xout[3], ln = PetscSqrtReal(FCDot(n, n));
-
   PetscFunctionBegin;
   *deep = PETSC_FALSE;
-  for (int d = 0; d < 3; d++) xout[d] = x[d] + eps * n[d] / (ln > 0 ? ln : 1.0);
-  if (SelfWinding(c, xout, n) < 1) PetscFunctionReturn(0);
+  if (!FCRayGridSelfInside(c->S, &c->G, x, n)) PetscFunctionReturn(0);
   if (!c->S->ring) PetscCall(FCSelfRingCreate(c->T, pairs->self_ring, &c->S->ring)); /* at the first such point */
   FCSelfRingVertex(c->S->ring, X);
   *deep = SelfNearest(c, x) > pairs->intersection_depth * pairs->intersection_depth ? PETSC_TRUE : PETSC_FALSE;
@@ -372,8 +378,7 @@ static PetscErrorCode SelfDeep(Closed *c, const FCContactPairs *pairs, const Pet
 
 /* The sharp edges of a self pair's body through another part of it: both ends not counted as
    vertices inside, a point of the edge inside deeper than depth (as EdgesThroughSurface) */
-static PetscErrorCode SelfEdgesThrough(MPI_Comm comm, Closed *c, const FCContactPairs *pairs, PetscReal eps,
-                                       PetscInt *count)
+static PetscErrorCode SelfEdgesThrough(MPI_Comm comm, Closed *c, const FCContactPairs *pairs, PetscInt *count)
 {
   PetscInt    ne;
   PetscReal  *ed;
@@ -389,11 +394,11 @@ static PetscErrorCode SelfEdgesThrough(MPI_Comm comm, Closed *c, const FCContact
     for (int q = 1; q <= 3 && !deep; q++) {
       PetscReal x[3];
       for (int i = 0; i < 3; i++) x[i] = a[i] + 0.25 * q * (b[i] - a[i]);
-      PetscCall(SelfDeep(c, pairs, x, n, q < 2 ? Xa : Xb, eps, &deep));
+      PetscCall(SelfDeep(c, pairs, x, n, q < 2 ? Xa : Xb, &deep));
     }
     if (!deep) continue;
-    PetscCall(SelfDeep(c, pairs, a, n, Xa, eps, &end)); /* a vertex inside: counted as one */
-    if (!end) PetscCall(SelfDeep(c, pairs, b, n, Xb, eps, &end));
+    PetscCall(SelfDeep(c, pairs, a, n, Xa, &end)); /* a vertex inside: counted as one */
+    if (!end) PetscCall(SelfDeep(c, pairs, b, n, Xb, &end));
     if (!end) (*count)++;
   }
   PetscCall(PetscFree(ed));
@@ -405,7 +410,7 @@ static PetscErrorCode SelfIntersections(MPI_Comm comm, FCBody bodies[], PetscInt
 {
   Closed          c;
   PetscInt        nvn;
-  PetscReal      *vx, eps = 0.0;
+  PetscReal      *vx;
   FCVertexNormal *vn;
   PetscMPIInt     rank, size;
 
@@ -415,13 +420,12 @@ static PetscErrorCode SelfIntersections(MPI_Comm comm, FCBody bodies[], PetscInt
   PetscCall(ClosedCreate(comm, bodies, ib, pairs, &c));
   PetscCall(FCCollisionVertexNormals(c.T, c.S->tri, &nvn, &vn));
   PetscCall(SurfaceVertices(c.T, c.S->tri, &vx));
-  for (int d = 0; d < 3; d++) eps = PetscMax(eps, 1e-7 * (c.G.hi[d] - c.G.lo[d]));
   for (PetscInt k = rank; k < nvn; k += size) { /* vn: the same vertices in the same order */
     PetscBool deep;
-    PetscCall(SelfDeep(&c, pairs, &vx[6 * k + 3], vn[k].n, vn[k].X, eps, &deep));
+    PetscCall(SelfDeep(&c, pairs, &vx[6 * k + 3], vn[k].n, vn[k].X, &deep));
     if (deep) (*count)++;
   }
-  PetscCall(SelfEdgesThrough(comm, &c, pairs, eps, count));
+  PetscCall(SelfEdgesThrough(comm, &c, pairs, count));
   PetscCall(PetscFree(vx));
   PetscCall(PetscFree(vn));
   PetscCall(FCSelfRingDestroy(&c.S->ring));
@@ -432,13 +436,15 @@ static PetscErrorCode SelfIntersections(MPI_Comm comm, FCBody bodies[], PetscInt
 PetscErrorCode FCCollisionCountPairIntersections(MPI_Comm comm, PetscInt nbodies, FCBody bodies[],
                                                  const FCContactPairs *pairs, PetscInt *count)
 {
-  PetscInt local = 0;
+  PetscInt local = 0, *self;
 
   PetscFunctionBegin;
+  PetscCall(PetscCalloc1(pairs->n + 1, &self));
   for (PetscInt p = 0; p < pairs->n; p++) {
     FCBody A = bodies[pairs->body[p][0]], B = bodies[pairs->body[p][1]];
     if (A == B) { /* self-contact */
-      PetscCall(SelfIntersections(comm, bodies, pairs->body[p][0], pairs, &local));
+      PetscCall(SelfIntersections(comm, bodies, pairs->body[p][0], pairs, &self[p]));
+      local += self[p];
       continue;
     }
     if (FCBodyHasSurfaceTriangles(A) && FCBodyHasSurfaceTriangles(B)) {
@@ -480,5 +486,10 @@ PetscErrorCode FCCollisionCountPairIntersections(MPI_Comm comm, PetscInt nbodies
     }
   }
   PetscCall(MPIU_Allreduce(&local, count, 1, MPIU_INT, MPI_SUM, comm));
+  if (pairs->self_inside) { /* where the next detection needs the self pairs' start-inside rule */
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, self, pairs->n, MPIU_INT, MPI_SUM, comm));
+    for (PetscInt p = 0; p < pairs->n; p++) pairs->self_inside[p] = self[p] > 0 ? PETSC_TRUE : PETSC_FALSE;
+  }
+  PetscCall(PetscFree(self));
   PetscFunctionReturn(0);
 }

@@ -142,7 +142,7 @@ static PetscErrorCode SetPairs(FCCollision s, PetscInt np, char *pairs[], const 
 {
   PetscFunctionBegin;
   s->pairs.n = np;
-  PetscCall(PetscMalloc2(np, &s->pairs.body, np, &s->pairs.mu));
+  PetscCall(PetscMalloc3(np, &s->pairs.body, np, &s->pairs.mu, np, &s->pairs.self_inside));
   for (PetscInt p = 0; p < np; p++) {
     char *colon = strchr(pairs[p], ':');
     PetscCheck(colon && colon != pairs[p] && colon[1], s->comm, PETSC_ERR_USER_INPUT,
@@ -159,7 +159,8 @@ static PetscErrorCode SetPairs(FCCollision s, PetscInt np, char *pairs[], const 
         !(FCBodyIsPrescribed(s->bodies[s->pairs.body[p][0]]) && FCBodyIsPrescribed(s->bodies[s->pairs.body[p][1]])),
         s->comm, PETSC_ERR_USER_INPUT, "Contact pair '%s:%s' joins two kinematic bodies: nothing can respond", pairs[p],
         colon + 1);
-    s->pairs.mu[p] = mu[nmu == 1 ? 0 : p];
+    s->pairs.mu[p]          = mu[nmu == 1 ? 0 : p];
+    s->pairs.self_inside[p] = PETSC_TRUE;
   }
   for (PetscInt p = 0; p < np; p++) PetscCall(PetscFree(pairs[p]));
   PetscFunctionReturn(0);
@@ -229,7 +230,7 @@ PetscErrorCode FCCollisionDestroy(FCCollision *c)
 {
   PetscFunctionBegin;
   if (!*c) PetscFunctionReturn(0);
-  PetscCall(PetscFree2((*c)->pairs.body, (*c)->pairs.mu));
+  PetscCall(PetscFree3((*c)->pairs.body, (*c)->pairs.mu, (*c)->pairs.self_inside));
   for (PetscInt b = 0; b < (*c)->nbodies; b++) PetscCall(FCSurfaceTopologyDestroy(&(*c)->pairs.topo[b]));
   PetscCall(PetscFree((*c)->pairs.topo));
   PetscCall(PetscFree(*c));

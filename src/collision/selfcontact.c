@@ -15,8 +15,11 @@
    With -contact_facing (on by default for self-contact too) a vertex lands only on triangles whose
    normal opposes its own, so the flat and convex parts of the surface around it are never landing
    places either, and a fold is (its two sides face each other).
-   A vertex of the surface lies on it, so the start-inside fallback of the two-body pairs (a point
-   inside the other body) does not apply; continuous detection keeps a fold from crossing.
+   A vertex of the surface lies on it, where a ray's parity says nothing: the start-inside rule of the
+   two-body pairs takes a vertex with no landing triangle that is inside another part of its body
+   (FCRayGridSelfInside: the winding number just outside it) to its nearest triangle but those of the
+   body's own shape, and only where the last intersection count found the body inside itself
+   (pairs->self_inside).
    The sharp edges of the body meet its own in edges.c, with the same two rules for edges
    (FCSelfRingEdgeIn here). The ring walks the surface's topology (topology.c), built once per run. */
 #include "collisionimpl.h"
@@ -172,6 +175,7 @@ PetscErrorCode FCCollisionSelfPair(MPI_Comm comm, FCBody b, PetscInt ib, PetscIn
   PetscCall(FCSelfRingCreate(T, pairs->self_ring, &S->ring));
   S->self      = PETSC_TRUE;
   S->selfdepth = pairs->intersection_depth;
+  S->selfstart = !pairs->self_inside || pairs->self_inside[pair] ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(FCCollisionVerticesAgainstSurface(b, b, ib, ib, S, nvn, vn, pair, pairs, rank, set));
   PetscCall(FCSelfRingDestroy(&S->ring));
   PetscCall(FCSurfaceTopologyRestore(pairs, &T));
