@@ -25,7 +25,9 @@ Sheet fold:
   their forces to 1e-10 (relative) and the positions to 1e-10 m.
 
 Hard cases (1 rank): no self-intersection, the neck held closed to the end, every solve
-converged; with mu = 1, sticking contacts that carry tangential force inside the Coulomb cone and
+converged; the letter fold (input/hard/sheet_fold_twice.opts, three layers): the same, and at the
+end loaded contacts between the bottom and middle layers and between the middle and top ones; with
+mu = 1, sticking contacts that carry tangential force inside the Coulomb cone and
 hold the neck without creeping."""
 import h5py
 import numpy as np
@@ -168,4 +170,26 @@ if NP == 1:
     c1, c0 = creep(S, lambda H: last_step(H, "state") == 1), creep(S0, lambda H: last_step(H, "force")[:, 0] > 0)
     c.check(c1 <= 0.1 * c0, "fold with mu = 1: the sticking arms do not creep over the hold (t = 1.1 to 1.5 s), "
             "%.1e m between facing vertices; frictionless %.1e m (bound a tenth of it)" % (c1, c0))
+
+if NP == 1:
+    # the letter fold: each self-contact of the last step between two of the sheet's thirds (by reference x), side 1
+    # the vertex nearest its point, side 2 the vertex of another third nearest the point moved back along the normal
+    L = scene("input/hard/sheet_fold_twice.opts", 1, "sheet_fold_twice")
+    held(L, "letter fold")
+    X, P = L["bodies/sheet/mesh/reference"][:], L["bodies/sheet/positions"][-1]
+    third = np.where(X[:, 0] < -0.2 - 1e-9, "left", np.where(X[:, 0] > 0.2 + 1e-9, "right", "middle"))
+    mask, _ = self_contacts(L)
+    off = L["contacts/offset"][:]
+    m = mask[off[-2]:off[-1]]
+    between = {}
+    for p, nrm, g, f in zip(last_step(L, "point")[m], last_step(L, "normal")[m], last_step(L, "gap")[m],
+                            last_step(L, "force")[m, 0]):
+        t1 = third[np.argmin(np.linalg.norm(P - p, axis=1))]
+        d = np.linalg.norm(P - (p - max(g, 0.002) * nrm), axis=1)
+        d[third == t1] = np.inf
+        k = tuple(sorted((t1, third[np.argmin(d)])))
+        between[k] = between.get(k, np.zeros(2)) + [f > 0, f]
+    lo, hi = between.get(("left", "middle"), np.zeros(2)), between.get(("left", "right"), np.zeros(2))
+    c.check(lo[0] > 0 and hi[0] > 0, "letter fold, at the end: the left third on the middle one (%d loaded contacts, "
+            "%.2f N) and the right third on the left one (%d, %.2f N): three layers in contact" % (lo[0], lo[1], hi[0], hi[1]))
 c.done()
