@@ -1,6 +1,7 @@
 // Table 1 family: structured (transfinite) linear tetrahedra in a box with exactly
-// nx*ny*nz vertices (3*nx*ny*nz displacement DOFs) and grid spacing d in every direction.
-// Extent: x in [-(nx-1)d/2, (nx-1)d/2], y in [-(ny-1)d/2, (ny-1)d/2], z in [0, (nz-1)d].
+// nx*ny*nz vertices (3*nx*ny*nz displacement DOFs) and grid spacing d in every direction (dz in z
+// if given).
+// Extent: x in [-(nx-1)d/2, (nx-1)d/2], y in [-(ny-1)d/2, (ny-1)d/2], z in [0, (nz-1)dz].
 // Units: metres.
 //   gmsh -3 -setnumber nx 20 -setnumber ny 20 -setnumber nz 15 table1.geo -o table1_18k.msh
 SetFactory("OpenCASCADE");
@@ -8,9 +9,10 @@ If (!Exists(nx)) nx = DefineNumber[20, Name "Parameters/nx"]; EndIf
 If (!Exists(ny)) ny = DefineNumber[20, Name "Parameters/ny"]; EndIf
 If (!Exists(nz)) nz = DefineNumber[15, Name "Parameters/nz"]; EndIf
 If (!Exists(d)) d = DefineNumber[0.05, Name "Parameters/d"]; EndIf
+If (!Exists(dz)) dz = d; EndIf
 Lx = (nx - 1) * d;
 Ly = (ny - 1) * d;
-Lz = (nz - 1) * d;
+Lz = (nz - 1) * dz;
 x0 = -Lx / 2; x1 = Lx / 2;
 y0 = -Ly / 2; y1 = Ly / 2;
 z0 = 0;       z1 = Lz;

@@ -1,5 +1,6 @@
 """Self-contact scenes, on --np ranks: input/u_bend.opts (a soft bar bent into a U by two hands
-attached to its ends, whose arms close the U's neck below the hands) and the hard cases
+attached to its ends, whose arms close the U's neck below the hands), input/sheet_fold.opts (a thin
+sheet on a floor folded in half by a hand attached to one end) and the hard cases
 input/hard/u_bend_fast.opts (the same fold at 2 m/s) and input/hard/u_bend_stick.opts (a tighter
 fold with mu = 1).
 
@@ -15,8 +16,18 @@ U-bend:
 - --np > 1: the 1-rank run's contacts at every step, their forces to 1e-10 (relative) and the
   positions to 1e-10 m (the neck's contacts are well-conditioned: measured 3e-13 and 5e-15 m).
 
+Sheet fold:
+- self-contacts at every step from the first touch, zero self-intersections, every solve converged
+  (as the U-bend);
+- the contacts are between the two layers, where the upper half lies on the lower one near the
+  hand (the lower half's top face, normals vertical), carrying part of the upper half's weight;
+- --np > 1: over the first 1.2 s (0.2 s past the first touch), the 1-rank contacts at every step,
+  their forces to 1e-10 (relative) and the positions to 1e-10 m.
+
 Hard cases (1 rank): no self-intersection, the neck held closed to the end, every solve
-converged; with mu = 1, sticking contacts that carry tangential force inside the Coulomb cone and
+converged; the letter fold (input/hard/sheet_fold_twice.opts, three layers): the same, and at the
+end loaded contacts between the bottom and middle layers and between the middle and top ones; with
+mu = 1, sticking contacts that carry tangential force inside the Coulomb cone and
 hold the neck without creeping."""
 import h5py
 import numpy as np
@@ -34,13 +45,22 @@ def scene(opts, np_, name, extra=()):
     return h5py.File(f, "r")
 
 
+def self_contacts(H):
+    """The contacts of each step whose two sides are the same body (a self pair), as a mask of /contacts/* rows
+    and a count per step"""
+    b, off = H["contacts/bodies"][:], H["contacts/offset"][:]
+    mask = b[:, 0] == b[:, 1]
+    return mask, np.add.reduceat(np.append(mask, False).astype(int), off[:-1]) * (np.diff(off) > 0)
+
+
 def held(H, what):
     """Self-contacts at every step from the first touch, and zero self-intersections at every step"""
-    n, ni = H["steps/contacts"][:], H["steps/intersections"][:]
+    mask, n = self_contacts(H)
+    ni = H["steps/intersections"][:]
     first = int(np.argmax(n > 0))
-    gap = H["contacts/gap_end"][:].min()
-    c.check(n.max() > 0 and (n[first:] > 0).all(), "%s: the neck closes at t = %.3f s and stays closed (%d contacts "
-            "at the end)" % (what, H["steps/time"][first], n[-1]))
+    gap = H["contacts/gap_end"][:][mask].min()
+    c.check(n.max() > 0 and (n[first:] > 0).all(), "%s: the fold closes at t = %.3f s and stays closed (%d "
+            "self-contacts at the end)" % (what, H["steps/time"][first], n[-1]))
     c.check(ni.max() == 0 and gap >= -DEPTH, "%s: no self-intersection at any step, the deepest contact at the end "
             "of its step %.1e m (depth %g)" % (what, gap, DEPTH))
     res = H["steps/residual"][:].max()
@@ -51,6 +71,26 @@ def held(H, what):
 def last_step(H, name):
     off = H["contacts/offset"][:]
     return H["contacts/" + name][off[-2]:off[-1]]
+
+
+def same_as_1_rank(H1, Hn, body):
+    """Whether Hn has H1's contacts at every step (the offsets), the largest relative difference of their forces
+    (matched by point) and of the body's end positions (matched by reference position)"""
+    o1, on = H1["contacts/offset"][:], Hn["contacts/offset"][:]
+    same, ef = np.array_equal(o1, on), 0.0
+    for k in range(len(o1) - 1):
+        if not same:
+            break
+        p1, pn = H1["contacts/point"][o1[k]:o1[k + 1]], Hn["contacts/point"][on[k]:on[k + 1]]
+        f1, fn_ = H1["contacts/force"][o1[k]:o1[k + 1]], Hn["contacts/force"][on[k]:on[k + 1]]
+        i1, i_n = np.lexsort(np.round(p1, 8).T), np.lexsort(np.round(pn, 8).T)
+        scale = np.abs(f1).max() if len(f1) else 0.0
+        if scale > 0:
+            ef = max(ef, np.abs(f1[i1] - fn_[i_n]).max() / scale)
+    X1, Xn = H1["bodies/%s/mesh/reference" % body][:], Hn["bodies/%s/mesh/reference" % body][:]
+    dx = np.abs(H1["bodies/%s/positions" % body][-1][np.lexsort(X1.T)] -
+                Hn["bodies/%s/positions" % body][-1][np.lexsort(Xn.T)]).max()
+    return same, ef, dx
 
 
 # the U-bend
@@ -75,22 +115,32 @@ c.check(np.linalg.norm(M) <= 1e-2 * ML, "U-bend, held: their moments about the o
 
 if NP > 1:
     U1 = scene("input/u_bend.opts", 1, "u_bend")
-    o1, on = U1["contacts/offset"][:], U["contacts/offset"][:]
-    same = np.array_equal(o1, on)
-    ef = 0.0
-    for k in range(len(o1) - 1):
-        if not same:
-            break
-        p1, pn = U1["contacts/point"][o1[k]:o1[k + 1]], U["contacts/point"][on[k]:on[k + 1]]
-        f1, fn_ = U1["contacts/force"][o1[k]:o1[k + 1]], U["contacts/force"][on[k]:on[k + 1]]
-        i1, i_n = np.lexsort(np.round(p1, 8).T), np.lexsort(np.round(pn, 8).T)
-        scale = np.abs(f1).max() if len(f1) else 0.0
-        if scale > 0:
-            ef = max(ef, np.abs(f1[i1] - fn_[i_n]).max() / scale)
-    X1, Xn = U1["bodies/bar/mesh/reference"][:], X
-    dx = np.abs(U1["bodies/bar/positions"][-1][np.lexsort(X1.T)] - P[np.lexsort(Xn.T)]).max()
+    same, ef, dx = same_as_1_rank(U1, U, "bar")
     c.check(same and ef <= 1e-10 and dx <= 1e-10, "U-bend, %d ranks: the 1-rank contacts at every step (%s), forces "
             "to %.1e (relative), positions to %.1e m" % (NP, "same" if same else "DIFFERENT", ef, dx))
+
+# the sheet folded in half
+if NP == 1:
+    SF = scene("input/sheet_fold.opts", 1, "sheet_fold")
+    held(SF, "sheet fold")
+    mask, _ = self_contacts(SF)
+    off = SF["contacts/offset"][:]
+    m = mask[off[-2]:off[-1]]
+    pt, nrm, f = last_step(SF, "point")[m], last_step(SF, "normal")[m], last_step(SF, "force")[m, 0]
+    c.check(len(pt) > 0 and (pt[:, 0] > 0.25).all() and (pt[:, 0] < 0.55).all() and (np.abs(pt[:, 2] - 0.025) < 0.01).all()
+            and (np.abs(nrm[:, 2]) > 0.9).all(), "sheet fold: the self-contacts lie between the two layers, where the "
+            "upper half lies on the lower one (x in [%.3f, %.3f] m, z in [%.4f, %.4f] m, normals within %.0f degrees of "
+            "vertical)" % (pt[:, 0].min(), pt[:, 0].max(), pt[:, 2].min(), pt[:, 2].max(),
+                           np.degrees(np.arccos(np.abs(nrm[:, 2]).min()))))
+    c.check(f.sum() > 1.0, "sheet fold: the layers press on each other, %.2f N over %d loaded contacts (the upper half "
+            "weighs %.1f N)" % (f.sum(), (f > 0).sum(), 1000 * 0.6 * 0.2 * 0.025 * 9.81))
+else:
+    short = ["-time_steps", "120"]
+    Sn, S1 = scene("input/sheet_fold.opts", NP, "sheet_fold", short), scene("input/sheet_fold.opts", 1, "sheet_fold", short)
+    held(Sn, "sheet fold, %d ranks, to t = 1.2 s" % NP)
+    same, ef, dx = same_as_1_rank(S1, Sn, "sheet")
+    c.check(same and ef <= 1e-10 and dx <= 1e-10, "sheet fold, %d ranks, to t = 1.2 s: the 1-rank contacts at every "
+            "step (%s), forces to %.1e (relative), positions to %.1e m" % (NP, "same" if same else "DIFFERENT", ef, dx))
 
 if NP == 1:
     Fa = scene("input/hard/u_bend_fast.opts", 1, "u_bend_fast")
@@ -120,4 +170,26 @@ if NP == 1:
     c1, c0 = creep(S, lambda H: last_step(H, "state") == 1), creep(S0, lambda H: last_step(H, "force")[:, 0] > 0)
     c.check(c1 <= 0.1 * c0, "fold with mu = 1: the sticking arms do not creep over the hold (t = 1.1 to 1.5 s), "
             "%.1e m between facing vertices; frictionless %.1e m (bound a tenth of it)" % (c1, c0))
+
+if NP == 1:
+    # the letter fold: each self-contact of the last step between two of the sheet's thirds (by reference x), side 1
+    # the vertex nearest its point, side 2 the vertex of another third nearest the point moved back along the normal
+    L = scene("input/hard/sheet_fold_twice.opts", 1, "sheet_fold_twice")
+    held(L, "letter fold")
+    X, P = L["bodies/sheet/mesh/reference"][:], L["bodies/sheet/positions"][-1]
+    third = np.where(X[:, 0] < -0.2 - 1e-9, "left", np.where(X[:, 0] > 0.2 + 1e-9, "right", "middle"))
+    mask, _ = self_contacts(L)
+    off = L["contacts/offset"][:]
+    m = mask[off[-2]:off[-1]]
+    between = {}
+    for p, nrm, g, f in zip(last_step(L, "point")[m], last_step(L, "normal")[m], last_step(L, "gap")[m],
+                            last_step(L, "force")[m, 0]):
+        t1 = third[np.argmin(np.linalg.norm(P - p, axis=1))]
+        d = np.linalg.norm(P - (p - max(g, 0.002) * nrm), axis=1)
+        d[third == t1] = np.inf
+        k = tuple(sorted((t1, third[np.argmin(d)])))
+        between[k] = between.get(k, np.zeros(2)) + [f > 0, f]
+    lo, hi = between.get(("left", "middle"), np.zeros(2)), between.get(("left", "right"), np.zeros(2))
+    c.check(lo[0] > 0 and hi[0] > 0, "letter fold, at the end: the left third on the middle one (%d loaded contacts, "
+            "%.2f N) and the right third on the left one (%d, %.2f N): three layers in contact" % (lo[0], lo[1], hi[0], hi[1]))
 c.done()
