@@ -38,6 +38,7 @@ MESHES=(
   "hollow_sphere  hollow_sphere.geo  lc 0.1"
   "hollow_sphere_fine  hollow_sphere.geo  lc 0.05"
   "finger       finger.geo    lc 0.004"
+  "finger_fold  finger_fold.geo  lc 0.005 lc_joint 0.0035 r 0.0025"
   "slab         slab.geo      lc 0.125"
   "table1_18k   table1.geo    nx 20 ny 20 nz 15 d 0.05"
   "table1_24k   table1.geo    nx 20 ny 19 nz 21 d 0.05"

@@ -1,6 +1,7 @@
 """Self-contact scenes, on --np ranks: input/u_bend.opts (a soft bar bent into a U by two hands
-attached to its ends, whose arms close the U's neck below the hands), input/sheet_fold.opts (a thin
-sheet on a floor folded in half by a hand attached to one end) and the hard cases
+attached to its ends, whose arms close the U's neck below the hands), input/finger_fold.opts (a
+soft finger clamped at its base whose two notched joints a pusher closes), input/sheet_fold.opts (a
+thin sheet on a floor folded in half by a hand attached to one end) and the hard cases
 input/hard/u_bend_fast.opts (the same fold at 2 m/s) and input/hard/u_bend_stick.opts (a tighter
 fold with mu = 1).
 
@@ -15,6 +16,22 @@ U-bend:
 - every contact solve converged (residual <= 10 pgs_tol);
 - --np > 1: the 1-rank run's contacts at every step, their forces to 1e-10 (relative) and the
   positions to 1e-10 m (the neck's contacts are well-conditioned: measured 3e-13 and 5e-15 m).
+
+Finger fold:
+- each joint's notch closes and stays closed: self-contacts carrying force at every step from the
+  first touch, every one on a notch's faces (its nearest vertex at the end lies on a notch in the
+  reference configuration), both joints loaded at the end;
+- zero self-intersections at every step, no contact deeper than -contact_intersection_depth at the
+  end of its step, every contact solve converged;
+- in the held pose, the base's reaction, the pusher's contact forces on the finger and its weight
+  balance: the self-contacts, each pushing both faces of a notch equal and opposite, add no force,
+  though they carry more than the pusher does; their moments balance to a few percent of the
+  base's (the self-contacts leave a small couple; without them the moments balance to 1e-10 N m);
+- --np > 1: the 1-rank run's contacts at every step, their forces to 1e-10 (relative) until the
+  joints close; then the self-contacts' total, the pusher's force and the base's reaction to 1e-3
+  (relative) and the positions to 5e-5 m: the closed notches' nearly redundant self-contacts make
+  an ill-conditioned contact problem, whose forces solved to -pgs_tol amplify the ranks' round-off
+  (measured 3.5e-4 and 1.1e-5 m).
 
 Sheet fold:
 - self-contacts at every step from the first touch, zero self-intersections, every solve converged
@@ -118,6 +135,86 @@ if NP > 1:
     same, ef, dx = same_as_1_rank(U1, U, "bar")
     c.check(same and ef <= 1e-10 and dx <= 1e-10, "U-bend, %d ranks: the 1-rank contacts at every step (%s), forces "
             "to %.1e (relative), positions to %.1e m" % (NP, "same" if same else "DIFFERENT", ef, dx))
+
+# the finger: clamped at its base, its joints closed by the pusher (body 1) on its last segment. Its notches
+# (meshes/finger_fold.geo): across the inner side x = -0.01, at z = 0.05 and 0.08, 1 cm deep with a hole of
+# radius 2.5 mm at the apex, 40 degrees open, so 3.6 mm either side of the joint on the inner face
+Fi = scene("input/finger_fold.opts", NP, "finger_fold")
+off, B, Fn = Fi["contacts/offset"][:], Fi["contacts/bodies"][:], Fi["contacts/force"][:, 0]
+own = (B[:, 0] == 0) & (B[:, 1] == 0)
+loaded = np.array([(own[off[k]:off[k + 1]] & (Fn[off[k]:off[k + 1]] > 0)).sum() for k in range(len(off) - 1)])
+first = int(np.argmax(loaded > 0))
+ni, gap, res = Fi["steps/intersections"][:], Fi["contacts/gap_end"][:].min(), Fi["steps/residual"][:].max()
+c.check(loaded.max() > 0 and (loaded[first:] > 0).all(), "finger: the joints close at t = %.2f s and stay closed, "
+        "loaded self-contacts at every step from then on (%d at the end)" % (Fi["steps/time"][first], loaded[-1]))
+c.check(ni.max() == 0 and gap >= -DEPTH, "finger: no self-intersection at any step, the deepest contact at the end of "
+        "its step %.1e m (depth %g)" % (gap, DEPTH))
+c.check(res <= 10 * PGS_TOL, "finger: every contact solve converged (largest residual %.1e)" % res)
+X, P = Fi["bodies/finger/mesh/reference"][:], Fi["bodies/finger/positions"][-1]
+s_ = slice(off[-2], off[-1])
+pt, f, fw, b = Fi["contacts/point_end"][s_], Fn[s_], Fi["contacts/force_world"][s_], B[s_]
+me = own[s_]
+Xc = X[[np.argmin(np.linalg.norm(P - q, axis=1)) for q in pt[me]]]
+joint = np.full(len(Xc), -1)
+for j, zc in enumerate((0.05, 0.08)):
+    joint[(Xc[:, 0] <= 0.0 + 1e-9) & (np.abs(Xc[:, 2] - zc) <= 0.0037)] = j
+fj = [f[me][joint == j].sum() for j in (0, 1)]
+dz = np.abs(Xc[:, 2] - np.where(joint == 1, 0.08, 0.05)).max()
+c.check((joint >= 0).all() and min(fj) > 0.1, "finger: the %d self-contacts at the end are on the notches' faces "
+        "(nearest vertices in the reference configuration: x <= %.4f m, within %.4f m of a joint), both joints "
+        "loaded (%.2f and %.2f N)" % (me.sum(), Xc[:, 0].max(), dz, fj[0], fj[1]))
+# the held pose's balance: the base's reaction (its moment about the base's centroid, the origin), the pusher's
+# contact forces on the finger (force_world is the force on side 1) at their points, the weight at the centre of mass
+v = X[Fi["bodies/finger/mesh/cells"][:]]
+vol = np.abs(np.einsum("ij,ij->i", v[:, 1] - v[:, 0], np.cross(v[:, 2] - v[:, 0], v[:, 3] - v[:, 0]))) / 6
+W = 1100 * vol.sum() * np.array([0, 0, -9.81])
+com = (vol[:, None] * P[Fi["bodies/finger/mesh/cells"][:]].mean(1)).sum(0) / vol.sum()
+Fp_i = np.where((b[:, 0] == 0)[:, None], fw, -fw)[~me]
+Fp, R = Fp_i.sum(0), Fi["bodies/finger/reactions/base"][-1]
+F = R[:3] + Fp + W
+M = R[3:] + np.cross(pt[~me], Fp_i).sum(0) + np.cross(com, W)
+c.check(np.linalg.norm(F) <= 1e-3 * np.linalg.norm(Fp) and f[me].sum() > np.linalg.norm(Fp),
+        "finger, held: base reaction + pusher + weight = %.1e N against the pusher's %.2f N (bound 1e-3 of it), "
+        "the self-contacts carrying %.2f N" % (np.linalg.norm(F), np.linalg.norm(Fp), f[me].sum()))
+# the moments: without a self-contact (the pusher's first 0.3 s, held) they cancel to 1e-10 N m; the self-contacts,
+# equal and opposite forces, leave a couple of a few percent of the base's moment (docs/scenes.md)
+MR = np.linalg.norm(R[3:])
+c.check(np.linalg.norm(M) <= 5e-2 * MR, "finger, held: their moments about the base cancel to |M| = %.1e N m of the "
+        "base's %.4f N m (bound 5e-2 of it: the self-contacts' couple)" % (np.linalg.norm(M), MR))
+if NP > 1:
+    # before the joints close, the 1-rank run to round-off; from then on the closed notches' self-contacts are an
+    # ill-conditioned problem (nearly redundant contacts between two flat faces), whose forces, solved to
+    # -pgs_tol, differ between runs whose inputs differ by round-off (MUMPS' parallel sums): the same contacts,
+    # the resultants and the positions to the bounds below (docs/scenes.md)
+    F1 = scene("input/finger_fold.opts", 1, "finger_fold")
+
+    def resultants(H):
+        o, B = H["contacts/offset"][:], H["contacts/bodies"][:]
+        f, fw = H["contacts/force"][:, 0], H["contacts/force_world"][:]
+        r = []
+        for k in range(len(o) - 1):
+            s, me = slice(o[k], o[k + 1]), (B[o[k]:o[k + 1], 0] == B[o[k]:o[k + 1], 1])
+            r.append([f[s][me].sum(), *np.where((B[s, 0] == 0)[:, None], fw[s], -fw[s])[~me].sum(0)])
+        return np.array(r), H["bodies/finger/reactions/base"][:, :3]
+
+    o1, on = F1["contacts/offset"][:], Fi["contacts/offset"][:]
+    same = np.array_equal(o1, on)
+    ef = 0.0
+    for k in range(first):
+        f1, fn_ = F1["contacts/force"][o1[k]:o1[k + 1]], Fi["contacts/force"][on[k]:on[k + 1]]
+        p1, pn = F1["contacts/point"][o1[k]:o1[k + 1]], Fi["contacts/point"][on[k]:on[k + 1]]
+        i1, i_n = np.lexsort(np.round(p1, 8).T), np.lexsort(np.round(pn, 8).T)
+        if same and len(f1) and np.abs(f1).max() > 0:
+            ef = max(ef, np.abs(f1[i1] - fn_[i_n]).max() / np.abs(f1).max())
+    (a1, r1), (an, rn) = resultants(F1), resultants(Fi)
+    er = max(np.abs(a1 - an).max() / np.abs(a1).max(), np.abs(r1 - rn).max() / np.abs(r1).max())
+    i1, i_n = np.lexsort(F1["bodies/finger/mesh/reference"][:].T), np.lexsort(X.T)
+    P1, Pn = F1["bodies/finger/positions"], Fi["bodies/finger/positions"]
+    dx = max(np.abs(P1[k][i1] - Pn[k][i_n]).max() for k in range(len(F1["frames/time"])))
+    c.check(same and ef <= 1e-10 and er <= 1e-3 and dx <= 5e-5, "finger, %d ranks: the 1-rank contacts at every step "
+            "(%s), their forces to %.1e (relative) before the joints close; then the self-contacts' total, the "
+            "pusher's force and the base's reaction to %.1e (relative, bound 1e-3), the positions of every frame to "
+            "%.1e m (bound 5e-5 m)" % (NP, "same" if same else "DIFFERENT", ef, er, dx))
 
 # the sheet folded in half
 if NP == 1:
