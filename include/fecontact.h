@@ -176,75 +176,52 @@ PETSC_EXTERN PetscErrorCode FCSceneStep(FCScene);
 PETSC_EXTERN PetscErrorCode FCSceneGetBody(FCScene, const char[], FCBody *);
 PETSC_EXTERN PetscErrorCode FCSceneDestroy(FCScene *);
 
-/* ---------------------------------------------------------------------------------------
-   Frictional contact problem FC(W, q, mu) in local coordinates (eq. 18): find r with
-   u = W r + q, each contact's r in the Coulomb cone {||r_T|| <= mu r_n}, the modified velocity
-   u + mu ||u_T|| e_N in the dual cone, orthogonal to r. Contacts have 1 (frictionless normal),
-   2 (2D: normal + one tangent) or 3 (normal + two tangents) rows, ordered [n t1 t2].
-   --------------------------------------------------------------------------------------- */
-typedef struct _p_FCContactProblem *FCContactProblem;
-/* Dense W: n x n, row-major, symmetric, used in place (no copy): it must outlive the problem */
-PETSC_EXTERN PetscErrorCode FCContactProblemCreateDense(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
-                                                        const PetscReal W[], const PetscReal q[], FCContactProblem *);
-/* Dense W held by block rows over comm: this rank passes only the rows of its contacts [c0, c1)
-   (rows off[c0] .. off[c1] - 1, n values each, row-major; used in place), the block that
-   FCContactSolverRowBlock gives it; the blocks tile the rows in rank order. Only a solver that
-   splits its sweeps over comm takes it (src/contact/problem_rows.c) */
-PETSC_EXTERN PetscErrorCode FCContactProblemCreateDenseRows(MPI_Comm comm, PetscInt nc, const PetscInt dim[],
-                                                            const PetscReal mu[], PetscInt c0, PetscInt c1,
-                                                            const PetscReal Wrows[], const PetscReal q[],
-                                                            FCContactProblem *);
-PETSC_EXTERN PetscErrorCode FCContactProblemCreateCSR(PetscInt nc, const PetscInt dim[], const PetscReal mu[],
-                                                      const PetscInt rowptr[], const PetscInt col[],
-                                                      const PetscReal val[], const PetscReal q[], FCContactProblem *);
-/* mask[i]: contact i is dormant, a nearly redundant constraint the solver adds only where the
-   solution without it leaves its normal gap below -depth (borrowed: kept alive by the caller,
-   updated by FCContactSolverSolve with the contacts it woke) */
-PETSC_EXTERN PetscErrorCode FCContactProblemSetDormant(FCContactProblem, PetscBool mask[], PetscReal depth);
-PETSC_EXTERN PetscErrorCode FCContactProblemLoadFCLIB(const char path[], FCContactProblem *);
-PETSC_EXTERN PetscErrorCode FCContactProblemWriteFCLIB(FCContactProblem, const char path[]);
-/* W as a dense n x n row-major array (to be freed with PetscFree; the caller then makes a dense
-   problem of it with FCContactProblemCreateDense, e.g. tools/fclib_solve -dense) */
-PETSC_EXTERN PetscErrorCode FCContactProblemGetDenseW(FCContactProblem, PetscReal **W);
-PETSC_EXTERN PetscErrorCode FCContactProblemGetSizes(FCContactProblem, PetscInt *ncontacts, PetscInt *nrows);
-PETSC_EXTERN PetscErrorCode FCContactProblemGetFriction(FCContactProblem, PetscReal mu[]); /* per contact */
-/* New right-hand side q (n values); a dense W borrowed by the problem may change in place too */
-PETSC_EXTERN PetscErrorCode FCContactProblemSetRHS(FCContactProblem, const PetscReal q[]);
-PETSC_EXTERN PetscErrorCode FCContactProblemVelocity(FCContactProblem, const PetscReal r[], PetscReal u[]);
-/* Natural-map residual e_i = r_i - Proj_K(r_i - (u_i + mu ||u_T|| e_N)); returns sqrt(sum ||e_i||^2)
-   (absolute) and that divided by max(||q||, eps) (relative, the normalization of Siconos 4.4) */
-PETSC_EXTERN PetscErrorCode FCContactProblemResidual(FCContactProblem, const PetscReal r[], PetscReal *abs,
-                                                     PetscReal *rel);
-PETSC_EXTERN PetscErrorCode FCContactProblemDestroy(FCContactProblem *);
+/* A program that drives a scene itself (examples/c/, the Python module, python/): create it from
+   the options database (the options of a run of the executable), set it up, then step it; between
+   two steps it may read the time, the bodies' state and the contacts of the last step, and steer
+   its kinematic bodies. FCSceneStep sets the scene up at its first call and refuses a step beyond
+   -time_steps; FCSceneFinish, after the last step, prints the summary and writes the memory report
+   as the end of FCSceneRun does. */
+PETSC_EXTERN PetscErrorCode FCSceneFinish(FCScene);
+PETSC_EXTERN PetscErrorCode FCSceneGetTime(FCScene, PetscReal *t, PetscInt *step);
+PETSC_EXTERN PetscErrorCode FCSceneGetTimeStep(FCScene, PetscReal *h, PetscInt *nsteps);
+PETSC_EXTERN PetscErrorCode FCSceneGetNumBodies(FCScene, PetscInt *);
+PETSC_EXTERN PetscErrorCode FCSceneGetBodyByIndex(FCScene, PetscInt, FCBody *); /* in -scene_bodies order */
+/* A contact of the last step: its two bodies (scene indices; the force acts on body[0], its
+   opposite on body[1]), the point of body[0] and the normal (out of body[1]) at the start of the
+   step, the force on body[0] in the contact frame (normal, t1, t2) and in world axes, the gaps at
+   the start and at the end of the step, its state (0 open, 1 stick, 2 slip): /contacts of the
+   output (docs/output.md). Every rank has every contact. */
+typedef struct {
+  PetscInt  body[2];
+  PetscReal point[3], normal[3], force[3], force_world[3], gap, gap_end;
+  PetscInt  state;
+} FCContactInfo;
+/* *n contacts; info NULL: only their number, else info[0 .. n) (the caller's, *n long) filled */
+PETSC_EXTERN PetscErrorCode FCSceneGetContacts(FCScene, PetscInt *n, FCContactInfo info[]);
+/* A kinematic body steered from the program: SetKinematicPose, the pose (centre, unit quaternion
+   body to world) it reaches at the end of the next step, moving there at constant velocity and
+   angular velocity over that step, then held; SetKinematicVelocity, a constant velocity and
+   angular velocity (about its centre) from the next step on. Either replaces the motion its
+   options gave. */
+PETSC_EXTERN PetscErrorCode FCBodySetKinematicPose(FCBody, const PetscReal x[3], const PetscReal q[4]);
+PETSC_EXTERN PetscErrorCode FCBodySetKinematicVelocity(FCBody, const PetscReal v[3], const PetscReal w[3]);
+/* A rigid or kinematic body's velocity and angular velocity (world) over the last step */
+PETSC_EXTERN PetscErrorCode FCBodyGetVelocity(FCBody, PetscReal v[3], PetscReal w[3]);
+/* The positions (or velocities) of the body's picture's vertices: FE, its mesh's vertices; rigid and
+   kinematic, its shape's tessellation. gathered: all of them on every rank, in the output's order
+   (else this rank's, the range of FCBodyVisual); x NULL: only their number */
+PETSC_EXTERN PetscErrorCode FCBodyGetPositions(FCBody, PetscBool gathered, PetscInt *n, PetscReal x[]);
+PETSC_EXTERN PetscErrorCode FCBodyGetVelocities(FCBody, PetscBool gathered, PetscInt *n, PetscReal v[]);
 
-/* Exact solution of one contact's problem (W 3x3 or smaller, row-major): open, stick, or slip
-   found by a root search on the slip direction; returns the local residual reached */
-PETSC_EXTERN PetscErrorCode FCContactLocalSolve(PetscInt dim, const PetscReal W[], const PetscReal q[], PetscReal mu,
-                                                PetscReal r[], PetscReal *residual);
+/* Errors as the executable reports them: an input error (a wrong option or input file, a
+   diverging run, an interruption) is one line "fecontact: error: <message>" on rank 0 (print), not
+   a traceback; other errors go to PETSc's traceback handler. Either way the first message of the
+   last error is kept for a caller that reports it itself (the Python module raises it). */
+PETSC_EXTERN PetscErrorCode FCPushErrorHandler(PetscBool print);
+PETSC_EXTERN const char    *FCGetLastErrorMessage(void);
+/* The executable: PetscInitialize, a scene from the options, FCSceneRun, and the exit status of
+   docs/output.md (0 done, 1 input error, 2 diverged, 3 output failed, 128 + n signal n) */
+PETSC_EXTERN int FCMain(int argc, char **argv);
 
-typedef struct _p_FCContactSolver *FCContactSolver;
-typedef const char                *FCContactSolverType;
-#define FCCONTACTSOLVERAUTO "auto"
-#define FCCONTACTSOLVERPGS "pgs"
-#define FCCONTACTSOLVERNEWTON "newton"
-/* A contact solver type (-contact_solver): one file whose create function sets the solve on one
-   rank (src/contact/contactimpl.h), and this call */
-PETSC_EXTERN PetscErrorCode FCContactSolverRegister(const char[], PetscErrorCode (*)(FCContactSolver));
-PETSC_EXTERN PetscErrorCode FCContactSolverCreate(MPI_Comm, FCContactSolver *);
-PETSC_EXTERN PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver);
-PETSC_EXTERN PetscErrorCode FCContactSolverSetTolerances(FCContactSolver, PetscReal tol, PetscInt max_it);
-/* Called after every sweep with the iterate r: it may change the problem (FCContactProblemSetRHS,
-   the entries of a borrowed dense W) and r (e.g. the same forces in new frames), and says so in
-   *changed; the solver then recomputes W r + q and restarts its acceleration. NULL: none. */
-typedef PetscErrorCode (*FCContactSolverUpdateFn)(void *ctx, FCContactProblem, PetscReal r[], PetscBool *changed);
-PETSC_EXTERN PetscErrorCode FCContactSolverSetUpdate(FCContactSolver, FCContactSolverUpdateFn, void *ctx);
-/* Whether the solver splits the sweeps of a dense problem of these contacts over its ranks
-   (-pgs_ranks split, or auto at that size), and then this rank's block of contacts [c0, c1): the
-   rows a problem by rows (FCContactProblemCreateDenseRows) must give it */
-PETSC_EXTERN PetscErrorCode FCContactSolverRowBlock(FCContactSolver, PetscInt nc, const PetscInt dim[],
-                                                    PetscBool *split, PetscInt *c0, PetscInt *c1);
-/* r: warm start on input, solution on output */
-PETSC_EXTERN PetscErrorCode FCContactSolverSolve(FCContactSolver, FCContactProblem, PetscReal r[]);
-PETSC_EXTERN PetscErrorCode FCContactSolverGetConvergence(FCContactSolver, PetscInt *sweeps, PetscReal *residual,
-                                                          PetscBool *converged);
-PETSC_EXTERN PetscErrorCode FCContactSolverDestroy(FCContactSolver *);
+#include "fecontactsolver.h"

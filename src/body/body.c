@@ -344,3 +344,91 @@ PetscErrorCode FCBodyDestroy(FCBody *body)
   PetscCall(PetscFree(*body));
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode FCBodySetKinematicPose(FCBody body, const PetscReal x[3], const PetscReal q[4])
+{
+  PetscReal n = 0.0;
+
+  PetscFunctionBegin;
+  PetscCheck(body->ops.setkinematicpose, body->comm, PETSC_ERR_USER_INPUT,
+             "Body '%s' is %s, not kinematic: only a kinematic body's pose can be set", body->name, body->type);
+  for (int d = 0; d < 4; d++) n += q[d] * q[d];
+  for (int d = 0; d < 3; d++)
+    PetscCheck(PetscIsNormalReal(x[d] + 1.0), body->comm, PETSC_ERR_USER_INPUT,
+               "Body '%s': pose position %g, %g, %g is not finite", body->name, (double)x[0], (double)x[1],
+               (double)x[2]);
+  PetscCheck(n > 0.0 && PetscIsNormalReal(n), body->comm, PETSC_ERR_USER_INPUT,
+             "Body '%s': pose quaternion %g, %g, %g, %g is not a rotation (zero or not finite)", body->name,
+             (double)q[0], (double)q[1], (double)q[2], (double)q[3]);
+  PetscCall((*body->ops.setkinematicpose)(body, x, q));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodySetKinematicVelocity(FCBody body, const PetscReal v[3], const PetscReal w[3])
+{
+  PetscFunctionBegin;
+  PetscCheck(body->ops.setkinematicvel, body->comm, PETSC_ERR_USER_INPUT,
+             "Body '%s' is %s, not kinematic: only a kinematic body's velocity can be set", body->name, body->type);
+  for (int d = 0; d < 3; d++)
+    PetscCheck(PetscIsNormalReal(v[d] + 1.0) && PetscIsNormalReal(w[d] + 1.0), body->comm, PETSC_ERR_USER_INPUT,
+               "Body '%s': velocity %g, %g, %g or angular velocity %g, %g, %g is not finite", body->name, (double)v[0],
+               (double)v[1], (double)v[2], (double)w[0], (double)w[1], (double)w[2]);
+  PetscCall((*body->ops.setkinematicvel)(body, v, w));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetVelocity(FCBody body, PetscReal v[3], PetscReal w[3])
+{
+  PetscFunctionBegin;
+  PetscCheck(body->ops.getvelocity, body->comm, PETSC_ERR_USER_INPUT,
+             "Body '%s' is %s: its vertices' velocities are FCBodyGetVelocities", body->name, body->type);
+  PetscCall((*body->ops.getvelocity)(body, v, w));
+  PetscFunctionReturn(0);
+}
+
+/* This rank's values of the picture (positions, or a point field), or all of them on every rank in
+   the global order (the owned ranges tile it in rank order) */
+static PetscErrorCode PictureValues(FCBody body, PetscBool velocity, PetscBool gathered, PetscInt *n, PetscReal x[])
+{
+  const FCBodyVisual *vis = &body->visual;
+  PetscReal          *mine;
+  PetscBool           has = PETSC_TRUE;
+
+  PetscFunctionBegin;
+  *n = gathered ? vis->nv_global : vis->nv;
+  if (!x) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(3 * vis->nv + 1, &mine));
+  if (velocity)
+    PetscCall(FCBodyGetVisualField(body, FC_FIELD_VELOCITY, mine, &has));
+  else
+    PetscCall(FCBodyGetVisualPositions(body, mine));
+  PetscCheck(has, body->comm, PETSC_ERR_USER_INPUT, "Body '%s' has no vertex velocities", body->name);
+  if (!gathered)
+    PetscCall(PetscArraycpy(x, mine, 3 * vis->nv));
+  else {
+    PetscMPIInt size, *counts, *displs, c = (PetscMPIInt)(3 * vis->nv);
+    PetscCallMPI(MPI_Comm_size(body->comm, &size));
+    PetscCall(PetscMalloc2(size, &counts, size, &displs));
+    PetscCallMPI(MPI_Allgather(&c, 1, MPI_INT, counts, 1, MPI_INT, body->comm));
+    displs[0] = 0;
+    for (PetscMPIInt r = 1; r < size; r++) displs[r] = displs[r - 1] + counts[r - 1];
+    PetscCallMPI(MPI_Allgatherv(mine, c, MPIU_REAL, x, counts, displs, MPIU_REAL, body->comm));
+    PetscCall(PetscFree2(counts, displs));
+  }
+  PetscCall(PetscFree(mine));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetPositions(FCBody body, PetscBool gathered, PetscInt *n, PetscReal x[])
+{
+  PetscFunctionBegin;
+  PetscCall(PictureValues(body, PETSC_FALSE, gathered, n, x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyGetVelocities(FCBody body, PetscBool gathered, PetscInt *n, PetscReal v[])
+{
+  PetscFunctionBegin;
+  PetscCall(PictureValues(body, PETSC_TRUE, gathered, n, v));
+  PetscFunctionReturn(0);
+}

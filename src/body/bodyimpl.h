@@ -72,6 +72,11 @@ typedef struct {
   PetscErrorCode (*poseat)(FCBody, PetscReal t, PetscReal x[3], PetscReal q[4]);
   /* optional: the scene's time, at set-up (0) and at a restart, before any step */
   PetscErrorCode (*settime)(FCBody, PetscReal t);
+  /* optional (kinematic): a program's motion from now on (FCBodySetKinematicPose, -Velocity) */
+  PetscErrorCode (*setkinematicpose)(FCBody, const PetscReal x[3], const PetscReal q[4]);
+  PetscErrorCode (*setkinematicvel)(FCBody, const PetscReal v[3], const PetscReal w[3]);
+  /* optional (rigid, kinematic): the velocity and angular velocity over the last step */
+  PetscErrorCode (*getvelocity)(FCBody, PetscReal v[3], PetscReal w[3]);
   PetscErrorCode (*getreactions)(FCBody, PetscInt *n, const char ***names, const PetscReal **values);
   /* optional: factorizations and Krylov iterations so far */
   PetscErrorCode (*getsolvercounts)(FCBody, PetscInt *nfactor, PetscInt *nkrylov, PetscInt *nnewton);

@@ -5,14 +5,29 @@
    or -<body>_trajectory, a table of t, x, y, z[, qw, qx, qy, qz] (src/util/table.c): the centre
    piecewise linear in t and the orientation by slerp between rows (else the placement's), held
    after the last row. Either way the contacts see the pose at the end of each step, so the
-   velocity over a step is that of the table between its two poses. */
+   velocity over a step is that of the table between its two poses.
+   A program may steer it instead (FCBodySetKinematicPose, FCBodySetKinematicVelocity): from the
+   current time t0, a pose to reach at t0 + h (at constant velocity and angular velocity over the
+   step, as a table's rows; held after it), or a constant velocity and angular velocity about its
+   centre. */
 #include "pose.h"
+
+typedef enum { COMMAND_NONE, COMMAND_POSE, COMMAND_VELOCITY } CommandMode;
+
+typedef struct {
+  CommandMode mode;
+  PetscReal   t0, h, x0[3], q0[4]; /* the time of the command, the time step, the pose then */
+  PetscReal   x1[3], q1[4];        /* COMMAND_POSE: the pose at t0 + h */
+  PetscReal   v[3], w[3];          /* COMMAND_VELOCITY */
+} Command;
 
 typedef struct {
   FCPose    pose;
   PetscReal pivot[3];
   char      trajectory[PETSC_MAX_PATH_LEN];
-  FCTable   table; /* -trajectory */
+  FCTable   table;   /* -trajectory */
+  PetscReal tnow;    /* the time of the pose x, q: the end of the last step */
+  Command   command; /* a program's, which replaces the options' motion */
 } Kinematic;
 
 static PetscErrorCode SetFromOptions_Kinematic(FCBody body)
@@ -65,10 +80,34 @@ static void Slerp(const PetscReal a[4], const PetscReal b[4], PetscReal s, Petsc
   FCQuatNormalize(q);
 }
 
+/* The commanded pose at time t >= t0: the step to the pose (s within round-off of 0 or 1 is that end
+   exactly: the step's end time is t0 + h give or take an ulp), or the constant twist about the centre */
+static void CommandPoseAt(const Command *c, PetscReal t, PetscReal x[3], PetscReal q[4])
+{
+  if (c->mode == COMMAND_POSE) {
+    PetscReal s = (t - c->t0) / c->h;
+    s           = s < 1e-9 ? 0.0 : (s > 1.0 - 1e-9 ? 1.0 : s);
+    for (int d = 0; d < 3; d++) x[d] = (1.0 - s) * c->x0[d] + s * c->x1[d];
+    Slerp(c->q0, c->q1, s, q);
+    return;
+  }
+  {
+    PetscReal dq[4], dt = t - c->t0, n = PetscSqrtReal(FCDot(c->w, c->w));
+    FCQuatFromAxisAngle(c->w, n * dt, dq);
+    FCQuatMult(dq, c->q0, q);
+    FCQuatNormalize(q);
+    for (int d = 0; d < 3; d++) x[d] = c->x0[d] + c->v[d] * dt;
+  }
+}
+
 /* Pose at time t */
 static void PoseAt(Kinematic *k, PetscReal t, PetscReal x[3], PetscReal q[4])
 {
   FCPose *P = &k->pose;
+  if (k->command.mode != COMMAND_NONE) {
+    CommandPoseAt(&k->command, t, x, q);
+    return;
+  }
   if (k->table) {
     const PetscReal *a, *b;
     PetscReal        s, qa[4], qb[4];
@@ -127,6 +166,7 @@ static PetscErrorCode Integrate_Kinematic(FCBody body, PetscReal t)
 
   PetscFunctionBegin;
   PoseAt(k, t + body->h, k->pose.x, k->pose.q);
+  k->tnow = t + body->h;
   PetscFunctionReturn(0);
 }
 
@@ -156,7 +196,7 @@ static PetscErrorCode FreeMotion_Kinematic(FCBody body, PetscReal t)
 
   PetscFunctionBegin;
   PoseAt(k, t + body->h, k->pose.xf, k->pose.qf);
-  if (k->table) TrajectoryVelocity(k, t, body->h);
+  if (k->table || k->command.mode != COMMAND_NONE) TrajectoryVelocity(k, t, body->h);
   PetscFunctionReturn(0);
 }
 
@@ -203,6 +243,52 @@ static PetscErrorCode PoseAt_Kinematic(FCBody body, PetscReal t, PetscReal x[3],
   PetscFunctionReturn(0);
 }
 
+/* The scene's time at set-up or a restart: that of the pose */
+static PetscErrorCode SetTime_Kinematic(FCBody body, PetscReal t)
+{
+  PetscFunctionBegin;
+  ((Kinematic *)body->data)->tnow = t;
+  PetscFunctionReturn(0);
+}
+
+/* A command from the current pose, at the current time */
+static void CommandStart(FCBody body, CommandMode mode)
+{
+  Kinematic *k = (Kinematic *)body->data;
+  Command   *c = &k->command;
+
+  c->mode = mode;
+  c->t0   = k->tnow;
+  c->h    = body->h;
+  for (int d = 0; d < 3; d++) c->x0[d] = k->pose.x[d];
+  for (int d = 0; d < 4; d++) c->q0[d] = k->pose.q[d];
+}
+
+static PetscErrorCode SetPose_Kinematic(FCBody body, const PetscReal x[3], const PetscReal q[4])
+{
+  Command *c = &((Kinematic *)body->data)->command;
+
+  PetscFunctionBegin;
+  CommandStart(body, COMMAND_POSE);
+  for (int d = 0; d < 3; d++) c->x1[d] = x[d];
+  for (int d = 0; d < 4; d++) c->q1[d] = q[d];
+  FCQuatNormalize(c->q1);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetVelocity_Kinematic(FCBody body, const PetscReal v[3], const PetscReal w[3])
+{
+  Command *c = &((Kinematic *)body->data)->command;
+
+  PetscFunctionBegin;
+  CommandStart(body, COMMAND_VELOCITY);
+  for (int d = 0; d < 3; d++) {
+    c->v[d] = v[d];
+    c->w[d] = w[d];
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Destroy_Kinematic(FCBody body)
 {
   PetscFunctionBegin;
@@ -237,6 +323,10 @@ PetscErrorCode FCBodyCreate_Kinematic(FCBody body)
   body->ops.trialposition      = TrialPosition_Kinematic;
   body->ops.freemotion         = FreeMotion_Kinematic;
   body->ops.poseat             = PoseAt_Kinematic;
+  body->ops.settime            = SetTime_Kinematic;
+  body->ops.setkinematicpose   = SetPose_Kinematic;
+  body->ops.setkinematicvel    = SetVelocity_Kinematic;
+  body->ops.getvelocity        = FCPoseGetVelocity;
   body->ops.prescribedmotion   = PrescribedMotion_Kinematic;
   body->ops.contactpoints      = FCPoseContactPoints;
   body->ops.proximityposition  = FCPoseProximityPosition;

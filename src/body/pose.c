@@ -161,6 +161,18 @@ PetscErrorCode FCPoseGetCentroid(FCBody body, PetscReal c[3])
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCPoseGetVelocity(FCBody body, PetscReal v[3], PetscReal w[3])
+{
+  FCPose *P = (FCPose *)body->data;
+
+  PetscFunctionBegin;
+  for (int d = 0; d < 3; d++) {
+    v[d] = P->v[d];
+    w[d] = P->w[d];
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCPoseGetRotation(FCBody body, PetscReal q[4], PetscBool *has)
 {
   FCPose *P = (FCPose *)body->data;

@@ -28,6 +28,7 @@ PETSC_INTERN PetscErrorCode FCPoseVisualField(FCBody, FCPose *, const PetscReal 
                                               PetscBool *);
 /* Body ops shared by rigid and kinematic bodies, whose data begins with an FCPose */
 PETSC_INTERN PetscErrorCode FCPoseGetCentroid(FCBody, PetscReal[3]);
+PETSC_INTERN PetscErrorCode FCPoseGetVelocity(FCBody, PetscReal v[3], PetscReal w[3]);
 PETSC_INTERN PetscErrorCode FCPoseGetRotation(FCBody, PetscReal[4], PetscBool *);
 PETSC_INTERN PetscErrorCode FCPoseGetVisualPositions(FCBody, PetscReal[]);
 PETSC_INTERN PetscErrorCode FCPoseContactPoints(FCBody, PetscInt *, FCProximity **, PetscReal **, PetscReal **,

@@ -261,6 +261,7 @@ PetscErrorCode FCBodyCreate_Rigid(FCBody body)
   body->ops.freemotion         = FreeMotion_Rigid;
   body->ops.integrate          = Integrate_Rigid;
   body->ops.getcentroid        = FCPoseGetCentroid;
+  body->ops.getvelocity        = FCPoseGetVelocity;
   body->ops.getrotation        = FCPoseGetRotation;
   body->ops.getenergy          = GetEnergy_Rigid;
   body->ops.getvisualpositions = FCPoseGetVisualPositions;

@@ -111,6 +111,14 @@ static PetscErrorCode WriteAttributes(FCOutput out, PetscReal h, PetscInt nsteps
   PetscCall(FCH5AttrString(out->file, "options", opts));
   PetscCall(PetscFree(opts));
   PetscCall(FCH5AttrString(out->file, "fecontact_version", FECONTACT_VERSION));
+  { /* the bodies in scene order: what /contacts/bodies indexes */
+    char names[FC_MAX_BODIES * (FC_MAX_NAME + 1) + 1] = "";
+    for (PetscInt i = 0; i < out->nbodies; i++) {
+      PetscCall(PetscStrlcat(names, i ? "," : "", sizeof(names)));
+      PetscCall(PetscStrlcat(names, FCBodyName(out->bodies[i]), sizeof(names)));
+    }
+    PetscCall(FCH5AttrString(out->file, "scene_bodies", names));
+  }
   {
     PetscMPIInt size;
     char        date[64];

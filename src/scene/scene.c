@@ -31,6 +31,7 @@ struct _p_FCScene {
   PetscReal      phase_total[FC_PHASE_NUM];
   PetscReal      memory[FC_MEMORY_NUM]; /* this rank's largest over the steps (memory.c) */
   PetscLogDouble tmark; /* when the ranks last met at the end of a step (FCSceneStep: the wall time of a step) */
+  PetscLogDouble wall;  /* the steps' wall time so far (the summary's) */
   /* contact */
   FCCollision           collision; /* the contact pairs and their detection (src/collision/pairs.c) */
   const FCContactPairs *pairs;     /* the collision's pairs and detection options */
@@ -231,6 +232,11 @@ PetscErrorCode FCSceneStep(FCScene s)
   PetscLogDouble now;
 
   PetscFunctionBegin;
+  PetscCall(FCSceneSetUp(s));
+  PetscCheck(s->step < s->nsteps, s->comm, PETSC_ERR_USER_INPUT,
+             "The scene is at step %" PetscInt_FMT ", the last of -time_steps %" PetscInt_FMT
+             ": no further step (raise -time_steps)",
+             s->step, s->nsteps);
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyComputeFreeMotion(s->bodies[i], s->t));
   if (s->pairs->n) {
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
@@ -257,6 +263,7 @@ PetscErrorCode FCSceneStep(FCScene s)
   PetscCall(FCPhaseGetTimes(timing));
   PetscCall(PetscTime(&now));
   timing[FC_PHASE_NUM] = (PetscReal)(now - s->tmark);
+  s->wall += now - s->tmark;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, timing, FC_PHASE_NUM + 1, MPIU_REAL, MPIU_MAX, s->comm));
   PetscCall(PetscTime(&s->tmark));
   for (int p = 0; p < FC_PHASE_NUM; p++) s->phase_total[p] += timing[p];
@@ -310,12 +317,9 @@ static PetscErrorCode PrintSummary(FCScene s, PetscLogDouble wall)
    line saying at which step and why. */
 PetscErrorCode FCSceneRun(FCScene s)
 {
-  PetscLogDouble t0, t1;
-
   PetscFunctionBegin;
   PetscCall(FCSceneSetUp(s));
   PetscCall(FCSignalsInstall());
-  PetscCall(PetscTime(&t0));
   PetscCall(FCProgressStart(&s->progress, s->quiet));
   while (s->step < s->nsteps) {
     PetscInt       done = s->step;
@@ -361,8 +365,15 @@ PetscErrorCode FCSceneRun(FCScene s)
               sig == SIGINT ? "SIGINT" : "SIGTERM", s->step, (double)s->t, s->output_file, s->step);
     }
   }
-  PetscCall(PetscTime(&t1));
-  if (!s->quiet) PetscCall(PrintSummary(s, t1 - t0));
+  PetscCall(FCSceneFinish(s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSceneFinish(FCScene s)
+{
+  PetscFunctionBegin;
+  PetscCall(FCSceneSetUp(s));
+  if (!s->quiet) PetscCall(PrintSummary(s, s->wall));
   PetscCall(FCMemoryReport(s->comm, s->memory, (PetscBool)!s->quiet, s->output));
   PetscFunctionReturn(0);
 }
@@ -379,5 +390,60 @@ PetscErrorCode FCSceneDestroy(FCScene *scene)
   for (PetscInt i = 0; i < (*scene)->nbodies; i++) PetscCall(FCBodyDestroy(&(*scene)->bodies[i]));
   PetscCall(PetscFree(*scene));
   PetscCall(FCInputsReset());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSceneGetTime(FCScene s, PetscReal *t, PetscInt *step)
+{
+  PetscFunctionBegin;
+  if (t) *t = s->t;
+  if (step) *step = s->step;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSceneGetTimeStep(FCScene s, PetscReal *h, PetscInt *nsteps)
+{
+  PetscFunctionBegin;
+  if (h) *h = s->h;
+  if (nsteps) *nsteps = s->nsteps;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSceneGetNumBodies(FCScene s, PetscInt *n)
+{
+  PetscFunctionBegin;
+  *n = s->nbodies;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSceneGetBodyByIndex(FCScene s, PetscInt i, FCBody *body)
+{
+  PetscFunctionBegin;
+  PetscCheck(i >= 0 && i < s->nbodies, s->comm, PETSC_ERR_USER_INPUT,
+             "Body index %" PetscInt_FMT " out of range: the scene has %" PetscInt_FMT " bodies", i, s->nbodies);
+  *body = s->bodies[i];
+  PetscFunctionReturn(0);
+}
+
+/* The contacts of the last step, as the output records them (src/io/records.c) */
+PetscErrorCode FCSceneGetContacts(FCScene s, PetscInt *n, FCContactInfo info[])
+{
+  PetscFunctionBegin;
+  *n = s->pairs && s->pairs->n ? s->set.n : 0;
+  if (!info) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < *n; k++) {
+    const FCContact *c = &s->set.c[k];
+    info[k].body[0]    = c->body[0];
+    info[k].body[1]    = c->body[1];
+    info[k].gap        = c->gap0;
+    info[k].gap_end    = c->gap_end;
+    info[k].state      = c->state;
+    for (int i = 0; i < 3; i++) {
+      info[k].point[i]       = c->p0[0][i];
+      info[k].normal[i]      = c->n[i];
+      info[k].force[i]       = c->force[i];
+      info[k].force_world[i] = c->force[0] * c->n[i] + c->force[1] * c->t1[i] + c->force[2] * c->t2[i];
+    }
+  }
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,50 @@
+/* How fecontact reports an error (FCPushErrorHandler, include/fecontact.h). An input error, a
+   diverging run or an interruption is the user's business, not the code's: one line on rank 0, no
+   traceback. Everything else goes to PETSc's traceback handler. The first message of the last
+   error (PETSC_ERROR_INITIAL: where it was raised) is kept, for a caller that reports it itself. */
+#include "../fcimpl.h"
+
+static char      last[1024];
+static PetscBool printing = PETSC_TRUE;
+
+static PetscBool IsUserError(PetscErrorCode n)
+{
+  return n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_WRITE ||
+                 n == PETSC_ERR_ARG_UNKNOWN_TYPE || n == PETSC_ERR_SIG || n == PETSC_ERR_FP ||
+                 n == PETSC_ERR_CONV_FAILED || n == PETSC_ERR_MEM
+             ? PETSC_TRUE
+             : PETSC_FALSE;
+}
+
+static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n,
+                              PetscErrorType p, const char *mess, void *ctx)
+{
+  if (p == PETSC_ERROR_INITIAL) {
+    const char *text = mess;
+    if (!text || !text[0]) (void)PetscErrorMessage(n, &text, NULL);
+    (void)PetscStrncpy(last, text ? text : "", sizeof(last));
+  }
+  if (IsUserError(n)) {
+    if (p == PETSC_ERROR_INITIAL && printing) {
+      PetscMPIInt rank = 0;
+      if (comm != MPI_COMM_NULL) MPI_Comm_rank(comm, &rank);
+      if (!rank) fprintf(stderr, "fecontact: error: %s\n", mess);
+    }
+    return n;
+  }
+  if (!printing) return n;
+  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+}
+
+PetscErrorCode FCPushErrorHandler(PetscBool print)
+{
+  PetscFunctionBegin;
+  printing = print;
+  PetscCall(PetscPushErrorHandler(Handler, NULL));
+  PetscFunctionReturn(0);
+}
+
+const char *FCGetLastErrorMessage(void)
+{
+  return last;
+}
