@@ -96,7 +96,8 @@ class _Rows:
     def __getitem__(self, name):
         if name not in self._cache:
             if name not in self.keys():
-                raise MissingData("%s has no '%s' (it holds: %s)" % (self._what, name, ", ".join(self.keys()) or "nothing"))
+                raise MissingData("%s has no '%s' (it holds: %s)"
+                                  % (self._what, name, ", ".join(self.keys()) or "nothing"))
             self._cache[name] = self._g[name][: self._n]
         return self._cache[name]
 
