@@ -77,6 +77,20 @@ def parse_options(text):
     return opts
 
 
+def _open(path):
+    """h5py.File(path, "r") without file locking, so that the file of a running simulation opens;
+    with the default locking where this process already holds the file open with it (HDF5 refuses
+    two opens of one file with different locking flags) or h5py is older than 3.5 (no such option)."""
+    try:
+        return h5py.File(path, "r", locking=False)
+    except TypeError:
+        return h5py.File(path, "r")
+    except OSError as e:
+        if "locking" not in str(e):
+            raise
+        return h5py.File(path, "r")
+
+
 class _Rows:
     """Named per-step (or per-frame) arrays of one HDF5 group, the first n rows of each, read on
     first access: attribute or item access (`s.time`, `s["time"]`), `keys()`, `in`."""
@@ -332,15 +346,17 @@ class Output:
     - per frame: `frames` (times), `frame_steps`;
     - `body(name)` (a Body), `contacts(row)` / `contacts()` (Contacts), `pair_forces()`,
       `pair_normal_forces()`, `contact_pairs` (the pairs of -contact_pairs);
-    - `memory` (dict column -> (ranks,) bytes) where the run wrote it; `file`: the h5py.File itself.
+    - `memory` (dict column -> (ranks,) bytes) where the run wrote it; `file`: the h5py.File itself,
+      for what this class does not wrap (read its datasets up to `nsteps` rows and `nframes` frames).
+
+    HDF5 refuses to open a file twice in one process with different locking flags: to open the
+    file with h5py as well while an Output holds it, use `o.file`, or `h5py.File(path, "r",
+    locking=False)`; an Output opened while h5py holds the file takes h5py's locking.
     """
 
     def __init__(self, path):
         self.path = str(path)
-        try:  # no file lock: the file may still be open for writing by a running simulation
-            self.file = h5py.File(self.path, "r", locking=False)
-        except TypeError:  # h5py < 3.5
-            self.file = h5py.File(self.path, "r")
+        self.file = _open(self.path)
         try:
             self._read_extent()
             self.bodies = self._scene_bodies()
