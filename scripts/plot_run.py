@@ -3,16 +3,21 @@
 
     scripts/plot_run.py out.h5 [-o out.png]
 
-Writes one PNG (default: beside the .h5, with the suffix .png) with four panels:
+Writes one PNG (default: beside the .h5, with the suffix .png) with five panels:
   (a) centroid height z against time, every body;
   (b) centroid path in the x-y plane, every body (o: start, x: end);
   (c) energy (kinetic + elastic + gravity) per body and the scene total against time;
-  (d) wall time per phase per step (/steps/timing/*, max over ranks), stacked.
+  (d) wall time per phase per step (/steps/timing/*, max over ranks), stacked;
+  (e) contact force per pair of bodies against time: the norm of the pair's total force (the sum
+      of /contacts/force_world, on the pair's first body) and the sum of its normal forces.
 Prints the path of the PNG. Works for any number of bodies, bodies without /rotation, runs
-with zero steps, and files of runs that stopped early (or are still running).
+with zero steps, scenes without contact pairs, and files of runs that stopped early (or are
+still running: only the steps and frames of /complete are read).
+Reads the file with fecontact.Output (python/fecontact/output.py, docs/python_output.md).
 Needs h5py, numpy and matplotlib (the system python, /usr/bin/python3).
 """
 import argparse
+import importlib.util
 import os
 import sys
 
@@ -23,45 +28,21 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-import h5py  # noqa: E402
+
+
+def load_reader():
+    """fecontact.Output from python/fecontact/output.py, loaded by its path: the reader needs only
+    h5py and NumPy, whereas importing the package fecontact loads the C library (petsc4py, MPI)."""
+    path = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python", "fecontact", "output.py")
+    spec = importlib.util.spec_from_file_location("fecontact_output", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.Output
+
+
+Output = load_reader()
 
 PHASES = ["assembly", "factorization", "free_motion", "integration", "output"]
-
-
-def text(v):
-    """An HDF5 string attribute as str (h5py returns fixed-length strings as bytes)."""
-    if isinstance(v, bytes):
-        return v.decode("utf-8", "replace")
-    if isinstance(v, np.ndarray) and v.shape == ():
-        return text(v[()])
-    return str(v)
-
-
-def scalar(v):
-    """A numeric attribute as a Python number (time_step is stored as a 1-element array)."""
-    a = np.asarray(v)
-    return a.reshape(-1)[0].item() if a.size else None
-
-
-def body_order(f):
-    """Bodies in scene order (from -scene_bodies in the 'options' attribute); HDF5 itself lists
-    the groups alphabetically. Falls back to that order when the option cannot be parsed."""
-    names = list(f["bodies"].keys()) if "bodies" in f else []
-    opts = text(f.attrs.get("options", "")).split()
-    order = []
-    for i, tok in enumerate(opts):
-        if tok == "-scene_bodies" and i + 1 < len(opts):
-            order = [n for n in opts[i + 1].split(",") if n]
-    if sorted(order) == sorted(names):
-        return order
-    return sorted(names)
-
-
-def open_h5(path):
-    try:  # no file lock: the file may still be open for writing by a running simulation
-        return h5py.File(path, "r", locking=False)
-    except TypeError:  # h5py < 3.5
-        return h5py.File(path, "r")
 
 
 def colours(n):
@@ -83,27 +64,56 @@ def no_data(ax, msg):
     ax.text(0.5, 0.5, msg, ha="center", va="center", transform=ax.transAxes, color="0.4")
 
 
+def plot_pairs(ap, o, t):
+    """(e): per contact pair and step, |sum of force_world| (solid) and the sum of the normal forces
+    (dashed), one colour per pair."""
+    nrows = len(t)
+    forces, normals = o.pair_forces(), o.pair_normal_forces()
+    if not forces:
+        no_data(ap, "no contact pairs")
+    elif not nrows:
+        no_data(ap, "no completed steps")
+    else:
+        pcols = colours(len(forces))
+        for (pair, fw), c in zip(forces.items(), pcols):
+            label = f"{pair[0]}:{pair[1]}"
+            mark = "." if nrows <= 2 else None
+            ap.plot(t, np.linalg.norm(fw, axis=1), color=c, marker=mark, label=f"{label} |total force|")
+            ap.plot(t, normals[pair], color=c, ls="--", marker=mark, label=f"{label} sum of normal forces")
+        ap.legend(fontsize="small", loc="best", ncol=1 + len(forces) // 6)
+        ap.text(0.01, 0.98, f"{int(o.steps.contacts.max()) if 'contacts' in o.steps else 0} contacts at most in a step",
+                transform=ap.transAxes, va="top", fontsize="small")
+    ap.set_xlabel("time t (s)")
+    ap.set_ylabel("contact force (N)")
+    ap.set_title("(e) contact force per pair: norm of the total force on the first body (solid), "
+                 "sum of the normal forces (dashed)")
+    ap.grid(True, alpha=0.3)
+
+
 def plot(path, png):
-    f = open_h5(path)
-    names = body_order(f)
+    with Output(path) as o:
+        plot_output(o, path, png)
+
+
+def plot_output(o, path, png):
+    names = o.bodies
     cols = colours(len(names))
 
-    steps = f["steps/step"][:] if "steps/step" in f else np.zeros(0, dtype=np.int64)
-    t = f["steps/time"][:] if "steps/time" in f else np.zeros(0)
+    steps = o.steps.step if "step" in o.steps else np.zeros(0, dtype=np.int64)
+    t = o.time
     nrows = len(t)
 
-    ranks = scalar(f.attrs.get("mpi_ranks", np.nan))
-    h = scalar(f.attrs.get("time_step", np.nan))
-    nreq = scalar(f.attrs.get("time_steps", np.nan))
-    every = scalar(f.attrs.get("output_every", np.nan))
-    version = text(f.attrs.get("fecontact_version", "?"))
-    created = text(f.attrs.get("created", "?"))
-    nframes = len(f["frames/step"]) if "frames/step" in f else 0
+    ranks, h, nreq, every = o.mpi_ranks, o.time_step, o.time_steps, o.output_every
+    version, created = o.version or "?", o.created or "?"
+    nframes = o.nframes
 
     many = len(names) > MANY
     ncol = 1 + (len(names) - 1) // 40 if many else 0
-    fig, axes = plt.subplots(2, 2, figsize=(14 + 1.6 * ncol, 9.5))
-    (az, axy), (ae, at) = axes
+    fig = plt.figure(figsize=(14 + 1.6 * ncol, 14))
+    grid = fig.add_gridspec(3, 2, height_ratios=(1, 1, 0.9))
+    az, axy = fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1])
+    ae, at = fig.add_subplot(grid[1, 0]), fig.add_subplot(grid[1, 1])
+    ap = fig.add_subplot(grid[2, :])
     done = f"{nrows}/{nreq}" if nrows != nreq else f"{nrows}"
     fig.suptitle(
         f"{os.path.basename(path)}  ({len(names)} bod{'y' if len(names) == 1 else 'ies'}, "
@@ -115,10 +125,16 @@ def plot(path, png):
 
     # (a), (b): centroid trajectories; the initial point t = 0 comes from the attribute
     for i, (name, c) in enumerate(zip(names, cols)):
-        g = f["bodies"][name]
-        kind = text(g.attrs.get("type", "?"))
-        c0 = np.asarray(g.attrs.get("initial_centroid", [np.nan] * 3), dtype=float).reshape(1, 3)
-        cen = g["centroid"][:] if "centroid" in g else np.zeros((0, 3))
+        b = o.body(name)
+        kind = b.type or "?"
+        try:
+            c0 = b.initial_centroid.reshape(1, 3)
+        except KeyError:
+            c0 = np.full((1, 3), np.nan)
+        try:
+            cen = b.centroid
+        except KeyError:
+            cen = np.zeros((0, 3))
         n = min(len(cen), nrows)
         x = np.vstack([c0, cen[:n]])
         tt = np.concatenate([[0.0], t[:n]])
@@ -145,13 +161,13 @@ def plot(path, png):
     # (c): energy per body (kinetic + elastic + gravity) and the scene total
     if nrows:
         for name, c in zip(names, cols):
-            g = f["bodies"][name]
-            if "energy" not in g:
+            try:
+                e = o.body(name).energy_total
+            except KeyError:
                 continue
-            e = g["energy"][:nrows]
-            ae.plot(t[: len(e)], e.sum(axis=1), color=c, label=f"{name}")
-        if "steps/energy" in f:
-            tot = ae.plot(t, f["steps/energy"][:nrows], color="k", lw=2.2, ls="--", label="total")
+            ae.plot(t[: len(e)], e, color=c, label=f"{name}")
+        if "energy" in o.steps:
+            tot = ae.plot(t, o.steps.energy, color="k", lw=2.2, ls="--", label="total")
             if many:
                 ae.legend(handles=tot, fontsize="small", loc="best")
         legend(ae, len(names) + 1, loc="best")
@@ -163,10 +179,11 @@ def plot(path, png):
     ae.grid(True, alpha=0.3)
 
     # (d): wall time per phase per step, stacked (max over ranks, per phase)
-    phases = [p for p in PHASES if f"steps/timing/{p}" in f]
-    phases += sorted(p for p in (f["steps/timing"].keys() if "steps/timing" in f else []) if p not in phases)
+    timing = o.steps.timing
+    phases = [p for p in PHASES if p in timing]
+    phases += sorted(p for p in timing if p not in phases)
     if nrows and phases:
-        ms = np.array([f[f"steps/timing/{p}"][:nrows] * 1e3 for p in phases])
+        ms = np.array([timing[p] * 1e3 for p in phases])
         labels = [f"{p} ({ms[i].sum() / 1e3:.3g} s)" for i, p in enumerate(phases)]
         pc = plt.get_cmap("Set2")
         pcols = [pc(i % 8) for i in range(len(phases))]
@@ -190,20 +207,23 @@ def plot(path, png):
     at.set_title("(d) time per phase per step (output: previous step's frame)")
     at.grid(True, axis="y", alpha=0.3)
 
+    # (e): contact forces per pair
+    plot_pairs(ap, o, t)
+
     right = 1.0
     if many:  # one legend for all panels: the colours are the same in each
         right = 1.0 - 1.5 * ncol / (14 + 1.6 * ncol)
         handles, labels = az.get_legend_handles_labels()
         fig.legend(handles, labels, loc="center right", fontsize="x-small", ncol=ncol, title="body (type)",
                    title_fontsize="small", frameon=False)
-    fig.tight_layout(rect=(0, 0, right, 0.95))
+    fig.tight_layout(rect=(0, 0, right, 0.96))
     fig.savefig(png, dpi=110)
     plt.close(fig)
-    f.close()
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description="Plot centroids, energies and phase timings of a fecontact HDF5 run.")
+    ap = argparse.ArgumentParser(
+        description="Plot centroids, energies, phase timings and contact forces per pair of a fecontact HDF5 run.")
     ap.add_argument("h5", help="HDF5 output of fecontact (-output_file)")
     ap.add_argument("-o", "--output", help="PNG to write (default: the .h5 path with the suffix .png)")
     args = ap.parse_args(argv)
