@@ -313,7 +313,9 @@ class Scene:
         return out
 
     def body(self, name):
+        """The body named name; the scene is set up first (the bodies are placed at set-up)"""
         self._check()
+        self.setup()
         b = _ptr()
         self._do(_FCSceneGetBody, self._h, name.encode(), ctypes.byref(b))
         return Body(self, b)

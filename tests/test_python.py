@@ -1,0 +1,202 @@
+"""The Python module (python/fecontact, issue 40) and the C library it drives, on --np ranks (the
+scripts under mpirun -n NP):
+
+- a scene stepped from Python (step() a few times, reading its state and contacts between steps,
+  then run() to the end) writes the executable's HDF5 output for the same options: every dataset
+  but the timings and memory figures equal, bit for bit (input/finger_push.opts, 40 steps; on NP
+  ranks, against the executable on NP ranks);
+- a kinematic body moved by set_pose every step (to the poses its -tool_trajectory gives at the
+  ends of the steps, read from the executable's run) gives that run: positions and contact forces to
+  1e-12 (relative); set_velocity gives the run of -tool_velocity, to the same bound;
+- contacts() is the step's /contacts rows, and body().positions the step's frame;
+- errors: a wrong option value, an unknown body type, a misspelt option (found at set-up, the first
+  step) and set_pose on an FE body raise FecontactError with fecontact's message, and the same
+  interpreter then builds and steps a good scene;
+- the C library installed (cmake --install to a temporary prefix): examples/c/driver.c builds
+  against it with pkg-config and with CMake (find_package(fecontact)), and its run steering the tool
+  writes the file the same steering from Python writes (1 rank)."""
+import os
+import shutil
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+from fctest import run, out, Checker, np_from_argv, ROOT, ENV, EXE
+
+NP = np_from_argv()
+c = Checker("python np%d" % NP)
+PY = "/usr/bin/python3"
+LIB = os.path.join(os.path.dirname(os.path.abspath(EXE)), "libfecontact.so")
+PENV = dict(ENV, FECONTACT_LIBRARY=LIB, PYTHONPATH=os.path.join(ROOT, "python"))
+SCENE = ["-options_file", "input/finger_push.opts", "-time_steps", "40", "-output_every", "5", "-quiet"]
+
+
+def python(code, np_=NP, check=True):
+    """Run a Python script (fecontact importable) on np_ ranks; returns the CompletedProcess"""
+    f = out("script_%d.py" % abs(hash(code)))
+    with open(f, "w") as g:
+        g.write("import sys\nimport numpy as np\nimport fecontact\n" + code)
+    cmd = ([] if np_ == 1 else ["mpirun", "-n", str(np_), "--oversubscribe"]) + [PY, f]
+    p = subprocess.run(cmd, cwd=ROOT, env=PENV, capture_output=True, text=True, timeout=600)
+    if check and p.returncode:
+        sys.stderr.write(p.stdout + p.stderr)
+        raise RuntimeError("python script failed (%d): %s" % (p.returncode, f))
+    return p
+
+
+def differing(fa, fb):
+    """The datasets of two output files that differ (timings, wall times and memory figures aside)"""
+    a, b, bad = h5py.File(fa, "r"), h5py.File(fb, "r"), []
+
+    def walk(g, p):
+        for k in g:
+            n = p + "/" + k
+            if isinstance(g[k], h5py.Group):
+                walk(g[k], n)
+            elif not any(s in n for s in ("timing", "wall", "memory")):
+                x, y = g[k][()], b[n][()] if n in b else None
+                if y is None or not np.array_equal(x, y):
+                    bad.append(n)
+    walk(a, "")
+    return bad
+
+
+# the executable's run, and the same scene stepped from Python
+fe = out("exe.h5")
+run(SCENE + ["-output_file", fe], NP)
+fp = out("py.h5")
+p = python("""
+s = fecontact.Scene(options=%r)
+s.step(3)
+t, k = s.time, s.step_index
+c = s.contacts()
+x = s.body("finger").positions
+s.step(12)
+np.save(%r, s.contacts()["force"])
+s.run()
+print("TIME", t, k, len(c["gap"]), x.shape[0], s.step_index)
+s.destroy()
+""" % (" ".join(SCENE + ["-output_file", fp]), out("forces15.npy")))
+bad = differing(fe, fp)
+c.check(not bad, "stepped from Python (3 steps, 12, then run() to 40), the executable's output on %d rank(s): %s" %
+        (NP, "every dataset equal" if not bad else "DIFFERENT " + ", ".join(bad[:5])))
+words = p.stdout.split("TIME")[1].split()
+h = h5py.File(fe, "r")
+off, fw = h["contacts/offset"][:], h["contacts/force_world"][:]
+f15 = np.load(out("forces15.npy"))
+c.check(float(words[0]) == 0.03 and int(words[1]) == 3 and int(words[4]) == 40 and
+        int(words[3]) == h["bodies/finger/positions"].shape[1] and np.array_equal(f15, fw[off[14]:off[15]]),
+        "time %s s and step %s after 3 steps, %s steps after run(); the finger's %s vertices; contacts() of step 15 "
+        "are its /contacts rows (%d)" % (words[0], words[1], words[4], words[3], len(f15)))
+
+# a kinematic body moved by the program: set_pose to the trajectory's poses, set_velocity as -tool_velocity
+tool = h["bodies/tool/centroid"][:]  # the end of each step
+fs = out("set_pose.h5")
+python("""
+tool = np.array(%r)
+with fecontact.Scene(options=%r) as s:
+    b = s.body("tool")
+    for x in tool:
+        b.set_pose(x)
+        s.step()
+""" % (tool.tolist(), " ".join(SCENE + ["-output_file", fs, "-tool_trajectory", "0:0.03,0,0.08"])))
+hs = h5py.File(fs, "r")
+
+
+def compare(a, b):
+    dx = np.abs(a["bodies/finger/positions"][:] - b["bodies/finger/positions"][:]).max()
+    fa, fb = a["contacts/force"][:], b["contacts/force"][:]
+    df = np.abs(fa - fb).max() / np.abs(fa).max() if fa.shape == fb.shape else np.inf
+    return dx, df
+
+
+dx, df = compare(h, hs)
+c.check(dx <= 1e-12 and df <= 1e-12, "set_pose every step to -tool_trajectory's poses: the finger's positions to %.1e "
+        "m, the contact forces to %.1e (relative)" % (dx, df))
+V = "-0.05,0,0"
+fv, fo = out("vel_option.h5"), out("vel_set.h5")
+VS = SCENE + ["-time_steps", "30", "-tool_trajectory", "0:0.03,0,0.08"]
+run([a for a in VS if a not in ("-tool_trajectory", "0:0.03,0,0.08")] + ["-tool_center", "0.03,0,0.08",
+    "-tool_velocity", V, "-output_file", fo], NP)
+python("""
+with fecontact.Scene(options=%r) as s:
+    s.body("tool").set_velocity([-0.05, 0, 0])
+    s.run()
+""" % " ".join(VS + ["-output_file", fv]))
+ho, hv = h5py.File(fo, "r"), h5py.File(fv, "r")
+dx, df = compare(ho, hv)
+c.check(dx <= 1e-12 and df <= 1e-12 and ho["steps/contacts"][:].max() > 0, "set_velocity(-0.05, 0, 0) from the "
+        "start: -tool_velocity's run, the finger's positions to %.1e m, the contact forces to %.1e (relative)" % (dx, df))
+
+# errors: raised with fecontact's message; the interpreter goes on
+p = python("""
+def expect(what, f):
+    try:
+        f()
+        print("NOERROR", what)
+    except fecontact.FecontactError as e:
+        print("ERROR", what, "|", e)
+expect("mu", lambda: fecontact.Scene(options=%r))
+expect("type", lambda: fecontact.Scene(options={"scene_bodies": "a", "a_type": "nothing"}))
+s = fecontact.Scene(options=%r)
+expect("typo", lambda: s.step())
+s.destroy()
+s = fecontact.Scene(options=%r)
+expect("fe pose", lambda: s.body("finger").set_pose([0, 0, 0]))
+s.step(2)
+print("STEPS", s.step_index)
+s.destroy()
+""" % (" ".join(SCENE + ["-contact_mu", "-1"]), " ".join(SCENE + ["-contact_mux", "1"]),
+       " ".join(SCENE + ["-output_file", out("ok.h5")])))
+lines = {ln.split()[1]: ln for ln in p.stdout.splitlines() if ln.startswith(("ERROR", "NOERROR"))}
+exe_mu = run(SCENE + ["-contact_mu", "-1"], 1, check=False).stderr.strip()
+msgs = {"mu": exe_mu.replace("fecontact: error: ", ""), "type": "Unknown body type 'nothing'",
+        "typo": "-contact_mux", "fe pose": "not kinematic"}
+for k, m in msgs.items():
+    ln = lines.get(k, "")
+    c.check(ln.startswith("ERROR") and m in ln, "error (%s): FecontactError '%s'" % (k, ln.split("| ")[-1]))
+c.check("STEPS 2" in p.stdout, "after the errors, the same interpreter steps a good scene (%s)" %
+        [ln for ln in p.stdout.splitlines() if ln.startswith("STEPS")])
+
+# the installed library: the C driver built with pkg-config and with CMake, against the same steering from Python
+if NP == 1:
+    prefix, bdir = out("prefix"), os.path.join(ROOT, os.path.dirname(os.path.relpath(EXE, ROOT)))
+    subprocess.run(["cmake", "--install", bdir, "--prefix", prefix], check=True, capture_output=True)
+    pc = os.path.join(prefix, "lib", "pkgconfig")
+    flags = subprocess.run(["pkg-config", "--cflags", "--libs", "fecontact"], env=dict(ENV, PKG_CONFIG_PATH=pc),
+                           capture_output=True, text=True, check=True).stdout.split()
+    d1 = out("driver_pc")
+    b1 = subprocess.run(["cc", os.path.join(ROOT, "examples/c/driver.c"), "-o", d1] + flags, capture_output=True,
+                        text=True)
+    d2 = out("driver_cmake")
+    b2 = subprocess.run(["cmake", "-S", os.path.join(ROOT, "examples/c"), "-B", d2, "-DCMAKE_PREFIX_PATH=" + prefix],
+                        capture_output=True, text=True)
+    if b2.returncode == 0:
+        b2 = subprocess.run(["cmake", "--build", d2], capture_output=True, text=True)
+    c.check(b1.returncode == 0 and b2.returncode == 0, "examples/c/driver.c builds against the installed library "
+            "with pkg-config (%s) and with CMake (%s)" % ("ok" if b1.returncode == 0 else b1.stderr[-300:],
+                                                           "ok" if b2.returncode == 0 else b2.stderr[-300:]))
+    fd, fq = out("driver.h5"), out("driver_py.h5")
+    DRV = SCENE + ["-driver_travel", "0.03"]
+    r1 = subprocess.run([d1] + DRV + ["-output_file", fd], cwd=ROOT, env=ENV, capture_output=True, text=True)
+    r2 = subprocess.run([os.path.join(d2, "driver")] + DRV + ["-output_file", out("driver2.h5")], cwd=ROOT, env=ENV,
+                        capture_output=True, text=True)
+    python("""
+with fecontact.Scene(options=%r) as s:
+    b = s.body("tool")
+    x0, n = b.centroid, s.time_steps
+    for k in range(1, n + 1):
+        q = 2.0 * k / n
+        b.set_pose([x0[0] - 0.03 * (q if q <= 1 else 2 - q), x0[1], x0[2]])
+        s.step()
+""" % " ".join(SCENE + ["-output_file", fq]), 1)
+    bad = differing(fd, fq) if r1.returncode == 0 else ["(the driver failed: %s)" % r1.stderr[-300:]]
+    forces = [ln for ln in r1.stdout.splitlines() if ln.startswith("step")]
+    c.check(r1.returncode == 0 and r2.returncode == 0 and len(forces) == 40 and not bad,
+            "the installed driver steers the tool over 40 steps (%s), and writes the file the same steering from "
+            "Python writes: %s" % (forces[19].split("force on it")[-1].strip() if len(forces) > 19 else "-",
+                                   "every dataset equal" if not bad else "DIFFERENT " + ", ".join(bad[:4])))
+    shutil.rmtree(prefix, ignore_errors=True)
+c.done()
