@@ -62,12 +62,15 @@ c.check(g["hold_error"] <= 0.05, "every step of the hold within 5 %% of the targ
 c.check(g["lift_error"] <= 0.10, "through the lift and the carry within 10 %% (largest error %.2f %%)" %
         (100 * g["lift_error"]))
 c.check(abs(g["finger_lift"] - g["ball_lift"]) <= 5e-3,
-        "the ball rose %.2f mm with the fingers' %.2f mm (within 5 mm)" % (1e3 * g["ball_lift"], 1e3 * g["finger_lift"]))
+        "the ball rose %.2f mm with the fingers' %.2f mm (within 5 mm)" %
+        (1e3 * g["ball_lift"], 1e3 * g["finger_lift"]))
 c.check(abs(g["carry_slip"]) <= 5e-4, "it slid %.3f mm down the fingers over the carry's second half (below 0.5 mm)" %
         (1e3 * g["carry_slip"]))
 c.check(g["ground_force"] == 0 and g["ball_min_z"] > 0.02, "off the plane: ground force %g N, lowest point %.1f mm" %
         (g["ground_force"], 1e3 * g["ball_min_z"]))
-c.check(os.path.exists(out("gripper.h5")), "its output file written")
+with h5py.File(out("gripper.h5"), "r") as o:
+    S, steps = int(o["complete"][0]), int(o.attrs["time_steps"])
+c.check(S == steps == g["steps"], "its output file complete: %d of %d steps" % (S, steps))
 
 if NP == 1:  # the same grip with too little friction: the ball slips out
     fig = out("gripper_mu03.json")

@@ -8,9 +8,9 @@ script steers the fingers from the contact forces it reads each step:
 2. squeeze: each finger closes on the ball with a proportional force controller: from the normal
    contact force F it measured in the last step (scene.contacts(): the sum of the normal forces of
    the contacts whose pair involves that finger), it steps by gain * (target - F), limited to
-   max_speed * h, through Body.set_pose (the pose at the end of the next step). It goes on until
-   both forces are within tolerance of the target for a few steps running;
-3. hold: the same control, the fingers' height fixed, for a while;
+   max_speed * h, through Body.set_pose (the pose at the end of the next step), until both forces
+   are within tolerance of the target for a few steps running;
+3. hold: the same control, the fingers' height fixed, for the rest of grip_steps (squeeze and hold);
 4. lift: both fingers rise by lift_height (a smooth start and stop, lift_speed on average), still
    force-controlled;
 5. carry: the fingers held up, still force-controlled: the ball hangs by friction alone.
@@ -52,22 +52,23 @@ def ground_force(scene):
 
 
 def run_gripper(output_file="out/gripper.h5", target=4.0, mu=1.0, gain=2e-4, max_speed=0.02, tolerance=0.01,
-                settle_steps=20, hold_steps=40, lift_height=0.03, lift_speed=0.1, carry_steps=40,
-                max_squeeze_steps=300, options=None, comm=None, log=None):
+                time_step=0.005, settle_steps=20, grip_steps=120, lift_height=0.03, lift_speed=0.1, carry_steps=40,
+                options=None, comm=None, log=None):
     """Run the gripper scene and return its figures (the same on every rank):
     target, weight (the ball's, N), force_reached (finger -> mean normal force over the hold's last
     half, N), hold_error (the largest relative error of a finger's force over the hold), lift_error
-    (the same over the lift and the carry), squeeze_steps (to reach the target), finger_lift and
+    (the same over the lift and the carry), squeeze_steps (to reach the target; None if it was not
+    reached within grip_steps, the hold then the last 20 steps of them), hold_steps, finger_lift and
     ball_lift (m, from the start of the lift to the end of the carry), carry_slip (m, how much the ball
     slid down the fingers over the carry's second half), ball_min_z (its lowest vertex at the end, m),
     ground_force (N, at the end), forces (per step: the time, both fingers' forces, the fingers' and
     the ball's heights). options: more options for the scene (a dict), e.g. {"ball_young": 1e5}."""
     if os.path.dirname(output_file):
         os.makedirs(os.path.dirname(output_file), exist_ok=True)
-    steps_max = settle_steps + max_squeeze_steps + hold_steps + int(np.ceil(lift_height / (lift_speed * 1e-3))) \
-        + carry_steps  # an upper bound (time steps of 1 ms at least); the scene stops where the script does
+    n_lift = int(round(lift_height / (lift_speed * time_step)))
     opts = {"ball_dm_plex_filename": os.path.join(ROOT, "meshes", "ball_5cm.msh"), "contact_mu": "0.3,%r,%r" % (mu, mu),
-            "time_steps": steps_max, "output_file": output_file, "quiet": None}
+            "time_step": time_step, "time_steps": settle_steps + grip_steps + n_lift + carry_steps,
+            "output_file": output_file, "quiet": None}
     opts.update(options or {})
     say = log or (lambda *a: None)
     with fecontact.Scene(options=opts, options_file=SCENE, comm=comm) as scene:
@@ -97,16 +98,17 @@ def run_gripper(output_file="out/gripper.h5", target=4.0, mu=1.0, gain=2e-4, max
         say("settled: ball at z = %.4f m, weight %.3f N, ground force %.3f N" %
             (ball.centroid[2], weight, ground_force(scene)))
         within, squeeze = 0, 0
-        while within < 5 and squeeze < max_squeeze_steps:
+        while within < 5 and squeeze < grip_steps:
             force = control()
             squeeze += 1
             within = within + 1 if all(abs(force[f] - target) <= tolerance * target for f in FINGERS) else 0
         say("squeeze: %d steps, forces %s N" % (squeeze, ", ".join("%.3f" % v for v in force.values())))
-        hold = [control() for _ in range(hold_steps)]
+        hold = [control() for _ in range(grip_steps - squeeze)]
+        if within < 5:  # not reached: the figures of the grip's last steps
+            squeeze, hold = None, [dict(zip(FINGERS, r[1:3])) for r in history[-20:]]
         z_ball0, z_finger0 = ball.centroid[2], pos["left"][2]
         # a smooth rise, z = lift_height (1 - cos(pi s)) / 2 over s in [0, 1], at lift_speed on average: a sudden
         # start or stop shakes the hanging ball and its contact forces
-        n_lift = int(round(lift_height / (lift_speed * h)))
         rise = np.diff(lift_height * (1 - np.cos(np.pi * np.arange(n_lift + 1) / n_lift)) / 2)
         lifting = [control(dz) for dz in rise]
         lifting += [control() for _ in range(carry_steps // 2)]
@@ -114,7 +116,7 @@ def run_gripper(output_file="out/gripper.h5", target=4.0, mu=1.0, gain=2e-4, max
         lifting += [control() for _ in range(carry_steps - carry_steps // 2)]
         z_ball1 = ball.centroid[2]
         figures = dict(
-            target=target, mu=mu, weight=weight, time_step=h, squeeze_steps=squeeze,
+            target=target, mu=mu, weight=weight, time_step=h, squeeze_steps=squeeze, hold_steps=len(hold),
             force_reached={f: float(np.mean([s[f] for s in hold[len(hold) // 2:]])) for f in FINGERS},
             hold_error=max(abs(s[f] - target) / target for s in hold for f in FINGERS),
             lift_error=max(abs(s[f] - target) / target for s in lifting for f in FINGERS),
@@ -122,6 +124,7 @@ def run_gripper(output_file="out/gripper.h5", target=4.0, mu=1.0, gain=2e-4, max
             carry_slip=float((pos["left"][2] - z_ball1) - gap_carry0),
             ball_min_z=float(ball.positions[:, 2].min()), ground_force=ground_force(scene),
             steps=scene.step_index, forces=[list(map(float, r)) for r in history])
+        scene.finish()
     return figures
 
 
@@ -131,10 +134,11 @@ def report(fig, out=print):
     for f in FINGERS:
         out("  %-5s finger: %.4f N reached (%+.2f %% of the target)" %
             (f, fig["force_reached"][f], 100 * (fig["force_reached"][f] / fig["target"] - 1)))
-    out("  reached in %d squeeze steps of %g s; largest force error over the hold %.2f %%, over the lift and carry "
-        "%.2f %%" % (fig["squeeze_steps"], fig["time_step"], 100 * fig["hold_error"], 100 * fig["lift_error"]))
-    out("lift: fingers %.2f mm, ball %.2f mm (lags by %.2f mm), slid %.3f mm down the fingers over the carry's second half; "
-        "lowest point %.2f mm above the plane, ground force %.3g N" %
+    out("  %s; largest force error over the hold (%d steps) %.2f %%, over the lift and carry %.2f %%" %
+        ("reached in %d squeeze steps of %g s" % (fig["squeeze_steps"], fig["time_step"]) if fig["squeeze_steps"]
+         else "NOT reached", fig["hold_steps"], 100 * fig["hold_error"], 100 * fig["lift_error"]))
+    out("lift: fingers %.2f mm, ball %.2f mm (lags by %.2f mm), slid %.3f mm down the fingers over the carry's "
+        "second half; lowest point %.2f mm above the plane, ground force %.3g N" %
         (1e3 * fig["finger_lift"], 1e3 * fig["ball_lift"], 1e3 * (fig["finger_lift"] - fig["ball_lift"]),
          1e3 * fig["carry_slip"], 1e3 * fig["ball_min_z"], fig["ground_force"]))
 

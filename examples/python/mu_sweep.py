@@ -60,8 +60,8 @@ def sweep(mus=MUS, outdir="out/mu_sweep", steps=50, comm=None):
             scene.run()
             d = float(np.dot(box.centroid - x0, DOWNHILL))
             rows.append(dict(mu=mu, time=scene.time, distance=d, expected=expected(mu, scene.time),
-                             expected_steps=expected_steps(mu, scene.time_step, scene.step_index), steps=scene.step_index,
-                             file=f))
+                             expected_steps=expected_steps(mu, scene.time_step, scene.step_index),
+                             steps=scene.step_index, file=f))
     return rows
 
 
