@@ -15,7 +15,8 @@ scripts under mpirun -n NP):
   interpreter then builds and steps a good scene;
 - the C library installed (cmake --install to a temporary prefix): examples/c/driver.c builds
   against it with pkg-config and with CMake (find_package(fecontact)), and its run steering the tool
-  writes the file the same steering from Python writes (1 rank)."""
+  writes the file the same steering from Python writes; pip installs python/ and the installed module
+  finds the installed library through its pkg-config file (1 rank)."""
 import os
 import shutil
 import subprocess
@@ -219,5 +220,19 @@ with fecontact.Scene(options=%r) as s:
             "the installed driver steers the tool over 60 steps (%s), and writes the file the same steering from "
             "Python writes: %s" % (forces[19].split("force on it")[-1].strip() if len(forces) > 19 else "-",
                                    "every dataset equal" if not bad else "DIFFERENT " + ", ".join(bad[:4])))
+    # pip install from (a copy of) the repository's python/, the library found through the installed pkg-config file
+    src, target = out("pysrc"), out("pytarget")
+    shutil.copytree(os.path.join(ROOT, "python"), src, ignore=shutil.ignore_patterns("__pycache__", "build", "*.egg-info"))
+    pip = subprocess.run([PY, "-m", "pip", "install", "--no-deps", "--no-build-isolation", "--target", target, src],
+                         capture_output=True, text=True)
+    env = {k: v for k, v in PENV.items() if k not in ("FECONTACT_LIBRARY", "PYTHONPATH")}
+    env.update(PYTHONPATH=target, PKG_CONFIG_PATH=pc)
+    q = subprocess.run([PY, "-c", "import fecontact, fecontact._lib as L\nwith fecontact.Scene(options=%r) as s:\n"
+                        "    s.step(2)\n    print('PIP', L.path(), s.step_index)" %
+                        " ".join(SCENE + ["-output_file", out("pip.h5")])], cwd=ROOT, env=env, capture_output=True,
+                       text=True)
+    c.check(pip.returncode == 0 and "PIP %s" % os.path.join(pc, "..", "..", "lib", "libfecontact.so") in q.stdout and
+            q.stdout.split()[-1] == "2", "pip install of python/, outside the repository: it finds the installed "
+            "library through pkg-config and steps a scene (%s)" % (q.stdout.strip() or pip.stderr[-200:] + q.stderr[-300:]))
     shutil.rmtree(prefix, ignore_errors=True)
 c.done()
