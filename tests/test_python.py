@@ -10,6 +10,8 @@ scripts under mpirun -n NP):
   ends of the steps, read from the executable's run) gives that run, and set_velocity the run of
   -tool_velocity (the same bounds; on 1 rank equal);
 - contacts() is the step's /contacts rows, and body().positions the step's frame;
+- a Scene restarts (-restart) from the file of a Python-driven run and ends where the uninterrupted
+  run ends (1e-10 m);
 - errors: a wrong option value, an unknown body type, a misspelt option (found at set-up, the first
   step) and set_pose on an FE body raise FecontactError with fecontact's message, and the same
   interpreter then builds and steps a good scene;
@@ -151,6 +153,24 @@ dx, df = compare(ho, hv)
 c.check(dx <= 1e-12 and df <= 1e-10 and np.abs(ho["contacts/force"][:, 0]).max() > 0, "set_velocity(-0.05, 0, 0) "
         "from the start: -tool_velocity's run, the finger's positions to %.1e m, the contact forces to %.1e (relative)" %
         (dx, df))
+
+# a restart from a file a Python-driven scene wrote: 30 steps, then a new Scene continues to 60 with -restart; the
+# executable's uninterrupted run of 60 steps (fe)
+fr, fr2 = out("restart_a.h5"), out("restart_b.h5")
+python("""
+with fecontact.Scene(options=%r) as s:
+    s.step(30)
+with fecontact.Scene(options=%r) as s:
+    k0 = s.step_index
+    s.run()
+    print("RESTART", k0, s.step_index)
+""" % (" ".join(SCENE + ["-output_file", fr, "-output_every", "10"]),
+       " ".join(SCENE + ["-output_file", fr2, "-restart", fr])))
+a, b = h5py.File(fe, "r"), h5py.File(fr2, "r")
+dx = np.abs(sorted_positions(a, "finger", -1)[1] - sorted_positions(b, "finger", -1)[1]).max()
+c.check(b["steps/step"][0] == 31 and b["steps/step"][-1] == 60 and dx <= 1e-10, "restart: a Scene continues a "
+        "Python-driven run's file from step 30 to 60 (steps %d to %d), the uninterrupted run's end positions to %.1e m" %
+        (b["steps/step"][0], b["steps/step"][-1], dx))
 
 # errors: raised with fecontact's message; the interpreter goes on
 p = python("""
