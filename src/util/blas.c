@@ -5,8 +5,10 @@
    with one column too; OpenBLAS forwards such products to gemv itself only from 0.3.27
    (GEMM_GEMV_FORWARD). MUMPS' solve with one right-hand side calls dgemm with n = 1 on every
    front (dmumps_solve_node_fwd / _bwd), and the packing (dgemm_oncopy, dgemm_otcopy) is then a
-   large part of the solve (measured in docs/benchmarks.md, "One-column products"). Every other product goes to the next dgemm_ in the link order (the BLAS library),
-   found by dlsym(RTLD_NEXT).
+   large part of the solve (measured in docs/benchmarks.md, "One-column products"). Every other product goes to the next
+   dgemm_ in the link order (the BLAS library), found by dlsym(RTLD_NEXT). MUMPS binds to this dgemm_ where
+   libfecontact.so comes before the BLAS library in its lookup: the executable, and a Python process that loads the
+   library globally before petsc4py loads MUMPS (python/fecontact/_lib.py).
 
    Option -blas_gemv_forward (read at package initialization, src/fecontact.c; its help string below and
    docs/options.md). */
