@@ -4,7 +4,8 @@
 # ParaView (paraview, python3-paraview: pvbatch) and xvfb (xvfb-run: a display for pvbatch on a
 # headless machine) draw the output (scripts/render.py, README command 1) and are what
 # tests/test_paraview.py reads it with; FC_SKIP_PARAVIEW=1 installs neither (that test then skips,
-# README command 1 draws no scene picture).
+# README command 1 draws no scene picture). pip, setuptools and wheel: `pip install ./python`
+# (docs/python.md), which tests/test_python.py does.
 set -euo pipefail
 
 PKGS=(
@@ -12,6 +13,7 @@ PKGS=(
   petsc-dev libmumps-dev libscalapack-openmpi-dev libmetis-dev libhdf5-openmpi-dev openmpi-bin libopenmpi-dev
   libopenblas0-pthread gmsh
   python3-petsc4py python3-h5py python3-matplotlib python3-numpy python3-siconos
+  python3-pip python3-setuptools python3-wheel
 )
 if [ "${FC_SKIP_PARAVIEW:-0}" != "1" ]; then
   PKGS+=(paraview python3-paraview xvfb)
