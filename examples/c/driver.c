@@ -55,11 +55,9 @@ static PetscErrorCode Drive(void)
   PetscCall(FCSceneSetUp(scene));
   PetscCall(FCSceneGetBody(scene, name, &body));
   PetscCall(FCSceneGetNumBodies(scene, &nbodies));
-  for (PetscInt i = 0; i < nbodies; i++) {
-    FCBody      b;
-    const char *bname;
+  for (PetscInt i = 0; i < nbodies; i++) { /* its index, which the contacts name it by */
+    FCBody b;
     PetscCall(FCSceneGetBodyByIndex(scene, i, &b));
-    PetscCall(FCBodyGetName(b, &bname));
     if (b == body) ib = i;
   }
   PetscCall(FCSceneGetTimeStep(scene, &h, &nsteps));

@@ -106,6 +106,14 @@ def _comm_handle(comm):
     return _MPI_Comm_f2c(fortran)
 
 
+def _vector(x, n, what):
+    """x as n reals (a copy the C call may keep nothing of); ValueError naming what otherwise"""
+    a = np.array(x, dtype=REAL).ravel()
+    if a.shape != (n,):
+        raise ValueError("%s must have %d components, got %s" % (what, n, np.shape(x)))
+    return a
+
+
 def _option_string(options):
     """-name value pairs from a dict ({"time_steps": 10, "quiet": None}), a list of strings
     (["-time_steps", "10"]) or a string"""
@@ -204,13 +212,14 @@ class Body:
     def set_pose(self, position, quaternion=(1.0, 0.0, 0.0, 0.0)):
         """A kinematic body: the pose it reaches at the end of the next step (centre, unit quaternion
         (w, x, y, z)), moving there at constant velocity and angular velocity over that step, then held"""
-        self._scene._do(_FCBodySetKinematicPose, self._h, np.asarray(position, REAL).copy(),
-                        np.asarray(quaternion, REAL).copy())
+        self._scene._do(_FCBodySetKinematicPose, self._h, _vector(position, 3, "position"),
+                        _vector(quaternion, 4, "quaternion"))
 
     def set_velocity(self, v, w=(0.0, 0.0, 0.0)):
         """A kinematic body: a constant velocity and angular velocity (about its centre) from the next
         step on"""
-        self._scene._do(_FCBodySetKinematicVelocity, self._h, np.asarray(v, REAL).copy(), np.asarray(w, REAL).copy())
+        self._scene._do(_FCBodySetKinematicVelocity, self._h, _vector(v, 3, "velocity"),
+                        _vector(w, 3, "angular velocity"))
 
 
 class Scene:
@@ -221,7 +230,7 @@ class Scene:
     (-output_file)."""
 
     def __init__(self, options=None, options_file=None, comm=None):
-        self._h, self._opts, self._finished = _ptr(), _ptr(), False
+        self._h, self._opts, self._finished, self._failed = _ptr(), _ptr(), False, None
         self._comm = _comm_handle(comm)
         _call(_PetscOptionsCreate, ctypes.byref(self._opts))
         try:
@@ -250,6 +259,16 @@ class Scene:
     def _check(self):
         if not self._h:
             raise FecontactError("the scene is destroyed")
+        if self._failed:
+            raise FecontactError("the scene failed (%s): destroy it" % self._failed)
+
+    def _advance(self, f):
+        """a step or the run: a failure leaves the scene part-way through a step, never stepped again"""
+        try:
+            self._do(f, self._h)
+        except FecontactError as e:
+            self._failed = str(e)
+            raise
 
     def setup(self):
         """Set the scene up (the first step does it otherwise): bodies, contact, output header"""
@@ -260,12 +279,12 @@ class Scene:
         """n time steps (each writes its output as the executable's does)"""
         self._check()
         for _ in range(n):
-            self._do(_FCSceneStep, self._h)
+            self._advance(_FCSceneStep)
 
     def run(self):
         """The remaining steps to -time_steps, then the run's summary, as the executable"""
         self._check()
-        self._do(_FCSceneRun, self._h)
+        self._advance(_FCSceneRun)
         self._finished = True
 
     def _time(self):
@@ -346,18 +365,20 @@ class Scene:
 
     def destroy(self):
         """Free the scene (its output file closed) and its options"""
-        if self._h:
-            try:
-                _call(_PetscOptionsPush, self._opts)
+        try:
+            if self._h:
                 try:
-                    _call(_FCSceneDestroy, ctypes.byref(self._h))
+                    _call(_PetscOptionsPush, self._opts)
+                    try:
+                        _call(_FCSceneDestroy, ctypes.byref(self._h))
+                    finally:
+                        _PetscOptionsPop()
                 finally:
-                    _PetscOptionsPop()
-            finally:
-                self._h = _ptr()
-        if self._opts:
-            _call(_PetscOptionsDestroy, ctypes.byref(self._opts))
-            self._opts = _ptr()
+                    self._h = _ptr()
+        finally:
+            if self._opts:
+                opts, self._opts = self._opts, _ptr()
+                _call(_PetscOptionsDestroy, ctypes.byref(opts))
 
     def __enter__(self):
         return self
@@ -367,6 +388,8 @@ class Scene:
         return False
 
     def __del__(self):
+        """(collective: under MPI, destroy a scene explicitly, or with a with block, so that every rank
+        does it at the same point)"""
         try:
             self.destroy()
         except Exception:

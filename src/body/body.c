@@ -352,12 +352,15 @@ PetscErrorCode FCBodySetKinematicPose(FCBody body, const PetscReal x[3], const P
   PetscFunctionBegin;
   PetscCheck(body->ops.setkinematicpose, body->comm, PETSC_ERR_USER_INPUT,
              "Body '%s' is %s, not kinematic: only a kinematic body's pose can be set", body->name, body->type);
+  PetscCheck(body->setupcalled, body->comm, PETSC_ERR_ORDER,
+             "Body '%s': set the scene up (FCSceneSetUp) before setting its pose: its motion starts from its placement",
+             body->name);
   for (int d = 0; d < 4; d++) n += q[d] * q[d];
   for (int d = 0; d < 3; d++)
-    PetscCheck(PetscIsNormalReal(x[d] + 1.0), body->comm, PETSC_ERR_USER_INPUT,
+    PetscCheck(!PetscIsInfOrNanReal(x[d]), body->comm, PETSC_ERR_USER_INPUT,
                "Body '%s': pose position %g, %g, %g is not finite", body->name, (double)x[0], (double)x[1],
                (double)x[2]);
-  PetscCheck(n > 0.0 && PetscIsNormalReal(n), body->comm, PETSC_ERR_USER_INPUT,
+  PetscCheck(n > 0.0 && !PetscIsInfOrNanReal(n), body->comm, PETSC_ERR_USER_INPUT,
              "Body '%s': pose quaternion %g, %g, %g, %g is not a rotation (zero or not finite)", body->name,
              (double)q[0], (double)q[1], (double)q[2], (double)q[3]);
   PetscCall((*body->ops.setkinematicpose)(body, x, q));
@@ -369,8 +372,12 @@ PetscErrorCode FCBodySetKinematicVelocity(FCBody body, const PetscReal v[3], con
   PetscFunctionBegin;
   PetscCheck(body->ops.setkinematicvel, body->comm, PETSC_ERR_USER_INPUT,
              "Body '%s' is %s, not kinematic: only a kinematic body's velocity can be set", body->name, body->type);
+  PetscCheck(body->setupcalled, body->comm, PETSC_ERR_ORDER,
+             "Body '%s': set the scene up (FCSceneSetUp) before setting its velocity: its motion starts from its "
+             "placement",
+             body->name);
   for (int d = 0; d < 3; d++)
-    PetscCheck(PetscIsNormalReal(v[d] + 1.0) && PetscIsNormalReal(w[d] + 1.0), body->comm, PETSC_ERR_USER_INPUT,
+    PetscCheck(!PetscIsInfOrNanReal(v[d]) && !PetscIsInfOrNanReal(w[d]), body->comm, PETSC_ERR_USER_INPUT,
                "Body '%s': velocity %g, %g, %g or angular velocity %g, %g, %g is not finite", body->name, (double)v[0],
                (double)v[1], (double)v[2], (double)w[0], (double)w[1], (double)w[2]);
   PetscCall((*body->ops.setkinematicvel)(body, v, w));

@@ -5,9 +5,9 @@
    needs it and kept per body in the pairs' cache (pairs->topo), checked at each use against the
    triangles' reference positions and rebuilt if they differ. Without a cache (pairs->topo NULL) it
    is built for the one use.
-   Every order here is the one a stable sort of the triangles' corners by reference position gives
-   (the same as sorting each step would): vertex normals, sharp edges and surface vertices come out
-   in the same order, summed in the same order, as without the cache. */
+   Corners and half-edges are sorted by reference position, ties in the order of the triangles, so
+   that vertex normals, sharp edges and surface vertices come out in one order, summed in one order,
+   whatever the sort. */
 #include "collisionimpl.h"
 
 typedef struct {
@@ -23,10 +23,26 @@ static int CompareHalf(const void *x, const void *y)
   return 0;
 }
 
+/* The sort's order: by the reference ends, then by half-edge (a tie in the order of the triangles) */
+static int CompareHalfOrder(const void *x, const void *y)
+{
+  const HalfEdge *a = (const HalfEdge *)x, *b = (const HalfEdge *)y;
+  int             c = CompareHalf(x, y);
+  return c ? c : (a->h < b->h ? -1 : (a->h > b->h ? 1 : 0));
+}
+
 typedef struct {
   PetscReal X[3];
   PetscInt  corner; /* 3 t + a */
 } Corner;
+
+/* By reference position, then by corner (a vertex's corners in the order of the triangles) */
+static int CompareCorner(const void *x, const void *y)
+{
+  const Corner *a = (const Corner *)x, *b = (const Corner *)y;
+  int           c = FCComparePoint(a->X, b->X);
+  return c ? c : (a->corner < b->corner ? -1 : (a->corner > b->corner ? 1 : 0));
+}
 
 /* The vertices (sorted, each with its first corner), each corner's vertex and each vertex's triangles */
 static PetscErrorCode Vertices(FCSurfaceTopology *T, const FCSurfaceTriangle *tri)
@@ -41,7 +57,7 @@ static PetscErrorCode Vertices(FCSurfaceTopology *T, const FCSurfaceTriangle *tr
       for (int d = 0; d < 3; d++) c[3 * t + a].X[d] = tri[t].X[a][d];
       c[3 * t + a].corner = 3 * t + a;
     }
-  if (n) qsort(c, 3 * n, sizeof(Corner), FCComparePoint); /* stable: a vertex's corners in triangle order */
+  if (n) qsort(c, 3 * n, sizeof(Corner), CompareCorner);
   PetscCall(PetscMalloc4(9 * n + 3, &T->V, 3 * n + 1, &T->first, 3 * n + 1, &T->tv, 3 * n + 2, &T->off));
   PetscCall(PetscMalloc1(3 * n + 1, &T->vt));
   for (PetscInt k = 0; k < 3 * n; k++) {
@@ -89,7 +105,7 @@ static PetscErrorCode Edges(FCSurfaceTopology *T, const FCSurfaceTriangle *tri)
       }
       h[3 * t + a].h = 3 * t + a;
     }
-  if (n) qsort(h, 3 * n, sizeof(HalfEdge), CompareHalf);
+  if (n) qsort(h, 3 * n, sizeof(HalfEdge), CompareHalfOrder);
   PetscCall(PetscMalloc1(3 * n / 2 + 1, &T->edge));
   for (PetscInt k = 0; k + 1 < 3 * n; k++) {
     if (CompareHalf(&h[k], &h[k + 1])) continue;

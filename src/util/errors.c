@@ -4,8 +4,7 @@
    error (PETSC_ERROR_INITIAL: where it was raised) is kept, for a caller that reports it itself. */
 #include "../fcimpl.h"
 
-static char      last[1024];
-static PetscBool printing = PETSC_TRUE;
+static char last[1024];
 
 static PetscBool IsUserError(PetscErrorCode n)
 {
@@ -16,9 +15,12 @@ static PetscBool IsUserError(PetscErrorCode n)
              : PETSC_FALSE;
 }
 
+/* ctx: non-NULL, print (the handler pushed with print) */
 static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n,
                               PetscErrorType p, const char *mess, void *ctx)
 {
+  PetscBool printing = ctx ? PETSC_TRUE : PETSC_FALSE;
+
   if (p == PETSC_ERROR_INITIAL) {
     const char *text = mess;
     if (!text || !text[0]) (void)PetscErrorMessage(n, &text, NULL);
@@ -39,8 +41,8 @@ static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const ch
 PetscErrorCode FCPushErrorHandler(PetscBool print)
 {
   PetscFunctionBegin;
-  printing = print;
-  PetscCall(PetscPushErrorHandler(Handler, NULL));
+  last[0] = 0; /* a message from before this handler is not this error's */
+  PetscCall(PetscPushErrorHandler(Handler, print ? (void *)last : NULL));
   PetscFunctionReturn(0);
 }
 
