@@ -269,16 +269,17 @@ static PetscErrorCode MeshedPair(MPI_Comm comm, FCBody bodies[], PetscInt p, con
 {
   Surface           *Sf[2]  = {NULL, NULL};
   FCVertexNormal    *vn[2]  = {NULL, NULL};
-  PetscInt           nvn[2] = {0, 0};
+  PetscInt           nvn[2] = {0, 0}, ntri0 = 0;
+  FCSurfaceTriangle *tri0 = NULL; /* one pass: the first body's triangles, gathered for its normals or edges */
   FCSurfaceTopology *T;
+  PetscInt           ea = 0; /* the sharp edges: the FE body's against the other's (the first body's if both are FE) */
 
   PetscFunctionBegin;
   if (pairs->body[p][0] == pairs->body[p][1]) { /* self-contact: vertices, then sharp edges */
-    PetscInt b = pairs->body[p][0];
-    PetscCall(FCCollisionSelfPair(comm, bodies[b], b, p, pairs, rank, set));
-    if (pairs->edges) PetscCall(FCCollisionEdgeEdge(comm, bodies[b], bodies[b], b, b, p, pairs, set));
+    PetscCall(FCCollisionSelfPair(comm, bodies[pairs->body[p][0]], pairs->body[p][0], p, pairs, rank, set));
     PetscFunctionReturn(0);
   }
+  if (!FCBodyIsDeformable(bodies[pairs->body[p][0]])) ea = 1;
   for (int side = 0; side < 2; side++) {
     FCBody b = bodies[pairs->body[p][side]];
     if (side == 1 || pairs->passes == 2) { /* a surface some vertex lands on */
@@ -288,14 +289,13 @@ static PetscErrorCode MeshedPair(MPI_Comm comm, FCBody bodies[], PetscInt p, con
         PetscCall(FCCollisionVertexNormals(T, Sf[side]->tri, &nvn[side], &vn[side]));
         PetscCall(FCSurfaceTopologyRestore(pairs, &T));
       }
-    } else if (pairs->facing && FCBodyIsDeformable(b)) { /* one pass: only the normals of its vertices */
-      PetscInt           ntri;
-      FCSurfaceTriangle *tri;
-      PetscCall(FCSurfaceGather(comm, b, &ntri, &tri));
-      PetscCall(FCSurfaceTopologyGet(pairs, pairs->body[p][side], ntri, tri, &T));
-      PetscCall(FCCollisionVertexNormals(T, tri, &nvn[side], &vn[side]));
-      PetscCall(FCSurfaceTopologyRestore(pairs, &T));
-      PetscCall(PetscFree(tri));
+    } else if ((pairs->facing && FCBodyIsDeformable(b)) || pairs->edges) { /* one pass: its normals, its edges */
+      PetscCall(FCSurfaceGather(comm, b, &ntri0, &tri0));
+      if (pairs->facing && FCBodyIsDeformable(b)) {
+        PetscCall(FCSurfaceTopologyGet(pairs, pairs->body[p][side], ntri0, tri0, &T));
+        PetscCall(FCCollisionVertexNormals(T, tri0, &nvn[side], &vn[side]));
+        PetscCall(FCSurfaceTopologyRestore(pairs, &T));
+      }
     }
   }
   for (int side = 0; side < pairs->passes; side++) {
@@ -303,19 +303,21 @@ static PetscErrorCode MeshedPair(MPI_Comm comm, FCBody bodies[], PetscInt p, con
     PetscCall(FCCollisionVerticesAgainstSurface(bodies[a], bodies[b2], a, b2, Sf[1 - side], nvn[side], vn[side], p,
                                                 pairs, rank, set));
   }
+  if (pairs->edges && FCBodyIsDeformable(bodies[pairs->body[p][ea]])) {
+    PetscInt                 n[2];
+    const FCSurfaceTriangle *t[2];
+    for (int side = 0; side < 2; side++) {
+      n[side] = Sf[side] ? Sf[side]->n : ntri0;
+      t[side] = Sf[side] ? Sf[side]->tri : tri0;
+    }
+    PetscCall(FCCollisionEdgeEdge(comm, bodies[pairs->body[p][ea]], bodies[pairs->body[p][1 - ea]], pairs->body[p][ea],
+                                  pairs->body[p][1 - ea], n[ea], t[ea], n[1 - ea], t[1 - ea], p, pairs, set));
+  }
   for (int side = 0; side < 2; side++) {
     if (Sf[side]) PetscCall(FCSurfaceDestroy(&Sf[side]));
     PetscCall(PetscFree(vn[side]));
   }
-  { /* the sharp edges: the FE body's against the other's (the first body's if both are FE) */
-    PetscInt a = pairs->body[p][0], b2 = pairs->body[p][1];
-    if (!FCBodyIsDeformable(bodies[a])) {
-      a  = pairs->body[p][1];
-      b2 = pairs->body[p][0];
-    }
-    if (pairs->edges && FCBodyIsDeformable(bodies[a]))
-      PetscCall(FCCollisionEdgeEdge(comm, bodies[a], bodies[b2], a, b2, p, pairs, set));
-  }
+  PetscCall(PetscFree(tri0));
   PetscFunctionReturn(0);
 }
 

@@ -90,7 +90,7 @@ PETSC_INTERN void           FCCollisionTrianglePoint(const FCSurfaceTriangle *, 
 PETSC_INTERN PetscErrorCode FCCollisionSurfaceBuild(MPI_Comm, FCBody, const FCContactPairs *, Surface **);
 PETSC_INTERN PetscErrorCode FCCollisionVertexNormals(const FCSurfaceTopology *T, const FCSurfaceTriangle tri[],
                                                      PetscInt *nvn, FCVertexNormal **vn);
-/* selfcontact.c: an FE body against its own surface (a pair a:a) */
+/* selfcontact.c: an FE body against its own surface (a pair a:a): its vertices, then its sharp edges (edges.c) */
 PETSC_INTERN PetscErrorCode FCCollisionSelfPair(MPI_Comm, FCBody, PetscInt ib, PetscInt pair, const FCContactPairs *,
                                                 PetscMPIInt rank, FCContactSet *);
 /* selfcontact.c: the ring of the current vertex (the triangles it may not land on) over topology T:
@@ -180,9 +180,11 @@ PETSC_INTERN PetscErrorCode FCCollisionBoxBox(FCBody P, FCBody S, PetscInt ip, P
                                               const FCContactPairs *, PetscMPIInt rank, FCContactSet *,
                                               PetscBool *done);
 
-/* edges.c: the edge-edge contacts of the sharp edges of A (FE) against those of B (FE or mesh) */
-PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt pair,
-                                                const FCContactPairs *, FCContactSet *);
+/* edges.c: the edge-edge contacts of the sharp edges of A (FE) against those of B (FE or mesh), from their
+   gathered surface triangles (the detection's: nta of ta, ntb of tb; a self pair passes A's twice) */
+PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt nta,
+                                                const FCSurfaceTriangle *ta, PetscInt ntb, const FCSurfaceTriangle *tb,
+                                                PetscInt pair, const FCContactPairs *, FCContactSet *);
 
 /* The sharp edges of a closed surface (as edge-edge contacts take them) by their two ends' positions
    x0: ends[6 k .. 6 k + 5]; full: 15 a row, then the ends' reference positions X and the sum of the

@@ -163,11 +163,11 @@ static PetscBool SelfExcluded(FCSelfRing *R, const Edge *a, const Edge *b, Petsc
 
 /* A against B; A == B (a self pair): each crossing once, found from its edge of lower index, the
    edges of the body's own shape left out (SelfExcluded) */
-PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt pair,
-                                   const FCContactPairs *pairs, FCContactSet *set)
+PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt nta,
+                                   const FCSurfaceTriangle *ta, PetscInt ntb, const FCSurfaceTriangle *tb,
+                                   PetscInt pair, const FCContactPairs *pairs, FCContactSet *set)
 {
-  PetscInt           nta, ntb, nea, neb, *cand;
-  FCSurfaceTriangle *ta, *tb;
+  PetscInt           nea, neb, *cand;
   FCSurfaceTopology *Ta, *Tb;
   Edge              *ea, *eb;
   FCSurface         *S;
@@ -179,12 +179,10 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(FCSurfaceGather(comm, A, &nta, &ta));
   PetscCall(FCSurfaceTopologyGet(pairs, ia, nta, ta, &Ta));
   PetscCall(SharpEdges(Ta, ta, &nea, &ea));
-  ntb = nta, tb = ta, neb = nea, eb = ea, Tb = Ta;
+  neb = nea, eb = ea, Tb = Ta;
   if (!self) {
-    PetscCall(FCSurfaceGather(comm, B, &ntb, &tb));
     PetscCall(FCSurfaceTopologyGet(pairs, ib, ntb, tb, &Tb));
     PetscCall(SharpEdges(Tb, tb, &neb, &eb));
   }
@@ -236,11 +234,9 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
   PetscCall(FCSelfRingDestroy(&R));
   if (!self) {
     PetscCall(FCSurfaceTopologyRestore(pairs, &Tb));
-    PetscCall(PetscFree(tb));
     PetscCall(PetscFree(eb));
   }
   PetscCall(FCSurfaceTopologyRestore(pairs, &Ta));
-  PetscCall(PetscFree(ta));
   PetscCall(PetscFree(ea));
   PetscFunctionReturn(0);
 }

@@ -177,6 +177,7 @@ PetscErrorCode FCCollisionSelfPair(MPI_Comm comm, FCBody b, PetscInt ib, PetscIn
   S->selfdepth = pairs->intersection_depth;
   S->selfstart = !pairs->self_inside || pairs->self_inside[pair] ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(FCCollisionVerticesAgainstSurface(b, b, ib, ib, S, nvn, vn, pair, pairs, rank, set));
+  if (pairs->edges) PetscCall(FCCollisionEdgeEdge(comm, b, b, ib, ib, S->n, S->tri, S->n, S->tri, pair, pairs, set));
   PetscCall(FCSelfRingDestroy(&S->ring));
   PetscCall(FCSurfaceTopologyRestore(pairs, &T));
   PetscCall(FCSurfaceDestroy(&S));
