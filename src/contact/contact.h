@@ -89,6 +89,8 @@ PETSC_INTERN PetscErrorCode FCContactSetDormantMask(const FCContactSet *, PetscB
 PETSC_INTERN PetscErrorCode FCContactSetDormantRestore(FCContactSet *, PetscBool **mask);
 /* Tangents completing a normal: the frame C_i = [n t1 t2] */
 PETSC_INTERN void FCContactFrame(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3]);
+/* A contact's force on side 1 in world axes: lambda_n n + lambda_t1 t1 + lambda_t2 t2 */
+PETSC_INTERN void FCContactForceWorld(const FCContact *, PetscReal F[3]);
 
 /* End-of-step accuracy measures of a contact set (src/contact/measures.c, docs/output.md) */
 typedef struct {

@@ -85,6 +85,11 @@ PetscErrorCode FCContactSetGather(FCContactSet *set, MPI_Comm comm)
   PetscFunctionReturn(0);
 }
 
+void FCContactForceWorld(const FCContact *c, PetscReal F[3])
+{
+  for (int i = 0; i < 3; i++) F[i] = c->force[0] * c->n[i] + c->force[1] * c->t1[i] + c->force[2] * c->t2[i];
+}
+
 void FCContactFrame(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3])
 {
   PetscReal e[3] = {1, 0, 0}, nn;

@@ -26,10 +26,8 @@ void FCContactSetMeasure(const FCContactSet *set, FCContactMeasures *m)
     pen2 += pen * pen;
     m->violation = PetscMax(m->violation, c->force[0] > 1e-12 * fnmax ? PetscAbsReal(c->gap_end) : pen);
     FCContactFrame(c->n_end, t1, t2);
-    for (int i = 0; i < 3; i++) {
-      F[i]   = c->force[0] * c->n[i] + c->force[1] * c->t1[i] + c->force[2] * c->t2[i];
-      rel[i] = c->d_end[i] - (c->p0[0][i] - c->p0[1][i]);
-    }
+    FCContactForceWorld(c, F);
+    for (int i = 0; i < 3; i++) rel[i] = c->d_end[i] - (c->p0[0][i] - c->p0[1][i]);
     Fe[0] = FCDot(F, c->n_end);
     Fe[1] = FCDot(F, t1);
     Fe[2] = FCDot(F, t2);

@@ -200,10 +200,8 @@ PetscErrorCode FCOutputRecordContacts(FCOutput out, const struct _FCContactSetVi
     }
     out->cbuf[out->nc].gap     = c->gap0;
     out->cbuf[out->nc].gap_end = c->gap_end;
-    for (int i = 0; i < 3; i++) { /* the force on side 1 in world axes: lambda_n n + lambda_t1 t1 + lambda_t2 t2 */
-      out->cbuf[out->nc].point_end[i]   = c->p_end[i];
-      out->cbuf[out->nc].force_world[i] = c->force[0] * c->n[i] + c->force[1] * c->t1[i] + c->force[2] * c->t2[i];
-    }
+    for (int i = 0; i < 3; i++) out->cbuf[out->nc].point_end[i] = c->p_end[i];
+    FCContactForceWorld(c, out->cbuf[out->nc].force_world);
     out->cbuf[out->nc].force_tangential = PetscSqrtReal(c->force[1] * c->force[1] + c->force[2] * c->force[2]);
     out->nc++;
   }

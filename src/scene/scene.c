@@ -439,11 +439,11 @@ PetscErrorCode FCSceneGetContacts(FCScene s, PetscInt *n, FCContactInfo info[])
     info[k].gap_end    = c->gap_end;
     info[k].state      = c->state;
     for (int i = 0; i < 3; i++) {
-      info[k].point[i]       = c->p0[0][i];
-      info[k].normal[i]      = c->n[i];
-      info[k].force[i]       = c->force[i];
-      info[k].force_world[i] = c->force[0] * c->n[i] + c->force[1] * c->t1[i] + c->force[2] * c->t2[i];
+      info[k].point[i]  = c->p0[0][i];
+      info[k].normal[i] = c->n[i];
+      info[k].force[i]  = c->force[i];
     }
+    FCContactForceWorld(c, info[k].force_world);
   }
   PetscFunctionReturn(0);
 }

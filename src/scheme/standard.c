@@ -67,11 +67,7 @@ static PetscErrorCode Solve_Standard(FCScheme scheme, FCContactSet *set, const F
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, x, 6 * nc, MPIU_REAL, MPIU_SUM, scheme->comm));
     for (PetscInt k = 0; k < nc; k++)
       for (int i = 0; i < 3; i++) d[3 * k + i] = x[6 * k + i] - x[6 * k + 3 + i];
-    for (PetscInt k = 0; k < nc; k++) { /* the force in the world, before the frames move */
-      FCContact *c = &set->c[k];
-      for (int i = 0; i < 3; i++)
-        Fw[3 * k + i] = c->force[0] * c->n[i] + c->force[1] * c->t1[i] + c->force[2] * c->t2[i];
-    }
+    for (PetscInt k = 0; k < nc; k++) FCContactForceWorld(&set->c[k], &Fw[3 * k]); /* before the frames move */
     PetscCall(PetscArraycpy(qold, q, M));
     PetscCall(FCSchemeLinearize(scheme, set, dfree, d0, d, q, &change));
     PetscCall(FCPhaseEnd(FC_PHASE_PROXIMITY));
