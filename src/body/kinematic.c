@@ -80,6 +80,21 @@ static void Slerp(const PetscReal a[4], const PetscReal b[4], PetscReal s, Petsc
   FCQuatNormalize(q);
 }
 
+/* The pose of a constant twist t after (x0, q0): turning with w about the point c (which moves with v),
+   x = c + v t + R(w t) (x0 - c), q = exp(t w / 2) q0 */
+static void Twist(const PetscReal x0[3], const PetscReal q0[4], const PetscReal c[3], const PetscReal v[3],
+                  const PetscReal w[3], PetscReal t, PetscReal x[3], PetscReal q[4])
+{
+  PetscReal dq[4], R[9], r[3], Rr[3], n = PetscSqrtReal(FCDot(w, w));
+  FCQuatFromAxisAngle(w, n * t, dq);
+  FCQuatMult(dq, q0, q);
+  FCQuatNormalize(q);
+  FCQuatToMat3(dq, R);
+  for (int d = 0; d < 3; d++) r[d] = x0[d] - c[d];
+  FCMat3Vec(R, r, Rr);
+  for (int d = 0; d < 3; d++) x[d] = c[d] + v[d] * t + Rr[d];
+}
+
 /* The commanded pose at time t >= t0: the step to the pose (s within round-off of 0 or 1 is that end
    exactly: the step's end time is t0 + h give or take an ulp), or the constant twist about the centre */
 static void CommandPoseAt(const Command *c, PetscReal t, PetscReal x[3], PetscReal q[4])
@@ -91,13 +106,7 @@ static void CommandPoseAt(const Command *c, PetscReal t, PetscReal x[3], PetscRe
     Slerp(c->q0, c->q1, s, q);
     return;
   }
-  {
-    PetscReal dq[4], dt = t - c->t0, n = PetscSqrtReal(FCDot(c->w, c->w));
-    FCQuatFromAxisAngle(c->w, n * dt, dq);
-    FCQuatMult(dq, c->q0, q);
-    FCQuatNormalize(q);
-    for (int d = 0; d < 3; d++) x[d] = c->x0[d] + c->v[d] * dt;
-  }
+  Twist(c->x0, c->q0, c->x0, c->v, c->w, t - c->t0, x, q);
 }
 
 /* Pose at time t */
@@ -125,14 +134,7 @@ static void PoseAt(Kinematic *k, PetscReal t, PetscReal x[3], PetscReal q[4])
       for (int i = 0; i < 4; i++) q[i] = P->q0[i];
     return;
   }
-  PetscReal dq[4], R[9], r[3], Rr[3], n = PetscSqrtReal(FCDot(P->w, P->w));
-  FCQuatFromAxisAngle(P->w, n * t, dq);
-  FCQuatMult(dq, P->q0, q);
-  FCQuatNormalize(q);
-  FCQuatToMat3(dq, R);
-  for (int d = 0; d < 3; d++) r[d] = P->x0[d] - k->pivot[d];
-  FCMat3Vec(R, r, Rr);
-  for (int d = 0; d < 3; d++) x[d] = k->pivot[d] + P->v[d] * t + Rr[d];
+  Twist(P->x0, P->q0, k->pivot, P->v, P->w, t, x, q);
 }
 
 static PetscErrorCode SetUp_Kinematic(FCBody body)
