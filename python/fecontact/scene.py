@@ -288,35 +288,34 @@ class Scene:
         self._finished = True
 
     def _time(self):
+        self._check()
         t, k = _creal(), _cint()
         self._do(_FCSceneGetTime, self._h, ctypes.byref(t), ctypes.byref(k))
         return t.value, k.value
 
     @property
     def time(self):
-        self._check()
         return self._time()[0]
 
     @property
     def step_index(self):
         """The number of steps done (a restart's included)"""
-        self._check()
         return self._time()[1]
 
-    @property
-    def time_step(self):
+    def _stepping(self):
         self._check()
         h, n = _creal(), _cint()
         self._do(_FCSceneGetTimeStep, self._h, ctypes.byref(h), ctypes.byref(n))
-        return h.value
+        return h.value, n.value
+
+    @property
+    def time_step(self):
+        return self._stepping()[0]
 
     @property
     def time_steps(self):
         """-time_steps: the last step"""
-        self._check()
-        h, n = _creal(), _cint()
-        self._do(_FCSceneGetTimeStep, self._h, ctypes.byref(h), ctypes.byref(n))
-        return n.value
+        return self._stepping()[1]
 
     @property
     def bodies(self):
