@@ -90,12 +90,13 @@ def last_step(H, name):
     return H["contacts/" + name][off[-2]:off[-1]]
 
 
-def same_as_1_rank(H1, Hn, body):
+def same_as_1_rank(H1, Hn, body, steps=None):
     """Whether Hn has H1's contacts at every step (the offsets), the largest relative difference of their forces
-    (matched by point) and of the body's end positions (matched by reference position)"""
+    (matched by point; over the first `steps` steps, or all) and of the body's end positions (matched by reference
+    position)"""
     o1, on = H1["contacts/offset"][:], Hn["contacts/offset"][:]
     same, ef = np.array_equal(o1, on), 0.0
-    for k in range(len(o1) - 1):
+    for k in range(len(o1) - 1 if steps is None else steps):
         if not same:
             break
         p1, pn = H1["contacts/point"][o1[k]:o1[k + 1]], Hn["contacts/point"][on[k]:on[k + 1]]
@@ -197,15 +198,7 @@ if NP > 1:
             r.append([f[s][me].sum(), *np.where((B[s, 0] == 0)[:, None], fw[s], -fw[s])[~me].sum(0)])
         return np.array(r), H["bodies/finger/reactions/base"][:, :3]
 
-    o1, on = F1["contacts/offset"][:], Fi["contacts/offset"][:]
-    same = np.array_equal(o1, on)
-    ef = 0.0
-    for k in range(first):
-        f1, fn_ = F1["contacts/force"][o1[k]:o1[k + 1]], Fi["contacts/force"][on[k]:on[k + 1]]
-        p1, pn = F1["contacts/point"][o1[k]:o1[k + 1]], Fi["contacts/point"][on[k]:on[k + 1]]
-        i1, i_n = np.lexsort(np.round(p1, 8).T), np.lexsort(np.round(pn, 8).T)
-        if same and len(f1) and np.abs(f1).max() > 0:
-            ef = max(ef, np.abs(f1[i1] - fn_[i_n]).max() / np.abs(f1).max())
+    same, ef, _ = same_as_1_rank(F1, Fi, "finger", steps=first)
     (a1, r1), (an, rn) = resultants(F1), resultants(Fi)
     er = max(np.abs(a1 - an).max() / np.abs(a1).max(), np.abs(r1 - rn).max() / np.abs(r1).max())
     i1, i_n = np.lexsort(F1["bodies/finger/mesh/reference"][:].T), np.lexsort(X.T)
