@@ -394,7 +394,7 @@ PetscErrorCode FCBodyGetVelocity(FCBody body, PetscReal v[3], PetscReal w[3])
 }
 
 /* This rank's values of the picture (positions, or a point field), or all of them on every rank in
-   the global order (the owned ranges tile it in rank order) */
+   the global order */
 static PetscErrorCode PictureValues(FCBody body, PetscBool velocity, PetscBool gathered, PetscInt *n, PetscReal x[])
 {
   const FCBodyVisual *vis = &body->visual;
@@ -410,18 +410,14 @@ static PetscErrorCode PictureValues(FCBody body, PetscBool velocity, PetscBool g
   else
     PetscCall(FCBodyGetVisualPositions(body, mine));
   PetscCheck(has, body->comm, PETSC_ERR_USER_INPUT, "Body '%s' has no vertex velocities", body->name);
-  if (!gathered)
+  if (gathered) { /* the owned ranges tile the global numbering in rank order */
+    PetscReal *all;
+    PetscInt   total;
+    PetscCall(FCAllgatherRecords(body->comm, vis->nv, 3 * sizeof(PetscReal), mine, &total, (void **)&all));
+    PetscCall(PetscArraycpy(x, all, 3 * total));
+    PetscCall(PetscFree(all));
+  } else
     PetscCall(PetscArraycpy(x, mine, 3 * vis->nv));
-  else {
-    PetscMPIInt size, *counts, *displs, c = (PetscMPIInt)(3 * vis->nv);
-    PetscCallMPI(MPI_Comm_size(body->comm, &size));
-    PetscCall(PetscMalloc2(size, &counts, size, &displs));
-    PetscCallMPI(MPI_Allgather(&c, 1, MPI_INT, counts, 1, MPI_INT, body->comm));
-    displs[0] = 0;
-    for (PetscMPIInt r = 1; r < size; r++) displs[r] = displs[r - 1] + counts[r - 1];
-    PetscCallMPI(MPI_Allgatherv(mine, c, MPIU_REAL, x, counts, displs, MPIU_REAL, body->comm));
-    PetscCall(PetscFree2(counts, displs));
-  }
   PetscCall(PetscFree(mine));
   PetscFunctionReturn(0);
 }
