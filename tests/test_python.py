@@ -41,7 +41,8 @@ def python(code, np_=NP, check=True):
     """Run a Python script (fecontact importable) on np_ ranks; returns the CompletedProcess"""
     f = out("script_%d.py" % abs(hash(code)))
     with open(f, "w") as g:
-        g.write("import sys\nimport numpy as np\nimport fecontact\n" + code)
+        g.write("import sys\nimport numpy as np\nimport fecontact\nfrom petsc4py import PETSc\n"
+                "say = print if PETSc.COMM_WORLD.getRank() == 0 else (lambda *a: None)  # one rank's lines\n" + code)
     cmd = ([] if np_ == 1 else ["mpirun", "-n", str(np_), "--oversubscribe"]) + [PY, f]
     p = subprocess.run(cmd, cwd=ROOT, env=PENV, capture_output=True, text=True, timeout=600)
     if check and p.returncode:
@@ -80,7 +81,7 @@ x = s.body("finger").positions
 s.step(12)
 np.save(%r, s.contacts()["force"])
 s.run()
-print("TIME", t, k, len(c["gap"]), x.shape[0], s.step_index)
+say("TIME", t, k, len(c["gap"]), x.shape[0], s.step_index)
 s.destroy()
 """ % (" ".join(SCENE + ["-output_file", fp]), out("forces15.npy")))
 
@@ -163,7 +164,7 @@ with fecontact.Scene(options=%r) as s:
 with fecontact.Scene(options=%r) as s:
     k0 = s.step_index
     s.run()
-    print("RESTART", k0, s.step_index)
+    say("RESTART", k0, s.step_index)
 """ % (" ".join(SCENE + ["-output_file", fr, "-output_every", "10"]),
        " ".join(SCENE + ["-output_file", fr2, "-restart", fr])))
 a, b = h5py.File(fe, "r"), h5py.File(fr2, "r")
@@ -177,9 +178,9 @@ p = python("""
 def expect(what, f):
     try:
         f()
-        print("NOERROR", what)
+        say("NOERROR", what)
     except fecontact.FecontactError as e:
-        print("ERROR", what, "|", e)
+        say("ERROR", what, "|", e)
 expect("mu", lambda: fecontact.Scene(options=%r))
 expect("type", lambda: fecontact.Scene(options={"scene_bodies": "a", "a_type": "nothing"}))
 s = fecontact.Scene(options=%r)
@@ -188,7 +189,7 @@ s.destroy()
 s = fecontact.Scene(options=%r)
 expect("fe_pose", lambda: s.body("finger").set_pose([0, 0, 0]))
 s.step(2)
-print("STEPS", s.step_index)
+say("STEPS", s.step_index)
 s.destroy()
 """ % (" ".join(SCENE + ["-contact_mu", "-1"]), " ".join(SCENE + ["-contact_mux", "1"]),
        " ".join(SCENE + ["-output_file", out("ok.h5")])))
