@@ -1,4 +1,4 @@
-/* FCScheme: a constraint scheme, -constraint_scheme <type> (default explicit), one file per type:
+/* FCScheme: a constraint scheme, -constraint_scheme <type> (default fast), one file per type:
      explicit  Algorithm 1: linearize once, W = sum J A^-1 J^T, PGS, correction   (explicit.c)
      standard  Algorithm 2: Newton iterations, W_k rebuilt by solves and the proximity measured
                on the corrected state                                             (standard.c)
@@ -71,7 +71,7 @@ PetscErrorCode FCSchemeSetType(FCScheme scheme, FCSchemeType type)
    unread and FCOptionsCheckUnused reports them */
 PetscErrorCode FCSchemeSetFromOptions(FCScheme scheme)
 {
-  char type[FC_MAX_NAME] = FCSCHEMEEXPLICIT;
+  char type[FC_MAX_NAME] = FCSCHEMEFAST;
 
   PetscFunctionBegin;
   PetscOptionsBegin(scheme->comm, NULL, "Constraint scheme", "FCScheme");
