@@ -40,6 +40,10 @@ struct _p_FCScene {
   FCScheme              scheme;   /* owns the contact solver */
   FCSchemeStats         stats;
   FCContactMeasures     measures;
+  struct {                           /* the end-of-step checks over the steps run (the summary's) */
+    PetscInt  intersecting, beyond;  /* steps with points inside another body; with contacts beyond the check */
+    PetscReal cone, complementarity; /* the worst cone violation and contact natural-map error of the run */
+  } checks;
 };
 
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
@@ -249,9 +253,13 @@ PetscErrorCode FCSceneStep(FCScene s)
   if (s->pairs->n) { /* accuracy of the step on the real end-of-step geometry */
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
     PetscCall(FCCollisionEndGaps(s->collision, &s->set));
-    FCContactSetMeasure(&s->set, &s->measures);
+    FCContactSetMeasure(&s->set, s->pairs->check_cone, s->pairs->check_complementarity, &s->measures);
     PetscCall(FCCollisionCountIntersections(s->collision, &s->measures.intersections));
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
+    if (s->measures.intersections) s->checks.intersecting++;
+    if (s->measures.beyond) s->checks.beyond++;
+    s->checks.cone            = PetscMax(s->checks.cone, s->measures.cone_violation);
+    s->checks.complementarity = PetscMax(s->checks.complementarity, s->measures.max_complementarity);
   }
   s->step++;
   s->t = s->t0 + (s->step - s->step0) * s->h; /* no drift from repeated additions */
@@ -308,8 +316,40 @@ static PetscErrorCode PrintSummary(FCScene s, PetscLogDouble wall)
                               (double)R[6 * k + 3], (double)R[6 * k + 4], (double)R[6 * k + 5]));
     }
   }
+  if (s->pairs->n)
+    PetscCall(PetscPrintf(
+        s->comm,
+        "  contacts: %" PetscInt_FMT " step(s) beyond the end-of-step check (worst cone violation %.3g, "
+        "-contact_check_cone %g; worst natural-map error %.3g m, -contact_check_complementarity %g), "
+        "%" PetscInt_FMT " step(s) with points inside another body\n",
+        s->checks.beyond, (double)s->checks.cone, (double)s->pairs->check_cone, (double)s->checks.complementarity,
+        (double)s->pairs->check_complementarity, s->checks.intersecting));
   PetscCall(PetscPrintf(s->comm, "  output: %s (open the .xmf beside it in ParaView)\n", s->output_file));
   PetscFunctionReturn(0);
+}
+
+/* What the end of the last step found wrong, for its progress line ("" when nothing): the points
+   inside another body, the contacts beyond the end-of-step check (-contact_check_*) */
+static void StepWarning(FCScene s, char buf[], size_t len)
+{
+  const FCContactMeasures *m = &s->measures;
+  size_t                   n = 0;
+
+  buf[0] = 0;
+  if (!s->pairs->n) return;
+  if (m->intersections)
+    n += (size_t)snprintf(buf + n, len - n,
+                          "  WARNING: %" PetscInt_FMT " point(s) inside another body (%" PetscInt_FMT
+                          " step(s) so far; /steps/intersections)",
+                          m->intersections, s->checks.intersecting);
+  if (m->beyond && n < len)
+    (void)snprintf(buf + n, len - n,
+                   "  WARNING: %" PetscInt_FMT " of %" PetscInt_FMT
+                   " contact(s) beyond the end-of-step check: cone violation %.3g (-contact_check_cone %g), "
+                   "natural-map error %.3g m (-contact_check_complementarity %g) (%" PetscInt_FMT
+                   " step(s) so far; /steps/contacts_beyond_check)",
+                   m->beyond, s->set.n, (double)m->cone_violation, (double)s->pairs->check_cone,
+                   (double)m->max_complementarity, (double)s->pairs->check_complementarity, s->checks.beyond);
 }
 
 /* Runs the remaining steps. If a step fails, or SIGINT/SIGTERM arrives, the output file is
@@ -343,8 +383,11 @@ PetscErrorCode FCSceneRun(FCScene s)
                         done + 1, (double)(s->t0 + (done + 1 - s->step0) * s->h), s->output_file, done);
       return ierr;
     }
-    PetscCall(
-        FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t, s->pairs->n ? s->measures.intersections : 0));
+    {
+      char warning[512];
+      StepWarning(s, warning, sizeof(warning));
+      PetscCall(FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t, warning));
+    }
     if (s->pairs->fail_on_intersection && s->measures.intersections) { /* the step's frame, then close */
       if (s->step % s->every && s->step < s->nsteps) PetscCall(WriteOutputStepOrClose(s));
       PetscCall(FCOutputDestroy(&s->output));
