@@ -401,6 +401,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.trialposition      = TrialPosition_FEM;
   body->ops.getreactions       = GetReactions_FEM;
   body->ops.settime            = FCFEMBCPoses;
+  body->ops.changetimestep     = FCFEMChangeTimeStep;
   body->ops.getexternalwork    = GetExternalWork_FEM;
   body->ops.getsolvercounts    = GetSolverCounts_FEM;
   body->ops.getcontactmemory   = GetContactMemory_FEM;

@@ -177,8 +177,9 @@ PETSC_INTERN PetscErrorCode FCFEMAssembleMass(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMAssembleElastic(FCBody, Vec u, Vec f, Mat K); /* f, K may be NULL */
 /* ... with the constrained vertices where they are at when (FC_BC_NOW, FC_BC_END) */
 PETSC_INTERN PetscErrorCode FCFEMAssembleElasticAt(FCBody, Vec u, int when, Vec f, Mat K);
-PETSC_INTERN PetscErrorCode FCFEMFormA(FCBody);   /* A from M and K; its factor becomes stale */
-PETSC_INTERN PetscErrorCode FCFEMFactorA(FCBody); /* by the builder that owns it, or the KSP */
+PETSC_INTERN PetscErrorCode FCFEMFormA(FCBody);          /* A from M and K; its factor becomes stale */
+PETSC_INTERN PetscErrorCode FCFEMChangeTimeStep(FCBody); /* body->h changed after set-up */
+PETSC_INTERN PetscErrorCode FCFEMFactorA(FCBody);        /* by the builder that owns it, or the KSP */
 PETSC_INTERN PetscErrorCode FCFEMSolveA(FCBody, Vec b, Vec x, const char what[], PetscReal t);
 PETSC_INTERN PetscErrorCode FreeMotion_FEM(FCBody, PetscReal);
 PETSC_INTERN PetscErrorCode Integrate_FEM(FCBody, PetscReal);

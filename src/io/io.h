@@ -10,9 +10,10 @@ PETSC_INTERN PetscErrorCode FCOutputWriteHeader(FCOutput, PetscInt nbodies, FCBo
                                                 PetscInt every, PetscBool contacts);
 /* The contacts of the step just recorded (only in scenes with contact pairs) */
 PETSC_INTERN PetscErrorCode FCOutputRecordContacts(FCOutput, const struct _FCContactSetView *);
+/* One row per requested step: its time, phases, wall time, sub-steps (step control) and their smallest h */
 PETSC_INTERN PetscErrorCode FCOutputRecordStep(FCOutput, PetscInt step, PetscReal t,
-                                               const PetscReal timing[FC_PHASE_NUM], PetscReal wall, PetscInt nbodies,
-                                               FCBody[]);
+                                               const PetscReal timing[FC_PHASE_NUM], PetscReal wall, PetscInt substeps,
+                                               PetscReal hsub, PetscInt nbodies, FCBody[]);
 PETSC_INTERN PetscErrorCode FCOutputWriteFrame(FCOutput, PetscInt step, PetscReal t, PetscInt nbodies, FCBody[]);
 PETSC_INTERN PetscErrorCode FCOutputFlush(FCOutput);
 /* The restart state of the end of `step` (/restart, written before the frame's flush); the

@@ -107,6 +107,9 @@ struct _p_FCOutput {
   long long *rsolve; /* per row: factorizations, Krylov and Newton iterations of the step (all bodies) */
   PetscInt   lastsolve[FC_SOLVER_COUNTS]; /* the bodies' totals at the last row */
   hid_t      s_solve[FC_SOLVER_COUNTS];
+  long long *rsub;  /* per row: the sub-steps of the step (step control; 1 when none failed) */
+  double    *rhsub; /* per row: the smallest of them (s) */
+  hid_t      s_sub, s_hsub;
   double     elast; /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt   nframes, xdmfwritten;
   hid_t      complete;         /* /complete: the last step, and the frames, that a flush has put on disk */

@@ -47,6 +47,8 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
   PetscCall(FCH5CreateRows(g, "factorizations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_solve[0]));
   PetscCall(FCH5CreateRows(g, "krylov_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_solve[1]));
   PetscCall(FCH5CreateRows(g, "free_motion_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_solve[2]));
+  PetscCall(FCH5CreateRows(g, "substeps", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_sub));
+  PetscCall(FCH5CreateRows(g, "substep_min", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_hsub));
   PetscCall(SolverTotals(nbodies, bodies, out->lastsolve));
   gt = H5Gcreate2(g, "timing", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   for (int p = 0; p < FC_PHASE_NUM; p++)
@@ -89,6 +91,7 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
   }
   out->maxrows = (PetscInt)nrow;
   PetscCall(PetscMalloc1(FC_SOLVER_COUNTS * nrow, &out->rsolve));
+  PetscCall(PetscMalloc2(nrow, &out->rsub, nrow, &out->rhsub));
   PetscCall(PetscMalloc5(nrow, &out->rtime, nrow, &out->renergy, nrow * (FC_PHASE_NUM + 1), &out->rtiming,
                          nrow * nbodies * 10 + 1, &out->rbody, nrow, &out->rstep));
   PetscFunctionReturn(0);
@@ -96,7 +99,7 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
 
 /* One row per completed step (buffered until the next flush) */
 PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, const PetscReal timing[FC_PHASE_NUM],
-                                  PetscReal wall, PetscInt nbodies, FCBody bodies[])
+                                  PetscReal wall, PetscInt substeps, PetscReal hsub, PetscInt nbodies, FCBody bodies[])
 {
   PetscInt r    = out->nrows;
   double   etot = 0.0;
@@ -118,6 +121,16 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
       PetscCall(PetscFree(out->rsolve));
       out->rsolve = f;
     }
+    {
+      long long *f;
+      double    *g;
+      PetscCall(PetscMalloc2(n, &f, n, &g));
+      PetscCall(PetscArraycpy(f, out->rsub, r));
+      PetscCall(PetscArraycpy(g, out->rhsub, r));
+      PetscCall(PetscFree2(out->rsub, out->rhsub));
+      out->rsub  = f;
+      out->rhsub = g;
+    }
     PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
     out->rtime   = a;
     out->renergy = b;
@@ -136,6 +149,8 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
   }
   out->rtime[r] = t;
   out->rstep[r] = step;
+  out->rsub[r]  = substeps;
+  out->rhsub[r] = hsub;
   {
     PetscInt tot[FC_SOLVER_COUNTS];
     PetscCall(SolverTotals(nbodies, bodies, tot));
@@ -299,6 +314,8 @@ PetscErrorCode FCOutputRecordsFlush(FCOutput out)
       for (PetscInt r = 0; r < n; r++) steps[r] = out->rsolve[FC_SOLVER_COUNTS * r + k];
       PetscCall(FCH5AppendRows(out->rank, out->s_solve[k], H5T_NATIVE_LLONG, n, steps));
     }
+    PetscCall(FCH5AppendRows(out->rank, out->s_sub, H5T_NATIVE_LLONG, n, out->rsub));
+    PetscCall(FCH5AppendRows(out->rank, out->s_hsub, H5T_NATIVE_DOUBLE, n, out->rhsub));
     PetscCall(FCH5AppendRows(out->rank, out->energy, H5T_NATIVE_DOUBLE, n, out->renergy));
     for (PetscInt r = 0; r < n; r++) { /* energy change over each step: a scheme adding energy shows here */
       tmp[r]     = out->renergy[r] - out->elast;
@@ -346,6 +363,8 @@ PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
   H5Dclose(out->denergy);
   H5Dclose(out->wall);
   for (int k = 0; k < FC_SOLVER_COUNTS; k++) H5Dclose(out->s_solve[k]);
+  H5Dclose(out->s_sub);
+  H5Dclose(out->s_hsub);
   for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
   if (out->contacts) {
     hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,        out->c_force,
@@ -360,6 +379,7 @@ release:
   PetscCall(PetscFree(out->sbuf));
   PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
   PetscCall(PetscFree(out->rsolve));
+  PetscCall(PetscFree2(out->rsub, out->rhsub));
   for (PetscInt i = 0; i < out->nbodies && out->bo; i++) PetscCall(PetscFree(out->bo[i].rreact));
   PetscFunctionReturn(0);
 }

@@ -79,3 +79,7 @@ PETSC_INTERN void           FCTableEval(FCTable, PetscReal t, PetscReal v[]);
 PETSC_INTERN void      FCTableBracket(FCTable, PetscReal t, const PetscReal **a, const PetscReal **b, PetscReal *s);
 PETSC_INTERN PetscReal FCTableMaxRate(FCTable, PetscInt j0, PetscInt j1);
 PETSC_INTERN PetscErrorCode FCTableDestroy(FCTable *);
+
+/* Errors a scene's step control redoes, and the handler around the calls that raise them (src/util/errors.c) */
+PETSC_INTERN PetscBool      FCErrorIsStepFailure(PetscErrorCode);
+PETSC_INTERN PetscErrorCode FCPushStepErrorHandler(void);
