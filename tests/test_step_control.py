@@ -91,7 +91,17 @@ msg = pmin.stdout + pmin.stderr
 c.check(pmin.returncode != 0 and "did not converge" in msg and "-time_step_min 0.3" in msg,
         "-time_step_min 0.3: stops with the Newton error and the step control's note (exit %d)" % pmin.returncode)
 
-# 4. 2 ranks: the 1-rank answers
+# 4. restart: a cut run stopped after step 1 and continued ends as the run that did not stop (the sub-step in
+# use and its successes are in the restart state)
+f1, _ = run("block2first", BLOCK + ["-time_steps", "1", "-time_step", "0.5"])
+fr, _ = run("block2rest", BLOCK + ["-time_steps", "2", "-time_step", "0.5", "-restart", f1])
+with h5py.File(fr) as h, h5py.File(f2) as a:
+    d = np.abs(T.sorted_positions(h, "block")[1] - T.sorted_positions(a, "block")[1]).max()
+    same = h["steps/substeps"][-1] == a["steps/substeps"][-1]
+    c.check(d < 1e-12 and same, "restart after a cut step: step 2 in %d sub-steps as without the stop, positions "
+            "to %.1e m" % (h["steps/substeps"][-1], d))
+
+# 5. 2 ranks: the 1-rank answers
 if NP > 1:
     for name, args in [("fail", DROP + ["-time_step_fail_at", "4"]), ("block2", BLOCK + ["-time_steps", "2",
                                                                                         "-time_step", "0.5"])]:

@@ -18,13 +18,13 @@ PETSC_INTERN PetscErrorCode FCOutputWriteFrame(FCOutput, PetscInt step, PetscRea
 PETSC_INTERN PetscErrorCode FCOutputFlush(FCOutput);
 /* The restart state of the end of `step` (/restart, written before the frame's flush); the
    restart format is written and read in src/io/restart.c */
-PETSC_INTERN PetscErrorCode FCOutputWriteRestart(FCOutput, PetscInt step, PetscReal t, PetscInt nbodies, FCBody[],
-                                                 const FCContactSet *previous);
+PETSC_INTERN PetscErrorCode FCOutputWriteRestart(FCOutput, PetscInt step, PetscReal t, const PetscReal control[3],
+                                                 PetscInt nbodies, FCBody[], const FCContactSet *previous);
 /* Reads the newest complete restart state of a file into the bodies, previous contacts, step, t */
 /* src/io/restartcheck.c: the options that define the scene are those of the run that wrote the file */
 PETSC_INTERN PetscErrorCode FCRestartCheckScene(MPI_Comm, const char file[], PetscInt nbodies, FCBody[]);
 PETSC_INTERN PetscErrorCode FCRestartLoad(MPI_Comm, const char file[], PetscInt nbodies, FCBody[],
-                                          FCContactSet *previous, PetscInt *step, PetscReal *t);
+                                          FCContactSet *previous, PetscInt *step, PetscReal *t, PetscReal control[3]);
 /* /memory, /memory_phases (name): a row of ncols values per rank (this rank's row), named */
 PETSC_INTERN PetscErrorCode FCOutputWriteMemory(FCOutput, const char name[], const char units[], PetscInt ncols,
                                                 const char *const names[], const PetscReal row[]);

@@ -65,8 +65,10 @@ PETSC_INTERN PetscErrorCode FCH5AttrInt(hid_t loc, const char name[], long long 
 typedef struct _p_FCRestartWriter *FCRestartWriter;
 PETSC_INTERN PetscErrorCode FCRestartWriterCreate(MPI_Comm, hid_t file, PetscInt nbodies, FCBody[], FCRestartWriter *);
 PETSC_INTERN PetscErrorCode FCRestartWriterBegin(FCRestartWriter); /* the next slot's step := -1 */
-PETSC_INTERN PetscErrorCode FCRestartWriterWrite(FCRestartWriter, PetscInt step, PetscReal t, PetscInt nbodies,
-                                                 FCBody[], const FCContactSet *previous);
+/* control: the step control's state (src/scene/stepcontrol.c: h, the sub-step in use, its successes) */
+PETSC_INTERN PetscErrorCode FCRestartWriterWrite(FCRestartWriter, PetscInt step, PetscReal t,
+                                                 const PetscReal control[3], PetscInt nbodies, FCBody[],
+                                                 const FCContactSet *previous);
 PETSC_INTERN PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *);
 
 #define FC_MAX_REACTIONS 16

@@ -132,7 +132,11 @@ static PetscErrorCode WriteOutputStep(FCScene s)
 {
   PetscFunctionBegin;
   PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
-  PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
+  {
+    PetscReal control[3];
+    FCStepControlGetState(&s->control, control);
+    PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, control, s->nbodies, s->bodies, &s->previous));
+  }
   s->written = s->step;
   PetscFunctionReturn(0);
 }
@@ -194,7 +198,9 @@ PetscErrorCode FCSceneSetUp(FCScene s)
   PetscCall(FCOptionsCheckUnused(s->comm)); /* after every object has read its options */
   if (s->restart[0]) { /* an input, by identity: FCOutputCreate refuses to write over it (src/util/inputs.c) */
     PetscCall(FCInputsAdd(s->restart, "restart file (-restart)"));
-    PetscCall(FCRestartLoad(s->comm, s->restart, s->nbodies, s->bodies, &s->previous, &s->step, &s->t));
+    PetscReal control[3];
+    PetscCall(FCRestartLoad(s->comm, s->restart, s->nbodies, s->bodies, &s->previous, &s->step, &s->t, control));
+    FCStepControlSetState(&s->control, control);
     PetscCall(FCRestartCheckScene(s->comm, s->restart, s->nbodies, s->bodies));
     PetscCheck(s->step <= s->nsteps, s->comm, PETSC_ERR_USER_INPUT,
                "-restart %s is at step %" PetscInt_FMT ", beyond -time_steps %" PetscInt_FMT, s->restart, s->step,

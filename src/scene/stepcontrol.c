@@ -114,6 +114,20 @@ void FCStepControlCut(FCStepControl *c, PetscReal hs, PetscBool *again)
   }
 }
 
+void FCStepControlGetState(const FCStepControl *c, PetscReal state[3])
+{
+  state[0] = c->h;
+  state[1] = c->hnow;
+  state[2] = (PetscReal)c->successes;
+}
+
+void FCStepControlSetState(FCStepControl *c, const PetscReal state[3])
+{
+  if (state[0] != c->h || !(state[1] > 0.0 && state[1] <= c->h)) return;
+  c->hnow      = state[1];
+  c->successes = (PetscInt)state[2];
+}
+
 PetscErrorCode FCStepControlDestroy(FCStepControl *c)
 {
   PetscFunctionBegin;

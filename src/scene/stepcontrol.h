@@ -25,3 +25,7 @@ PETSC_INTERN PetscErrorCode FCStepControlRestore(FCStepControl *, FCBody[], Pets
 PETSC_INTERN PetscReal      FCStepControlNext(FCStepControl *, PetscReal done);
 PETSC_INTERN void           FCStepControlCut(FCStepControl *, PetscReal hs, PetscBool *again);
 PETSC_INTERN PetscErrorCode FCStepControlDestroy(FCStepControl *);
+/* The state a restart carries (h, the sub-step in use, its successes), and back: taken only where
+   the restarted run has the same -time_step */
+PETSC_INTERN void FCStepControlGetState(const FCStepControl *, PetscReal state[3]);
+PETSC_INTERN void FCStepControlSetState(FCStepControl *, const PetscReal state[3]);
