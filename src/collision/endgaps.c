@@ -117,6 +117,15 @@ PetscErrorCode FCCollisionEndGapsOf(MPI_Comm comm, PetscInt nbodies, FCBody bodi
     else
       PetscCall(FCBodyProximityPosition(bodies[c->body[0]], &c->prox[0], FC_AT_NOW, x));
     PetscCall(FCBodyShapeDistance(bodies[c->body[1]], FC_AT_NOW, x, &g[10 * k], &g[10 * k + 1], cpb));
+    { /* on an edge of the shape: the normal the contact was solved with, where it is still one of the edge's */
+      PetscReal move = 0.0;
+      PetscBool keep;
+      for (int d = 0; d < 3; d++) move += PetscSqr(x[d] - c->p0[0][d]);
+      PetscCall(FCBodyShapeKeepsNormal(bodies[c->body[1]], FC_AT_NOW, x, g[10 * k], &g[10 * k + 1], c->n,
+                                       1e-3 * PetscMax(PetscSqrtReal(move), PetscAbsReal(g[10 * k])), &keep));
+      if (keep)
+        for (int d = 0; d < 3; d++) g[10 * k + 1 + d] = c->n[d];
+    }
     PetscCall(FCBodyProximityPosition(bodies[c->body[1]], &c->prox[1], FC_AT_NOW, p2));
     for (int d = 0; d < 3; d++) {
       g[10 * k + 4 + d] = x[d] - p2[d];

@@ -34,10 +34,19 @@ PetscErrorCode FCSchemeLinearize(FCScheme scheme, FCContactSet *set, const Petsc
     FCBody     B   = scheme->bodies[c->body[1]];
     PetscReal  gap = 0.0, dd[3];
     for (int i = 0; i < 3; i++) dd[i] = d[3 * k + i] - dfree[3 * k + i];
-    if (c->side2 == FC_SIDE_SHAPE && FCBodyIsPrescribed(B)) { /* its pose at the end of the step is known */
-      PetscReal p1[3], n[3], cpb[3];
+    PetscBool reeval = (PetscBool)(c->side2 == FC_SIDE_SHAPE && FCBodyIsPrescribed(B));
+    PetscReal p1[3], n[3], cpb[3];
+    if (reeval) { /* its pose at the end of the step is known */
       for (int i = 0; i < 3; i++) p1[i] = c->pfree[0][i] + dd[i];
       PetscCall(FCBodyShapeDistance(B, FC_AT_FREE, p1, &gap, n, cpb));
+      { /* on an edge of the shape: the normal it has, probed over a thousandth of the iteration's motion */
+        PetscBool keep;
+        PetscCall(FCBodyShapeKeepsNormal(B, FC_AT_FREE, p1, gap, n, c->n,
+                                         1e-3 * PetscMax(PetscSqrtReal(FCDot(dd, dd)), PetscAbsReal(gap)), &keep));
+        if (keep) reeval = PETSC_FALSE; /* its gap linearized along it */
+      }
+    }
+    if (reeval) {
       for (int i = 0; i < 3; i++) *frame_change = PetscMax(*frame_change, PetscAbsReal(n[i] - c->n[i]));
       for (int i = 0; i < 3; i++) c->n[i] = n[i];
       FCContactFrame(c->n, c->t1, c->t2);
