@@ -6,8 +6,9 @@ F_z and its tangential part F_x over time, and their ratio while the die slides 
 on a flat slab, Coulomb gives mu where the whole contact slips; the slab's bulge ahead of the die
 tilts the contact normals, which makes it differ).
 
-Usage: /usr/bin/python3 scripts/ironing.py [--np N] [--mesh meshes/slab.msh] [--no-plot]
-Prints the Markdown table of docs/scenes.md and writes docs/ironing.png."""
+Usage: /usr/bin/python3 scripts/ironing.py [--np N] [--mesh meshes/slab.msh] [--scheme S] [--no-plot]
+(--scheme: -constraint_scheme, the default's if not given.) Prints the Markdown table of docs/scenes.md and
+writes docs/ironing.png."""
 import argparse
 import os
 import sys
@@ -24,10 +25,13 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--np", type=int, default=1)
     ap.add_argument("--mesh", default="meshes/slab.msh")
+    ap.add_argument("--scheme", help="-constraint_scheme (default: fecontact's)")
     ap.add_argument("--no-plot", action="store_true")
     a = ap.parse_args()
-    f = "/tmp/ironing_np%d.h5" % a.np
+    f = "/tmp/ironing_np%d%s.h5" % (a.np, "_" + a.scheme if a.scheme else "")
     cmd = ["-options_file", "input/ironing.opts", "-slab_dm_plex_filename", a.mesh, "-output_file", f, "-quiet"]
+    if a.scheme:
+        cmd += ["-constraint_scheme", a.scheme]
     run(cmd, a.np)
     h = h5py.File(f, "r")
     t, R = h["steps/time"][:], h["bodies/slab/reactions/bottom"][:]

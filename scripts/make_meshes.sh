@@ -66,6 +66,8 @@ MESHES=(
   "hertz_block_1   hertz_block.geo   lc_min 0.04"
   "hertz_block_2   hertz_block.geo   lc_min 0.02"
   "hertz_block_3   hertz_block.geo   lc_min 0.01"
+  "punch_block     punch_block.geo   d 0.008"
+  "punch_block_free punch_block_free.geo lc_min 0.008"
 )
 
 failed=()

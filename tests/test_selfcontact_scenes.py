@@ -49,7 +49,7 @@ hold the neck without creeping."""
 import h5py
 import numpy as np
 
-from fctest import run, out, Checker, np_from_argv
+from fctest import run, out, Checker, np_from_argv, same_as_1_rank
 
 NP = np_from_argv()
 c = Checker("selfcontact scenes np%d" % NP)
@@ -88,27 +88,6 @@ def held(H, what):
 def last_step(H, name):
     off = H["contacts/offset"][:]
     return H["contacts/" + name][off[-2]:off[-1]]
-
-
-def same_as_1_rank(H1, Hn, body, steps=None):
-    """Whether Hn has H1's contacts at every step (the offsets), the largest relative difference of their forces
-    (matched by point; over the first `steps` steps, or all) and of the body's end positions (matched by reference
-    position)"""
-    o1, on = H1["contacts/offset"][:], Hn["contacts/offset"][:]
-    same, ef = np.array_equal(o1, on), 0.0
-    for k in range(len(o1) - 1 if steps is None else steps):
-        if not same:
-            break
-        p1, pn = H1["contacts/point"][o1[k]:o1[k + 1]], Hn["contacts/point"][on[k]:on[k + 1]]
-        f1, fn_ = H1["contacts/force"][o1[k]:o1[k + 1]], Hn["contacts/force"][on[k]:on[k + 1]]
-        i1, i_n = np.lexsort(np.round(p1, 8).T), np.lexsort(np.round(pn, 8).T)
-        scale = np.abs(f1).max() if len(f1) else 0.0
-        if scale > 0:
-            ef = max(ef, np.abs(f1[i1] - fn_[i_n]).max() / scale)
-    X1, Xn = H1["bodies/%s/mesh/reference" % body][:], Hn["bodies/%s/mesh/reference" % body][:]
-    dx = np.abs(H1["bodies/%s/positions" % body][-1][np.lexsort(X1.T)] -
-                Hn["bodies/%s/positions" % body][-1][np.lexsort(Xn.T)]).max()
-    return same, ef, dx
 
 
 # the U-bend
