@@ -131,6 +131,18 @@ PETSC_EXTERN PetscErrorCode FCBodyGetReactions(FCBody, PetscInt *n, const char *
 /* The factorizations of the body's A, the Krylov iterations of its solves and the Newton iterations of
    its free motions so far (0 for bodies without) */
 PETSC_EXTERN PetscErrorCode FCBodyGetSolverCounts(FCBody, PetscInt *nfactor, PetscInt *nkrylov, PetscInt *nnewton);
+/* FE bodies: the elements turned inside out (volume ratio J = det F <= 0) at the end of the last
+   step and the smallest J of the body's elements then; over the steps so far, how many ended with
+   such an element, the most at the end of one and the smallest J. The same on every rank; *has is
+   PETSC_FALSE for the other types (nothing filled) */
+typedef struct {
+  PetscInt  count; /* elements with J <= 0 at the end of the last step */
+  PetscReal min_J; /* the smallest J of the body's elements then (1 before the first step) */
+  PetscInt  steps; /* steps so far that ended with an element with J <= 0 */
+  PetscInt  most;  /* the most such elements at the end of one step */
+  PetscReal worst; /* the smallest J at the end of any step so far */
+} FCInverted;
+PETSC_EXTERN PetscErrorCode FCBodyGetInverted(FCBody, FCInverted *, PetscBool *has);
 PETSC_EXTERN PetscErrorCode FCBodyGetEnergy(FCBody, FCEnergy *);
 PETSC_EXTERN PetscErrorCode FCBodyGetVisual(FCBody, const FCBodyVisual **);
 PETSC_EXTERN PetscErrorCode FCBodyGetVisualPositions(FCBody, PetscReal[]);

@@ -307,6 +307,16 @@ static PetscErrorCode PrintSummary(FCScene s, PetscLogDouble wall)
                               names[k], (double)R[6 * k], (double)R[6 * k + 1], (double)R[6 * k + 2],
                               (double)R[6 * k + 3], (double)R[6 * k + 4], (double)R[6 * k + 5]));
     }
+    {
+      FCInverted inv;
+      PetscBool  has;
+      PetscCall(FCBodyGetInverted(s->bodies[i], &inv, &has));
+      if (has && inv.steps)
+        PetscCall(PetscPrintf(s->comm,
+                              "    elements inside out (J = det F <= 0) at the end of %" PetscInt_FMT
+                              " of %" PetscInt_FMT " steps, at most %" PetscInt_FMT " at once, J down to %g\n",
+                              inv.steps, s->step - s->step0, inv.most, (double)inv.worst));
+    }
   }
   PetscCall(PetscPrintf(s->comm, "  output: %s (open the .xmf beside it in ParaView)\n", s->output_file));
   PetscFunctionReturn(0);
