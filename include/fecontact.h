@@ -132,15 +132,11 @@ PETSC_EXTERN PetscErrorCode FCBodyGetReactions(FCBody, PetscInt *n, const char *
    its free motions so far (0 for bodies without) */
 PETSC_EXTERN PetscErrorCode FCBodyGetSolverCounts(FCBody, PetscInt *nfactor, PetscInt *nkrylov, PetscInt *nnewton);
 /* FE bodies: the elements turned inside out (volume ratio J = det F <= 0) at the end of the last
-   step and the smallest J of the body's elements then; over the steps so far, how many ended with
-   such an element, the most at the end of one and the smallest J. The same on every rank; *has is
-   PETSC_FALSE for the other types (nothing filled) */
+   step and the smallest J of the body's elements then, the same on every rank; *has is PETSC_FALSE
+   for the other types (nothing filled) */
 typedef struct {
-  PetscInt  count; /* elements with J <= 0 at the end of the last step */
-  PetscReal min_J; /* the smallest J of the body's elements then (1 before the first step) */
-  PetscInt  steps; /* steps so far that ended with an element with J <= 0 */
-  PetscInt  most;  /* the most such elements at the end of one step */
-  PetscReal worst; /* the smallest J at the end of any step so far */
+  PetscInt  count; /* elements with J <= 0 */
+  PetscReal min_J; /* the smallest J of the body's elements (1 before the first step) */
 } FCInverted;
 PETSC_EXTERN PetscErrorCode FCBodyGetInverted(FCBody, FCInverted *, PetscBool *has);
 PETSC_EXTERN PetscErrorCode FCBodyGetEnergy(FCBody, FCEnergy *);

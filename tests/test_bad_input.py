@@ -108,7 +108,8 @@ cases = [
     # a scheme's or a builder's own option with another scheme or builder is never read: reported as unused
     ("fast-scheme option with explicit", ["-options_file", "input/cube_drop.opts", "-constraint_scheme", "explicit",
                                           "-wh_mat_type", "seqdense", "-quiet"], "-wh_mat_type"),
-    ("Newton option with explicit", ["-options_file", "input/cube_drop.opts", "-newton_max_it", "3", "-quiet"],
+    ("Newton option with explicit", ["-options_file", "input/cube_drop.opts", "-constraint_scheme", "explicit",
+                                     "-newton_max_it", "3", "-quiet"],
      "-newton_max_it"),
     ("inverse block with schur", ["-options_file", "input/cube_drop.opts", "-compliance_type", "schur",
                                   "-compliance_inverse_block", "64", "-quiet"], "-compliance_inverse_block"),

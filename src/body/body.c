@@ -135,6 +135,15 @@ PetscErrorCode FCBodySetTimeStep(FCBody body, PetscReal h)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCBodyChangeTimeStep(FCBody body, PetscReal h)
+{
+  PetscFunctionBegin;
+  if (h == body->h) PetscFunctionReturn(0);
+  body->h = h;
+  if (body->setupcalled && body->ops.changetimestep) PetscCall((*body->ops.changetimestep)(body));
+  PetscFunctionReturn(0);
+}
+
 /* Quasi-static analysis (-time_integration static, read by the scene): no inertia, each step the
    equilibrium of its time; only FE and kinematic bodies take part */
 PetscErrorCode FCBodySetQuasiStatic(FCBody body, PetscBool quasistatic)

@@ -38,7 +38,9 @@ PETSC_INTERN PetscReal   FCBodyGetMass(FCBody);  /* after set-up; 0 for kinemati
 PETSC_INTERN const char *FCBodyName(FCBody);     /* for messages */
 PETSC_INTERN const char *FCBodyTypeName(FCBody); /* for messages */
 PETSC_INTERN PetscReal   FCBodyTimeStep(FCBody);
-PETSC_INTERN void        FCBodyGetGravity(FCBody, PetscReal g[3]);
+/* A time step after set-up, for the steps from now on (the scene's step control) */
+PETSC_INTERN PetscErrorCode FCBodyChangeTimeStep(FCBody, PetscReal h);
+PETSC_INTERN void           FCBodyGetGravity(FCBody, PetscReal g[3]);
 /* the velocity and angular velocity of -<name>_velocity, -<name>_angular_velocity (a kinematic body's motion) */
 PETSC_INTERN void FCBodyGetPrescribedMotion(FCBody, PetscReal v[3], PetscReal w[3]);
 /* Restart state: `cols` values per visual vertex (pervertex, distributed like the visual) or one

@@ -72,6 +72,8 @@ typedef struct {
   PetscErrorCode (*poseat)(FCBody, PetscReal t, PetscReal x[3], PetscReal q[4]);
   /* optional: the scene's time, at set-up (0) and at a restart, before any step */
   PetscErrorCode (*settime)(FCBody, PetscReal t);
+  /* optional: body->h changed after set-up (step control): what was formed with the old h */
+  PetscErrorCode (*changetimestep)(FCBody);
   /* optional (kinematic): a program's motion from now on (FCBodySetKinematicPose, -Velocity) */
   PetscErrorCode (*setkinematicpose)(FCBody, const PetscReal x[3], const PetscReal q[4]);
   PetscErrorCode (*setkinematicvel)(FCBody, const PetscReal v[3], const PetscReal w[3]);

@@ -376,7 +376,6 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   fem->rotation_exact          = PETSC_TRUE; /* co-rotational without fixed vertices */
   fem->free_motion             = -1;         /* newton for a hyperelastic material, else linearized */
   fem->inverted.min_J          = 1.0;        /* the reference state, before any step */
-  fem->inverted.worst          = 1.0;
   body->deformable             = PETSC_TRUE;
   body->state_cols             = 6; /* u, v */
   body->state_per_vertex       = PETSC_TRUE;
@@ -407,6 +406,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.trialposition      = TrialPosition_FEM;
   body->ops.getreactions       = GetReactions_FEM;
   body->ops.settime            = FCFEMBCPoses;
+  body->ops.changetimestep     = FCFEMChangeTimeStep;
   body->ops.getexternalwork    = GetExternalWork_FEM;
   body->ops.getsolvercounts    = GetSolverCounts_FEM;
   body->ops.getcontactmemory   = GetContactMemory_FEM;

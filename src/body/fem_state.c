@@ -237,13 +237,15 @@ PetscErrorCode SetState_FEM(FCBody body, const PetscReal s[])
   PetscFunctionReturn(0);
 }
 
-/* The state after a step: finite, and the elements turned inside out (J = det F <= 0) counted, with
-   the smallest J of the body (fem->inverted, for /steps and the run's summary). An element turned
-   inside out is a body crushed or stretched through its own thickness, whose surface then crosses
-   itself and whatever touches it: a co-rotational element gets a force that turns it back (the
-   invertible-FE rotation of FCMat3Polar) and the run goes on by default; a linear element has none,
-   and a hyperelastic energy no value there, so that these stop by default (-inverted error), with
-   the located error below. The J of every element is computed at every step, in this one loop */
+/* The state after a (sub-)step: finite, and the elements turned inside out (J = det F <= 0) counted,
+   with the smallest J of the body (fem->inverted: the last check's, which the scene records once the
+   step is accepted, in /steps and the run's summary). An element turned inside out is a body crushed
+   or stretched through its own thickness, whose surface then crosses itself and whatever touches it:
+   a co-rotational element gets a force that turns it back (the invertible-FE rotation of
+   FCMat3Polar) and the run goes on by default; a linear element has none, and a hyperelastic energy
+   no value there, so that for these the step fails by default (-inverted error) with the located
+   error below: step control redoes it with a smaller time step, or the run stops. The J of every
+   element is computed at every check, in this one loop */
 PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
 {
   FEM               *fem = (FEM *)body->data;
@@ -286,11 +288,6 @@ PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &count, 1, MPIU_REAL, MPIU_SUM, body->comm));
   inv->count = (PetscInt)count;
   inv->min_J = (PetscReal)all.J;
-  inv->worst = PetscMin(inv->worst, inv->min_J);
-  if (inv->count) {
-    inv->steps++;
-    inv->most = PetscMax(inv->most, inv->count);
-  }
   if (!inv->count || fem->allow_inverted) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Bcast(where, 3, MPIU_REAL, (PetscMPIInt)all.rank, body->comm));
   {
@@ -301,8 +298,8 @@ PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
       PetscCall(PetscStrncpy(why, "The material is a small-strain model and does not resist it:", sizeof(why)));
     else
       PetscCall(PetscSNPrintf(why, sizeof(why),
-                              "The run stops there, as -%sinverted error asks (the co-rotational element would be "
-                              "turned back):",
+                              "-%sinverted error makes it a failed step (a co-rotational element would be turned "
+                              "back):",
                               body->prefix));
     SETERRQ(body->comm, PETSC_ERR_CONV_FAILED,
             "Body '%s': %" PetscInt_FMT " element(s) turned inside out at step %" PetscInt_FMT

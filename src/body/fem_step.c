@@ -90,6 +90,28 @@ PetscErrorCode FCFEMFormA(FCBody body)
   PetscFunctionReturn(0);
 }
 
+/* Step control changed h: A = M + h B + h^2 K with the new h. A linear body's A is formed again
+   from its K; a nonlinear body's at its next step (its factorization schedule starts from a new
+   factor). Either is factored at its next use */
+PetscErrorCode FCFEMChangeTimeStep(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  PetscCheck(!fem->comp || !FCComplianceKeepsInitialA(fem->comp), body->comm, PETSC_ERR_SUP,
+             "Step control would take body '%s' to a time step of %g s, which -compliance_type precomputed cannot "
+             "follow (it keeps A of the first step); use another -compliance_type or -time_step_control off",
+             body->name, (double)body->h);
+  if (fem->mat->linear)
+    PetscCall(FCFEMFormA(body));
+  else {
+    fem->Acurrent      = PETSC_FALSE;
+    fem->refactor_next = PETSC_TRUE;
+  }
+  fem->factored = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
 /* The factorization of A: by the compliance builder when it owns the body's factor (condensed:
    one factorization serves the solves and W_b), else by the body's KSP (then the builders that
    keep something of A are told) */

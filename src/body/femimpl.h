@@ -30,7 +30,7 @@ typedef struct {
   PetscReal  fixed_box[6 * FC_MAX_FIXED_BOXES + 1]; /* nfixed_box boxes, 6 numbers each */
   PetscInt   nfixed_box;
   PetscBool  allow_inverted; /* -inverted allow: no stop at an element turned inside out */
-  FCInverted inverted;       /* the elements turned inside out, the last step's and so far (CheckState_FEM) */
+  FCInverted inverted;       /* the elements turned inside out at the last check (CheckState_FEM) */
   PetscInt   nfixed;         /* global number of fixed vertices */
   PetscInt  *ldof;           /* per local vertex: offset in the local vector */
   PetscInt  *gdof;           /* per local vertex: first global DOF, -1 when fixed */
@@ -178,8 +178,9 @@ PETSC_INTERN PetscErrorCode FCFEMAssembleMass(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMAssembleElastic(FCBody, Vec u, Vec f, Mat K); /* f, K may be NULL */
 /* ... with the constrained vertices where they are at when (FC_BC_NOW, FC_BC_END) */
 PETSC_INTERN PetscErrorCode FCFEMAssembleElasticAt(FCBody, Vec u, int when, Vec f, Mat K);
-PETSC_INTERN PetscErrorCode FCFEMFormA(FCBody);   /* A from M and K; its factor becomes stale */
-PETSC_INTERN PetscErrorCode FCFEMFactorA(FCBody); /* by the builder that owns it, or the KSP */
+PETSC_INTERN PetscErrorCode FCFEMFormA(FCBody);          /* A from M and K; its factor becomes stale */
+PETSC_INTERN PetscErrorCode FCFEMChangeTimeStep(FCBody); /* body->h changed after set-up */
+PETSC_INTERN PetscErrorCode FCFEMFactorA(FCBody);        /* by the builder that owns it, or the KSP */
 PETSC_INTERN PetscErrorCode FCFEMSolveA(FCBody, Vec b, Vec x, const char what[], PetscReal t);
 PETSC_INTERN PetscErrorCode FreeMotion_FEM(FCBody, PetscReal);
 PETSC_INTERN PetscErrorCode Integrate_FEM(FCBody, PetscReal);

@@ -23,8 +23,10 @@ typedef struct {
   PetscBool  rounded_exact; /* -contact_rounded_surface exact: a sphere's or capsule's nearest FE surface points */
   PetscReal
       separation_speed; /* -contact_separation_speed: bodies that start inside each other part at most this fast */
-  PetscReal           intersection_depth;   /* a point deeper than this inside another body is an intersection */
-  PetscBool           fail_on_intersection; /* -contact_fail_on_intersection: stop the run at the first one */
+  PetscReal           intersection_depth;    /* a point deeper than this inside another body is an intersection */
+  PetscBool           fail_on_intersection;  /* -contact_fail_on_intersection: stop the run at the first one */
+  PetscReal           check_cone;            /* -contact_check_cone: the end-of-step check's cone tolerance (-) */
+  PetscReal           check_complementarity; /* -contact_check_complementarity: its natural-map tolerance (m) */
   FCSurfaceTopology **topo; /* per scene body: its surface's topology, built at its first use (NULL: none kept) */
   PetscBool *self_inside;   /* per pair: a self pair's body was inside itself at the last intersection count (PETSC_TRUE
                                before the first; NULL: always), where its start-inside rule is needed */

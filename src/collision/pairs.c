@@ -90,6 +90,17 @@ static PetscErrorCode ReadDetection(FCCollision s, PetscOptionItems *PetscOption
                           NULL));
   PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_fail_on_intersection", "Stop the run at the first intersection",
                           &s->pairs.fail_on_intersection, NULL));
+  /* the end-of-step check (src/contact/measures.c): a step whose contacts miss these on the real end-of-step
+     geometry gets a warning on its progress line and is counted in the summary */
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_check_cone",
+                          "End-of-step check: a contact's force outside its friction cone by more than this fraction "
+                          "of the step's largest contact force is reported",
+                          &s->pairs.check_cone, NULL));
+  s->pairs.check_complementarity = 0.01 * s->pairs.distance;
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_check_complementarity",
+                          "End-of-step check: a contact whose natural-map error is above this length is reported (m; "
+                          "default 1/100 of -contact_distance)",
+                          &s->pairs.check_complementarity, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -134,6 +145,11 @@ static PetscErrorCode CheckDetection(FCCollision s, PetscInt np, PetscReal mu[],
              (double)s->pairs.dormant_depth);
   PetscCheck(s->pairs.distance >= 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -contact_distance must be >= 0, got %g",
              (double)s->pairs.distance);
+  PetscCheck(s->pairs.check_cone >= 0.0 && PetscIsNormalReal(s->pairs.check_cone + 1.0), s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_check_cone must be a finite number >= 0, got %g", (double)s->pairs.check_cone);
+  PetscCheck(s->pairs.check_complementarity >= 0.0 && PetscIsNormalReal(s->pairs.check_complementarity + 1.0), s->comm,
+             PETSC_ERR_USER_INPUT, "Option -contact_check_complementarity must be a finite length >= 0, got %g",
+             (double)s->pairs.check_complementarity);
   PetscFunctionReturn(0);
 }
 
@@ -186,6 +202,7 @@ PetscErrorCode FCCollisionSetFromOptions(FCCollision s)
   s->pairs.self_ring          = 2;
   s->pairs.shape_points       = PETSC_TRUE;
   s->pairs.separation_speed   = 1.0;
+  s->pairs.check_cone         = 0.01;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
   PetscCall(
       PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));

@@ -165,6 +165,11 @@ PetscBool FCComplianceUsesRotation(FCCompliance comp)
   return comp->rotation;
 }
 
+PetscBool FCComplianceKeepsInitialA(FCCompliance comp)
+{
+  return strcmp(comp->type, FCCOMPLIANCEPRECOMPUTED) ? PETSC_FALSE : PETSC_TRUE;
+}
+
 PetscErrorCode FCComplianceSetRotation(FCCompliance comp, const PetscReal R[9])
 {
   PetscFunctionBegin;

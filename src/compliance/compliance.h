@@ -36,7 +36,9 @@ PETSC_INTERN PetscErrorCode FCComplianceFactor(FCCompliance); /* after every cha
 PETSC_INTERN PetscBool      FCComplianceFactorsA(FCCompliance);
 PETSC_INTERN PetscErrorCode FCComplianceSolve(FCCompliance, Vec b, Vec x);
 /* a builder that warps a reference compliance needs the body's best-fit rotation before each Add */
-PETSC_INTERN PetscBool      FCComplianceUsesRotation(FCCompliance);
+PETSC_INTERN PetscBool FCComplianceUsesRotation(FCCompliance);
+/* The builder keeps A at the start of the run (precomputed): it cannot follow a change of the time step */
+PETSC_INTERN PetscBool      FCComplianceKeepsInitialA(FCCompliance);
 PETSC_INTERN PetscErrorCode FCComplianceSetRotation(FCCompliance, const PetscReal R[9]);
 /* A body that solves with the factor of an older A_0 (-<body>_factorization reuse) warps it: the
    builder takes Q A_0^-1 Q^T for A^-1 in W_b and in the correction, Q block-diagonal with a

@@ -95,9 +95,14 @@ PETSC_INTERN void FCContactForceWorld(const FCContact *, PetscReal F[3]);
 /* End-of-step accuracy measures of a contact set (src/contact/measures.c, docs/output.md) */
 typedef struct {
   PetscReal max_penetration, rms_penetration, violation, complementarity, cone_violation;
+  PetscReal max_complementarity; /* the largest contact's natural-map error (m) */
+  PetscInt  beyond;        /* contacts beyond the end-of-step check's tolerances (cone_tol, complementarity_tol) */
   PetscInt  intersections; /* points inside another body (FCCollisionCountIntersections) */
 } FCContactMeasures;
-PETSC_INTERN void FCContactSetMeasure(const FCContactSet *, FCContactMeasures *);
+/* The measures, and the contacts whose cone excess (relative to the step's largest contact force)
+   is above cone_tol or whose natural-map error is above complementarity_tol (m) */
+PETSC_INTERN void FCContactSetMeasure(const FCContactSet *, PetscReal cone_tol, PetscReal complementarity_tol,
+                                      FCContactMeasures *);
 /* wnn of every contact: the normal diagonal entry of W (row-major M x M, in the contacts' frames) */
 PETSC_INTERN void FCContactSetNormalCompliance(FCContactSet *, const PetscReal W[]);
 

@@ -10,18 +10,26 @@
                       alone, so that r and u are both lengths)                                (m)
      cone violation   max over contacts of (||F_T|| - mu F_n)^+ + (-F_n)^+ in the end frame,
                       relative to the largest contact force (frictionless: any tangential part
-                      of F in the end frame is outside the cone)                              (-) */
+                      of F in the end frame is outside the cone)                              (-)
+   and the end-of-step check (-contact_check_cone, -contact_check_complementarity: src/collision/pairs.c):
+   the contacts beyond either tolerance, and the largest contact's natural-map error. */
 #include "contactimpl.h"
 
-void FCContactSetMeasure(const FCContactSet *set, FCContactMeasures *m)
+void FCContactSetMeasure(const FCContactSet *set, PetscReal cone_tol, PetscReal complementarity_tol,
+                         FCContactMeasures *m)
 {
-  PetscReal pen2 = 0.0, e2 = 0.0, fmax = 0.0, cone = 0.0, fnmax = 0.0;
+  PetscReal pen2 = 0.0, e2 = 0.0, fmax = 0.0, fnmax = 0.0;
 
   PetscMemzero(m, sizeof(*m));
-  for (PetscInt k = 0; k < set->n; k++) fnmax = PetscMax(fnmax, set->c[k].force[0]);
+  for (PetscInt k = 0; k < set->n; k++) {
+    PetscReal F[3];
+    FCContactForceWorld(&set->c[k], F);
+    fnmax = PetscMax(fnmax, set->c[k].force[0]);
+    fmax  = PetscMax(fmax, PetscSqrtReal(FCDot(F, F)));
+  }
   for (PetscInt k = 0; k < set->n; k++) {
     const FCContact *c = &set->c[k];
-    PetscReal        t1[3], t2[3], F[3], Fe[3], r[3], u[3], rel[3], pen = PetscMax(0.0, -c->gap_end), ft;
+    PetscReal        t1[3], t2[3], F[3], Fe[3], r[3], u[3], rel[3], pen = PetscMax(0.0, -c->gap_end), ft, e, cone;
     m->max_penetration = PetscMax(m->max_penetration, pen);
     pen2 += pen * pen;
     m->violation = PetscMax(m->violation, c->force[0] > 1e-12 * fnmax ? PetscAbsReal(c->gap_end) : pen);
@@ -35,15 +43,18 @@ void FCContactSetMeasure(const FCContactSet *set, FCContactMeasures *m)
     u[1]  = FCDot(rel, t1);
     u[2]  = FCDot(rel, t2);
     for (int i = 0; i < 3; i++) r[i] = c->wnn * Fe[i];
-    e2 += FCContactNaturalMapError2(c->dim, c->mu, r, u);
-    ft   = PetscSqrtReal(Fe[1] * Fe[1] + Fe[2] * Fe[2]);
-    fmax = PetscMax(fmax, PetscSqrtReal(FCDot(F, F)));
-    cone =
-        PetscMax(cone, PetscMax(0.0, ft - (c->dim == 3 ? c->mu : 0.0) * PetscMax(Fe[0], 0.0)) + PetscMax(0.0, -Fe[0]));
+    e = FCContactNaturalMapError2(c->dim, c->mu, r, u);
+    e2 += e;
+    e                      = PetscSqrtReal(e);
+    m->max_complementarity = PetscMax(m->max_complementarity, e);
+    ft                     = PetscSqrtReal(Fe[1] * Fe[1] + Fe[2] * Fe[2]);
+    cone              = PetscMax(0.0, ft - (c->dim == 3 ? c->mu : 0.0) * PetscMax(Fe[0], 0.0)) + PetscMax(0.0, -Fe[0]);
+    cone              = fmax > 0.0 ? cone / fmax : 0.0;
+    m->cone_violation = PetscMax(m->cone_violation, cone);
+    if (cone > cone_tol || e > complementarity_tol) m->beyond++;
   }
   if (set->n) {
     m->rms_penetration = PetscSqrtReal(pen2 / set->n);
     m->complementarity = PetscSqrtReal(e2 / set->n);
-    m->cone_violation  = fmax > 0.0 ? cone / fmax : 0.0;
   }
 }

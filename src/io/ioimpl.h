@@ -65,8 +65,10 @@ PETSC_INTERN PetscErrorCode FCH5AttrInt(hid_t loc, const char name[], long long 
 typedef struct _p_FCRestartWriter *FCRestartWriter;
 PETSC_INTERN PetscErrorCode FCRestartWriterCreate(MPI_Comm, hid_t file, PetscInt nbodies, FCBody[], FCRestartWriter *);
 PETSC_INTERN PetscErrorCode FCRestartWriterBegin(FCRestartWriter); /* the next slot's step := -1 */
-PETSC_INTERN PetscErrorCode FCRestartWriterWrite(FCRestartWriter, PetscInt step, PetscReal t, PetscInt nbodies,
-                                                 FCBody[], const FCContactSet *previous);
+/* control: the step control's state (src/scene/stepcontrol.c: h, the sub-step in use, its successes) */
+PETSC_INTERN PetscErrorCode FCRestartWriterWrite(FCRestartWriter, PetscInt step, PetscReal t,
+                                                 const PetscReal control[3], PetscInt nbodies, FCBody[],
+                                                 const FCContactSet *previous);
 PETSC_INTERN PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *);
 
 #define FC_MAX_REACTIONS 16
@@ -88,7 +90,7 @@ typedef struct {
   double    point_end[3], force_world[3], force_tangential;
 } FCContactRecord;
 typedef struct {
-  long long         contacts, rows, sweeps, offset, newton, intersections;
+  long long         contacts, rows, sweeps, offset, newton, intersections, beyond;
   double            residual;
   FCContactMeasures m;
 } FCStepRecord;
@@ -109,6 +111,9 @@ struct _p_FCOutput {
   long long *rsolve; /* per row: factorizations, Krylov and Newton iterations of the step (all bodies) */
   PetscInt   lastsolve[FC_SOLVER_COUNTS]; /* the bodies' totals at the last row */
   hid_t      s_solve[FC_SOLVER_COUNTS];
+  long long *rsub;  /* per row: the sub-steps of the step (step control; 1 when none failed) */
+  double    *rhsub; /* per row: the smallest of them (s) */
+  hid_t      s_sub, s_hsub;
   hid_t      s_inverted[2]; /* /steps/inverted_elements, min_volume_ratio: scenes with an FE body (else -1) */
   double     elast;         /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt   nframes, xdmfwritten;
@@ -120,7 +125,7 @@ struct _p_FCOutput {
   PetscBool contacts;
   hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state, c_pointend, c_fworld, c_ftan;
   hid_t     s_contacts, s_rows, s_sweeps, s_residual, s_maxpen, s_newton, s_violation, s_rmspen, s_compl, s_cone,
-      s_intersections;
+      s_intersections, s_beyond, s_maxcompl;
   long long        ctotal;             /* contacts recorded so far */
   long long        clast;              /* contacts of the last recorded step */
   PetscInt         nc, maxc, ns, maxs; /* buffered contact records and per-step rows */

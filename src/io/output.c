@@ -385,12 +385,12 @@ PetscErrorCode FCOutputFlush(FCOutput out)
 /* The restart state (restart.c), written after the frame of the same step has been written and
    flushed, then flushed itself: the newest complete restart slot is never ahead of the frames and
    step rows, whatever write fails */
-PetscErrorCode FCOutputWriteRestart(FCOutput out, PetscInt step, PetscReal t, PetscInt nbodies, FCBody bodies[],
-                                    const FCContactSet *previous)
+PetscErrorCode FCOutputWriteRestart(FCOutput out, PetscInt step, PetscReal t, const PetscReal control[3],
+                                    PetscInt nbodies, FCBody bodies[], const FCContactSet *previous)
 {
   PetscFunctionBegin;
   PetscCall(FCPhaseBegin(FC_PHASE_OUTPUT));
-  PetscCall(FCRestartWriterWrite(out->restart, step, t, nbodies, bodies, previous));
+  PetscCall(FCRestartWriterWrite(out->restart, step, t, control, nbodies, bodies, previous));
   FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush of the restart state");
   if (out->rank == 0) { /* the growth of HDF5's allocation over one output step: the next reservation
                            (the file itself is longer, by what is reserved: reserve.c) */

@@ -48,6 +48,8 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
   PetscCall(FCH5CreateRows(g, "factorizations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_solve[0]));
   PetscCall(FCH5CreateRows(g, "krylov_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_solve[1]));
   PetscCall(FCH5CreateRows(g, "free_motion_iterations", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_solve[2]));
+  PetscCall(FCH5CreateRows(g, "substeps", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_sub));
+  PetscCall(FCH5CreateRows(g, "substep_min", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_hsub));
   PetscCall(SolverTotals(nbodies, bodies, out->lastsolve));
   out->s_inverted[0] = out->s_inverted[1] = -1;
   { /* the FE bodies' inverted elements: scenes with an FE body */
@@ -96,12 +98,15 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
     PetscCall(FCH5CreateRows(gs, "complementarity", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_compl));
     PetscCall(FCH5CreateRows(gs, "cone_violation", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_cone));
     PetscCall(FCH5CreateRows(gs, "intersections", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_intersections));
+    PetscCall(FCH5CreateRows(gs, "contacts_beyond_check", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_beyond));
+    PetscCall(FCH5CreateRows(gs, "max_complementarity", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_maxcompl));
     PetscCall(FCH5AppendRows(out->rank, out->c_offset, H5T_NATIVE_LLONG, 1, &zero));
     H5Gclose(gs);
     H5Gclose(gc);
   }
   out->maxrows = (PetscInt)nrow;
   PetscCall(PetscMalloc1(FC_SOLVER_COUNTS * nrow, &out->rsolve));
+  PetscCall(PetscMalloc2(nrow, &out->rsub, nrow, &out->rhsub));
   PetscCall(PetscMalloc5(nrow, &out->rtime, nrow, &out->renergy, nrow * (FC_PHASE_NUM + 1), &out->rtiming,
                          nrow * nbodies * FC_BODY_ROW + 1, &out->rbody, nrow, &out->rstep));
   PetscFunctionReturn(0);
@@ -109,7 +114,7 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
 
 /* One row per completed step (buffered until the next flush) */
 PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, const PetscReal timing[FC_PHASE_NUM],
-                                  PetscReal wall, PetscInt nbodies, FCBody bodies[])
+                                  PetscReal wall, PetscInt substeps, PetscReal hsub, PetscInt nbodies, FCBody bodies[])
 {
   PetscInt r    = out->nrows;
   double   etot = 0.0;
@@ -131,6 +136,16 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
       PetscCall(PetscFree(out->rsolve));
       out->rsolve = f;
     }
+    {
+      long long *f;
+      double    *g;
+      PetscCall(PetscMalloc2(n, &f, n, &g));
+      PetscCall(PetscArraycpy(f, out->rsub, r));
+      PetscCall(PetscArraycpy(g, out->rhsub, r));
+      PetscCall(PetscFree2(out->rsub, out->rhsub));
+      out->rsub  = f;
+      out->rhsub = g;
+    }
     PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
     out->rtime   = a;
     out->renergy = b;
@@ -149,6 +164,8 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
   }
   out->rtime[r] = t;
   out->rstep[r] = step;
+  out->rsub[r]  = substeps;
+  out->rhsub[r] = hsub;
   {
     PetscInt tot[FC_SOLVER_COUNTS];
     PetscCall(SolverTotals(nbodies, bodies, tot));
@@ -235,6 +252,7 @@ PetscErrorCode FCOutputRecordContacts(FCOutput out, const struct _FCContactSetVi
   out->sbuf[out->ns].m             = *v->measures;
   out->sbuf[out->ns].newton        = v->stats->newton;
   out->sbuf[out->ns].intersections = v->measures->intersections;
+  out->sbuf[out->ns].beyond        = v->measures->beyond;
   out->sbuf[out->ns].offset        = out->ctotal;
   out->ns++;
   PetscFunctionReturn(0);
@@ -283,6 +301,8 @@ static PetscErrorCode FlushContacts(FCOutput out)
       {out->s_compl, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.complementarity), 1},
       {out->s_cone, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.cone_violation), 1},
       {out->s_intersections, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, intersections), 1},
+      {out->s_beyond, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, beyond), 1},
+      {out->s_maxcompl, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.max_complementarity), 1},
   };
   char *buf;
 
@@ -315,6 +335,8 @@ PetscErrorCode FCOutputRecordsFlush(FCOutput out)
       for (PetscInt r = 0; r < n; r++) steps[r] = out->rsolve[FC_SOLVER_COUNTS * r + k];
       PetscCall(FCH5AppendRows(out->rank, out->s_solve[k], H5T_NATIVE_LLONG, n, steps));
     }
+    PetscCall(FCH5AppendRows(out->rank, out->s_sub, H5T_NATIVE_LLONG, n, out->rsub));
+    PetscCall(FCH5AppendRows(out->rank, out->s_hsub, H5T_NATIVE_DOUBLE, n, out->rhsub));
     PetscCall(FCH5AppendRows(out->rank, out->energy, H5T_NATIVE_DOUBLE, n, out->renergy));
     for (PetscInt r = 0; r < n; r++) { /* energy change over each step: a scheme adding energy shows here */
       tmp[r]     = out->renergy[r] - out->elast;
@@ -380,6 +402,8 @@ PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
   H5Dclose(out->denergy);
   H5Dclose(out->wall);
   for (int k = 0; k < FC_SOLVER_COUNTS; k++) H5Dclose(out->s_solve[k]);
+  H5Dclose(out->s_sub);
+  H5Dclose(out->s_hsub);
   for (int k = 0; k < 2; k++)
     if (out->s_inverted[k] >= 0) H5Dclose(out->s_inverted[k]);
   for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
@@ -388,7 +412,7 @@ PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
                   out->c_gap,    out->c_gapend,   out->c_state,  out->s_contacts,      out->s_rows,
                   out->s_sweeps, out->s_residual, out->s_maxpen, out->s_newton,        out->s_violation,
                   out->s_rmspen, out->s_compl,    out->s_cone,   out->s_intersections, out->c_pointend,
-                  out->c_fworld, out->c_ftan};
+                  out->c_fworld, out->c_ftan,     out->s_beyond, out->s_maxcompl};
     for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) H5Dclose(ds[i]);
   }
 release:
@@ -396,6 +420,7 @@ release:
   PetscCall(PetscFree(out->sbuf));
   PetscCall(PetscFree5(out->rtime, out->renergy, out->rtiming, out->rbody, out->rstep));
   PetscCall(PetscFree(out->rsolve));
+  PetscCall(PetscFree2(out->rsub, out->rhsub));
   for (PetscInt i = 0; i < out->nbodies && out->bo; i++) PetscCall(PetscFree(out->bo[i].rreact));
   PetscFunctionReturn(0);
 }

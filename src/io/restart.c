@@ -7,6 +7,8 @@
                                       written (it is written first as -1 and last as the step,
                                       each stage flushed before the next)
        time       scalar float64      its time
+       step_control (3) float64       the requested time step, the sub-step in use and the sub-steps
+                                      accepted since its last change (src/scene/stepcontrol.c)
        ncontacts  scalar int64        contacts of the step (the warm start of the next step)
        contacts   (>= ncontacts, FC_RESTART_CONTACT) float64, chunked and extendible (it only
                                       grows); its first ncontacts rows are this state's, one per
@@ -63,7 +65,7 @@ static void UnpackContact(const double r[FC_RESTART_CONTACT], FCContact *c)
 struct _p_FCRestartWriter {
   PetscMPIInt rank;
   PetscInt    nbodies, nwritten;
-  hid_t       slot[2], step[2], time[2], contacts[2], ncontacts[2], *body[2];
+  hid_t       slot[2], step[2], time[2], contacts[2], ncontacts[2], control[2], *body[2];
 };
 
 /* The rows of a body's state dataset and, on this rank, the first row and how many it writes */
@@ -108,6 +110,12 @@ PetscErrorCode FCRestartWriterCreate(MPI_Comm comm, hid_t file, PetscInt nbodies
     w->time[k]      = H5Dcreate2(w->slot[k], "time", H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     w->ncontacts[k] = H5Dcreate2(w->slot[k], "ncontacts", H5T_STD_I64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     H5Sclose(sp);
+    {
+      hsize_t three = 3;
+      sp            = H5Screate_simple(1, &three, NULL);
+      w->control[k] = H5Dcreate2(w->slot[k], "step_control", H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      H5Sclose(sp);
+    }
     FCH5Check(H5Dwrite(w->step[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &none), "restart step");
     PetscCall(FCH5CreateRows(w->slot[k], "contacts", H5T_NATIVE_DOUBLE, 2, cdims, 256, &w->contacts[k]));
     PetscCall(PetscMalloc1(nbodies, &w->body[k]));
@@ -141,8 +149,8 @@ PetscErrorCode FCRestartWriterBegin(FCRestartWriter w)
 
 /* The state at the end of step `step` into the older slot: the step as -1, the bodies, the
    previous contacts, the time, and the step last (collective) */
-PetscErrorCode FCRestartWriterWrite(FCRestartWriter w, PetscInt step, PetscReal t, PetscInt nbodies, FCBody bodies[],
-                                    const FCContactSet *previous)
+PetscErrorCode FCRestartWriterWrite(FCRestartWriter w, PetscInt step, PetscReal t, const PetscReal control[3],
+                                    PetscInt nbodies, FCBody bodies[], const FCContactSet *previous)
 {
   PetscInt  k = w->nwritten++ % 2, nc = previous ? previous->n : 0;
   long long st      = step;
@@ -202,6 +210,10 @@ PetscErrorCode FCRestartWriterWrite(FCRestartWriter w, PetscInt step, PetscReal 
     FCH5Check(H5Dwrite(w->ncontacts[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &n), "restart ncontacts");
   }
   FCH5Check(H5Dwrite(w->time[k], H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &tt), "restart time");
+  {
+    double cv[3] = {control[0], control[1], control[2]};
+    FCH5Check(H5Dwrite(w->control[k], H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, cv), "restart step control");
+  }
   FCH5Check(H5Fflush(w->slot[k], H5F_SCOPE_GLOBAL), "flush of the restart state");
   FCH5Check(H5Dwrite(w->step[k], H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &st), "restart step");
   PetscFunctionReturn(0);
@@ -218,6 +230,7 @@ PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *writer)
       for (PetscInt i = 0; i < w->nbodies; i++) H5Dclose(w->body[k][i]);
       H5Dclose(w->step[k]);
       H5Dclose(w->time[k]);
+      H5Dclose(w->control[k]);
       H5Dclose(w->contacts[k]);
       H5Dclose(w->ncontacts[k]);
       H5Gclose(w->slot[k]);
@@ -326,7 +339,7 @@ static PetscErrorCode SlotStep(hid_t f, int k, long long *step)
 }
 
 PetscErrorCode FCRestartLoad(MPI_Comm comm, const char file[], PetscInt nbodies, FCBody bodies[],
-                             FCContactSet *previous, PetscInt *step, PetscReal *t)
+                             FCContactSet *previous, PetscInt *step, PetscReal *t, PetscReal control[3])
 {
   hid_t     f, g, d;
   long long s0, s1, st;
@@ -356,6 +369,16 @@ PetscErrorCode FCRestartLoad(MPI_Comm comm, const char file[], PetscInt nbodies,
   PetscCheck(d >= 0 && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &tt) >= 0, comm,
              PETSC_ERR_FILE_READ, "Restart file '%s': cannot read %s/time", file, path);
   H5Dclose(d);
+  { /* the step control's state (none in a file of a version without it: the requested step, fresh) */
+    double cv[3] = {0.0, 0.0, 0.0};
+    if (H5Lexists(g, "step_control", H5P_DEFAULT) > 0) {
+      d = H5Dopen2(g, "step_control", H5P_DEFAULT);
+      PetscCheck(d >= 0 && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, cv) >= 0, comm,
+                 PETSC_ERR_FILE_READ, "Restart file '%s': cannot read %s/step_control", file, path);
+      H5Dclose(d);
+    }
+    for (int i = 0; i < 3; i++) control[i] = cv[i];
+  }
   for (PetscInt i = 0; i < nbodies; i++) {
     FCBody              b = bodies[i];
     const FCBodyVisual *vis;

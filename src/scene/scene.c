@@ -10,6 +10,7 @@
    complete restart state of a file (docs/output.md, /restart) at its stored time, with this run's time
    step. */
 #include "../fcimpl.h"
+#include "stepcontrol.h"
 #include <signal.h>
 #include <stdlib.h>
 
@@ -20,10 +21,14 @@ struct _p_FCScene {
   FCBody         bodies[FC_MAX_BODIES];
   PetscReal      h, t, gravity[3];
   PetscInt       nsteps, step, every, fields; /* fields: the -output_fields mask */
-  PetscInt       written; /* the step of the last output step written completely (frame and restart state) */
-  PetscReal      t0;      /* the time of step step0: 0 and 0, or a restart's stored time and step; step k */
-  PetscInt       step0;   /* is at t0 + (k - step0) h, whatever time step the earlier run had */
-  FCEnergyGuard  guard;   /* -energy_growth_limit (energy.c) */
+  PetscInt       written;   /* the step of the last output step written completely (frame and restart state) */
+  PetscReal      t0;        /* the time of step step0: 0 and 0, or a restart's stored time and step; step k */
+  PetscInt       step0;     /* is at t0 + (k - step0) h, whatever time step the earlier run had */
+  FCEnergyGuard  guard;     /* -energy_growth_limit (energy.c) */
+  FCStepControl  control;   /* -time_step_control (stepcontrol.c) */
+  PetscInt       substeps;  /* sub-steps of the last requested step (1 when nothing failed) */
+  PetscReal      hsub;      /* the smallest of them */
+  PetscInt       steps_cut; /* requested steps with a cut, over the run */
   char           output_file[PETSC_MAX_PATH_LEN], restart[PETSC_MAX_PATH_LEN];
   PetscBool      quiet, setupcalled;
   FCOutput       output;
@@ -40,6 +45,14 @@ struct _p_FCScene {
   FCScheme              scheme;   /* owns the contact solver */
   FCSchemeStats         stats;
   FCContactMeasures     measures;
+  struct {                           /* the end-of-step checks over the steps run (the summary's) */
+    PetscInt  intersecting, beyond;  /* steps with points inside another body; with contacts beyond the check */
+    PetscReal cone, complementarity; /* the worst cone violation and contact natural-map error of the run */
+  } checks;
+  struct { /* per FE body over the steps run (the summary's): the steps that ended with an element inside out, */
+    PetscInt  steps, most; /* the most at the end of one, the smallest J at their ends */
+    PetscReal worst;
+  } inverted[FC_MAX_BODIES];
 };
 
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
@@ -112,6 +125,7 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   PetscCall(FCCollisionSetFromOptions(s->collision));
   s->pairs = FCCollisionGetPairs(s->collision);
   PetscCall(FCEnergyGuardSetFromOptions(&s->guard, s->comm));
+  PetscCall(FCStepControlSetFromOptions(&s->control, s->comm, s->h));
   PetscFunctionReturn(0);
 }
 
@@ -122,7 +136,11 @@ static PetscErrorCode WriteOutputStep(FCScene s)
 {
   PetscFunctionBegin;
   PetscCall(FCOutputWriteFrame(s->output, s->step, s->t, s->nbodies, s->bodies));
-  PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, s->nbodies, s->bodies, &s->previous));
+  {
+    PetscReal control[3];
+    FCStepControlGetState(&s->control, control);
+    PetscCall(FCOutputWriteRestart(s->output, s->step, s->t, control, s->nbodies, s->bodies, &s->previous));
+  }
   s->written = s->step;
   PetscFunctionReturn(0);
 }
@@ -184,7 +202,9 @@ PetscErrorCode FCSceneSetUp(FCScene s)
   PetscCall(FCOptionsCheckUnused(s->comm)); /* after every object has read its options */
   if (s->restart[0]) { /* an input, by identity: FCOutputCreate refuses to write over it (src/util/inputs.c) */
     PetscCall(FCInputsAdd(s->restart, "restart file (-restart)"));
-    PetscCall(FCRestartLoad(s->comm, s->restart, s->nbodies, s->bodies, &s->previous, &s->step, &s->t));
+    PetscReal control[3];
+    PetscCall(FCRestartLoad(s->comm, s->restart, s->nbodies, s->bodies, &s->previous, &s->step, &s->t, control));
+    FCStepControlSetState(&s->control, control);
     PetscCall(FCRestartCheckScene(s->comm, s->restart, s->nbodies, s->bodies));
     PetscCheck(s->step <= s->nsteps, s->comm, PETSC_ERR_USER_INPUT,
                "-restart %s is at step %" PetscInt_FMT ", beyond -time_steps %" PetscInt_FMT, s->restart, s->step,
@@ -196,6 +216,7 @@ PetscErrorCode FCSceneSetUp(FCScene s)
   }
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodySetTime(s->bodies[i], s->t));
   if (s->pairs->n) PetscCall(ExpectContacts(s));
+  PetscCall(FCStepControlSetUp(&s->control, s->nbodies, s->bodies));
   PetscCall(FCEnergyGuardSetUp(&s->guard, s->comm, s->nbodies, s->bodies, s->h, s->nsteps - s->step,
                                s->pairs->n ? s->pairs->separation_speed : 0.0));
   PetscCall(FCOutputCreate(s->comm, s->output_file, &s->output));
@@ -225,11 +246,67 @@ PetscErrorCode FCSceneGetBody(FCScene s, const char name[], FCBody *body)
   PetscFunctionReturn(0);
 }
 
-/* One time step: free motion (eq. 5) -> [contacts] -> integration (eq. 2) -> output */
+/* A call of a sub-step whose failure step control redoes (FCErrorIsStepFailure: raised where nothing
+   of the step is left to free, on every rank alike): with step control on, such an error ends the
+   sub-step with *failed set and its message kept (FCGetLastErrorMessage); any other error, or any error
+   with step control off, stops the run as always */
+#define STEP_TRY(s, failed, call)                                                                                      \
+  do {                                                                                                                 \
+    PetscErrorCode ierr_;                                                                                              \
+    if ((s)->control.on) PetscCall(FCPushStepErrorHandler());                                                          \
+    ierr_ = (call);                                                                                                    \
+    if ((s)->control.on) PetscCall(PetscPopErrorHandler());                                                            \
+    if (ierr_ && (s)->control.on && FCErrorIsStepFailure(ierr_)) {                                                     \
+      *(failed) = PETSC_TRUE;                                                                                          \
+      PetscFunctionReturn(0);                                                                                          \
+    }                                                                                                                  \
+    PetscCall(ierr_);                                                                                                  \
+  } while (0)
+
+static PetscErrorCode PlantedFailure(FCScene s, PetscInt step)
+{
+  PetscFunctionBegin;
+  if (step != s->control.fail_at) PetscFunctionReturn(0);
+  s->control.fail_at = 0; /* once */
+  SETERRQ(s->comm, PETSC_ERR_CONV_FAILED, "a failure planted by -time_step_fail_at %" PetscInt_FMT, step);
+}
+
+/* One sub-step from s->t with the bodies' time step hs: free motion (eq. 5) -> [contacts] ->
+   integration (eq. 2) -> the end-of-step measures and checks; `step` is the requested step it belongs to */
+static PetscErrorCode SubStep(FCScene s, PetscInt step, PetscReal hs, PetscBool *failed)
+{
+  PetscFunctionBegin;
+  *failed = PETSC_FALSE;
+  for (PetscInt i = 0; i < s->nbodies; i++) STEP_TRY(s, failed, FCBodyComputeFreeMotion(s->bodies[i], s->t));
+  if (s->pairs->n) {
+    PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
+    PetscCall(FCCollisionDetect(s->collision, PETSC_TRUE, &s->set));
+    PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
+    PetscCall(FCSchemeSolve(s->scheme, &s->set, &s->previous, &s->stats));
+    STEP_TRY(s, failed, FCSchemeCheck(s->scheme, step, &s->stats));
+    PetscCall(FCContactSetCopy(&s->set, &s->previous));
+  }
+  for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyIntegrate(s->bodies[i], s->t));
+  if (s->pairs->n) { /* accuracy of the step on the real end-of-step geometry */
+    PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
+    PetscCall(FCCollisionEndGaps(s->collision, &s->set));
+    FCContactSetMeasure(&s->set, s->pairs->check_cone, s->pairs->check_complementarity, &s->measures);
+    PetscCall(FCCollisionCountIntersections(s->collision, &s->measures.intersections));
+    PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
+  }
+  for (PetscInt i = 0; i < s->nbodies; i++) STEP_TRY(s, failed, FCBodyCheckState(s->bodies[i], step));
+  STEP_TRY(s, failed, FCEnergyGuardCheck(&s->guard, s->comm, s->nbodies, s->bodies, step, s->t + hs, hs));
+  STEP_TRY(s, failed, PlantedFailure(s, step));
+  PetscFunctionReturn(0);
+}
+
+/* One requested time step of -time_step h, in sub-steps of h / 2^k where one fails (step control) */
 PetscErrorCode FCSceneStep(FCScene s)
 {
   PetscReal      timing[FC_PHASE_NUM + 1]; /* per phase, then the step's wall time */
   PetscLogDouble now;
+  PetscReal      tstart, done = 0.0;
+  PetscInt       step = s->step + 1;
 
   PetscFunctionBegin;
   PetscCall(FCSceneSetUp(s));
@@ -237,26 +314,54 @@ PetscErrorCode FCSceneStep(FCScene s)
              "The scene is at step %" PetscInt_FMT ", the last of -time_steps %" PetscInt_FMT
              ": no further step (raise -time_steps)",
              s->step, s->nsteps);
-  for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyComputeFreeMotion(s->bodies[i], s->t));
-  if (s->pairs->n) {
-    PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
-    PetscCall(FCCollisionDetect(s->collision, PETSC_TRUE, &s->set));
-    PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
-    PetscCall(FCSchemeSolve(s->scheme, s->step + 1, &s->set, &s->previous, &s->stats));
-    PetscCall(FCContactSetCopy(&s->set, &s->previous));
+  tstart      = s->t;
+  s->substeps = 0;
+  s->hsub     = s->h;
+  while (done < s->h) {
+    PetscReal hs = s->control.on ? FCStepControlNext(&s->control, done) : s->h;
+    PetscBool failed;
+    for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyChangeTimeStep(s->bodies[i], hs));
+    if (s->control.on) PetscCall(FCStepControlSave(&s->control, s->bodies, &s->previous));
+    PetscCall(SubStep(s, step, hs, &failed));
+    if (failed) {
+      PetscBool again;
+      char      why[1024];
+      PetscCall(PetscStrncpy(why, FCGetLastErrorMessage(), sizeof(why)));
+      FCStepControlCut(&s->control, hs, &again);
+      PetscCheck(again, s->comm, PETSC_ERR_CONV_FAILED,
+                 "%s [step control: at the smallest time step, %g s (-time_step_min %g)]", why, (double)hs,
+                 (double)s->control.hmin);
+      PetscCall(FCStepControlRestore(&s->control, s->bodies, s->t, &s->previous));
+      s->guard.reported = PETSC_FALSE;
+      if (!s->quiet)
+        PetscCall(PetscPrintf(s->comm, "step %" PetscInt_FMT " redone from t = %.6g s with a time step of %g s: %s\n",
+                              step, (double)s->t, (double)s->control.hnow, why));
+      continue;
+    }
+    done += hs;
+    s->substeps++;
+    s->hsub = PetscMin(s->hsub, hs);
+    s->control.successes++;
+    s->t = tstart + done;
   }
-  for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyIntegrate(s->bodies[i], s->t));
-  if (s->pairs->n) { /* accuracy of the step on the real end-of-step geometry */
-    PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
-    PetscCall(FCCollisionEndGaps(s->collision, &s->set));
-    FCContactSetMeasure(&s->set, &s->measures);
-    PetscCall(FCCollisionCountIntersections(s->collision, &s->measures.intersections));
-    PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
+  if (s->substeps > 1) s->steps_cut++;
+  for (PetscInt i = 0; i < s->nbodies; i++) { /* elements inside out at the step's end (its last sub-step's check) */
+    FCInverted inv;
+    PetscBool  has;
+    PetscCall(FCBodyGetInverted(s->bodies[i], &inv, &has));
+    if (!has || !inv.count) continue;
+    s->inverted[i].worst = s->inverted[i].steps ? PetscMin(s->inverted[i].worst, inv.min_J) : inv.min_J;
+    s->inverted[i].most  = PetscMax(s->inverted[i].most, inv.count);
+    s->inverted[i].steps++;
+  }
+  if (s->pairs->n) {
+    if (s->measures.intersections) s->checks.intersecting++;
+    if (s->measures.beyond) s->checks.beyond++;
+    s->checks.cone            = PetscMax(s->checks.cone, s->measures.cone_violation);
+    s->checks.complementarity = PetscMax(s->checks.complementarity, s->measures.max_complementarity);
   }
   s->step++;
   s->t = s->t0 + (s->step - s->step0) * s->h; /* no drift from repeated additions */
-  for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyCheckState(s->bodies[i], s->step));
-  PetscCall(FCEnergyGuardCheck(&s->guard, s->comm, s->nbodies, s->bodies, s->step, s->t, s->h));
   /* per phase the largest time of a rank; the step's wall time (the ranks meet here every step, so
      the time since the last meeting, largest over the ranks) is not their sum: a rank that waits
      for another in one phase does not add that wait to the step twice */
@@ -270,7 +375,8 @@ PetscErrorCode FCSceneStep(FCScene s)
   PetscCall(FCMemoryUpdate(s->scheme, s->nbodies, s->bodies, s->memory));
   PetscCall(FCPhaseResetTimes());
   /* the output of this step (frame and flush) is counted in the next step's row */
-  PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, timing[FC_PHASE_NUM], s->nbodies, s->bodies));
+  PetscCall(FCOutputRecordStep(s->output, s->step, s->t, timing, timing[FC_PHASE_NUM], s->substeps, s->hsub, s->nbodies,
+                               s->bodies));
   if (s->pairs->n) {
     struct _FCContactSetView v = {&s->set, &s->stats, &s->measures};
     PetscCall(FCOutputRecordContacts(s->output, &v));
@@ -307,19 +413,52 @@ static PetscErrorCode PrintSummary(FCScene s, PetscLogDouble wall)
                               names[k], (double)R[6 * k], (double)R[6 * k + 1], (double)R[6 * k + 2],
                               (double)R[6 * k + 3], (double)R[6 * k + 4], (double)R[6 * k + 5]));
     }
-    {
-      FCInverted inv;
-      PetscBool  has;
-      PetscCall(FCBodyGetInverted(s->bodies[i], &inv, &has));
-      if (has && inv.steps)
-        PetscCall(PetscPrintf(s->comm,
-                              "    elements inside out (J = det F <= 0) at the end of %" PetscInt_FMT
-                              " of %" PetscInt_FMT " steps, at most %" PetscInt_FMT " at once, J down to %g\n",
-                              inv.steps, s->step - s->step0, inv.most, (double)inv.worst));
-    }
+    if (s->inverted[i].steps)
+      PetscCall(PetscPrintf(s->comm,
+                            "    elements inside out (J = det F <= 0) at the end of %" PetscInt_FMT " of %" PetscInt_FMT
+                            " steps, at most %" PetscInt_FMT " at once, J down to %g\n",
+                            s->inverted[i].steps, s->step - s->step0, s->inverted[i].most,
+                            (double)s->inverted[i].worst));
   }
+  if (s->control.cuts)
+    PetscCall(PetscPrintf(s->comm,
+                          "  step control: %" PetscInt_FMT " step(s) cut, %" PetscInt_FMT
+                          " cut(s) in all, smallest time step %g s (/steps/substeps, /steps/substep_min)\n",
+                          s->steps_cut, s->control.cuts, (double)s->control.smallest));
+  if (s->pairs->n)
+    PetscCall(PetscPrintf(
+        s->comm,
+        "  contacts: %" PetscInt_FMT " step(s) beyond the end-of-step check (worst cone violation %.3g, "
+        "-contact_check_cone %g; worst natural-map error %.3g m, -contact_check_complementarity %g), "
+        "%" PetscInt_FMT " step(s) with points inside another body\n",
+        s->checks.beyond, (double)s->checks.cone, (double)s->pairs->check_cone, (double)s->checks.complementarity,
+        (double)s->pairs->check_complementarity, s->checks.intersecting));
   PetscCall(PetscPrintf(s->comm, "  output: %s (open the .xmf beside it in ParaView)\n", s->output_file));
   PetscFunctionReturn(0);
+}
+
+/* What the end of the last step found wrong, for its progress line ("" when nothing): the points
+   inside another body, the contacts beyond the end-of-step check (-contact_check_*) */
+static void StepWarning(FCScene s, char buf[], size_t len)
+{
+  const FCContactMeasures *m = &s->measures;
+  size_t                   n = 0;
+
+  buf[0] = 0;
+  if (!s->pairs->n) return;
+  if (m->intersections)
+    n += (size_t)snprintf(buf + n, len - n,
+                          "  WARNING: %" PetscInt_FMT " point(s) inside another body (%" PetscInt_FMT
+                          " step(s) so far; /steps/intersections)",
+                          m->intersections, s->checks.intersecting);
+  if (m->beyond && n < len)
+    (void)snprintf(buf + n, len - n,
+                   "  WARNING: %" PetscInt_FMT " of %" PetscInt_FMT
+                   " contact(s) beyond the end-of-step check: cone violation %.3g (-contact_check_cone %g), "
+                   "natural-map error %.3g m (-contact_check_complementarity %g) (%" PetscInt_FMT
+                   " step(s) so far; /steps/contacts_beyond_check)",
+                   m->beyond, s->set.n, (double)m->cone_violation, (double)s->pairs->check_cone,
+                   (double)m->max_complementarity, (double)s->pairs->check_complementarity, s->checks.beyond);
 }
 
 /* Runs the remaining steps. If a step fails, or SIGINT/SIGTERM arrives, the output file is
@@ -353,8 +492,11 @@ PetscErrorCode FCSceneRun(FCScene s)
                         done + 1, (double)(s->t0 + (done + 1 - s->step0) * s->h), s->output_file, done);
       return ierr;
     }
-    PetscCall(
-        FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t, s->pairs->n ? s->measures.intersections : 0));
+    {
+      char warning[512];
+      StepWarning(s, warning, sizeof(warning));
+      PetscCall(FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t, warning));
+    }
     if (s->pairs->fail_on_intersection && s->measures.intersections) { /* the step's frame, then close */
       if (s->step % s->every && s->step < s->nsteps) PetscCall(WriteOutputStepOrClose(s));
       PetscCall(FCOutputDestroy(&s->output));
@@ -396,6 +538,7 @@ PetscErrorCode FCSceneDestroy(FCScene *scene)
   PetscCall(FCSchemeDestroy(&(*scene)->scheme));
   PetscCall(FCContactSetDestroy(&(*scene)->set));
   PetscCall(FCContactSetDestroy(&(*scene)->previous));
+  PetscCall(FCStepControlDestroy(&(*scene)->control));
   PetscCall(FCCollisionDestroy(&(*scene)->collision));
   for (PetscInt i = 0; i < (*scene)->nbodies; i++) PetscCall(FCBodyDestroy(&(*scene)->bodies[i]));
   PetscCall(PetscFree(*scene));

@@ -1,4 +1,4 @@
-/* FCScheme: a constraint scheme, -constraint_scheme <type> (default explicit), one file per type:
+/* FCScheme: a constraint scheme, -constraint_scheme <type> (default fast), one file per type:
      explicit  Algorithm 1: linearize once, W = sum J A^-1 J^T, PGS, correction   (explicit.c)
      standard  Algorithm 2: Newton iterations, W_k rebuilt by solves and the proximity measured
                on the corrected state                                             (standard.c)
@@ -71,7 +71,7 @@ PetscErrorCode FCSchemeSetType(FCScheme scheme, FCSchemeType type)
    unread and FCOptionsCheckUnused reports them */
 PetscErrorCode FCSchemeSetFromOptions(FCScheme scheme)
 {
-  char type[FC_MAX_NAME] = FCSCHEMEEXPLICIT;
+  char type[FC_MAX_NAME] = FCSCHEMEFAST;
 
   PetscFunctionBegin;
   PetscOptionsBegin(scheme->comm, NULL, "Constraint scheme", "FCScheme");
@@ -94,8 +94,7 @@ PetscErrorCode FCSchemeSetFromOptions(FCScheme scheme)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSchemeSolve(FCScheme scheme, PetscInt step, FCContactSet *set, const FCContactSet *previous,
-                             FCSchemeStats *st)
+PetscErrorCode FCSchemeSolve(FCScheme scheme, FCContactSet *set, const FCContactSet *previous, FCSchemeStats *st)
 {
   PetscFunctionBegin;
   st->contacts = set->n;
@@ -116,6 +115,14 @@ PetscErrorCode FCSchemeSolve(FCScheme scheme, PetscInt step, FCContactSet *set, 
                set->nrows);
   }
   PetscCall((*scheme->ops.solve)(scheme, set, previous, st));
+  PetscFunctionReturn(0);
+}
+
+/* The solve's verdict, apart from it (nothing of the solve is left to free here: step control redoes
+   a step that fails it) */
+PetscErrorCode FCSchemeCheck(FCScheme scheme, PetscInt step, const FCSchemeStats *st)
+{
+  PetscFunctionBegin;
   PetscCheck(!(st->residual > scheme->fail_residual), scheme->comm, PETSC_ERR_CONV_FAILED,
              "Step %" PetscInt_FMT ": the contact solver could not reduce its residual: %g after %" PetscInt_FMT
              " sweeps, above -pgs_fail_residual %g (raise -pgs_max_it, lower -time_step, or see docs/hard-cases.md)",

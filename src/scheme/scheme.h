@@ -19,10 +19,10 @@ PETSC_INTERN PetscErrorCode    FCSchemeRegisterAll(void);
 PETSC_INTERN PetscErrorCode    FCSchemeCreate(MPI_Comm, PetscInt nbodies, FCBody bodies[], FCScheme *);
 PETSC_INTERN PetscErrorCode    FCSchemeSetType(FCScheme, FCSchemeType);
 PETSC_INTERN PetscErrorCode    FCSchemeSetFromOptions(FCScheme);
-/* One step's contacts: forces (set->c[k].force, state) and the bodies' corrected dv; `step`
-   names the step in errors (a contact problem left unsolved stops the run, -pgs_fail_residual) */
-PETSC_INTERN PetscErrorCode FCSchemeSolve(FCScheme, PetscInt step, FCContactSet *, const FCContactSet *previous,
-                                          FCSchemeStats *);
+/* One step's contacts: forces (set->c[k].force, state) and the bodies' corrected dv */
+PETSC_INTERN PetscErrorCode FCSchemeSolve(FCScheme, FCContactSet *, const FCContactSet *previous, FCSchemeStats *);
+/* Stops the step (PETSC_ERR_CONV_FAILED) when the solve ended above -pgs_fail_residual */
+PETSC_INTERN PetscErrorCode FCSchemeCheck(FCScheme, PetscInt step, const FCSchemeStats *);
 /* bytes this rank keeps from step to step: W_H and W_k (0 for a scheme that keeps neither) */
 PETSC_INTERN PetscErrorCode FCSchemeGetHeldMemory(FCScheme, PetscReal *wh, PetscReal *wk);
 PETSC_INTERN PetscErrorCode FCSchemeDestroy(FCScheme *);

@@ -4,7 +4,17 @@
    error (PETSC_ERROR_INITIAL: where it was raised) is kept, for a caller that reports it itself. */
 #include "../fcimpl.h"
 
-static char last[1024];
+static char      last[1024];
+static PetscBool printing = PETSC_TRUE; /* whether the handler below a step's (FCPushStepErrorHandler) prints */
+static char      stepmode;              /* its context: the address marks the step's handler */
+
+/* The failures that step control redoes with a smaller step (FCStepControl, src/scene/stepcontrol.c):
+   a Newton free motion or a contact solve that did not converge, an element turned inside out, the
+   energy guard (PETSC_ERR_CONV_FAILED), a state that is not finite (PETSC_ERR_FP) */
+PetscBool FCErrorIsStepFailure(PetscErrorCode n)
+{
+  return n == PETSC_ERR_CONV_FAILED || n == PETSC_ERR_FP ? PETSC_TRUE : PETSC_FALSE;
+}
 
 static PetscBool IsUserError(PetscErrorCode n)
 {
@@ -21,6 +31,7 @@ static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const ch
 {
   PetscBool printing = ctx ? PETSC_TRUE : PETSC_FALSE;
 
+  if (ctx == (void *)&stepmode) printing = (PetscBool)(printing && !FCErrorIsStepFailure(n));
   if (p == PETSC_ERROR_INITIAL) {
     const char *text = mess;
     if (!text || !text[0]) (void)PetscErrorMessage(n, &text, NULL);
@@ -41,8 +52,20 @@ static PetscErrorCode Handler(MPI_Comm comm, int line, const char *fun, const ch
 PetscErrorCode FCPushErrorHandler(PetscBool print)
 {
   PetscFunctionBegin;
-  last[0] = 0; /* a message from before this handler is not this error's */
+  last[0]  = 0; /* a message from before this handler is not this error's */
+  printing = print;
   PetscCall(PetscPushErrorHandler(Handler, print ? (void *)last : NULL));
+  PetscFunctionReturn(0);
+}
+
+/* Around a call whose step failure the scene redoes: such an error is kept (FCGetLastErrorMessage)
+   and not printed; any other is handled as by the handler pushed before (printed or not). Popped
+   with PetscPopErrorHandler */
+PetscErrorCode FCPushStepErrorHandler(void)
+{
+  PetscFunctionBegin;
+  last[0] = 0;
+  PetscCall(PetscPushErrorHandler(Handler, printing ? (void *)&stepmode : NULL));
   PetscFunctionReturn(0);
 }
 

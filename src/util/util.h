@@ -62,20 +62,24 @@ PETSC_INTERN int            FCSignalsCaught(void);
 typedef struct {
   PetscLogDouble start, last;
   PetscBool      quiet;
-  PetscInt       warned; /* steps with intersections so far */
+  PetscInt       warned; /* steps with a warning so far */
 } FCProgress;
 PETSC_INTERN PetscErrorCode FCProgressStart(FCProgress *, PetscBool quiet);
-/* intersections: points inside another body at the end of the step; when not 0 the line is printed
-   whatever the time since the last one, with a warning */
+/* warning: what the step's end found wrong ("" when nothing); the first 10 such steps get their line
+   whatever the time since the last one, each such line ends with the warning */
 PETSC_INTERN PetscErrorCode FCProgressUpdate(FCProgress *, MPI_Comm, PetscInt step, PetscInt nsteps, PetscReal t,
-                                             PetscInt intersections);
+                                             const char warning[]);
 
 /* Tables of time (src/util/table.c): rows t, v_1..v_n, piecewise linear, constant outside them */
-typedef struct _p_FCTable *FCTable;
+typedef struct _p_FCTable  *FCTable;
 PETSC_INTERN PetscErrorCode FCTableCreate(MPI_Comm, const char spec[], PetscInt nmin, PetscInt nmax, const char what[],
                                           FCTable *);
 PETSC_INTERN PetscInt       FCTableColumns(FCTable);
 PETSC_INTERN void           FCTableEval(FCTable, PetscReal t, PetscReal v[]);
-PETSC_INTERN void FCTableBracket(FCTable, PetscReal t, const PetscReal **a, const PetscReal **b, PetscReal *s);
+PETSC_INTERN void      FCTableBracket(FCTable, PetscReal t, const PetscReal **a, const PetscReal **b, PetscReal *s);
 PETSC_INTERN PetscReal FCTableMaxRate(FCTable, PetscInt j0, PetscInt j1);
 PETSC_INTERN PetscErrorCode FCTableDestroy(FCTable *);
+
+/* Errors a scene's step control redoes, and the handler around the calls that raise them (src/util/errors.c) */
+PETSC_INTERN PetscBool      FCErrorIsStepFailure(PetscErrorCode);
+PETSC_INTERN PetscErrorCode FCPushStepErrorHandler(void);
