@@ -131,6 +131,14 @@ PETSC_EXTERN PetscErrorCode FCBodyGetReactions(FCBody, PetscInt *n, const char *
 /* The factorizations of the body's A, the Krylov iterations of its solves and the Newton iterations of
    its free motions so far (0 for bodies without) */
 PETSC_EXTERN PetscErrorCode FCBodyGetSolverCounts(FCBody, PetscInt *nfactor, PetscInt *nkrylov, PetscInt *nnewton);
+/* FE bodies: the elements turned inside out (volume ratio J = det F <= 0) at the end of the last
+   step and the smallest J of the body's elements then, the same on every rank; *has is PETSC_FALSE
+   for the other types (nothing filled) */
+typedef struct {
+  PetscInt  count; /* elements with J <= 0 */
+  PetscReal min_J; /* the smallest J of the body's elements (1 before the first step) */
+} FCInverted;
+PETSC_EXTERN PetscErrorCode FCBodyGetInverted(FCBody, FCInverted *, PetscBool *has);
 PETSC_EXTERN PetscErrorCode FCBodyGetEnergy(FCBody, FCEnergy *);
 PETSC_EXTERN PetscErrorCode FCBodyGetVisual(FCBody, const FCBodyVisual **);
 PETSC_EXTERN PetscErrorCode FCBodyGetVisualPositions(FCBody, PetscReal[]);

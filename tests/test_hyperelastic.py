@@ -14,7 +14,8 @@
   the Neo-Hookean membrane (input/hard/membrane_neohookean.opts) at more than 90 % stretch and thrown
   back, no element inverted, no sheet vertex in the ball, no intersection deeper than 1 mm (the
   ball's exact surface between its picture's points, tests/test_membrane.py), while the co-rotational
-  membrane with the same E and nu turns an element inside out (1 rank);
+  membrane with the same E and nu turns an element inside out (1 rank; -sheet_inverted error stops
+  it there, the co-rotational default running on);
 - -restart: the drop continued from step 28 (with another -snes_rtol) ends where the uninterrupted
   run does, to 1e-9 m;
 - --np > 1: the stretch's reaction and the drop's positions are the 1-rank ones to 1e-8;
@@ -162,7 +163,7 @@ if NP == 1:
             (len(s["step"]), 100 * (stretch - 1), P[:, :, 2].min(), z[-1], inside, s["residual"][:].max()))
     f = out("membrane_corot.h5")
     p = run(["-options_file", "input/hard/membrane_neohookean.opts", "-output_file", f, "-quiet",
-             "-sheet_material", "corotational"], NP, check=False)
+             "-sheet_material", "corotational", "-sheet_inverted", "error"], NP, check=False)
     c.check(p.returncode != 0 and "inside out" in p.stdout + p.stderr,
             "membrane: co-rotational with the same E and nu is stretched through its thickness (exit %d, step %d)" %
             (p.returncode, h5py.File(f, "r")["complete"][0]))

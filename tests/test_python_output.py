@@ -106,7 +106,12 @@ for name in scene:
     if "rotation" in g:
         ok &= same(b.rotation, g["rotation"][:]) and same(b.initial_rotation, g.attrs["initial_rotation"])
     ok &= b.reactions == {}
-c.check(ok, "bodies: type, centroid, energy, positions, fields, mesh, rotation as h5py reads them")
+    if "inverted" in g:
+        inv = b.inverted
+        ok &= sorted(inv) == ["elements", "min_volume_ratio"] and all(same(inv[k], g["inverted"][k][:]) for k in inv)
+    else:
+        ok &= b.type != "fem" and isinstance(raises(lambda: b.inverted, KeyError), KeyError)
+c.check(ok, "bodies: type, centroid, energy, positions, fields, mesh, rotation, inverted as h5py reads them")
 c.check(sorted(o.body("object").fields) == ["displacement", "velocity", "von_mises"]
         and o.body("object").mesh.cell_type == "tetrahedron" and o.body("finger1").type == "kinematic",
         "object's fields %s, a tetrahedral mesh; finger1 kinematic" % o.body("object").fields)

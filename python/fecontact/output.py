@@ -175,7 +175,9 @@ class Body:
     - per step: `centroid` (S, 3), `rotation` (S, 4) quaternion (w, x, y, z) (rigid and kinematic
       bodies), `energy` (dict 'kinetic', 'elastic', 'gravity' -> (S,) J; `energy_total` their sum),
       `reactions` (dict region -> (S, 6): force fx, fy, fz (N) and moment mx, my, mz (N m) of the
-      region's supports on the body; FE bodies with fixed or prescribed regions);
+      region's supports on the body; FE bodies with fixed or prescribed regions), `inverted` (dict
+      'elements' -> (S,) the elements turned inside out, 'min_volume_ratio' -> (S,) the smallest J =
+      det F; FE bodies);
     - per frame: `frames` (F,) the frame times, `frame_steps`, `positions` (F, V, 3), `field(name)`
       for the fields the file holds (`fields`: displacement, velocity, von_mises, ...);
     - `mesh`: `reference`, `cells`, `cell_type`, ... (a `Mesh`).
@@ -239,6 +241,15 @@ class Body:
         g = self._g.get("reactions")
         if g is None:
             return {}
+        return {k: g[k][: self._o.nsteps] for k in g.keys()}
+
+    @property
+    def inverted(self):
+        """dict 'elements' -> (S,) the elements turned inside out (J = det F <= 0) at the end of each step,
+        'min_volume_ratio' -> (S,) the smallest J of the body's elements then: FE bodies."""
+        g = self._g.get("inverted")
+        if g is None:
+            raise MissingData("body '%s' (%s) has no group 'inverted' in %s" % (self.name, self.type, self._o.path))
         return {k: g[k][: self._o.nsteps] for k in g.keys()}
 
     @property

@@ -261,6 +261,14 @@ PetscErrorCode FCBodyGetSolverCounts(FCBody body, PetscInt *nfactor, PetscInt *n
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCBodyGetInverted(FCBody body, FCInverted *inv, PetscBool *has)
+{
+  PetscFunctionBegin;
+  *has = PETSC_FALSE;
+  if (body->ops.getinverted) PetscCall((*body->ops.getinverted)(body, inv, has));
+  PetscFunctionReturn(0);
+}
+
 /* Bytes this rank holds for the body's contact compliance: W_b, Sigma / C and its factorization
    (MUMPS' own count) */
 PetscErrorCode FCBodyGetContactMemory(FCBody body, PetscReal bytes[3])

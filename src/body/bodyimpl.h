@@ -83,6 +83,8 @@ typedef struct {
   /* optional: factorizations and Krylov iterations so far */
   PetscErrorCode (*getsolvercounts)(FCBody, PetscInt *nfactor, PetscInt *nkrylov, PetscInt *nnewton);
   PetscErrorCode (*getcontactmemory)(FCBody, PetscReal bytes[3]); /* W_b, Sigma / C, factor on this rank */
+  /* optional (fem): the elements turned inside out (FCBodyGetInverted) */
+  PetscErrorCode (*getinverted)(FCBody, FCInverted *, PetscBool *has);
 } FCBodyOps;
 
 struct _p_FCBody {

@@ -45,11 +45,15 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
   }
   PetscCall(FCFEMBCSetFromOptions(PetscOptionsObject, body));
   PetscCall(FCFEMNewtonSetFromOptions(PetscOptionsObject, body));
-  {
+  { /* the default by material: a co-rotational element turned inside out gets a force that turns it
+       back (the invertible-FE rotation of FCMat3Polar); a hyperelastic energy has no value there, and
+       linear elasticity no force against it */
     const char *inv[] = {"error", "allow"};
-    PetscInt    a     = fem->allow_inverted ? 1 : 0;
-    PetscCall(PetscOptionsEList("-inverted", "An element turned inside out: error (stop) or allow", NULL, inv, 2,
-                                inv[a], &a, NULL));
+    PetscInt    a     = strcmp(fem->material, "corotational") ? 0 : 1;
+    PetscCall(PetscOptionsEList("-inverted",
+                                "An element turned inside out (J = det F <= 0) at the end of a step: error (stop) or "
+                                "allow (run on); default allow for corotational, error for the other materials",
+                                NULL, inv, 2, inv[a], &a, NULL));
     fem->allow_inverted = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
   if (strcmp(fem->material, "linear")) { /* a linear A never changes: nothing to refactor or re-sum */
@@ -371,6 +375,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   fem->coo                     = PETSC_TRUE; /* co-rotational; a linear K is summed once, by values */
   fem->rotation_exact          = PETSC_TRUE; /* co-rotational without fixed vertices */
   fem->free_motion             = -1;         /* newton for a hyperelastic material, else linearized */
+  fem->inverted.min_J          = 1.0;        /* the reference state, before any step */
   body->deformable             = PETSC_TRUE;
   body->state_cols             = 6; /* u, v */
   body->state_per_vertex       = PETSC_TRUE;
@@ -405,6 +410,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.getexternalwork    = GetExternalWork_FEM;
   body->ops.getsolvercounts    = GetSolverCounts_FEM;
   body->ops.getcontactmemory   = GetContactMemory_FEM;
+  body->ops.getinverted        = GetInverted_FEM;
   PetscFunctionReturn(0);
 }
 

@@ -237,20 +237,27 @@ PetscErrorCode SetState_FEM(FCBody body, const PetscReal s[])
   PetscFunctionReturn(0);
 }
 
-/* The state after a step: finite, and no element turned inside out (J = det F <= 0), which linear
-   and co-rotational elasticity (small-strain models) do not resist: a body crushed or stretched
-   through its own thickness, whose surface then crosses itself and whatever touches it */
+/* The state after a (sub-)step: finite, and the elements turned inside out (J = det F <= 0) counted,
+   with the smallest J of the body (fem->inverted: the last check's, which the scene records once the
+   step is accepted, in /steps and the run's summary). An element turned inside out is a body crushed
+   or stretched through its own thickness, whose surface then crosses itself and whatever touches it:
+   a co-rotational element gets a force that turns it back (the invertible-FE rotation of
+   FCMat3Polar) and the run goes on by default; a linear element has none, and a hyperelastic energy
+   no value there, so that for these the step fails by default (-inverted error) with the located
+   error below: step control redoes it with a smaller time step, or the run stops. The J of every
+   element is computed at every check, in this one loop */
 PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
 {
   FEM               *fem = (FEM *)body->data;
   FCMesh            *m   = &fem->mesh;
-  PetscReal          nu, nv;
+  FCInverted        *inv = &fem->inverted;
+  PetscReal          nu, nv, count = 0.0;
   const PetscScalar *ul;
   struct {
     double J;
     int    rank;
   } worst              = {PETSC_MAX_REAL, 0}, all; /* MPI_DOUBLE_INT for MPI_MINLOC */
-  PetscReal   where[4] = {0, 0, 0, 0};             /* centroid of the worst cell, count */
+  PetscReal   where[3] = {0, 0, 0};                /* centroid of the worst cell */
   PetscMPIInt rank;
 
   PetscFunctionBegin;
@@ -260,7 +267,6 @@ PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
              "Body '%s' diverged at step %" PetscInt_FMT
              ": its displacement or velocity is NaN or Inf (time step too large?)",
              body->name, step);
-  if (fem->allow_inverted) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Comm_rank(body->comm, &rank));
   PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
   PetscCall(VecGetArrayRead(fem->uloc, &ul));
@@ -269,31 +275,49 @@ PetscErrorCode CheckState_FEM(FCBody body, PetscInt step)
     FCFEMGatherElement(fem, c, ul, X, x);
     FCMaterialDeformationGradient(x, &fem->Dminv[9 * c], F);
     J = FCMat3Det(F);
-    if (J > 0.0) continue;
-    where[3] += 1.0;
+    if (J <= 0.0) count += 1.0;
     if (J < worst.J) {
       worst.J = (double)J;
-      for (int d = 0; d < 3; d++) where[d] = 0.25 * (x[d] + x[3 + d] + x[6 + d] + x[9 + d]);
+      if (J <= 0.0)
+        for (int d = 0; d < 3; d++) where[d] = 0.25 * (x[d] + x[3 + d] + x[6 + d] + x[9 + d]);
     }
   }
   PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
   worst.rank = rank;
-  PetscCallMPI(MPI_Allreduce(&worst, &all, 1, MPI_DOUBLE_INT, MPI_MINLOC, body->comm));
-  if (all.J > 0.0) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Allreduce(&worst, &all, 1, MPI_DOUBLE_INT, MPI_MINLOC, body->comm)); /* cells: no overlap */
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &count, 1, MPIU_REAL, MPIU_SUM, body->comm));
+  inv->count = (PetscInt)count;
+  inv->min_J = (PetscReal)all.J;
+  if (!inv->count || fem->allow_inverted) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Bcast(where, 3, MPIU_REAL, (PetscMPIInt)all.rank, body->comm));
   {
-    PetscReal n = where[3];
-    PetscCallMPI(MPI_Bcast(where, 3, MPIU_REAL, (PetscMPIInt)all.rank, body->comm));
-    PetscCall(MPIU_Allreduce(&n, &where[3], 1, MPIU_REAL, MPIU_SUM, body->comm));
+    char why[256];
+    if (fem->mat->hyperelastic)
+      PetscCall(PetscStrncpy(why, "The step went past what the material's energy can resist:", sizeof(why)));
+    else if (fem->mat->linear)
+      PetscCall(PetscStrncpy(why, "The material is a small-strain model and does not resist it:", sizeof(why)));
+    else
+      PetscCall(PetscSNPrintf(why, sizeof(why),
+                              "-%sinverted error makes it a failed step (a co-rotational element would be turned "
+                              "back):",
+                              body->prefix));
+    SETERRQ(body->comm, PETSC_ERR_CONV_FAILED,
+            "Body '%s': %" PetscInt_FMT " element(s) turned inside out at step %" PetscInt_FMT
+            " (volume ratio J = det F down to %g, at (%g, %g, %g)). %s the body is crushed or stretched through its "
+            "own thickness, and its surface crosses itself and what it touches. Make the body stiffer or thicker, "
+            "its mesh finer, or -time_step smaller; -%sinverted allow runs on",
+            body->name, inv->count, step, (double)all.J, (double)where[0], (double)where[1], (double)where[2], why,
+            body->prefix);
   }
-  SETERRQ(body->comm, PETSC_ERR_CONV_FAILED,
-          "Body '%s': %.0f element(s) turned inside out at step %" PetscInt_FMT
-          " (volume ratio J = det F down to %g, at (%g, %g, %g)). %s the body is crushed or stretched through its "
-          "own thickness, and its surface crosses itself and what it touches. Make the body stiffer or thicker, its "
-          "mesh finer, or -time_step smaller; -%sinverted allow runs on",
-          body->name, (double)where[3], step, (double)all.J, (double)where[0], (double)where[1], (double)where[2],
-          fem->mat->hyperelastic ? "The step went past what the material's energy can resist:"
-                                 : "The material is a small-strain model and does not resist it:",
-          body->prefix);
+}
+
+/* The elements turned inside out, as the last CheckState_FEM counted them */
+PetscErrorCode GetInverted_FEM(FCBody body, FCInverted *inv, PetscBool *has)
+{
+  PetscFunctionBegin;
+  *inv = ((FEM *)body->data)->inverted;
+  *has = PETSC_TRUE;
+  PetscFunctionReturn(0);
 }
 
 /* contact_pressure: per owned visual vertex, the normal force of the last step's contacts on it

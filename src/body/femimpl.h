@@ -30,6 +30,7 @@ typedef struct {
   PetscReal  fixed_box[6 * FC_MAX_FIXED_BOXES + 1]; /* nfixed_box boxes, 6 numbers each */
   PetscInt   nfixed_box;
   PetscBool  allow_inverted; /* -inverted allow: no stop at an element turned inside out */
+  FCInverted inverted;       /* the elements turned inside out at the last check (CheckState_FEM) */
   PetscInt   nfixed;         /* global number of fixed vertices */
   PetscInt  *ldof;           /* per local vertex: offset in the local vector */
   PetscInt  *gdof;           /* per local vertex: first global DOF, -1 when fixed */
@@ -220,6 +221,7 @@ PETSC_INTERN PetscErrorCode FCFEMContactPressure(FCBody, PetscReal[]);
 PETSC_INTERN PetscErrorCode GetState_FEM(FCBody, PetscReal[]);
 PETSC_INTERN PetscErrorCode SetState_FEM(FCBody, const PetscReal[]);
 PETSC_INTERN PetscErrorCode CheckState_FEM(FCBody, PetscInt);
+PETSC_INTERN PetscErrorCode GetInverted_FEM(FCBody, FCInverted *, PetscBool *);
 /* fem_contact.c */
 PETSC_INTERN PetscErrorCode ContactPoints_FEM(FCBody, PetscInt *, FCProximity **, PetscReal **, PetscReal **,
                                               PetscReal **);

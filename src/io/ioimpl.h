@@ -73,9 +73,11 @@ PETSC_INTERN PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *);
 
 #define FC_MAX_REACTIONS 16
 #define FC_SOLVER_COUNTS 3 /* /steps: factorizations, krylov_iterations, free_motion_iterations */
+#define FC_BODY_ROW 12     /* per step and body: centroid 3, quaternion 4, energy 3, inverted elements, smallest J */
 typedef struct {
   hid_t    group, centroid, rotation, energy, positions;
-  PetscInt nreact; /* constrained regions: /bodies/<name>/reactions/<region> */
+  hid_t    inverted[2]; /* FE bodies: /bodies/<name>/inverted/elements and min_volume_ratio (else -1) */
+  PetscInt nreact;      /* constrained regions: /bodies/<name>/reactions/<region> */
   hid_t    react[FC_MAX_REACTIONS];
   double  *rreact; /* buffered rows (rank 0): 6 values per region */
 } BodyOut;
@@ -104,7 +106,7 @@ struct _p_FCOutput {
   /* rows buffered since the last flush (rank 0) */
   PetscInt nrows, maxrows;
   double  *rtime, *renergy, *rtiming, *rbody; /* rtiming: per row the phases, then the wall time; rbody: per row,
-                                                per body: centroid 3, quaternion 4, energy 3 */
+                                                per body FC_BODY_ROW values */
   PetscInt  *rstep;
   long long *rsolve; /* per row: factorizations, Krylov and Newton iterations of the step (all bodies) */
   PetscInt   lastsolve[FC_SOLVER_COUNTS]; /* the bodies' totals at the last row */
@@ -112,7 +114,8 @@ struct _p_FCOutput {
   long long *rsub;  /* per row: the sub-steps of the step (step control; 1 when none failed) */
   double    *rhsub; /* per row: the smallest of them (s) */
   hid_t      s_sub, s_hsub;
-  double     elast; /* total energy of the last recorded step (initial energy before step 1) */
+  hid_t      s_inverted[2]; /* /steps/inverted_elements, min_volume_ratio: scenes with an FE body (else -1) */
+  double     elast;         /* total energy of the last recorded step (initial energy before step 1) */
   PetscInt   nframes, xdmfwritten;
   hid_t      complete;         /* /complete: the last step, and the frames, that a flush has put on disk */
   long long  laststep;         /* the last step whose rows or frame have been written (flushed or not) */

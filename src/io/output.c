@@ -185,6 +185,18 @@ static PetscErrorCode WriteBodyHeader(FCOutput out, hid_t gb, PetscInt i, FCBody
     } else
       bo->rotation = -1;
   }
+  {
+    FCInverted inv;
+    PetscBool  has;
+    bo->inverted[0] = bo->inverted[1] = -1;
+    PetscCall(FCBodyGetInverted(b, &inv, &has));
+    if (has) { /* per step: the elements turned inside out and the smallest volume ratio J */
+      hid_t gi = H5Gcreate2(bo->group, "inverted", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      PetscCall(FCH5CreateRows(gi, "elements", H5T_NATIVE_LLONG, 1, NULL, 256, &bo->inverted[0]));
+      PetscCall(FCH5CreateRows(gi, "min_volume_ratio", H5T_NATIVE_DOUBLE, 1, NULL, 256, &bo->inverted[1]));
+      H5Gclose(gi);
+    }
+  }
   gm = H5Gcreate2(bo->group, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   PetscCall(FCH5AttrString(gm, "cell_type", vis->nvpc == 4 ? "tetrahedron" : "triangle"));
   PetscCall(PetscMalloc1(vis->nc * vis->nvpc + 1, &cells));
@@ -450,6 +462,8 @@ PetscErrorCode FCOutputDestroy(FCOutput *output)
         H5Dclose(out->bo[i].energy);
         H5Dclose(out->bo[i].positions);
         if (out->bo[i].rotation >= 0) H5Dclose(out->bo[i].rotation);
+        for (int k = 0; k < 2; k++)
+          if (out->bo[i].inverted[k] >= 0) H5Dclose(out->bo[i].inverted[k]);
         for (PetscInt k = 0; k < out->bo[i].nreact; k++) H5Dclose(out->bo[i].react[k]);
         H5Gclose(out->bo[i].group);
       }

@@ -1,7 +1,8 @@
 /* The per-step records of the output (docs/output.md): a row per completed step in /steps (time,
-   energy, timings, and with contact pairs the contact solver's statistics and accuracy measures),
-   the centroid, rotation and energy of every body in /bodies/<name>, and every contact of every step
-   in /contacts. Rows are buffered on rank 0 and appended at each flush (each output step). */
+   energy, timings, the FE bodies' inverted elements, and with contact pairs the contact solver's
+   statistics and accuracy measures), the centroid, rotation, energy and (FE bodies) inverted
+   elements of every body in /bodies/<name>, and every contact of every step in /contacts. Rows are
+   buffered on rank 0 and appended at each flush (each output step). */
 #include "ioimpl.h"
 #include <stddef.h>
 
@@ -50,6 +51,20 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
   PetscCall(FCH5CreateRows(g, "substeps", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_sub));
   PetscCall(FCH5CreateRows(g, "substep_min", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_hsub));
   PetscCall(SolverTotals(nbodies, bodies, out->lastsolve));
+  out->s_inverted[0] = out->s_inverted[1] = -1;
+  { /* the FE bodies' inverted elements: scenes with an FE body */
+    PetscBool fe = PETSC_FALSE;
+    for (PetscInt i = 0; i < nbodies; i++) {
+      FCInverted inv;
+      PetscBool  has;
+      PetscCall(FCBodyGetInverted(bodies[i], &inv, &has));
+      fe = (PetscBool)(fe || has);
+    }
+    if (fe) {
+      PetscCall(FCH5CreateRows(g, "inverted_elements", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_inverted[0]));
+      PetscCall(FCH5CreateRows(g, "min_volume_ratio", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_inverted[1]));
+    }
+  }
   gt = H5Gcreate2(g, "timing", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   for (int p = 0; p < FC_PHASE_NUM; p++)
     PetscCall(FCH5CreateRows(gt, FCPhaseNames[p], H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->timing[p]));
@@ -93,7 +108,7 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
   PetscCall(PetscMalloc1(FC_SOLVER_COUNTS * nrow, &out->rsolve));
   PetscCall(PetscMalloc2(nrow, &out->rsub, nrow, &out->rhsub));
   PetscCall(PetscMalloc5(nrow, &out->rtime, nrow, &out->renergy, nrow * (FC_PHASE_NUM + 1), &out->rtiming,
-                         nrow * nbodies * 10 + 1, &out->rbody, nrow, &out->rstep));
+                         nrow * nbodies * FC_BODY_ROW + 1, &out->rbody, nrow, &out->rstep));
   PetscFunctionReturn(0);
 }
 
@@ -108,11 +123,11 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
   if (r == out->maxrows) {
     double   *a, *b, *c, *d;
     PetscInt *e, n = 2 * out->maxrows;
-    PetscCall(PetscMalloc5(n, &a, n, &b, n * (FC_PHASE_NUM + 1), &c, n * nbodies * 10 + 1, &d, n, &e));
+    PetscCall(PetscMalloc5(n, &a, n, &b, n * (FC_PHASE_NUM + 1), &c, n * nbodies * FC_BODY_ROW + 1, &d, n, &e));
     PetscCall(PetscArraycpy(a, out->rtime, r));
     PetscCall(PetscArraycpy(b, out->renergy, r));
     PetscCall(PetscArraycpy(c, out->rtiming, r * (FC_PHASE_NUM + 1)));
-    PetscCall(PetscArraycpy(d, out->rbody, r * nbodies * 10));
+    PetscCall(PetscArraycpy(d, out->rbody, r * nbodies * FC_BODY_ROW));
     PetscCall(PetscArraycpy(e, out->rstep, r));
     {
       long long *f;
@@ -162,7 +177,7 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
   for (int p = 0; p < FC_PHASE_NUM; p++) out->rtiming[r * (FC_PHASE_NUM + 1) + p] = timing[p];
   out->rtiming[r * (FC_PHASE_NUM + 1) + FC_PHASE_NUM] = wall;
   for (PetscInt i = 0; i < nbodies; i++) {
-    double   *row = &out->rbody[(r * nbodies + i) * 10];
+    double   *row = &out->rbody[(r * nbodies + i) * FC_BODY_ROW];
     FCEnergy  E;
     PetscBool has;
     PetscCall(FCBodyGetCentroid(bodies[i], row));
@@ -177,6 +192,12 @@ PetscErrorCode FCOutputRecordStep(FCOutput out, PetscInt step, PetscReal t, cons
     row[7] = E.kinetic;
     row[8] = E.elastic;
     row[9] = E.gravity;
+    {
+      FCInverted inv;
+      PetscCall(FCBodyGetInverted(bodies[i], &inv, &has));
+      row[10] = has ? (double)inv.count : 0.0;
+      row[11] = has ? (double)inv.min_J : PETSC_MAX_REAL; /* no J: not in the scene's smallest */
+    }
     etot += E.kinetic + E.elastic + E.gravity;
   }
   out->renergy[r] = etot;
@@ -328,10 +349,10 @@ PetscErrorCode FCOutputRecordsFlush(FCOutput out)
     }
     for (PetscInt i = 0; i < nb; i++) {
       for (PetscInt r = 0; r < n; r++)
-        for (int k = 0; k < 3; k++) tmp[3 * r + k] = out->rbody[(r * nb + i) * 10 + k];
+        for (int k = 0; k < 3; k++) tmp[3 * r + k] = out->rbody[(r * nb + i) * FC_BODY_ROW + k];
       PetscCall(FCH5AppendRows(out->rank, out->bo[i].centroid, H5T_NATIVE_DOUBLE, n, tmp));
       for (PetscInt r = 0; r < n; r++)
-        for (int k = 0; k < 3; k++) tmp[3 * r + k] = out->rbody[(r * nb + i) * 10 + 7 + k];
+        for (int k = 0; k < 3; k++) tmp[3 * r + k] = out->rbody[(r * nb + i) * FC_BODY_ROW + 7 + k];
       PetscCall(FCH5AppendRows(out->rank, out->bo[i].energy, H5T_NATIVE_DOUBLE, n, tmp));
       for (PetscInt k = 0; k < out->bo[i].nreact; k++) {
         PetscInt nr = out->bo[i].nreact;
@@ -341,9 +362,27 @@ PetscErrorCode FCOutputRecordsFlush(FCOutput out)
       }
       if (out->bo[i].rotation >= 0) {
         for (PetscInt r = 0; r < n; r++)
-          for (int k = 0; k < 4; k++) tmp[4 * r + k] = out->rbody[(r * nb + i) * 10 + 3 + k];
+          for (int k = 0; k < 4; k++) tmp[4 * r + k] = out->rbody[(r * nb + i) * FC_BODY_ROW + 3 + k];
         PetscCall(FCH5AppendRows(out->rank, out->bo[i].rotation, H5T_NATIVE_DOUBLE, n, tmp));
       }
+      if (out->bo[i].inverted[0] >= 0) {
+        for (PetscInt r = 0; r < n; r++) steps[r] = (long long)out->rbody[(r * nb + i) * FC_BODY_ROW + 10];
+        PetscCall(FCH5AppendRows(out->rank, out->bo[i].inverted[0], H5T_NATIVE_LLONG, n, steps));
+        for (PetscInt r = 0; r < n; r++) tmp[r] = out->rbody[(r * nb + i) * FC_BODY_ROW + 11];
+        PetscCall(FCH5AppendRows(out->rank, out->bo[i].inverted[1], H5T_NATIVE_DOUBLE, n, tmp));
+      }
+    }
+    if (out->s_inverted[0] >= 0) { /* the scene's: the FE bodies' counts summed, their smallest J */
+      for (PetscInt r = 0; r < n; r++) {
+        steps[r] = 0;
+        tmp[r]   = PETSC_MAX_REAL;
+        for (PetscInt i = 0; i < nb; i++) {
+          steps[r] += (long long)out->rbody[(r * nb + i) * FC_BODY_ROW + 10];
+          tmp[r] = PetscMin(tmp[r], out->rbody[(r * nb + i) * FC_BODY_ROW + 11]);
+        }
+      }
+      PetscCall(FCH5AppendRows(out->rank, out->s_inverted[0], H5T_NATIVE_LLONG, n, steps));
+      PetscCall(FCH5AppendRows(out->rank, out->s_inverted[1], H5T_NATIVE_DOUBLE, n, tmp));
     }
     out->laststep = PetscMax(out->laststep, (long long)out->rstep[n - 1]);
     PetscCall(PetscFree2(tmp, steps));
@@ -365,6 +404,8 @@ PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
   for (int k = 0; k < FC_SOLVER_COUNTS; k++) H5Dclose(out->s_solve[k]);
   H5Dclose(out->s_sub);
   H5Dclose(out->s_hsub);
+  for (int k = 0; k < 2; k++)
+    if (out->s_inverted[k] >= 0) H5Dclose(out->s_inverted[k]);
   for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
   if (out->contacts) {
     hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,        out->c_force,

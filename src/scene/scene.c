@@ -49,6 +49,10 @@ struct _p_FCScene {
     PetscInt  intersecting, beyond;  /* steps with points inside another body; with contacts beyond the check */
     PetscReal cone, complementarity; /* the worst cone violation and contact natural-map error of the run */
   } checks;
+  struct { /* per FE body over the steps run (the summary's): the steps that ended with an element inside out, */
+    PetscInt  steps, most; /* the most at the end of one, the smallest J at their ends */
+    PetscReal worst;
+  } inverted[FC_MAX_BODIES];
 };
 
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
@@ -341,6 +345,15 @@ PetscErrorCode FCSceneStep(FCScene s)
     s->t = tstart + done;
   }
   if (s->substeps > 1) s->steps_cut++;
+  for (PetscInt i = 0; i < s->nbodies; i++) { /* elements inside out at the step's end (its last sub-step's check) */
+    FCInverted inv;
+    PetscBool  has;
+    PetscCall(FCBodyGetInverted(s->bodies[i], &inv, &has));
+    if (!has || !inv.count) continue;
+    s->inverted[i].worst = s->inverted[i].steps ? PetscMin(s->inverted[i].worst, inv.min_J) : inv.min_J;
+    s->inverted[i].most  = PetscMax(s->inverted[i].most, inv.count);
+    s->inverted[i].steps++;
+  }
   if (s->pairs->n) {
     if (s->measures.intersections) s->checks.intersecting++;
     if (s->measures.beyond) s->checks.beyond++;
@@ -400,6 +413,12 @@ static PetscErrorCode PrintSummary(FCScene s, PetscLogDouble wall)
                               names[k], (double)R[6 * k], (double)R[6 * k + 1], (double)R[6 * k + 2],
                               (double)R[6 * k + 3], (double)R[6 * k + 4], (double)R[6 * k + 5]));
     }
+    if (s->inverted[i].steps)
+      PetscCall(PetscPrintf(s->comm,
+                            "    elements inside out (J = det F <= 0) at the end of %" PetscInt_FMT " of %" PetscInt_FMT
+                            " steps, at most %" PetscInt_FMT " at once, J down to %g\n",
+                            s->inverted[i].steps, s->step - s->step0, s->inverted[i].most,
+                            (double)s->inverted[i].worst));
   }
   if (s->control.cuts)
     PetscCall(PetscPrintf(s->comm,
