@@ -433,6 +433,7 @@ PetscErrorCode FCCollisionDetectPairs(MPI_Comm comm, PetscInt nbodies, FCBody bo
   for (PetscInt k = 0; k < set->n; k++) {
     FCContact *c = &set->c[k];
     c->slack     = PetscMax(0.0, -c->gap0 - pairs->separation_speed * FCBodyTimeStep(bodies[c->body[0]]));
+    c->swept     = (PetscBool)(c->gap0 > pairs->distance); /* met within the step, beyond the alarm distance */
   }
   PetscCall(FCContactSetFinalize(set));
   PetscFunctionReturn(0);

@@ -34,7 +34,9 @@ PetscErrorCode FCSchemeLinearize(FCScheme scheme, FCContactSet *set, const Petsc
     FCBody     B   = scheme->bodies[c->body[1]];
     PetscReal  gap = 0.0, dd[3];
     for (int i = 0; i < 3; i++) dd[i] = d[3 * k + i] - dfree[3 * k + i];
-    PetscBool reeval = (PetscBool)(c->side2 == FC_SIDE_SHAPE && FCBodyIsPrescribed(B));
+    /* a contact the continuous detection made from beyond the alarm distance keeps its linearization: the
+       shape's pose at the end of the step may have passed the point (a sphere orbiting over a ball) */
+    PetscBool reeval = (PetscBool)(c->side2 == FC_SIDE_SHAPE && FCBodyIsPrescribed(B) && !c->swept);
     PetscReal p1[3], n[3], cpb[3];
     if (reeval) { /* its pose at the end of the step is known */
       for (int i = 0; i < 3; i++) p1[i] = c->pfree[0][i] + dd[i];
