@@ -148,11 +148,12 @@ def contact_force_on(h5, body):
 
 
 def same_as_1_rank(H1, Hn, body, steps=None):
-    """Whether Hn has H1's contacts at every step (the offsets), the largest relative difference of their forces
-    (matched by point; over the first `steps` steps, or all) and of the body's end positions (matched by reference
+    """Whether Hn has H1's contacts at every step (the offsets) and the largest relative difference of their forces
+    (matched by point), over the first `steps` steps (or all), and of the body's end positions (matched by reference
     position)"""
     o1, on = H1["contacts/offset"][:], Hn["contacts/offset"][:]
-    same, ef = np.array_equal(o1, on), 0.0
+    n = len(o1) if steps is None else steps + 1
+    same, ef = np.array_equal(o1[:n], on[:n]), 0.0
     for k in range(len(o1) - 1 if steps is None else steps):
         if not same:
             break

@@ -156,9 +156,18 @@ c.check(digest(opts) == before and digest(xmf) == before, "the options files are
 o = ["-output_file", out("absurd_np%d.h5" % NP)]
 # h = 1e3 s: the default solver (auto: Newton here) converges and the energy stays within the guard's
 # bound; the sweeps alone stop at -pgs_max_it with forces whose work blows the energy up in step 1, the
-# numerical blow-up the guard is for
-expect_error("-time_step 1e3, -contact_solver pgs: energy guard", DROP + o + ["-time_step", "1e3", "-contact_solver", "pgs"],
+# numerical blow-up the guard is for: it stops the run without step control, and with it (the default) the
+# step is redone with smaller steps
+expect_error("-time_step 1e3, -contact_solver pgs, -time_step_control off: energy guard",
+             DROP + o + ["-time_step", "1e3", "-contact_solver", "pgs", "-time_step_control", "off"],
              2, "-energy_growth_limit", "-time_step 1000", "body 'cube'")
+p = run(["-options_file", "input/cube_drop.opts", "-output_file", out("absurd_cut_np%d.h5" % NP), "-time_step", "1e3",
+         "-contact_solver", "pgs", "-time_steps", "2"], np_=NP, check=False)
+with h5py.File(out("absurd_cut_np%d.h5" % NP), "r") as h:
+    sub = h["steps/substeps"][:]
+c.check(p.returncode == 0 and sub[0] > 1 and "-energy_growth_limit" in p.stdout and "redone" in p.stdout,
+        "-time_step 1e3, -contact_solver pgs, step control: the energy guard's step redone in %d sub-steps (exit %d)"
+        % (sub[0], p.returncode))
 p = run(DROP + o + ["-time_step", "1e3", "-time_steps", "1", "-energy_growth_limit", "0"], np_=NP, check=False)
 c.check(p.returncode == 0, "-energy_growth_limit 0 relaxes the guard (exit %d)" % p.returncode)
 p = run(DROP + o + ["-time_step", "1e3", "-time_steps", "1", "-energy_growth_limit", "1e6"], np_=NP, check=False)

@@ -184,7 +184,7 @@ if NP > 1:
     P1, Pn = F1["bodies/finger/positions"], Fi["bodies/finger/positions"]
     dx = max(np.abs(P1[k][i1] - Pn[k][i_n]).max() for k in range(len(F1["frames/time"])))
     c.check(same and ef <= 1e-10 and er <= 1e-3 and dx <= 5e-5, "finger, %d ranks: the 1-rank contacts at every step "
-            "(%s), their forces to %.1e (relative) before the joints close; then the self-contacts' total, the "
+            "(%s) and their forces to %.1e (relative) before the joints close; then the self-contacts' total, the "
             "pusher's force and the base's reaction to %.1e (relative, bound 1e-3), the positions of every frame to "
             "%.1e m (bound 5e-5 m)" % (NP, "same" if same else "DIFFERENT", ef, er, dx))
 
