@@ -382,27 +382,6 @@ PetscErrorCode FCOutputFlush(FCOutput out)
   PetscFunctionReturn(0);
 }
 
-/* The restart state (restart.c), written after the frame of the same step has been written and
-   flushed, then flushed itself: the newest complete restart slot is never ahead of the frames and
-   step rows, whatever write fails */
-PetscErrorCode FCOutputWriteRestart(FCOutput out, PetscInt step, PetscReal t, const PetscReal control[3],
-                                    PetscInt nbodies, FCBody bodies[], const FCContactSet *previous)
-{
-  PetscFunctionBegin;
-  PetscCall(FCPhaseBegin(FC_PHASE_OUTPUT));
-  PetscCall(FCRestartWriterWrite(out->restart, step, t, control, nbodies, bodies, previous));
-  FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush of the restart state");
-  if (out->rank == 0) { /* the growth of HDF5's allocation over one output step: the next reservation
-                           (the file itself is longer, by what is reserved: reserve.c) */
-    haddr_t eoa  = 0;
-    size_t  size = H5Fget_eoa(out->file, &eoa) >= 0 ? (size_t)eoa : 0;
-    if (out->lastsize && size > out->lastsize) out->growth = PetscMax(out->growth, size - out->lastsize);
-    out->lastsize = size;
-  }
-  PetscCall(FCPhaseEnd(FC_PHASE_OUTPUT));
-  PetscFunctionReturn(0);
-}
-
 /* /memory and /memory_phases (name): one row per rank (bytes; its columns named by the attribute
    `columns`, what they are by `units`), written again (replaced) by each call, e.g. at the end of a
    restarted run; collective */

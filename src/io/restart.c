@@ -219,6 +219,27 @@ PetscErrorCode FCRestartWriterWrite(FCRestartWriter w, PetscInt step, PetscReal 
   PetscFunctionReturn(0);
 }
 
+/* The restart state (restart.c), written after the frame of the same step has been written and
+   flushed, then flushed itself: the newest complete restart slot is never ahead of the frames and
+   step rows, whatever write fails */
+PetscErrorCode FCOutputWriteRestart(FCOutput out, PetscInt step, PetscReal t, const PetscReal control[3],
+                                    PetscInt nbodies, FCBody bodies[], const FCContactSet *previous)
+{
+  PetscFunctionBegin;
+  PetscCall(FCPhaseBegin(FC_PHASE_OUTPUT));
+  PetscCall(FCRestartWriterWrite(out->restart, step, t, control, nbodies, bodies, previous));
+  FCH5Check(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush of the restart state");
+  if (out->rank == 0) { /* the growth of HDF5's allocation over one output step: the next reservation
+                           (the file itself is longer, by what is reserved: reserve.c) */
+    haddr_t eoa  = 0;
+    size_t  size = H5Fget_eoa(out->file, &eoa) >= 0 ? (size_t)eoa : 0;
+    if (out->lastsize && size > out->lastsize) out->growth = PetscMax(out->growth, size - out->lastsize);
+    out->lastsize = size;
+  }
+  PetscCall(FCPhaseEnd(FC_PHASE_OUTPUT));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCRestartWriterDestroy(FCRestartWriter *writer)
 {
   FCRestartWriter w = *writer;
@@ -338,6 +359,23 @@ static PetscErrorCode SlotStep(hid_t f, int k, long long *step)
   PetscFunctionReturn(0);
 }
 
+/* The step control's state of a slot (none in a file written without step control: zeros, the requested step) */
+static PetscErrorCode ReadStepControl(MPI_Comm comm, const char file[], const char path[], hid_t g,
+                                      PetscReal control[3])
+{
+  double cv[3] = {0.0, 0.0, 0.0};
+
+  PetscFunctionBegin;
+  if (H5Lexists(g, "step_control", H5P_DEFAULT) > 0) {
+    hid_t d = H5Dopen2(g, "step_control", H5P_DEFAULT);
+    PetscCheck(d >= 0 && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, cv) >= 0, comm,
+               PETSC_ERR_FILE_READ, "Restart file '%s': cannot read %s/step_control", file, path);
+    H5Dclose(d);
+  }
+  for (int i = 0; i < 3; i++) control[i] = cv[i];
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCRestartLoad(MPI_Comm comm, const char file[], PetscInt nbodies, FCBody bodies[],
                              FCContactSet *previous, PetscInt *step, PetscReal *t, PetscReal control[3])
 {
@@ -369,16 +407,7 @@ PetscErrorCode FCRestartLoad(MPI_Comm comm, const char file[], PetscInt nbodies,
   PetscCheck(d >= 0 && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &tt) >= 0, comm,
              PETSC_ERR_FILE_READ, "Restart file '%s': cannot read %s/time", file, path);
   H5Dclose(d);
-  { /* the step control's state (none in a file of a version without it: the requested step, fresh) */
-    double cv[3] = {0.0, 0.0, 0.0};
-    if (H5Lexists(g, "step_control", H5P_DEFAULT) > 0) {
-      d = H5Dopen2(g, "step_control", H5P_DEFAULT);
-      PetscCheck(d >= 0 && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, cv) >= 0, comm,
-                 PETSC_ERR_FILE_READ, "Restart file '%s': cannot read %s/step_control", file, path);
-      H5Dclose(d);
-    }
-    for (int i = 0; i < 3; i++) control[i] = cv[i];
-  }
+  PetscCall(ReadStepControl(comm, file, path, g, control));
   for (PetscInt i = 0; i < nbodies; i++) {
     FCBody              b = bodies[i];
     const FCBodyVisual *vis;
