@@ -60,9 +60,10 @@ PETSC_INTERN PetscErrorCode FCBodyProximityPosition(FCBody, const FCProximity *,
 PETSC_INTERN PetscErrorCode FCBodyShapeDistance(FCBody, PetscInt when, const PetscReal x[3], PetscReal *d,
                                                 PetscReal n[3], PetscReal cpb[3]);
 /* Whether a contact keeps its normal n at x where the shape's distance gave gap and the normal nx:
-   on an edge of the shape, where n is still nearly one of its normals there (src/body/body_ops.c) */
+   on an edge of the shape, where n is still nearly one of its normals there; move: how far the point
+   moved, the probe's scale (src/body/body_ops.c) */
 PETSC_INTERN PetscErrorCode FCBodyShapeKeepsNormal(FCBody, PetscInt when, const PetscReal x[3], PetscReal gap,
-                                                   const PetscReal nx[3], const PetscReal n[3], PetscReal eta,
+                                                   const PetscReal nx[3], const PetscReal n[3], PetscReal move,
                                                    PetscBool *keep);
 /* when: FC_AT_NOW (the pose now) or FC_AT_FREE (after the free motion) */
 /* The angle the body frame turns by over the step and the body-frame point it turns about (0 for

@@ -177,18 +177,19 @@ PetscErrorCode FCBodyShapeDistance(FCBody body, PetscInt when, const PetscReal x
    lower box's edge: the top face's, a side's, or anything between, which the distance then takes from
    offsets of round-off size). The normal the distance gave at x (nx, with gap) is then not to be taken
    for a normal n that the contact already has: where nx turns by more than 10 degrees from n while n is
-   still nearly the shape's at x (the distance grows at 0.9 of the full rate along n, probed over eta, at
-   least 1e-8 |x|: well above the round-off of positions), *keep says to keep n. A point that has passed under another
+   still nearly the shape's at x (the distance grows at 0.9 of the full rate along n, probed over a
+   thousandth of the point's motion (move) or of its gap, at least 1e-8 |x|: well above the round-off of
+   positions), *keep says to keep n. A point that has passed under another
    face (a punch's front face sliding over a vertex) gets that face's normal */
 PetscErrorCode FCBodyShapeKeepsNormal(FCBody body, PetscInt when, const PetscReal x[3], PetscReal gap,
-                                      const PetscReal nx[3], const PetscReal n[3], PetscReal eta, PetscBool *keep)
+                                      const PetscReal nx[3], const PetscReal n[3], PetscReal move, PetscBool *keep)
 {
-  PetscReal xp[3], gp, np[3], cpb[3];
+  PetscReal xp[3], gp, np[3], cpb[3], eta;
 
   PetscFunctionBegin;
   *keep = PETSC_FALSE;
   if (FCDot(nx, n) >= 0.985) PetscFunctionReturn(0);
-  eta = PetscMax(eta, 1e-8 * PetscSqrtReal(FCDot(x, x))) + 1e-300;
+  eta = PetscMax(1e-3 * PetscMax(move, PetscAbsReal(gap)), 1e-8 * PetscSqrtReal(FCDot(x, x))) + 1e-300;
   for (int i = 0; i < 3; i++) xp[i] = x[i] + eta * n[i];
   PetscCall(FCBodyShapeDistance(body, when, xp, &gp, np, cpb));
   *keep = (PetscBool)(gp - gap >= 0.9 * eta);

@@ -122,7 +122,7 @@ PetscErrorCode FCCollisionEndGapsOf(MPI_Comm comm, PetscInt nbodies, FCBody bodi
       PetscBool keep;
       for (int d = 0; d < 3; d++) move += PetscSqr(x[d] - c->p0[0][d]);
       PetscCall(FCBodyShapeKeepsNormal(bodies[c->body[1]], FC_AT_NOW, x, g[10 * k], &g[10 * k + 1], c->n,
-                                       1e-3 * PetscMax(PetscSqrtReal(move), PetscAbsReal(g[10 * k])), &keep));
+                                       PetscSqrtReal(move), &keep));
       if (keep)
         for (int d = 0; d < 3; d++) g[10 * k + 1 + d] = c->n[d];
     }

@@ -41,10 +41,9 @@ PetscErrorCode FCSchemeLinearize(FCScheme scheme, FCContactSet *set, const Petsc
     if (reeval) { /* its pose at the end of the step is known */
       for (int i = 0; i < 3; i++) p1[i] = c->pfree[0][i] + dd[i];
       PetscCall(FCBodyShapeDistance(B, FC_AT_FREE, p1, &gap, n, cpb));
-      { /* on an edge of the shape: the normal it has, probed over a thousandth of the iteration's motion */
+      { /* on an edge of the shape: the normal it has (the probe's scale: the iteration's motion) */
         PetscBool keep;
-        PetscCall(FCBodyShapeKeepsNormal(B, FC_AT_FREE, p1, gap, n, c->n,
-                                         1e-3 * PetscMax(PetscSqrtReal(FCDot(dd, dd)), PetscAbsReal(gap)), &keep));
+        PetscCall(FCBodyShapeKeepsNormal(B, FC_AT_FREE, p1, gap, n, c->n, PetscSqrtReal(FCDot(dd, dd)), &keep));
         if (keep) reeval = PETSC_FALSE; /* its gap linearized along it */
       }
     }
