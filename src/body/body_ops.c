@@ -177,7 +177,8 @@ PetscErrorCode FCBodyShapeDistance(FCBody body, PetscInt when, const PetscReal x
    lower box's edge: the top face's, a side's, or anything between, which the distance then takes from
    offsets of round-off size). The normal the distance gave at x (nx, with gap) is then not to be taken
    for a normal n that the contact already has: where nx turns by more than 10 degrees from n while n is
-   still nearly the shape's at x (the distance grows at 0.9 of the full rate along n, probed over a
+   still nearly the shape's at x (the distance grows at 0.99 of the full rate along n: on a smooth shape a
+   normal 10 degrees off grows at cos 10 = 0.985, so the rule holds on edges only; probed over a
    thousandth of the point's motion (move) or of its gap, at least 1e-8 |x|: well above the round-off of
    positions), *keep says to keep n. A point that has passed under another
    face (a punch's front face sliding over a vertex) gets that face's normal */
@@ -192,7 +193,7 @@ PetscErrorCode FCBodyShapeKeepsNormal(FCBody body, PetscInt when, const PetscRea
   eta = PetscMax(1e-3 * PetscMax(move, PetscAbsReal(gap)), 1e-8 * PetscSqrtReal(FCDot(x, x))) + 1e-300;
   for (int i = 0; i < 3; i++) xp[i] = x[i] + eta * n[i];
   PetscCall(FCBodyShapeDistance(body, when, xp, &gp, np, cpb));
-  *keep = (PetscBool)(gp - gap >= 0.9 * eta);
+  *keep = (PetscBool)(gp - gap >= 0.99 * eta);
   PetscFunctionReturn(0);
 }
 

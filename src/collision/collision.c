@@ -227,6 +227,24 @@ PetscErrorCode FCCollisionVerticesAgainstSurface(FCBody P, FCBody Sb, PetscInt i
      -contact_fe_pass2_drop w: the held contact is dropped (takes precedence).
    Vertices are matched by their reference position. Runs on the gathered set, the same on every
    rank, so it keeps the order. */
+/* A shape's smallest size: a rounded shape's radius, a box's smallest half extent (a plane, a mesh: none) */
+static PetscReal ShapeSize(FCBody b)
+{
+  if (FCBodyHasShapeCore(b)) {
+    PetscInt  ncore;
+    PetscReal core[2][3], r;
+    PetscBool flat;
+    FCBodyGetShapeCore(b, &ncore, core, &r, &flat);
+    return r;
+  }
+  if (FCBodyIsBox(b)) {
+    PetscReal h[3];
+    FCBodyGetBoxHalfExtents(b, h);
+    return PetscMin(h[0], PetscMin(h[1], h[2]));
+  }
+  return PETSC_MAX_REAL;
+}
+
 static PetscErrorCode HeldSecondPass(const FCContactPairs *pairs, FCContactSet *set)
 {
   PetscReal *held, w = pairs->pass2_drop >= 0.0 ? pairs->pass2_drop : pairs->pass2_dormant;
@@ -433,7 +451,13 @@ PetscErrorCode FCCollisionDetectPairs(MPI_Comm comm, PetscInt nbodies, FCBody bo
   for (PetscInt k = 0; k < set->n; k++) {
     FCContact *c = &set->c[k];
     c->slack     = PetscMax(0.0, -c->gap0 - pairs->separation_speed * FCBodyTimeStep(bodies[c->body[0]]));
-    c->swept     = (PetscBool)(c->gap0 > pairs->distance); /* met within the step, beyond the alarm distance */
+    { /* made from beyond the alarm distance against a shape that travels more than half its size over the
+         step: the sides meet within the step, and the shape may pass the point (src/scheme/recursive.c) */
+      PetscReal move = 0.0;
+      for (int d = 0; d < 3; d++) move += PetscSqr(c->pfree[1][d] - c->p0[1][d]);
+      c->swept = (PetscBool)(c->side2 == FC_SIDE_SHAPE && c->gap0 > pairs->distance &&
+                             PetscSqrtReal(move) > 0.5 * ShapeSize(bodies[c->body[1]]));
+    }
   }
   PetscCall(FCContactSetFinalize(set));
   PetscFunctionReturn(0);

@@ -34,7 +34,7 @@ typedef struct {
   PetscReal n_end[3], d_end[3]; /* end of the step: normal on the real geometry, d = p1 - p2 (world)  */
   PetscReal p_end[3];           /* end of the step: the side-1 proximity point (world)                */
   PetscBool dormant;            /* a redundant contact kept out of the solve unless the solution violates it */
-  PetscBool swept; /* made by the continuous detection from beyond the alarm distance: the sides meet within the step */
+  PetscBool swept; /* from beyond the alarm distance against a shape travelling over half its size: it may pass */
 } FCContact;
 /* FC_SIDE_FE_EDGE: an edge-edge contact between two FE bodies (prox[0] and prox[1] each an edge,
    nv = 2; the normal is the cross product of the two edges). An FE edge against an edge of a

@@ -34,13 +34,14 @@ PetscErrorCode FCSchemeLinearize(FCScheme scheme, FCContactSet *set, const Petsc
     FCBody     B   = scheme->bodies[c->body[1]];
     PetscReal  gap = 0.0, dd[3];
     for (int i = 0; i < 3; i++) dd[i] = d[3 * k + i] - dfree[3 * k + i];
-    /* a contact the continuous detection made from beyond the alarm distance keeps its linearization: the
-       shape's pose at the end of the step may have passed the point (a sphere orbiting over a ball) */
-    PetscBool reeval = (PetscBool)(c->side2 == FC_SIDE_SHAPE && FCBodyIsPrescribed(B) && !c->swept);
+    PetscBool reeval = (PetscBool)(c->side2 == FC_SIDE_SHAPE && FCBodyIsPrescribed(B));
     PetscReal p1[3], n[3], cpb[3];
     if (reeval) { /* its pose at the end of the step is known */
       for (int i = 0; i < 3; i++) p1[i] = c->pfree[0][i] + dd[i];
       PetscCall(FCBodyShapeDistance(B, FC_AT_FREE, p1, &gap, n, cpb));
+      /* a contact the continuous detection made where the shape can pass the point within the step (c->swept:
+         a sphere orbiting over a ball) keeps its linearization: the shape's end pose may be beyond the point */
+      if (c->swept) reeval = PETSC_FALSE;
       { /* on an edge of the shape: the normal it has (the probe's scale: the iteration's motion) */
         PetscBool keep;
         PetscCall(FCBodyShapeKeepsNormal(B, FC_AT_FREE, p1, gap, n, c->n, PetscSqrtReal(FCDot(dd, dd)), &keep));
