@@ -291,6 +291,21 @@ PetscErrorCode FCBodyApplyCorrection(FCBody body, PetscInt self, const FCContact
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCBodySettle(FCBody body, const FCContactSet *set, PetscReal t, PetscReal *moved)
+{
+  PetscFunctionBegin;
+  *moved = 0.0;
+  if (body->ops.settle) PetscCall((*body->ops.settle)(body, set, t, moved));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCBodyRelinearize(FCBody body)
+{
+  PetscFunctionBegin;
+  if (body->ops.relinearize) PetscCall((*body->ops.relinearize)(body));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCBodySaveFreeMotion(FCBody body)
 {
   PetscFunctionBegin;

@@ -45,6 +45,7 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
   }
   PetscCall(FCFEMBCSetFromOptions(PetscOptionsObject, body));
   PetscCall(FCFEMNewtonSetFromOptions(PetscOptionsObject, body));
+  PetscCall(FCFEMNonlinearSetFromOptions(PetscOptionsObject, body));
   { /* the default by material: a co-rotational element turned inside out gets a force that turns it
        back (the invertible-FE rotation of FCMat3Polar); a hyperelastic energy has no value there, and
        linear elasticity no force against it */
@@ -272,8 +273,9 @@ static PetscErrorCode SetUp_FEM(FCBody body)
   PetscCall(FCFEMFormA(body)); /* factored at first use: by the KSP or by the compliance builder */
   PetscCall(FCFEMCheckDerived(body));
   fem->Acurrent = PETSC_TRUE;
-  PetscCall(FCFEMScheduleSetUp(body)); /* reuse: the first step takes its operator at its state */
-  PetscCall(FCFEMNewtonSetUp(body));   /* -free_motion newton: its SNES */
+  PetscCall(FCFEMScheduleSetUp(body));  /* reuse: the first step takes its operator at its state */
+  PetscCall(FCFEMNewtonSetUp(body));    /* -free_motion newton: its SNES */
+  PetscCall(FCFEMNonlinearSetUp(body)); /* -correction nonlinear */
   PetscCall(FCMeshCreateVisual(m, &body->visual));
   PetscCall(FCBodyFEMGetReferenceCoordinates(body, &fem->Xg));
   /* boundary: owned vertices (candidate contact points) and outward triangles (src/mesh/boundary.c) */
@@ -317,6 +319,7 @@ static PetscErrorCode Destroy_FEM(FCBody body)
 
   PetscFunctionBegin;
   PetscCall(FCFEMNewtonDestroy(body));
+  PetscCall(FCFEMNonlinearDestroy(body));
   PetscCall(KSPDestroy(&fem->ksp));
   PetscCall(FCFEMScheduleDestroy(body));
   PetscCall(FCComplianceDestroy(&fem->comp));
@@ -374,6 +377,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   fem->refactor_residual       = 0.003;
   fem->coo                     = PETSC_TRUE; /* co-rotational; a linear K is summed once, by values */
   fem->rotation_exact          = PETSC_TRUE; /* co-rotational without fixed vertices */
+  fem->correction              = 0;          /* -correction linear */
   fem->free_motion             = -1;         /* newton for a hyperelastic material, else linearized */
   fem->inverted.min_J          = 1.0;        /* the reference state, before any step */
   body->deformable             = PETSC_TRUE;
@@ -411,6 +415,8 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.getsolvercounts    = GetSolverCounts_FEM;
   body->ops.getcontactmemory   = GetContactMemory_FEM;
   body->ops.getinverted        = GetInverted_FEM;
+  body->ops.settle             = FCFEMNonlinearSettle;
+  body->ops.relinearize        = FCFEMNonlinearRelinearize;
   PetscFunctionReturn(0);
 }
 

@@ -157,6 +157,7 @@ PetscErrorCode FCFEMNewtonFreeMotion(FCBody body, PetscReal t)
   if (body->gravity[0] != 0.0 || body->gravity[1] != 0.0 || body->gravity[2] != 0.0)
     PetscCall(VecAXPY(fem->nbc, h, fem->fgrav));
   PetscCall(FCFEMBCAddRHS(body, fem->nbc, PETSC_FALSE)); /* loads, and the inertia of the prescribed motion */
+  PetscCall(FCFEMNonlinearAddLoad(body, fem->nbc));      /* the last step's contact forces (fem_nonlinear.c) */
   PetscCall(VecZeroEntries(fem->dv));                    /* the first iterate: the velocity kept */
   PetscCall(FCPhaseEnd(FC_PHASE_FREE_MOTION));
   fem->jacobian = PETSC_FALSE;
@@ -188,6 +189,7 @@ PetscErrorCode FCFEMNewtonFreeMotion(FCBody body, PetscReal t)
     fem->factored   = PETSC_TRUE;
   }
   fem->Acurrent = PETSC_TRUE;
+  PetscCall(FCFEMNonlinearUnload(body)); /* the free motion without them, linearized there */
   PetscFunctionReturn(0);
 }
 

@@ -181,13 +181,14 @@ PetscErrorCode GetVisualField_FEM(FCBody body, FCVisualField field, PetscReal ou
   PetscFunctionReturn(0);
 }
 
-/* Restart state: per owned vertex in the visual (global) order, u and v (0 on fixed vertices) */
+/* Restart state: per owned vertex in the visual (global) order, u and v (0 on fixed vertices), and a
+   nonlinear correction's f_c (fem_nonlinear.c) */
 PetscErrorCode GetState_FEM(FCBody body, PetscReal s[])
 {
   FEM               *fem = (FEM *)body->data;
   FCMesh            *m   = &fem->mesh;
   const PetscScalar *u, *v;
-  PetscInt           lo;
+  PetscInt           lo, cols = body->state_cols;
 
   PetscFunctionBegin;
   PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
@@ -196,13 +197,15 @@ PetscErrorCode GetState_FEM(FCBody body, PetscReal s[])
   for (PetscInt i = 0; i < body->visual.nv; i++) {
     PetscInt vx = m->visVert[i];
     for (int d = 0; d < 3; d++) {
-      s[6 * i + d]     = FCFEMOwnedU(fem, vx, u, lo, d);
-      s[6 * i + 3 + d] = fem->fixed[vx] ? FCFEMConstrainedV(fem, fem->creg[vx], &m->X[3 * vx], PETSC_TRUE, body->h, d)
-                                        : PetscRealPart(v[fem->gdof[vx] - lo + d]);
+      s[cols * i + d]     = FCFEMOwnedU(fem, vx, u, lo, d);
+      s[cols * i + 3 + d] = fem->fixed[vx]
+                                ? FCFEMConstrainedV(fem, fem->creg[vx], &m->X[3 * vx], PETSC_TRUE, body->h, d)
+                                : PetscRealPart(v[fem->gdof[vx] - lo + d]);
     }
   }
   PetscCall(VecRestoreArrayRead(fem->u, &u));
   PetscCall(VecRestoreArrayRead(fem->v, &v));
+  PetscCall(FCFEMNonlinearGetState(body, cols, s));
   PetscFunctionReturn(0);
 }
 
@@ -213,7 +216,7 @@ PetscErrorCode SetState_FEM(FCBody body, const PetscReal s[])
   FEM         *fem = (FEM *)body->data;
   FCMesh      *m   = &fem->mesh;
   PetscScalar *u, *v;
-  PetscInt     lo;
+  PetscInt     lo, cols = body->state_cols;
 
   PetscFunctionBegin;
   PetscCall(VecGetOwnershipRange(fem->u, &lo, NULL));
@@ -223,12 +226,13 @@ PetscErrorCode SetState_FEM(FCBody body, const PetscReal s[])
     PetscInt vx = m->visVert[i];
     if (fem->fixed[vx]) continue;
     for (int d = 0; d < 3; d++) {
-      u[fem->gdof[vx] - lo + d] = s[6 * i + d];
-      v[fem->gdof[vx] - lo + d] = s[6 * i + 3 + d];
+      u[fem->gdof[vx] - lo + d] = s[cols * i + d];
+      v[fem->gdof[vx] - lo + d] = s[cols * i + 3 + d];
     }
   }
   PetscCall(VecRestoreArray(fem->u, &u));
   PetscCall(VecRestoreArray(fem->v, &v));
+  PetscCall(FCFEMNonlinearSetState(body, cols, s));
   fem->Rcurrent = PETSC_FALSE;
   if (!fem->mat->linear) {
     fem->Acurrent      = PETSC_FALSE;

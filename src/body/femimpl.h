@@ -2,6 +2,7 @@
      fem.c          options, set-up, destroy, type registration, accessors for tests and tools
      fem_step.c     element loops, A and its factorization, free motion (eq. 5), integration (eq. 2)
      fem_newton.c   the free motion by Newton's method (SNES) of a nonlinear body
+     fem_nonlinear.c the nonlinear contact correction of a body with a Newton free motion
      fem_state.c    centroid, energies, visual positions and fields, restart state, NaN check
      fem_contact.c  contact points, surface triangles, proximity positions, the compliance builder
      fem_rotation.c the rotation of a free co-rotational body within a step
@@ -20,6 +21,7 @@
 
 enum { FC_FACTORIZATION_EVERY_STEP, FC_FACTORIZATION_REUSE };
 enum { FC_FREE_MOTION_LINEARIZED, FC_FREE_MOTION_NEWTON };
+typedef struct _FCFEMNonlinear *FCFEMNonlinear; /* fem_nonlinear.c */
 
 typedef struct {
   FCMesh     mesh;
@@ -80,6 +82,8 @@ typedef struct {
   Vec              nw, nf, nbc, nr; /* the iterate's state at t + h, f_int there, b_c, the residual */
   PetscBool        jacobian;        /* A formed and factored at an iterate of this step */
   PetscInt         nnewton;         /* Newton iterations so far */
+  PetscInt         correction;      /* -correction: 0 linear, 1 nonlinear */
+  FCFEMNonlinear   nl;              /* the nonlinear correction's state (NULL: linear) */
   PetscReal       *Kcells;          /* coo: the element matrices, 144 per cell, in cell order */
   PetscReal        mass;
   FCEnergy         energy;             /* the last energy computed (GetEnergy_FEM) ... */
@@ -201,6 +205,16 @@ PETSC_INTERN PetscErrorCode FCFEMNewtonSetFromOptions(PetscOptionItems *, FCBody
 PETSC_INTERN PetscErrorCode FCFEMNewtonSetUp(FCBody); /* after the solver and A */
 PETSC_INTERN PetscErrorCode FCFEMNewtonFreeMotion(FCBody, PetscReal t);
 PETSC_INTERN PetscErrorCode FCFEMNewtonDestroy(FCBody);
+/* fem_nonlinear.c */
+PETSC_INTERN PetscErrorCode FCFEMNonlinearSetFromOptions(PetscOptionItems *, FCBody);
+PETSC_INTERN PetscErrorCode FCFEMNonlinearSetUp(FCBody); /* after FCFEMNewtonSetUp */
+PETSC_INTERN PetscErrorCode FCFEMNonlinearDestroy(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMNonlinearAddLoad(FCBody, Vec bc);
+PETSC_INTERN PetscErrorCode FCFEMNonlinearUnload(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMNonlinearSettle(FCBody, const FCContactSet *, PetscReal t, PetscReal *moved);
+PETSC_INTERN PetscErrorCode FCFEMNonlinearRelinearize(FCBody);
+PETSC_INTERN PetscErrorCode FCFEMNonlinearGetState(FCBody, PetscInt cols, PetscReal[]);
+PETSC_INTERN PetscErrorCode FCFEMNonlinearSetState(FCBody, PetscInt cols, const PetscReal[]);
 PETSC_INTERN PetscErrorCode FCFEMBCDestroy(FCBody);
 /* fem_load.c */
 PETSC_INTERN PetscErrorCode FCFEMLoadsSetUp(FCBody);

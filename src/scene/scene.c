@@ -85,6 +85,7 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   s->pairs = FCCollisionGetPairs(s->collision);
   PetscCall(FCEnergyGuardSetFromOptions(&s->guard, s->comm));
   PetscCall(FCStepControlSetFromOptions(&s->control, s->comm, s->h));
+  PetscCall(FCSettleSetFromOptions(&s->settle, s->comm));
   PetscFunctionReturn(0);
 }
 
@@ -358,6 +359,7 @@ PetscErrorCode FCSceneDestroy(FCScene *scene)
   PetscCall(FCSchemeDestroy(&(*scene)->scheme));
   PetscCall(FCContactSetDestroy(&(*scene)->set));
   PetscCall(FCContactSetDestroy(&(*scene)->previous));
+  PetscCall(FCSettleDestroy(&(*scene)->settle));
   PetscCall(FCStepControlDestroy(&(*scene)->control));
   PetscCall(FCCollisionDestroy(&(*scene)->collision));
   for (PetscInt i = 0; i < (*scene)->nbodies; i++) PetscCall(FCBodyDestroy(&(*scene)->bodies[i]));

@@ -1,9 +1,10 @@
 /* The scene's state, shared by its files: scene.c (options, set-up, the run, the summary), step.c (one
-   requested step and its sub-steps) */
+   requested step and its sub-steps), settle.c (its contacts with nonlinear bodies settled) */
 #pragma once
 
 #include "../fcimpl.h"
 #include "stepcontrol.h"
+#include "settle.h"
 
 struct _p_FCScene {
   PetscBool      quasistatic; /* -time_integration static */
@@ -36,6 +37,7 @@ struct _p_FCScene {
   FCScheme              scheme;   /* owns the contact solver */
   FCSchemeStats         stats;
   FCContactMeasures     measures;
+  FCSettle              settle;      /* -contact_settle_* (settle.c) */
   struct {                           /* the end-of-step checks over the steps run (the summary's) */
     PetscInt  intersecting, beyond;  /* steps with points inside another body; with contacts beyond the check */
     PetscReal cone, complementarity; /* the worst cone violation and contact natural-map error of the run */
@@ -45,6 +47,26 @@ struct _p_FCScene {
     PetscReal worst;
   } inverted[FC_MAX_BODIES];
 };
+
+/* A call of a sub-step whose failure step control redoes (FCErrorIsStepFailure: raised where nothing
+   of the step is left to free, on every rank alike): with step control on, such an error ends the
+   sub-step with *failed set and its message kept (FCGetLastErrorMessage); any other error, or any error
+   with step control off, stops the run as always */
+#define STEP_TRY(s, failed, call)                                                                                      \
+  do {                                                                                                                 \
+    PetscErrorCode ierr_;                                                                                              \
+    if ((s)->control.on) PetscCall(FCPushStepErrorHandler());                                                          \
+    ierr_ = (call);                                                                                                    \
+    if ((s)->control.on) PetscCall(PetscPopErrorHandler());                                                            \
+    if (ierr_ && (s)->control.on && FCErrorIsStepFailure(ierr_)) {                                                     \
+      *(failed) = PETSC_TRUE;                                                                                          \
+      PetscFunctionReturn(0);                                                                                          \
+    }                                                                                                                  \
+    PetscCall(ierr_);                                                                                                  \
+  } while (0)
+
+/* The contacts of a sub-step: the scheme's solve and check, with the nonlinear bodies settled (settle.c) */
+PETSC_INTERN PetscErrorCode FCSceneSolveContacts(FCScene, PetscInt step, PetscBool *failed);
 
 /* The state of the current step as a frame and a restart state (scene.c) */
 PETSC_INTERN PetscErrorCode FCSceneWriteOutputStep(FCScene);

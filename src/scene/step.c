@@ -3,23 +3,6 @@
    (step control: stepcontrol.c; docs/method.md, 2.5). */
 #include "sceneimpl.h"
 
-/* A call of a sub-step whose failure step control redoes (FCErrorIsStepFailure: raised where nothing
-   of the step is left to free, on every rank alike): with step control on, such an error ends the
-   sub-step with *failed set and its message kept (FCGetLastErrorMessage); any other error, or any error
-   with step control off, stops the run as always */
-#define STEP_TRY(s, failed, call)                                                                                      \
-  do {                                                                                                                 \
-    PetscErrorCode ierr_;                                                                                              \
-    if ((s)->control.on) PetscCall(FCPushStepErrorHandler());                                                          \
-    ierr_ = (call);                                                                                                    \
-    if ((s)->control.on) PetscCall(PetscPopErrorHandler());                                                            \
-    if (ierr_ && (s)->control.on && FCErrorIsStepFailure(ierr_)) {                                                     \
-      *(failed) = PETSC_TRUE;                                                                                          \
-      PetscFunctionReturn(0);                                                                                          \
-    }                                                                                                                  \
-    PetscCall(ierr_);                                                                                                  \
-  } while (0)
-
 static PetscErrorCode PlantedFailure(FCScene s, PetscInt step)
 {
   PetscFunctionBegin;
@@ -39,8 +22,8 @@ static PetscErrorCode SubStep(FCScene s, PetscInt step, PetscReal hs, PetscBool 
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
     PetscCall(FCCollisionDetect(s->collision, PETSC_TRUE, &s->set));
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
-    PetscCall(FCSchemeSolve(s->scheme, &s->set, &s->previous, &s->stats));
-    STEP_TRY(s, failed, FCSchemeCheck(s->scheme, step, &s->stats));
+    PetscCall(FCSceneSolveContacts(s, step, failed)); /* with the nonlinear bodies settled (settle.c) */
+    if (*failed) PetscFunctionReturn(0);
     PetscCall(FCContactSetCopy(&s->set, &s->previous));
   }
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodyIntegrate(s->bodies[i], s->t));

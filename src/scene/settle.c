@@ -1,0 +1,97 @@
+/* The contacts of a sub-step, with its nonlinear bodies settled (src/body/fem_nonlinear.c;
+   docs/method.md, 2.6). The scheme solves the contact problem linearized at the free motions
+   (eq. 20's correction is linear); each nonlinear body then solves its equilibrium with those
+   forces. Where that moved a contact's point further than -contact_settle_tol from where the linear
+   correction had put it, the bodies' free motions are linearized at the settled states (their A and
+   W_b rebuilt there, the contacts' free positions moved with them) and the scheme solves again,
+   warm-started from its last forces, at most -contact_settle_max_it more times: a Newton iteration
+   on the coupled problem whose linear solve is the contact problem. A linear or rigid body has
+   nothing to settle: one solve, as before. */
+#include "sceneimpl.h"
+
+PetscErrorCode FCSettleSetFromOptions(FCSettle *st, MPI_Comm comm)
+{
+  PetscFunctionBegin;
+  st->max_it = 4;
+  st->tol    = -1.0;
+  PetscOptionsBegin(comm, NULL, "Settling of nonlinear bodies", "FCScene");
+  PetscCall(FCOptionsIntRange(PetscOptionsObject, "-contact_settle_max_it",
+                              "Solves of the contact problem after the first, linearized at nonlinear bodies' "
+                              "settled states (0: one solve and one settling)",
+                              0, PETSC_MAX_INT, &st->max_it, NULL));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_settle_tol",
+                          "Solve again while a nonlinear body's settling moves a contact point further than this "
+                          "from its linear correction (m; default -contact_check_complementarity / 10)",
+                          &st->tol, NULL));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCSettleDestroy(FCSettle *st)
+{
+  PetscFunctionBegin;
+  PetscCall(FCContactSetDestroy(&st->last));
+  PetscFunctionReturn(0);
+}
+
+/* The free positions of the contacts' points on the bodies relinearized (moving[b]): at the dv each
+   now holds (the positions of the other bodies' points are those of their restored free motions) */
+static PetscErrorCode MoveFreePoints(FCScene s, const PetscBool moving[])
+{
+  FCContactSet *set = &s->set;
+  PetscReal    *x;
+
+  PetscFunctionBegin;
+  PetscCall(PetscCalloc1(6 * set->n + 1, &x));
+  for (PetscInt k = 0; k < set->n; k++)
+    for (int j = 0; j < 2; j++)
+      if (moving[set->c[k].body[j]])
+        PetscCall(FCBodyAddTrialPosition(s->bodies[set->c[k].body[j]], &set->c[k].prox[j], &x[6 * k + 3 * j]));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, x, 6 * set->n, MPIU_REAL, MPIU_SUM, s->comm));
+  for (PetscInt k = 0; k < set->n; k++)
+    for (int j = 0; j < 2; j++)
+      if (moving[set->c[k].body[j]])
+        for (int d = 0; d < 3; d++) set->c[k].pfree[j][d] = x[6 * k + 3 * j + d];
+  PetscCall(PetscFree(x));
+  PetscFunctionReturn(0);
+}
+
+/* The scheme's solve, its check, and the settling of the nonlinear bodies (header); *failed as
+   STEP_TRY sets it */
+PetscErrorCode FCSceneSolveContacts(FCScene s, PetscInt step, PetscBool *failed)
+{
+  FCSettle *st  = &s->settle;
+  PetscReal tol = st->tol >= 0.0 ? st->tol : s->pairs->check_complementarity / 10.0;
+  PetscInt  sweeps;
+
+  PetscFunctionBegin;
+  *failed    = PETSC_FALSE;
+  st->solves = 1;
+  for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodySaveFreeMotion(s->bodies[i]));
+  PetscCall(FCSchemeSolve(s->scheme, &s->set, &s->previous, &s->stats));
+  STEP_TRY(s, failed, FCSchemeCheck(s->scheme, step, &s->stats));
+  sweeps = s->stats.sweeps;
+  for (PetscInt it = 0;; it++) {
+    PetscReal moved = 0.0;
+    PetscBool moving[FC_MAX_BODIES];
+    for (PetscInt i = 0; i < s->nbodies; i++) {
+      PetscReal m;
+      STEP_TRY(s, failed, FCBodySettle(s->bodies[i], &s->set, s->t, &m));
+      moving[i] = m > 0.0 ? PETSC_TRUE : PETSC_FALSE;
+      moved     = PetscMax(moved, m);
+    }
+    if (moved <= tol || it == st->max_it || !s->set.n) break;
+    for (PetscInt i = 0; i < s->nbodies; i++) {
+      PetscCall(FCBodyRestoreFreeMotion(s->bodies[i]));
+      if (moving[i]) PetscCall(FCBodyRelinearize(s->bodies[i]));
+    }
+    PetscCall(MoveFreePoints(s, moving));
+    PetscCall(FCContactSetCopy(&s->set, &st->last));
+    PetscCall(FCSchemeSolve(s->scheme, &s->set, &st->last, &s->stats));
+    STEP_TRY(s, failed, FCSchemeCheck(s->scheme, step, &s->stats));
+    sweeps += s->stats.sweeps;
+    st->solves++;
+  }
+  s->stats.sweeps = sweeps;
+  PetscFunctionReturn(0);
+}

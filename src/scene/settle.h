@@ -1,0 +1,13 @@
+/* The contacts of a sub-step solved with the nonlinear bodies settled (settle.c) */
+#pragma once
+#include "../fcimpl.h"
+
+typedef struct {
+  PetscInt     max_it; /* -contact_settle_max_it: solves after the first */
+  PetscReal    tol;    /* -contact_settle_tol (m; < 0: -contact_check_complementarity / 10) */
+  PetscInt     solves; /* the scheme's solves in the last sub-step */
+  FCContactSet last;   /* the forces of the last solve: the warm start of the next */
+} FCSettle;
+
+PETSC_INTERN PetscErrorCode FCSettleSetFromOptions(FCSettle *, MPI_Comm);
+PETSC_INTERN PetscErrorCode FCSettleDestroy(FCSettle *);
