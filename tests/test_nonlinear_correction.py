@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """The nonlinear correction of a body with a Newton free motion (-<body>_correction nonlinear,
-src/body/fem_nonlinear.c, src/scene/settle.c, docs/method.md 2.6), on input/neohookean_compress.opts cut
-to 10 steps (the Neo-Hookean block pushed down 25 % onto a frictionless floor):
-- every step ends in an equilibrium with its contact forces: the reaction on the pushed face plus the
-  contact forces close to 1e-8 of the reaction (the linear correction's misses by more than 1 %), with
-  no point inside the floor and the contact conditions to -contact_check_complementarity;
-- the block's volume stays within 2 % of its start (nu = 0.49);
-- restart: a run stopped after step 5 and continued ends as the run that did not stop (f_c is in the
-  restart state);
+src/body/fem_nonlinear.c, src/scene/settle.c, docs/method.md 2.6), on input/neohookean_compress.opts (the
+Neo-Hookean block, nu = 0.49, pushed down 50 % onto a frictionless floor in 20 static steps):
+- it completes; every step ends in an equilibrium with its contact forces: the reaction on the pushed
+  face plus the contact forces close to 1e-8 of the reaction (the linear correction's miss by more than
+  1 % at 25 %), with no point inside the floor, no contact beyond the end-of-step check and no element
+  inverted; at most 8 Newton iterations a step on average;
+- the block's volume stays above 0.95 of its start;
+- restart: a run stopped after step 10 and continued ends as the run that did not stop (f_c and the
+  sticking vertices are in the restart state);
 - -block_correction nonlinear with a linearized free motion is an error naming the options;
 - on 2 ranks (--np 2) the 1-rank positions to 1e-8 m."""
 import os
@@ -21,7 +22,7 @@ import fctest as T  # noqa: E402
 
 NP = T.np_from_argv()
 c = T.Checker("nonlinear correction np%d" % NP)
-BLOCK = ["-options_file", "input/neohookean_compress.opts", "-time_steps", "10", "-quiet"]
+BLOCK = ["-options_file", "input/neohookean_compress.opts", "-quiet"]
 
 
 def run(name, args, np_=NP, check=True):
@@ -49,26 +50,27 @@ def volume(h):
 
 
 fn, _ = run("nonlinear", ["-block_correction", "nonlinear"])
-fl, _ = run("linear", ["-block_correction", "linear"])
+fl, _ = run("linear", ["-block_correction", "linear", "-time_steps", "10"])
 with h5py.File(fn) as h, h5py.File(fl) as l:
     s = h["steps"]
     bn, bl = balance(h), balance(l)
-    c.check(len(s["step"]) == 10 and bn.max() < 1e-8,
-            "nonlinear: 10 steps, force balance to %.1e of the reaction (reaction %.0f N at 25 %%)" %
+    c.check(len(s["step"]) == 20 and bn.max() < 1e-8,
+            "nonlinear: 20 steps (50 %%), force balance to %.1e of the reaction (reaction %.0f N at 50 %%)" %
             (bn.max(), -h["bodies/block/reactions/zmax"][-1, 2]))
     c.check(bl.max() > 1e-2, "linear: the force balance misses by %.1e of the reaction" % bl.max())
-    c.check(s["intersections"][:].max() == 0 and s["contacts_beyond_check"][:].max() == 0,
-            "nonlinear: no point inside the floor, natural-map error %.1e m (check 2e-4), Newton iterations a step "
-            "%.1f" % (s["max_complementarity"][:].max(), s["free_motion_iterations"][:].mean()))
+    c.check(s["intersections"][:].max() == 0 and s["contacts_beyond_check"][:].max() == 0 and
+            s["inverted_elements"][:].max() == 0 and s["free_motion_iterations"][:].mean() <= 8,
+            "nonlinear: no point inside the floor, natural-map error %.1e m (check 2e-4), no element inverted, "
+            "%.2f Newton iterations a step" % (s["max_complementarity"][:].max(), s["free_motion_iterations"][:].mean()))
     vol = volume(h)
-    c.check(vol.min() > 0.98, "nonlinear: the block's volume within %.2f %% of its start" % (100 * (1 - vol.min())))
+    c.check(vol.min() >= 0.95, "nonlinear: the block's volume at least %.4f of its start" % vol.min())
 
 # restart
-f5, _ = run("first5", ["-block_correction", "nonlinear", "-time_steps", "5"])
-fr, _ = run("rest5", ["-block_correction", "nonlinear", "-restart", f5])
+f5, _ = run("first10", ["-block_correction", "nonlinear", "-time_steps", "10"])
+fr, _ = run("rest10", ["-block_correction", "nonlinear", "-restart", f5])
 with h5py.File(fr) as h, h5py.File(fn) as a:
     d = np.abs(T.sorted_positions(h, "block")[1] - T.sorted_positions(a, "block")[1]).max()
-    c.check(d < 1e-12, "restart after step 5: the end of the run that did not stop to %.1e m" % d)
+    c.check(d < 1e-12, "restart after step 10: the end of the run that did not stop to %.1e m" % d)
 
 # bad input
 _, p = run("bad", ["-block_correction", "nonlinear", "-block_free_motion", "linearized"], check=False)

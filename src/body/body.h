@@ -90,9 +90,9 @@ PETSC_INTERN PetscErrorCode FCBodyBuildCompliance(FCBody, PetscInt self, const F
    and the contacts a proximity query at the start positions gives it */
 PETSC_INTERN PetscBool      FCBodyExpectsContacts(FCBody);
 PETSC_INTERN PetscErrorCode FCBodyExpectContacts(FCBody, PetscInt self, const FCContactSet *);
-/* a nonlinear body's equilibrium with the forces of the set (moved: 0 for other bodies), and its
+/* a nonlinear body's equilibrium with the forces of the set (held: 0 for other bodies), and its
    free motion linearized there (src/scene/settle.c) */
-PETSC_INTERN PetscErrorCode FCBodySettle(FCBody, const FCContactSet *, PetscReal t, PetscReal *moved);
+PETSC_INTERN PetscErrorCode FCBodySettle(FCBody, const FCContactSet *, PetscReal t, PetscReal *held);
 PETSC_INTERN PetscErrorCode FCBodyRelinearize(FCBody);
 PETSC_INTERN PetscErrorCode FCBodyApplyCorrection(FCBody, PetscInt self, const FCContactSet *,
                                                   const PetscReal lambda[]);

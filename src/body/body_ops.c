@@ -291,11 +291,11 @@ PetscErrorCode FCBodyApplyCorrection(FCBody body, PetscInt self, const FCContact
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCBodySettle(FCBody body, const FCContactSet *set, PetscReal t, PetscReal *moved)
+PetscErrorCode FCBodySettle(FCBody body, const FCContactSet *set, PetscReal t, PetscReal *held)
 {
   PetscFunctionBegin;
-  *moved = 0.0;
-  if (body->ops.settle) PetscCall((*body->ops.settle)(body, set, t, moved));
+  *held = 0.0;
+  if (body->ops.settle) PetscCall((*body->ops.settle)(body, set, t, held));
   PetscFunctionReturn(0);
 }
 

@@ -59,10 +59,10 @@ typedef struct {
   /* dv += h A_b^-1 J_b^T lambda */
   PetscErrorCode (*applycorrection)(FCBody, PetscInt self, const FCContactSet *, const PetscReal lambda[]);
   /* optional: after the scheme, the body's nonlinear equilibrium with the set's final forces (a
-     failure is a failed step; moved: how far its contacts' points went from the linear correction);
-     a body without it keeps its corrected motion. relinearize: then, the free motion linearized at
-     the settled state, for the scheme to solve again (src/scene/settle.c) */
-  PetscErrorCode (*settle)(FCBody, const FCContactSet *, PetscReal t, PetscReal *moved);
+     failure is a failed step; held: the force its stabilizing springs still carry, relative to its
+     largest contact force); a body without it keeps its corrected motion. relinearize: the free
+     motion linearized at the settled state, for the scheme to solve again (src/scene/settle.c) */
+  PetscErrorCode (*settle)(FCBody, const FCContactSet *, PetscReal t, PetscReal *held);
   PetscErrorCode (*relinearize)(FCBody);
   /* the contacts a proximity query at the start of a run expects, before the body's first
      factorization: a body whose factorization depends on its contact DOFs prepares for them

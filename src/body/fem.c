@@ -378,8 +378,9 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   fem->coo                     = PETSC_TRUE; /* co-rotational; a linear K is summed once, by values */
   fem->rotation_exact          = PETSC_TRUE; /* co-rotational without fixed vertices */
   fem->correction              = 0;          /* -correction linear */
-  fem->free_motion             = -1;         /* newton for a hyperelastic material, else linearized */
-  fem->inverted.min_J          = 1.0;        /* the reference state, before any step */
+  fem->penalty                 = 1.0;
+  fem->free_motion             = -1;  /* newton for a hyperelastic material, else linearized */
+  fem->inverted.min_J          = 1.0; /* the reference state, before any step */
   body->deformable             = PETSC_TRUE;
   body->state_cols             = 6; /* u, v */
   body->state_per_vertex       = PETSC_TRUE;

@@ -54,6 +54,7 @@ static PetscErrorCode Residual(SNES snes, Vec dv, Vec F, void *ctx)
       PetscCall(VecAXPY(F, h * fem->alpha, fem->nf));
     }
   }
+  PetscCall(FCFEMNonlinearAddSpringForce(body, fem->nw, F)); /* a nonlinear correction's (fem_nonlinear.c) */
   PetscFunctionReturn(0);
 }
 
@@ -71,6 +72,7 @@ static PetscErrorCode Jacobian(SNES snes, Vec dv, Mat J, Mat P, void *ctx)
   PetscCall(EndState(body, dv));
   PetscCall(FCFEMAssembleElasticAt(body, fem->nw, FC_BC_END, NULL, fem->K));
   PetscCall(FCFEMFormA(body));
+  PetscCall(FCFEMNonlinearAddSpringStiffness(body, fem->A));
   /* the tangent of a hyperelastic body need not be definite: MUMPS' symmetric LDL^T, not Cholesky */
   PetscCall(MatSetOption(fem->A, MAT_SPD, PETSC_FALSE));
   PetscCall(MatSetOption(fem->A, MAT_SYMMETRIC, PETSC_TRUE));
@@ -158,7 +160,8 @@ PetscErrorCode FCFEMNewtonFreeMotion(FCBody body, PetscReal t)
     PetscCall(VecAXPY(fem->nbc, h, fem->fgrav));
   PetscCall(FCFEMBCAddRHS(body, fem->nbc, PETSC_FALSE)); /* loads, and the inertia of the prescribed motion */
   PetscCall(FCFEMNonlinearAddLoad(body, fem->nbc));      /* the last step's contact forces (fem_nonlinear.c) */
-  PetscCall(VecZeroEntries(fem->dv));                    /* the first iterate: the velocity kept */
+  /* the first iterate: the velocity kept; quasi-static with a nonlinear correction, the last step's rate */
+  if (!(fem->nl && body->quasistatic)) PetscCall(VecZeroEntries(fem->dv));
   PetscCall(FCPhaseEnd(FC_PHASE_FREE_MOTION));
   fem->jacobian = PETSC_FALSE;
   PetscCall(SNESSolve(fem->snes, NULL, fem->dv));

@@ -9,20 +9,26 @@
                   the contact state; the contact schemes see the linear free motion about it,
                       dv_free = dv_load - h A^-1 f_c,
                   with A the free motion's last Jacobian, the one their W_b (eq. 17) is built from;
-     settling:    after the scheme, the body's equilibrium (eq. 5 solved by the same SNES) is solved
-                  again with this step's contact forces as a load, f = J^T lambda, from the linearly
+     settling:    after the scheme, the body's equilibrium (eq. 5, the same SNES) is solved again
+                  with this step's contact forces f = J^T lambda as a load, from the linearly
                   corrected dv (from dv_load where that start turns a cell inside out);
-     re-solving:  where the settling moved the contacts' points, the free motion is linearized at the
-                  settled state (dv_free = dv_settled - h A^-1 f, A at the settling's last Jacobian)
-                  and the scheme solves again (src/scene/settle.c).
+     re-solving:  while the settling's springs (below) carry more than -contact_settle_rtol of the
+                  contact forces, the free motion is linearized at the settled state
+                  (dv_free = dv_settled - h A^-1 f, A at the settling's last Jacobian) and the scheme
+                  solves again (src/scene/settle.c).
 
-   The step then ends in an equilibrium with its contact forces to the SNES tolerance
-   (-<body>_snes_*), the contact conditions holding to -contact_settle_tol. The contact forces act on
-   the body as dead loads between solves: where the body held by them alone is unstable (a block
-   compressed past its sway load with a frictionless floor, a slab crushed by an impact), A is
-   indefinite there, W is no compliance or the settling does not converge, and the step fails
-   (docs/method.md, 2.6). f_c is part of the body's state (restart and step control: three more
-   columns). */
+   Springs. The contact forces are dead loads in these solves, and a body held by dead loads alone can
+   be unstable where the body held by its contacts is not (a block pressed on a floor past its shear
+   load, a crushed block whose top sticks to a plate): its A is indefinite, W = J A^-1 J^T then has as
+   many negative eigenvalues (the inertia of [A J^T; J 0]) and is no compliance, and the Newton
+   solves diverge. Each vertex that carries a contact force therefore gets a spring of stiffness rho
+   (-correction_penalty times the largest diagonal of K): along the force where its contacts slide or
+   have no friction, in every direction where one sticks; anchored where the step starts in the free
+   motion, and where the linear correction put the vertex in the settling. They stand for the
+   contacts' constraint in A (an augmented Lagrangian: A + rho n n^T on the contact vertices), so that
+   A and W stay definite; each solve ends only when what they carry is below -contact_settle_rtol of
+   the contact forces, so that the step's state is the equilibrium with its contact forces alone.
+   f_c and the sticking vertices are part of the body's state (restart and step control). */
 #include "femimpl.h"
 
 struct _FCFEMNonlinear {
@@ -34,6 +40,11 @@ struct _FCFEMNonlinear {
   Vec       dvset;             /* the settled dv */
   PetscBool settled, refactor; /* settled in this solve; A formed at a settling iterate */
   PetscBool loaded;            /* f_c was non-zero in this step's free motion */
+  /* the stabilizing springs (header): per vertex a unit direction (0: none) and its anchor at t + h */
+  Vec       sn, sx, ss;    /* ss: 1 on a vertex of a sticking contact (a spring in every direction there) */
+  Vec       stick, stickc; /* this step's and the last accepted step's sticking vertices (1 per DOF) */
+  PetscBool springs;
+  PetscReal rho, factor; /* their stiffness (N/m), and -correction_penalty: rho over the largest diagonal of K */
 };
 
 /* -correction linear|nonlinear (read with the body's options) */
@@ -41,7 +52,7 @@ PetscErrorCode FCFEMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject
 {
   FEM        *fem    = (FEM *)body->data;
   const char *kind[] = {"linear", "nonlinear"};
-  PetscInt    k      = fem->correction > 0 ? 1 : 0;
+  PetscInt    k      = fem->correction != 0 ? 1 : 0;
   PetscBool   set;
 
   PetscFunctionBegin;
@@ -52,6 +63,12 @@ PetscErrorCode FCFEMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject
                         "equilibrium solved again with this step's, and the contact problem re-solved there)",
                         NULL, kind, 2, kind[k], &k, &set));
   if (set) fem->correction = (PetscInt)k;
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-correction_penalty",
+                          "The nonlinear correction's springs along the contact forces: their stiffness over the "
+                          "largest diagonal of K (0: none)",
+                          &fem->penalty, NULL));
+  PetscCheck(fem->penalty >= 0.0, body->comm, PETSC_ERR_USER_INPUT, "Option -%scorrection_penalty must be >= 0, got %g",
+             body->prefix, (double)fem->penalty);
   PetscFunctionReturn(0);
 }
 
@@ -74,8 +91,22 @@ PetscErrorCode FCFEMNonlinearSetUp(FCBody body)
   PetscCall(VecDuplicate(fem->u, &nl->w));
   PetscCall(VecDuplicate(fem->u, &nl->dvlin));
   PetscCall(VecDuplicate(fem->u, &nl->dvset));
+  PetscCall(VecDuplicate(fem->u, &nl->sn));
+  PetscCall(VecDuplicate(fem->u, &nl->sx));
+  PetscCall(VecDuplicate(fem->u, &nl->ss));
+  PetscCall(VecDuplicate(fem->u, &nl->stick));
+  PetscCall(VecDuplicate(fem->u, &nl->stickc));
+  nl->factor = fem->penalty;
+  { /* rho: the largest diagonal of K at the reference state (A = M + h^2 K there, formed at set-up) */
+    Vec d;
+    PetscCall(VecDuplicate(fem->u, &d));
+    PetscCall(MatGetDiagonal(fem->K, d));
+    PetscCall(VecMax(d, NULL, &nl->rho));
+    PetscCall(VecDestroy(&d));
+    nl->rho *= nl->factor;
+  }
   fem->nl          = nl;
-  body->state_cols = 9; /* u, v, f_c */
+  body->state_cols = 10; /* u, v, f_c, sticking */
   PetscFunctionReturn(0);
 }
 
@@ -92,7 +123,109 @@ PetscErrorCode FCFEMNonlinearDestroy(FCBody body)
   PetscCall(VecDestroy(&nl->w));
   PetscCall(VecDestroy(&nl->dvlin));
   PetscCall(VecDestroy(&nl->dvset));
+  PetscCall(VecDestroy(&nl->sn));
+  PetscCall(VecDestroy(&nl->sx));
+  PetscCall(VecDestroy(&nl->ss));
+  PetscCall(VecDestroy(&nl->stick));
+  PetscCall(VecDestroy(&nl->stickc));
   PetscCall(PetscFree(fem->nl));
+  PetscFunctionReturn(0);
+}
+
+/* Springs on the vertices that carry contact forces f, anchored at the end-of-step positions
+   x* = u + h (v + dv_anchor) (dv_anchor NULL: -v, the positions at t): along f_v / |f_v| where the
+   contacts slide or have no friction, in every direction where one sticks (stick) */
+static PetscErrorCode SetSprings(FCBody body, Vec f, Vec stick, Vec dv_anchor)
+{
+  FEM           *fem = (FEM *)body->data;
+  FCFEMNonlinear nl  = fem->nl;
+  PetscScalar   *n;
+  PetscInt       m;
+
+  PetscFunctionBegin;
+  nl->springs = nl->rho > 0.0 ? PETSC_TRUE : PETSC_FALSE;
+  if (!nl->springs) PetscFunctionReturn(0);
+  PetscCall(VecCopy(f, nl->sn));
+  PetscCall(VecGetLocalSize(nl->sn, &m));
+  PetscCall(VecGetArray(nl->sn, &n));
+  for (PetscInt i = 0; i < m; i += 3) {
+    PetscReal a = PetscSqrtReal(PetscSqr(PetscRealPart(n[i])) + PetscSqr(PetscRealPart(n[i + 1])) +
+                                PetscSqr(PetscRealPart(n[i + 2])));
+    for (int d = 0; d < 3; d++) n[i + d] = a > 0.0 ? n[i + d] / a : 0.0;
+  }
+  PetscCall(VecRestoreArray(nl->sn, &n));
+  PetscCall(VecCopy(stick, nl->ss));
+  if (dv_anchor) {
+    PetscCall(VecWAXPY(nl->sx, 1.0, fem->v, dv_anchor));
+    PetscCall(VecAYPX(nl->sx, body->h, fem->u));
+  } else
+    PetscCall(VecCopy(fem->u, nl->sx));
+  PetscFunctionReturn(0);
+}
+
+/* F += h rho (n . (w - x*)) n at every spring, w the iterate's state at t + h (the Newton residual's) */
+PetscErrorCode FCFEMNonlinearAddSpringForce(FCBody body, Vec w, Vec F)
+{
+  FEM               *fem = (FEM *)body->data;
+  FCFEMNonlinear     nl  = fem->nl;
+  const PetscScalar *n, *x, *a, *st;
+  PetscScalar       *r;
+  PetscInt           m;
+
+  PetscFunctionBegin;
+  if (!nl || !nl->springs) PetscFunctionReturn(0);
+  PetscCall(VecGetLocalSize(F, &m));
+  PetscCall(VecGetArrayRead(nl->ss, &st));
+  PetscCall(VecGetArrayRead(nl->sn, &n));
+  PetscCall(VecGetArrayRead(nl->sx, &a));
+  PetscCall(VecGetArrayRead(w, &x));
+  PetscCall(VecGetArray(F, &r));
+  for (PetscInt i = 0; i < m; i += 3) {
+    PetscScalar g = 0.0;
+    if (n[i] == 0.0 && n[i + 1] == 0.0 && n[i + 2] == 0.0) continue;
+    if (PetscRealPart(st[i]) > 0.0) {
+      for (int d = 0; d < 3; d++) r[i + d] += body->h * nl->rho * (x[i + d] - a[i + d]);
+      continue;
+    }
+    for (int d = 0; d < 3; d++) g += n[i + d] * (x[i + d] - a[i + d]);
+    for (int d = 0; d < 3; d++) r[i + d] += body->h * nl->rho * g * n[i + d];
+  }
+  PetscCall(VecRestoreArrayRead(nl->ss, &st));
+  PetscCall(VecRestoreArray(F, &r));
+  PetscCall(VecRestoreArrayRead(w, &x));
+  PetscCall(VecRestoreArrayRead(nl->sx, &a));
+  PetscCall(VecRestoreArrayRead(nl->sn, &n));
+  PetscFunctionReturn(0);
+}
+
+/* A += h^2 rho n n^T at every spring (the residual's derivative; assembled) */
+PetscErrorCode FCFEMNonlinearAddSpringStiffness(FCBody body, Mat A)
+{
+  FEM               *fem = (FEM *)body->data;
+  FCFEMNonlinear     nl  = fem->nl;
+  const PetscScalar *n, *st;
+  PetscInt           m, lo;
+
+  PetscFunctionBegin;
+  if (!nl || !nl->springs) PetscFunctionReturn(0);
+  PetscCall(VecGetArrayRead(nl->ss, &st));
+  PetscCall(VecGetLocalSize(nl->sn, &m));
+  PetscCall(VecGetOwnershipRange(nl->sn, &lo, NULL));
+  PetscCall(VecGetArrayRead(nl->sn, &n));
+  for (PetscInt i = 0; i < m; i += 3) {
+    PetscInt    idx[3] = {lo + i, lo + i + 1, lo + i + 2};
+    PetscScalar k[9];
+    if (n[i] == 0.0 && n[i + 1] == 0.0 && n[i + 2] == 0.0) continue;
+    for (int a = 0; a < 3; a++)
+      for (int b = 0; b < 3; b++)
+        k[3 * a + b] = body->h * body->h * nl->rho *
+                       (PetscRealPart(st[i]) > 0.0 ? (a == b ? 1.0 : 0.0) : PetscRealPart(n[i + a] * n[i + b]));
+    PetscCall(MatSetValues(A, 3, idx, 3, idx, k, ADD_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(nl->sn, &n));
+  PetscCall(VecRestoreArrayRead(nl->ss, &st));
+  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
 }
 
@@ -106,8 +239,12 @@ PetscErrorCode FCFEMNonlinearAddLoad(FCBody body, Vec bc)
   PetscFunctionBegin;
   if (!nl) PetscFunctionReturn(0);
   PetscCall(VecNorm(nl->fc, NORM_INFINITY, &norm));
-  nl->loaded = norm > 0.0 ? PETSC_TRUE : PETSC_FALSE;
-  if (nl->loaded) PetscCall(VecAXPY(bc, body->h, nl->fc));
+  nl->loaded  = norm > 0.0 ? PETSC_TRUE : PETSC_FALSE;
+  nl->springs = PETSC_FALSE;
+  if (nl->loaded) {
+    PetscCall(VecAXPY(bc, body->h, nl->fc));
+    PetscCall(SetSprings(body, nl->fc, nl->stickc, NULL)); /* the contact vertices held where the last step left them */
+  }
   PetscFunctionReturn(0);
 }
 
@@ -131,18 +268,21 @@ PetscErrorCode FCFEMNonlinearUnload(FCBody body)
 
 /* f = J^T lambda: each contact's world force on this body's side, shared among its proximity
    vertices by their weights (the set is the same on every rank: each adds its own rows) */
-static PetscErrorCode ContactForces(FCBody body, const FCContactSet *set, Vec f)
+static PetscErrorCode ContactForces(FCBody body, const FCContactSet *set, Vec f, Vec stick)
 {
-  PetscScalar *a;
+  PetscScalar *a, *sk;
   PetscInt     lo, hi;
 
   PetscFunctionBegin;
   PetscCall(VecZeroEntries(f));
+  PetscCall(VecZeroEntries(stick));
   PetscCall(VecGetOwnershipRange(f, &lo, &hi));
   PetscCall(VecGetArray(f, &a));
+  PetscCall(VecGetArray(stick, &sk));
   for (PetscInt i = 0; set && i < set->n; i++) {
     const FCContact *c = &set->c[i];
-    PetscReal        F[3];
+    PetscReal        F[3], ft = PetscSqrtReal(PetscSqr(c->force[1]) + PetscSqr(c->force[2]));
+    PetscBool        sticks = (PetscBool)(c->dim == 3 && c->force[0] > 0.0 && ft < c->mu * c->force[0] * (1.0 - 1e-6));
     FCContactForceWorld(c, F); /* on side 1; side 2 takes -F */
     for (int s = 0; s < 2; s++) {
       if (c->body[s] != body->self) continue;
@@ -150,49 +290,54 @@ static PetscErrorCode ContactForces(FCBody body, const FCContactSet *set, Vec f)
         PetscInt g = c->prox[s].gdof[k];
         if (g < lo || g >= hi) continue; /* another rank's, or a constrained vertex (g < 0) */
         for (int d = 0; d < 3; d++) a[g - lo + d] += (s == 0 ? 1.0 : -1.0) * c->prox[s].w[k] * F[d];
+        if (sticks && c->prox[s].w[k] > 0.0)
+          for (int d = 0; d < 3; d++) sk[g - lo + d] = 1.0;
       }
     }
   }
   PetscCall(VecRestoreArray(f, &a));
+  PetscCall(VecRestoreArray(stick, &sk));
   PetscFunctionReturn(0);
 }
 
-/* The largest displacement h |dv - dv_lin| of a vertex of this body's contacts: how far the settling
-   moved them from where the scheme's linear correction put them */
-static PetscErrorCode ContactVerticesMoved(FCBody body, const FCContactSet *set, PetscReal *moved)
+/* What the springs hold after a settling, relative: rho times the largest displacement h |dv - dv_lin|
+   of a contact vertex from where the correction put it, over the largest contact force on a vertex */
+static PetscErrorCode SpringsHold(FCBody body, PetscReal *held)
 {
   FEM               *fem = (FEM *)body->data;
   FCFEMNonlinear     nl  = fem->nl;
-  const PetscScalar *a, *b;
-  PetscInt           lo, hi;
-  PetscReal          m = 0.0;
+  const PetscScalar *a, *b, *f;
+  PetscInt           m;
+  PetscReal          mx[2] = {0.0, 0.0}, all[2]; /* largest displacement, largest force */
 
   PetscFunctionBegin;
-  PetscCall(VecGetOwnershipRange(fem->dv, &lo, &hi));
+  PetscCall(VecGetLocalSize(fem->dv, &m));
   PetscCall(VecGetArrayRead(fem->dv, &a));
   PetscCall(VecGetArrayRead(nl->dvlin, &b));
-  for (PetscInt i = 0; set && i < set->n; i++)
-    for (int s = 0; s < 2; s++) {
-      if (set->c[i].body[s] != body->self) continue;
-      for (PetscInt k = 0; k < set->c[i].prox[s].nv; k++) {
-        PetscInt  g  = set->c[i].prox[s].gdof[k];
-        PetscReal d2 = 0.0;
-        if (g < lo || g >= hi) continue;
-        for (int d = 0; d < 3; d++) d2 += PetscSqr(PetscRealPart(a[g - lo + d] - b[g - lo + d]));
-        m = PetscMax(m, body->h * PetscSqrtReal(d2));
-      }
+  PetscCall(VecGetArrayRead(nl->f, &f));
+  for (PetscInt i = 0; i < m; i += 3) {
+    PetscReal d2 = 0.0, f2 = 0.0;
+    for (int d = 0; d < 3; d++) {
+      d2 += PetscSqr(PetscRealPart(a[i + d] - b[i + d]));
+      f2 += PetscSqr(PetscRealPart(f[i + d]));
     }
+    if (f2 == 0.0) continue; /* no contact force on this vertex */
+    mx[0] = PetscMax(mx[0], body->h * PetscSqrtReal(d2));
+    mx[1] = PetscMax(mx[1], PetscSqrtReal(f2));
+  }
   PetscCall(VecRestoreArrayRead(fem->dv, &a));
   PetscCall(VecRestoreArrayRead(nl->dvlin, &b));
-  PetscCall(MPIU_Allreduce(&m, moved, 1, MPIU_REAL, MPIU_MAX, body->comm));
+  PetscCall(VecRestoreArrayRead(nl->f, &f));
+  PetscCall(MPIU_Allreduce(mx, all, 2, MPIU_REAL, MPIU_MAX, body->comm));
+  *held = all[1] > 0.0 ? nl->rho * all[0] / all[1] : 0.0;
   PetscFunctionReturn(0);
 }
 
 /* After the scheme: the equilibrium with this step's contact forces f = J^T lambda (b_c += h (f - f_c)),
    solved from the corrected dv (from dv_load where that start turns a cell inside out); f becomes f_c.
-   *moved: how far that took the contacts' vertices from the linear correction. A Newton that fails
+   *held: what the springs hold there (SpringsHold). A Newton that fails
    is a failed step (step control) */
-PetscErrorCode FCFEMNonlinearSettle(FCBody body, const FCContactSet *set, PetscReal t, PetscReal *moved)
+PetscErrorCode FCFEMNonlinearSettle(FCBody body, const FCContactSet *set, PetscReal t, PetscReal *held)
 {
   FEM                *fem = (FEM *)body->data;
   FCFEMNonlinear      nl  = fem->nl;
@@ -201,13 +346,15 @@ PetscErrorCode FCFEMNonlinearSettle(FCBody body, const FCContactSet *set, PetscR
   PetscInt            its;
 
   PetscFunctionBegin;
-  *moved = 0.0;
+  *held = 0.0;
   if (!nl) PetscFunctionReturn(0);
-  PetscCall(ContactForces(body, set, nl->f));
+  PetscCall(ContactForces(body, set, nl->f, nl->stick));
   PetscCall(VecNorm(nl->f, NORM_INFINITY, &norm));
   if (norm == 0.0 && !nl->loaded) PetscFunctionReturn(0); /* no contact force before or now: dv is the free motion */
   PetscCall(FCPhaseBegin(FC_PHASE_CORRECTION));
   PetscCall(VecCopy(fem->dv, nl->dvlin));
+  PetscCall(
+      SetSprings(body, nl->f, nl->stick, nl->dvlin)); /* the contact vertices held where the correction put them */
   PetscCall(VecAXPY(fem->nbc, body->h, nl->f));
   PetscCall(VecAXPY(fem->nbc, -body->h, nl->fc));
   fem->jacobian = PETSC_FALSE;
@@ -230,7 +377,8 @@ PetscErrorCode FCFEMNonlinearSettle(FCBody body, const FCContactSet *set, PetscR
   nl->refactor = fem->jacobian;
   PetscCall(VecCopy(fem->dv, nl->dvset));
   PetscCall(VecCopy(nl->f, nl->fc));
-  PetscCall(ContactVerticesMoved(body, set, moved));
+  PetscCall(VecCopy(nl->stick, nl->stickc));
+  PetscCall(SpringsHold(body, held));
   PetscFunctionReturn(0);
 }
 
@@ -252,23 +400,26 @@ PetscErrorCode FCFEMNonlinearRelinearize(FCBody body)
   PetscFunctionReturn(0);
 }
 
-/* Restart and step control: f_c of the vertices in visual order (3 values after u and v) */
+/* Restart and step control: f_c and the sticking flag of the vertices in visual order (4 values after u and v) */
 PetscErrorCode FCFEMNonlinearGetState(FCBody body, PetscInt cols, PetscReal s[])
 {
   FEM               *fem = (FEM *)body->data;
   FCMesh            *m   = &fem->mesh;
-  const PetscScalar *f;
+  const PetscScalar *f, *k;
   PetscInt           lo;
 
   PetscFunctionBegin;
   if (!fem->nl) PetscFunctionReturn(0);
   PetscCall(VecGetOwnershipRange(fem->nl->fc, &lo, NULL));
   PetscCall(VecGetArrayRead(fem->nl->fc, &f));
+  PetscCall(VecGetArrayRead(fem->nl->stickc, &k));
   for (PetscInt i = 0; i < body->visual.nv; i++) {
     PetscInt vx = m->visVert[i];
     for (int d = 0; d < 3; d++) s[cols * i + 6 + d] = fem->fixed[vx] ? 0.0 : PetscRealPart(f[fem->gdof[vx] - lo + d]);
+    s[cols * i + 9] = fem->fixed[vx] ? 0.0 : PetscRealPart(k[fem->gdof[vx] - lo]);
   }
   PetscCall(VecRestoreArrayRead(fem->nl->fc, &f));
+  PetscCall(VecRestoreArrayRead(fem->nl->stickc, &k));
   PetscFunctionReturn(0);
 }
 
@@ -276,18 +427,23 @@ PetscErrorCode FCFEMNonlinearSetState(FCBody body, PetscInt cols, const PetscRea
 {
   FEM         *fem = (FEM *)body->data;
   FCMesh      *m   = &fem->mesh;
-  PetscScalar *f;
+  PetscScalar *f, *k;
   PetscInt     lo;
 
   PetscFunctionBegin;
   if (!fem->nl) PetscFunctionReturn(0);
   PetscCall(VecGetOwnershipRange(fem->nl->fc, &lo, NULL));
   PetscCall(VecGetArray(fem->nl->fc, &f));
+  PetscCall(VecGetArray(fem->nl->stickc, &k));
   for (PetscInt i = 0; i < body->visual.nv; i++) {
     PetscInt vx = m->visVert[i];
     if (fem->fixed[vx]) continue;
-    for (int d = 0; d < 3; d++) f[fem->gdof[vx] - lo + d] = s[cols * i + 6 + d];
+    for (int d = 0; d < 3; d++) {
+      f[fem->gdof[vx] - lo + d] = s[cols * i + 6 + d];
+      k[fem->gdof[vx] - lo + d] = s[cols * i + 9];
+    }
   }
   PetscCall(VecRestoreArray(fem->nl->fc, &f));
+  PetscCall(VecRestoreArray(fem->nl->stickc, &k));
   PetscFunctionReturn(0);
 }

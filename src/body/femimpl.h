@@ -15,13 +15,13 @@
 #pragma once
 #include "bodyimpl.h"
 #include <petscsnes.h>
-#include "fembc.h" /* constrained regions and loads */
+#include "fembc.h"        /* constrained regions and loads */
+#include "femnonlinear.h" /* the nonlinear correction */
 
 #define FC_MAX_FIXED_BOXES 8 /* -<body>_fixed_box: boxes at most */
 
 enum { FC_FACTORIZATION_EVERY_STEP, FC_FACTORIZATION_REUSE };
 enum { FC_FREE_MOTION_LINEARIZED, FC_FREE_MOTION_NEWTON };
-typedef struct _FCFEMNonlinear *FCFEMNonlinear; /* fem_nonlinear.c */
 
 typedef struct {
   FCMesh     mesh;
@@ -84,6 +84,7 @@ typedef struct {
   PetscInt         nnewton;         /* Newton iterations so far */
   PetscInt         correction;      /* -correction: 0 linear, 1 nonlinear */
   FCFEMNonlinear   nl;              /* the nonlinear correction's state (NULL: linear) */
+  PetscReal        penalty;         /* -correction_penalty */
   PetscReal       *Kcells;          /* coo: the element matrices, 144 per cell, in cell order */
   PetscReal        mass;
   FCEnergy         energy;             /* the last energy computed (GetEnergy_FEM) ... */
@@ -205,16 +206,6 @@ PETSC_INTERN PetscErrorCode FCFEMNewtonSetFromOptions(PetscOptionItems *, FCBody
 PETSC_INTERN PetscErrorCode FCFEMNewtonSetUp(FCBody); /* after the solver and A */
 PETSC_INTERN PetscErrorCode FCFEMNewtonFreeMotion(FCBody, PetscReal t);
 PETSC_INTERN PetscErrorCode FCFEMNewtonDestroy(FCBody);
-/* fem_nonlinear.c */
-PETSC_INTERN PetscErrorCode FCFEMNonlinearSetFromOptions(PetscOptionItems *, FCBody);
-PETSC_INTERN PetscErrorCode FCFEMNonlinearSetUp(FCBody); /* after FCFEMNewtonSetUp */
-PETSC_INTERN PetscErrorCode FCFEMNonlinearDestroy(FCBody);
-PETSC_INTERN PetscErrorCode FCFEMNonlinearAddLoad(FCBody, Vec bc);
-PETSC_INTERN PetscErrorCode FCFEMNonlinearUnload(FCBody);
-PETSC_INTERN PetscErrorCode FCFEMNonlinearSettle(FCBody, const FCContactSet *, PetscReal t, PetscReal *moved);
-PETSC_INTERN PetscErrorCode FCFEMNonlinearRelinearize(FCBody);
-PETSC_INTERN PetscErrorCode FCFEMNonlinearGetState(FCBody, PetscInt cols, PetscReal[]);
-PETSC_INTERN PetscErrorCode FCFEMNonlinearSetState(FCBody, PetscInt cols, const PetscReal[]);
 PETSC_INTERN PetscErrorCode FCFEMBCDestroy(FCBody);
 /* fem_load.c */
 PETSC_INTERN PetscErrorCode FCFEMLoadsSetUp(FCBody);

@@ -1,29 +1,31 @@
 /* The contacts of a sub-step, with its nonlinear bodies settled (src/body/fem_nonlinear.c;
    docs/method.md, 2.6). The scheme solves the contact problem linearized at the free motions
-   (eq. 20's correction is linear); each nonlinear body then solves its equilibrium with those
-   forces. Where that moved a contact's point further than -contact_settle_tol from where the linear
-   correction had put it, the bodies' free motions are linearized at the settled states (their A and
-   W_b rebuilt there, the contacts' free positions moved with them) and the scheme solves again,
-   warm-started from its last forces, at most -contact_settle_max_it more times: a Newton iteration
-   on the coupled problem whose linear solve is the contact problem. A linear or rigid body has
-   nothing to settle: one solve, as before. */
+   (eq. 20's correction is linear); each nonlinear body then solves its equilibrium with those forces,
+   its contact vertices held by springs where the correction put them. While the springs of a body
+   carry more than -contact_settle_rtol of its contact forces, the bodies' free motions are linearized
+   at the settled states (their A and W_b rebuilt there, the contacts' free positions moved with them)
+   and the scheme solves again, warm-started from its last forces, at most -contact_settle_max_it more
+   times: a Newton iteration on the coupled problem whose linear solve is the contact problem. A
+   linear or rigid body has nothing to settle: one solve, as before. */
 #include "sceneimpl.h"
 
 PetscErrorCode FCSettleSetFromOptions(FCSettle *st, MPI_Comm comm)
 {
   PetscFunctionBegin;
   st->max_it = 4;
-  st->tol    = -1.0;
+  st->rtol   = 1e-8;
   PetscOptionsBegin(comm, NULL, "Settling of nonlinear bodies", "FCScene");
   PetscCall(FCOptionsIntRange(PetscOptionsObject, "-contact_settle_max_it",
                               "Solves of the contact problem after the first, linearized at nonlinear bodies' "
                               "settled states (0: one solve and one settling)",
                               0, PETSC_MAX_INT, &st->max_it, NULL));
-  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_settle_tol",
-                          "Solve again while a nonlinear body's settling moves a contact point further than this "
-                          "from its linear correction (m; default -contact_check_complementarity / 10)",
-                          &st->tol, NULL));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_settle_rtol",
+                          "Solve again while the springs of a nonlinear body's settling carry more than this fraction "
+                          "of its largest vertex contact force",
+                          &st->rtol, NULL));
   PetscOptionsEnd();
+  PetscCheck(st->rtol >= 0.0, comm, PETSC_ERR_USER_INPUT, "Option -contact_settle_rtol must be >= 0, got %g",
+             (double)st->rtol);
   PetscFunctionReturn(0);
 }
 
@@ -60,8 +62,7 @@ static PetscErrorCode MoveFreePoints(FCScene s, const PetscBool moving[])
    STEP_TRY sets it */
 PetscErrorCode FCSceneSolveContacts(FCScene s, PetscInt step, PetscBool *failed)
 {
-  FCSettle *st  = &s->settle;
-  PetscReal tol = st->tol >= 0.0 ? st->tol : s->pairs->check_complementarity / 10.0;
+  FCSettle *st = &s->settle;
   PetscInt  sweeps;
 
   PetscFunctionBegin;
@@ -72,15 +73,15 @@ PetscErrorCode FCSceneSolveContacts(FCScene s, PetscInt step, PetscBool *failed)
   STEP_TRY(s, failed, FCSchemeCheck(s->scheme, step, &s->stats));
   sweeps = s->stats.sweeps;
   for (PetscInt it = 0;; it++) {
-    PetscReal moved = 0.0;
+    PetscReal held = 0.0;
     PetscBool moving[FC_MAX_BODIES];
     for (PetscInt i = 0; i < s->nbodies; i++) {
       PetscReal m;
       STEP_TRY(s, failed, FCBodySettle(s->bodies[i], &s->set, s->t, &m));
       moving[i] = m > 0.0 ? PETSC_TRUE : PETSC_FALSE;
-      moved     = PetscMax(moved, m);
+      held      = PetscMax(held, m);
     }
-    if (moved <= tol || it == st->max_it || !s->set.n) break;
+    if (held <= st->rtol || it == st->max_it || !s->set.n) break;
     for (PetscInt i = 0; i < s->nbodies; i++) {
       PetscCall(FCBodyRestoreFreeMotion(s->bodies[i]));
       if (moving[i]) PetscCall(FCBodyRelinearize(s->bodies[i]));

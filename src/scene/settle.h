@@ -4,7 +4,7 @@
 
 typedef struct {
   PetscInt     max_it; /* -contact_settle_max_it: solves after the first */
-  PetscReal    tol;    /* -contact_settle_tol (m; < 0: -contact_check_complementarity / 10) */
+  PetscReal    rtol;   /* -contact_settle_rtol */
   PetscInt     solves; /* the scheme's solves in the last sub-step */
   FCContactSet last;   /* the forces of the last solve: the warm start of the next */
 } FCSettle;
