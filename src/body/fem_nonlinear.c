@@ -23,8 +23,8 @@
    many negative eigenvalues (the inertia of [A J^T; J 0]) and is no compliance, and the Newton
    solves diverge. Each vertex that carries a contact force therefore gets a spring of stiffness rho
    (-correction_penalty times the largest diagonal of K): along the force where its contacts slide or
-   have no friction, in every direction where one sticks; anchored where the step starts in the free
-   motion, and where the linear correction put the vertex in the settling. They stand for the
+   have no friction, in every direction where one sticks; anchored where its velocity at the step's
+   start takes it in the free motion, and where the linear correction put the vertex in the settling. They stand for the
    contacts' constraint in A (an augmented Lagrangian: A + rho n n^T on the contact vertices), so that
    A and W stay definite; each solve ends only when what they carry is below -contact_settle_rtol of
    the contact forces, so that the step's state is the equilibrium with its contact forces alone.
@@ -133,7 +133,7 @@ PetscErrorCode FCFEMNonlinearDestroy(FCBody body)
 }
 
 /* Springs on the vertices that carry contact forces f, anchored at the end-of-step positions
-   x* = u + h (v + dv_anchor) (dv_anchor NULL: -v, the positions at t): along f_v / |f_v| where the
+   x* = u + h (v + dv_anchor) (dv_anchor NULL: 0, the positions the velocity at t reaches): along f_v / |f_v| where the
    contacts slide or have no friction, in every direction where one sticks (stick) */
 static PetscErrorCode SetSprings(FCBody body, Vec f, Vec stick, Vec dv_anchor)
 {
@@ -159,7 +159,7 @@ static PetscErrorCode SetSprings(FCBody body, Vec f, Vec stick, Vec dv_anchor)
     PetscCall(VecWAXPY(nl->sx, 1.0, fem->v, dv_anchor));
     PetscCall(VecAYPX(nl->sx, body->h, fem->u));
   } else
-    PetscCall(VecCopy(fem->u, nl->sx));
+    PetscCall(VecWAXPY(nl->sx, body->h, fem->v, fem->u));
   PetscFunctionReturn(0);
 }
 
