@@ -377,7 +377,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   fem->refactor_residual       = 0.003;
   fem->coo                     = PETSC_TRUE; /* co-rotational; a linear K is summed once, by values */
   fem->rotation_exact          = PETSC_TRUE; /* co-rotational without fixed vertices */
-  fem->correction              = 0;          /* -correction linear */
+  fem->correction              = -1;         /* -correction: nonlinear for a Newton free motion */
   fem->penalty                 = 1.0;
   fem->free_motion             = -1;  /* newton for a hyperelastic material, else linearized */
   fem->inverted.min_J          = 1.0; /* the reference state, before any step */

@@ -160,8 +160,8 @@ PetscErrorCode FCFEMNewtonFreeMotion(FCBody body, PetscReal t)
     PetscCall(VecAXPY(fem->nbc, h, fem->fgrav));
   PetscCall(FCFEMBCAddRHS(body, fem->nbc, PETSC_FALSE)); /* loads, and the inertia of the prescribed motion */
   PetscCall(FCFEMNonlinearAddLoad(body, fem->nbc));      /* the last step's contact forces (fem_nonlinear.c) */
-  /* the first iterate: the velocity kept; quasi-static with a nonlinear correction, the last step's rate */
-  if (!(fem->nl && body->quasistatic)) PetscCall(VecZeroEntries(fem->dv));
+  /* the first iterate: the velocity kept; quasi-static with contact forces carried, the last step's rate */
+  if (!(body->quasistatic && FCFEMNonlinearLoaded(body))) PetscCall(VecZeroEntries(fem->dv));
   PetscCall(FCPhaseEnd(FC_PHASE_FREE_MOTION));
   fem->jacobian = PETSC_FALSE;
   PetscCall(SNESSolve(fem->snes, NULL, fem->dv));

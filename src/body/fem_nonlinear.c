@@ -79,6 +79,7 @@ PetscErrorCode FCFEMNonlinearSetUp(FCBody body)
   FCFEMNonlinear nl;
 
   PetscFunctionBegin;
+  if (fem->correction < 0) fem->correction = fem->free_motion == FC_FREE_MOTION_NEWTON ? 1 : 0;
   PetscCheck(!fem->correction || fem->free_motion == FC_FREE_MOTION_NEWTON, body->comm, PETSC_ERR_USER_INPUT,
              "Body '%s': -%scorrection nonlinear solves the body's equilibrium by its Newton free motion; give "
              "-%sfree_motion newton too, or -%scorrection linear",
@@ -227,6 +228,13 @@ PetscErrorCode FCFEMNonlinearAddSpringStiffness(FCBody body, Mat A)
   PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
+}
+
+/* Whether this step's free motion carries contact forces (after FCFEMNonlinearAddLoad) */
+PetscBool FCFEMNonlinearLoaded(FCBody body)
+{
+  FEM *fem = (FEM *)body->data;
+  return fem->nl && fem->nl->loaded ? PETSC_TRUE : PETSC_FALSE;
 }
 
 /* The predictor's load: b_c += h f_c (before the free motion's SNES) */

@@ -11,6 +11,7 @@ PETSC_INTERN PetscErrorCode FCFEMNonlinearDestroy(FCBody);
 /* the free motion: its load b_c += h f_c, and after it dv_free = dv_load - h A^-1 f_c */
 PETSC_INTERN PetscErrorCode FCFEMNonlinearAddLoad(FCBody, Vec bc);
 PETSC_INTERN PetscErrorCode FCFEMNonlinearUnload(FCBody);
+PETSC_INTERN PetscBool      FCFEMNonlinearLoaded(FCBody);
 /* after the scheme: the equilibrium with the set's forces (held: what the springs still carry,
    relative), and the free motion linearized at it for the scheme to solve again */
 PETSC_INTERN PetscErrorCode FCFEMNonlinearSettle(FCBody, const FCContactSet *, PetscReal t, PetscReal *held);
