@@ -4,7 +4,8 @@
    compressed to 0.8 in 10 load steps each; per step the middle section's axial stretch and the
    reaction against the analytic nominal stress P11(stretch) A0 of the compressible Neo-Hookean
    model (uniaxial stress: lateral stretch from P22 = 0); plot docs/materials_uniaxial.png;
-2. the time per step of neohookean (Newton free motion) against corotational (one linearization),
+2. the time per step of neohookean (Newton free motion; its nonlinear contact correction, the default,
+   and the linear one) against corotational (one linearization),
    the same run of input/cube_drop_peer.opts (17.5k DOFs, 40 steps, the cube lands in step 10),
    the mean of /steps/wall_time before the landing (steps 2-9) and in contact (steps 11-40), with
    the Newton iterations and factorizations per step.
@@ -66,17 +67,17 @@ def curve(np_):
 
 
 def timing(np_):
-    print("\n| material | free motion | before contact: s / step | in contact: s / step | Newton iterations / step "
-          "(in contact) | factorizations / step (in contact) |")
+    print("\n| material | free motion, correction | before contact: s / step | in contact: s / step | Newton "
+          "iterations / step (in contact) | factorizations / step (in contact) |")
     print("|---|---|---:|---:|---:|---:|")
-    for mat in ["corotational", "neohookean"]:
-        h = run(["-options_file", "input/cube_drop_peer.opts", "-cube_material", mat, "-output_every", 40], np_,
-                "peer_" + mat)
+    for mat, corr in [("corotational", None), ("neohookean", "nonlinear"), ("neohookean", "linear")]:
+        h = run(["-options_file", "input/cube_drop_peer.opts", "-cube_material", mat, "-output_every", 40] +
+                (["-cube_correction", corr] if corr else []), np_, "peer_%s_%s" % (mat, corr))
         w, s = h["steps/wall_time"][:], h["steps"]
         contact = np.nonzero(s["contacts"][:] > 0)[0]
         first = contact[0] if len(contact) else len(w)
         print("| %s | %s | %.3f | %.3f | %.1f | %.1f |" % (
-            mat, "newton" if mat == "neohookean" else "linearized", w[1:first].mean(), w[first + 1:].mean(),
+            mat, "newton, " + corr if corr else "linearized, linear", w[1:first].mean(), w[first + 1:].mean(),
             s["free_motion_iterations"][first + 1:].mean(), s["factorizations"][first + 1:].mean()))
 
 
