@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The nonlinear correction of a body with a Newton free motion (-<body>_correction nonlinear,
+"""The nonlinear correction of a body with a Newton free motion (-<body>_correction nonlinear, its default;
 src/body/fem_nonlinear.c, src/scene/settle.c, docs/method.md 2.6), on input/neohookean_compress.opts (the
 Neo-Hookean block, nu = 0.49, pushed down 50 % onto a frictionless floor in 20 static steps):
 - it completes; every step ends in an equilibrium with its contact forces: the reaction on the pushed
@@ -49,7 +49,7 @@ def volume(h):
     return np.abs(v.sum(1)) / abs(v[0].sum())
 
 
-fn, _ = run("nonlinear", ["-block_correction", "nonlinear"])
+fn, _ = run("nonlinear", [])  # the default
 fl, _ = run("linear", ["-block_correction", "linear", "-time_steps", "10"])
 with h5py.File(fn) as h, h5py.File(fl) as l:
     s = h["steps"]
@@ -79,7 +79,7 @@ c.check(p.returncode != 0 and "-block_correction nonlinear" in p.stdout + p.stde
         "nonlinear with a linearized free motion: an error naming both options (exit %d)" % p.returncode)
 
 if NP > 1:
-    f1, _ = run("nonlinear", ["-block_correction", "nonlinear"], np_=1)
+    f1, _ = run("nonlinear", [], np_=1)
     with h5py.File(f1) as a, h5py.File(fn) as b:
         d = np.abs(T.final_state(a) - T.final_state(b)).max()
         c.check(d < 1e-8, "%d ranks: the 1-rank final state to %.1e" % (NP, d))
