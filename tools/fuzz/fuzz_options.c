@@ -12,7 +12,8 @@
      - mesh refinement and extrusion (refine, extrude): meshes grow without bound;
      - MUMPS control parameters (mat_mumps): MUMPS is not ours;
      - an iteration count over 1000 (any option whose name holds max_it); -pgs_max_it is 200
-       unless the input sets it;
+       unless the input sets it, and -time_step_min -time_step / 2 (one cut of step control at
+       most: a scene that fails its steps, each redone down to h / 1024, runs for minutes);
      - a mesh file (..._filename) larger than 800 kB (the Table 1 meshes: minutes per step).
    The output file is always redirected to a scratch directory. */
 #include "fuzz_common.h"
@@ -93,6 +94,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     PetscBool has;
     ierr = PetscOptionsHasName(NULL, NULL, "-pgs_max_it", &has);
     if (!ierr && !has) ierr = PetscOptionsSetValue(NULL, "-pgs_max_it", "200");
+  }
+  if (!ierr) { /* step control: one cut at most */
+    PetscBool has, set;
+    PetscReal h = 0.0;
+    ierr        = PetscOptionsHasName(NULL, NULL, "-time_step_min", &has);
+    if (!ierr && !has) ierr = PetscOptionsGetReal(NULL, NULL, "-time_step", &h, &set);
+    if (!ierr && !has && set && h > 0.0 && PetscIsNormalReal(h)) {
+      char v[64];
+      snprintf(v, sizeof(v), "%.17g", (double)(h / 2.0));
+      ierr = PetscOptionsSetValue(NULL, "-time_step_min", v);
+    }
   }
   if (!ierr) (void)RunScene(); /* errors are expected; crashes are not */
   if (PetscOptionsClear(NULL)) FuzzFail("PetscOptionsClear", 1);
