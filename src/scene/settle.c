@@ -66,8 +66,7 @@ PetscErrorCode FCSceneSolveContacts(FCScene s, PetscInt step, PetscBool *failed)
   PetscInt  sweeps;
 
   PetscFunctionBegin;
-  *failed    = PETSC_FALSE;
-  st->solves = 1;
+  *failed = PETSC_FALSE;
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodySaveFreeMotion(s->bodies[i]));
   PetscCall(FCSchemeSolve(s->scheme, &s->set, &s->previous, &s->stats));
   STEP_TRY(s, failed, FCSchemeCheck(s->scheme, step, &s->stats));
@@ -91,7 +90,6 @@ PetscErrorCode FCSceneSolveContacts(FCScene s, PetscInt step, PetscBool *failed)
     PetscCall(FCSchemeSolve(s->scheme, &s->set, &st->last, &s->stats));
     STEP_TRY(s, failed, FCSchemeCheck(s->scheme, step, &s->stats));
     sweeps += s->stats.sweeps;
-    st->solves++;
   }
   s->stats.sweeps = sweeps;
   PetscFunctionReturn(0);

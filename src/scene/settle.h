@@ -5,7 +5,6 @@
 typedef struct {
   PetscInt     max_it; /* -contact_settle_max_it: solves after the first */
   PetscReal    rtol;   /* -contact_settle_rtol */
-  PetscInt     solves; /* the scheme's solves in the last sub-step */
   FCContactSet last;   /* the forces of the last solve: the warm start of the next */
 } FCSettle;
 
