@@ -146,6 +146,31 @@ PetscErrorCode FCFEMNewtonSetUp(FCBody body)
   PetscFunctionReturn(0);
 }
 
+/* SNES from dv; where its first iterate turns a cell inside out (the velocity kept, in a fast impact
+   on a thin body), once more from `again` (NULL: dv = -v, the positions at t, where every cell was
+   upright at the end of the last step) */
+PetscErrorCode FCFEMNewtonSolve(FCBody body, Vec again, SNESConvergedReason *reason, PetscInt *its)
+{
+  FEM *fem = (FEM *)body->data;
+
+  PetscFunctionBegin;
+  fem->jacobian = PETSC_FALSE;
+  PetscCall(SNESSolve(fem->snes, NULL, fem->dv));
+  PetscCall(SNESGetConvergedReason(fem->snes, reason));
+  PetscCall(SNESGetIterationNumber(fem->snes, its));
+  if (*reason != SNES_DIVERGED_FUNCTION_DOMAIN || *its) PetscFunctionReturn(0);
+  if (again)
+    PetscCall(VecCopy(again, fem->dv));
+  else {
+    PetscCall(VecCopy(fem->v, fem->dv));
+    PetscCall(VecScale(fem->dv, -1.0));
+  }
+  PetscCall(SNESSolve(fem->snes, NULL, fem->dv));
+  PetscCall(SNESGetConvergedReason(fem->snes, reason));
+  PetscCall(SNESGetIterationNumber(fem->snes, its));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCFEMNewtonFreeMotion(FCBody body, PetscReal t)
 {
   FEM                *fem = (FEM *)body->data;
@@ -163,19 +188,7 @@ PetscErrorCode FCFEMNewtonFreeMotion(FCBody body, PetscReal t)
   /* the first iterate: the velocity kept; quasi-static with contact forces carried, the last step's rate */
   if (!(body->quasistatic && FCFEMNonlinearLoaded(body))) PetscCall(VecZeroEntries(fem->dv));
   PetscCall(FCPhaseEnd(FC_PHASE_FREE_MOTION));
-  fem->jacobian = PETSC_FALSE;
-  PetscCall(SNESSolve(fem->snes, NULL, fem->dv));
-  PetscCall(SNESGetConvergedReason(fem->snes, &reason));
-  PetscCall(SNESGetIterationNumber(fem->snes, &its));
-  if (reason == SNES_DIVERGED_FUNCTION_DOMAIN && its == 0) {
-    /* the velocity kept turns a cell inside out (a fast impact on a thin body): start from the
-       positions at t instead (dv = -v), where every cell was upright at the end of the last step */
-    PetscCall(VecCopy(fem->v, fem->dv));
-    PetscCall(VecScale(fem->dv, -1.0));
-    PetscCall(SNESSolve(fem->snes, NULL, fem->dv));
-    PetscCall(SNESGetConvergedReason(fem->snes, &reason));
-    PetscCall(SNESGetIterationNumber(fem->snes, &its));
-  }
+  PetscCall(FCFEMNewtonSolve(body, NULL, &reason, &its));
   PetscCheck(reason > 0, body->comm, PETSC_ERR_CONV_FAILED,
              "The Newton free motion of body '%s' did not converge at t = %g: %s after %" PetscInt_FMT
              " iterations (-%ssnes_monitor shows them; -%ssnes_max_it, -%ssnes_rtol, or a smaller -time_step)",

@@ -24,9 +24,9 @@
    solves diverge. Each vertex that carries a contact force therefore gets a spring of stiffness rho
    (-correction_penalty times the largest diagonal of K): along the force where its contacts slide or
    have no friction, in every direction where one sticks; anchored where its velocity at the step's
-   start takes it in the free motion, and where the linear correction put the vertex in the settling. They stand for the
-   contacts' constraint in A (an augmented Lagrangian: A + rho n n^T on the contact vertices), so that
-   A and W stay definite; each solve ends only when what they carry is below -contact_settle_rtol of
+   start takes it in the free motion, and where the linear correction put the vertex in the settling.
+   They stand for the contacts' constraint in A (an augmented Lagrangian: A + rho n n^T on the contact
+   vertices), so that A and W stay definite; each solve ends only when what they carry is below -contact_settle_rtol of
    the contact forces, so that the step's state is the equilibrium with its contact forces alone.
    f_c and the sticking vertices are part of the body's state (restart and step control). */
 #include "femimpl.h"
@@ -40,11 +40,12 @@ struct _FCFEMNonlinear {
   Vec       dvset;             /* the settled dv */
   PetscBool settled, refactor; /* settled in this solve; A formed at a settling iterate */
   PetscBool loaded;            /* f_c was non-zero in this step's free motion */
-  /* the stabilizing springs (header): per vertex a unit direction (0: none) and its anchor at t + h */
-  Vec       sn, sx, ss;    /* ss: 1 on a vertex of a sticking contact (a spring in every direction there) */
+  /* the stabilizing springs (header) */
+  Vec       sn, sx;        /* per vertex the springs' direction (0: none) and anchor */
   Vec       stick, stickc; /* this step's and the last accepted step's sticking vertices (1 per DOF) */
+  Vec       ss;            /* the springs' sticking vertices (a spring in every direction there): one of them */
   PetscBool springs;
-  PetscReal rho, factor; /* their stiffness (N/m), and -correction_penalty: rho over the largest diagonal of K */
+  PetscReal rho; /* their stiffness (N/m) */
 };
 
 /* -correction linear|nonlinear (read with the body's options) */
@@ -94,17 +95,15 @@ PetscErrorCode FCFEMNonlinearSetUp(FCBody body)
   PetscCall(VecDuplicate(fem->u, &nl->dvset));
   PetscCall(VecDuplicate(fem->u, &nl->sn));
   PetscCall(VecDuplicate(fem->u, &nl->sx));
-  PetscCall(VecDuplicate(fem->u, &nl->ss));
   PetscCall(VecDuplicate(fem->u, &nl->stick));
   PetscCall(VecDuplicate(fem->u, &nl->stickc));
-  nl->factor = fem->penalty;
-  { /* rho: the largest diagonal of K at the reference state (A = M + h^2 K there, formed at set-up) */
+  { /* rho: -correction_penalty times the largest diagonal of K at the reference state */
     Vec d;
     PetscCall(VecDuplicate(fem->u, &d));
     PetscCall(MatGetDiagonal(fem->K, d));
     PetscCall(VecMax(d, NULL, &nl->rho));
     PetscCall(VecDestroy(&d));
-    nl->rho *= nl->factor;
+    nl->rho *= fem->penalty;
   }
   fem->nl          = nl;
   body->state_cols = 10; /* u, v, f_c, sticking */
@@ -126,7 +125,6 @@ PetscErrorCode FCFEMNonlinearDestroy(FCBody body)
   PetscCall(VecDestroy(&nl->dvset));
   PetscCall(VecDestroy(&nl->sn));
   PetscCall(VecDestroy(&nl->sx));
-  PetscCall(VecDestroy(&nl->ss));
   PetscCall(VecDestroy(&nl->stick));
   PetscCall(VecDestroy(&nl->stickc));
   PetscCall(PetscFree(fem->nl));
@@ -134,8 +132,9 @@ PetscErrorCode FCFEMNonlinearDestroy(FCBody body)
 }
 
 /* Springs on the vertices that carry contact forces f, anchored at the end-of-step positions
-   x* = u + h (v + dv_anchor) (dv_anchor NULL: 0, the positions the velocity at t reaches): along f_v / |f_v| where the
-   contacts slide or have no friction, in every direction where one sticks (stick) */
+   x* = u + h (v + dv_anchor) (dv_anchor NULL: 0, where the velocity at t takes them): along f_v / |f_v|
+   where the contacts slide or have no friction, in every direction where one sticks (stick, kept as is
+   while the springs are set) */
 static PetscErrorCode SetSprings(FCBody body, Vec f, Vec stick, Vec dv_anchor)
 {
   FEM           *fem = (FEM *)body->data;
@@ -155,7 +154,7 @@ static PetscErrorCode SetSprings(FCBody body, Vec f, Vec stick, Vec dv_anchor)
     for (int d = 0; d < 3; d++) n[i + d] = a > 0.0 ? n[i + d] / a : 0.0;
   }
   PetscCall(VecRestoreArray(nl->sn, &n));
-  PetscCall(VecCopy(stick, nl->ss));
+  nl->ss = stick;
   if (dv_anchor) {
     PetscCall(VecWAXPY(nl->sx, 1.0, fem->v, dv_anchor));
     PetscCall(VecAYPX(nl->sx, body->h, fem->u));
@@ -256,6 +255,23 @@ PetscErrorCode FCFEMNonlinearAddLoad(FCBody body, Vec bc)
   PetscFunctionReturn(0);
 }
 
+/* dv = base - h A^-1 f_c: the motion from base without the contact forces f_c, linearized by the A
+   that W_b is built from (f serves as work) */
+static PetscErrorCode Unloaded(FCBody body, Vec base)
+{
+  FEM           *fem = (FEM *)body->data;
+  FCFEMNonlinear nl  = fem->nl;
+
+  PetscFunctionBegin;
+  PetscCall(VecAXPBY(nl->f, body->h, 0.0, nl->fc));
+  PetscCall(FCFEMSolveA(body, nl->f, nl->w, "The nonlinear correction's", 0.0));
+  if (base == fem->dv)
+    PetscCall(VecAXPY(fem->dv, -1.0, nl->w));
+  else
+    PetscCall(VecWAXPY(fem->dv, -1.0, nl->w, base));
+  PetscFunctionReturn(0);
+}
+
 /* After the free motion with f_c, its A factored by the KSP: dv_free = dv_load - h A^-1 f_c, the
    free motion that the contact schemes linearize about (dv_load kept for the settling) */
 PetscErrorCode FCFEMNonlinearUnload(FCBody body)
@@ -268,9 +284,7 @@ PetscErrorCode FCFEMNonlinearUnload(FCBody body)
   PetscCall(VecCopy(fem->dv, nl->dvload));
   nl->settled = PETSC_FALSE;
   if (!nl->loaded) PetscFunctionReturn(0);
-  PetscCall(VecAXPBY(nl->f, body->h, 0.0, nl->fc));
-  PetscCall(FCFEMSolveA(body, nl->f, nl->w, "The nonlinear correction's", 0.0));
-  PetscCall(VecAXPY(fem->dv, -1.0, nl->w));
+  PetscCall(Unloaded(body, fem->dv));
   PetscFunctionReturn(0);
 }
 
@@ -343,8 +357,7 @@ static PetscErrorCode SpringsHold(FCBody body, PetscReal *held)
 
 /* After the scheme: the equilibrium with this step's contact forces f = J^T lambda (b_c += h (f - f_c)),
    solved from the corrected dv (from dv_load where that start turns a cell inside out); f becomes f_c.
-   *held: what the springs hold there (SpringsHold). A Newton that fails
-   is a failed step (step control) */
+   *held: what the springs hold there (SpringsHold). A Newton that fails is a failed step (step control) */
 PetscErrorCode FCFEMNonlinearSettle(FCBody body, const FCContactSet *set, PetscReal t, PetscReal *held)
 {
   FEM                *fem = (FEM *)body->data;
@@ -365,16 +378,7 @@ PetscErrorCode FCFEMNonlinearSettle(FCBody body, const FCContactSet *set, PetscR
       SetSprings(body, nl->f, nl->stick, nl->dvlin)); /* the contact vertices held where the correction put them */
   PetscCall(VecAXPY(fem->nbc, body->h, nl->f));
   PetscCall(VecAXPY(fem->nbc, -body->h, nl->fc));
-  fem->jacobian = PETSC_FALSE;
-  PetscCall(SNESSolve(fem->snes, NULL, fem->dv));
-  PetscCall(SNESGetConvergedReason(fem->snes, &reason));
-  PetscCall(SNESGetIterationNumber(fem->snes, &its));
-  if (reason == SNES_DIVERGED_FUNCTION_DOMAIN && its == 0) { /* the linear correction turned a cell inside out */
-    PetscCall(VecCopy(nl->dvload, fem->dv));
-    PetscCall(SNESSolve(fem->snes, NULL, fem->dv));
-    PetscCall(SNESGetConvergedReason(fem->snes, &reason));
-    PetscCall(SNESGetIterationNumber(fem->snes, &its));
-  }
+  PetscCall(FCFEMNewtonSolve(body, nl->dvload, &reason, &its)); /* dv_load where the correction inverts a cell */
   PetscCall(FCPhaseEnd(FC_PHASE_CORRECTION));
   PetscCheck(reason > 0, body->comm, PETSC_ERR_CONV_FAILED,
              "The equilibrium of body '%s' with its contact forces (-%scorrection nonlinear) did not converge at t = "
@@ -402,9 +406,7 @@ PetscErrorCode FCFEMNonlinearRelinearize(FCBody body)
   if (!nl || !nl->settled) PetscFunctionReturn(0);
   nl->settled = PETSC_FALSE;
   if (nl->refactor) PetscCall(FCFEMFactorA(body));
-  PetscCall(VecAXPBY(nl->f, body->h, 0.0, nl->fc));
-  PetscCall(FCFEMSolveA(body, nl->f, nl->w, "The nonlinear correction's", 0.0));
-  PetscCall(VecWAXPY(fem->dv, -1.0, nl->w, nl->dvset));
+  PetscCall(Unloaded(body, nl->dvset));
   PetscFunctionReturn(0);
 }
 

@@ -205,6 +205,7 @@ PETSC_INTERN PetscErrorCode FCFEMBCAddRHS(FCBody, Vec b, PetscBool stiffness);
 PETSC_INTERN PetscErrorCode FCFEMNewtonSetFromOptions(PetscOptionItems *, FCBody);
 PETSC_INTERN PetscErrorCode FCFEMNewtonSetUp(FCBody); /* after the solver and A */
 PETSC_INTERN PetscErrorCode FCFEMNewtonFreeMotion(FCBody, PetscReal t);
+PETSC_INTERN PetscErrorCode FCFEMNewtonSolve(FCBody, Vec again, SNESConvergedReason *, PetscInt *its);
 PETSC_INTERN PetscErrorCode FCFEMNewtonDestroy(FCBody);
 PETSC_INTERN PetscErrorCode FCFEMBCDestroy(FCBody);
 /* fem_load.c */
