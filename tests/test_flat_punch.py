@@ -3,23 +3,21 @@
 structured, finer under the punch's path) quasi-statically in 4 steps, then slid 16 cm at 4 mm a step with
 mu = 0.2. The punch's force is the sum of its contacts' world forces (fctest.contact_force_on). On default options:
 - static equilibrium: at every step the punch's force is the block's reaction at its clamped base;
-- while it slides the whole face slips, so Coulomb's law holds for the sum. With the punch's face vertices' contacts
-  alone (-contact_shape_points 0) the fast scheme gives it: |F_t / F_n| within 3 % of mu at every sliding step, and
-  the forces in the cone of the end-of-step contact frames, /steps/cone_violation <= 0.01, where the explicit scheme
-  leaves a cone violation above 0.5. On default options the box's corners are contacts too: they plough into the
-  block's triangles, whose normals lean a few degrees and are their start-of-step ones in every scheme, and
-  |F_t / F_n| is up to ~10 % above mu (docs/scenes.md, "Flat punch"; not yet within issue 55's 3 %): printed, with
-  what the corners carry, not asserted;
+- while it slides the whole face slips, so Coulomb's law holds for the sum: |F_t / F_n| within 3 % of mu at every
+  sliding step, and the forces in the cone of the end-of-step contact frames, /steps/cone_violation <= 0.01. The
+  box's corners are contacts too (-contact_shape_points: the box's picture points against the block's triangles,
+  dormant); they carry about a third of F_n where the box's edges press into the block, whose triangles lean a few
+  degrees there: face to face with the box, such a point has the box's face's normal (src/collision/shapepoints.c),
+  which a failure prints with what the corners carry;
+- the same with the face's vertices' contacts alone (-contact_shape_points 0), and with the explicit scheme a cone
+  violation above 0.5 (--np 1);
 - --np > 1: the 1-rank run's contacts at every step, their forces and the punch's force to 1e-9 (relative to the
   largest) and the block's end positions to 1e-12 m (the contact problems are solved on rank 0: the ranks differ
   by MUMPS' round-off);
 - --np 1: the explicit scheme (one linearization per step, the default before the fast scheme), over the first
   8 sliding steps, is measurably worse: a row of vertices that the punch's rear edge leaves within a step keeps its
   start-of-step normal and pushes across the gap that opens (/steps/violation at least 4 times the default's), and
-  the cone violation is larger (1.5 times).
-The punch's box corners are contacts of their own (-contact_shape_points: the box's picture points against the
-block's triangles, dormant); a failure of the Coulomb check prints what they carry and how far their normals,
-which are their landing triangles' start-of-step normals in every scheme, lean from the face's."""
+  its cone violation is above 0.1 where the default's is at most 0.01."""
 import h5py
 import numpy as np
 
@@ -61,10 +59,11 @@ dev = np.abs(ratio[slide] / MU - 1)
 k = int(np.argmax(dev))
 cv = H["steps/cone_violation"][:][slide]
 n, share, tilt = corners(H, np.where(slide)[0][k])
-print("INFO: default options, sliding: |F_t / F_n| %.4f-%.4f (mean %.4f), at most %.1f %% off mu = %.1f at t = %.3f s "
-      "(there %d corner contacts carry %.0f %% of F_n, normals up to %.1f deg from the face's); cone violation at most "
-      "%.3f" % (ratio[slide].min(), ratio[slide].max(), ratio[slide].mean(), 100 * dev.max(), MU, t[slide][k], n,
-                100 * share, tilt, cv.max()))
+c.check(dev.max() <= 0.03 and cv.max() <= 0.01,
+        "default options, sliding: |F_t / F_n| %.4f-%.4f (mean %.4f), at most %.2g %% off mu = %.1f (bound 3 %%; at "
+        "t = %.3f s %d corner contacts carry %.0f %% of F_n, normals up to %.1f deg from the face's); cone violation "
+        "at most %.1e (bound 0.01)" % (ratio[slide].min(), ratio[slide].max(), ratio[slide].mean(), 100 * dev.max(),
+                                       MU, t[slide][k], n, 100 * share, tilt, cv.max()))
 
 
 def coulomb(H):
@@ -98,7 +97,7 @@ else:
     s = slice(4, steps)
     ve, vf = E["steps/violation"][s].max(), H["steps/violation"][s].max()
     ce, cf = E["steps/cone_violation"][s].max(), H["steps/cone_violation"][s].max()
-    c.check(ve >= 4 * vf and ce >= 1.5 * cf, "explicit scheme, first 8 sliding steps: violation %.1e m against the "
-            "default's %.1e (%.1f times, bound 4), cone violation %.3f against %.3f (%.1f times, bound 1.5)" %
-            (ve, vf, ve / vf, ce, cf, ce / cf))
+    c.check(ve >= 4 * vf and ce >= 0.1 and cf <= 0.01, "explicit scheme, first 8 sliding steps: violation %.1e m "
+            "against the default's %.1e (%.3g times, bound 4), cone violation %.3f (bound: above 0.1) against %.1e "
+            "(bound 0.01)" % (ve, vf, ve / vf, ce, cf))
 c.done()

@@ -199,6 +199,8 @@ PETSC_INTERN PetscErrorCode FCSurfaceSharpEdgeEnds(const FCSurfaceTopology *, co
 PETSC_INTERN void FCClosestPointTriangle(const PetscReal p[3], const PetscReal a[3], const PetscReal b[3],
                                          const PetscReal c[3], PetscReal cp[3], PetscReal w[3]);
 PETSC_INTERN void FCTriangleNormal(const PetscReal x[3][3], PetscReal n[3]);
+/* a direction fixed in a rigid or kinematic body's frame, in the world at `when` (FC_AT_NOW, FC_AT_FREE; endgaps.c) */
+PETSC_INTERN PetscErrorCode FCCollisionBodyDirection(FCBody, PetscInt when, const PetscReal nb[3], PetscReal n[3]);
 PETSC_INTERN void FCSurfaceClosestFacing(const FCSurface *, const PetscReal x[3], const PetscReal nv[3], PetscInt *tri,
                                          PetscReal w[3], PetscReal cp[3], PetscReal *d2);
 PETSC_INTERN PetscReal FCClosestSegmentSegment(const PetscReal p0[3], const PetscReal p1[3], const PetscReal q0[3],

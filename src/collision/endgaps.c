@@ -1,8 +1,22 @@
 /* The contacts' gaps at the end of the step, on the real geometry (docs/output.md: gap_end, n_end, d_end,
    p_end): a point against a shape by the shape's signed distance now; against an FE triangle or edge along
-   the triangle's (or the edges') end-of-step normal, with the vertices summed over the ranks that own them;
-   against a rigid mesh's triangle along its rotated normal. */
+   the triangle's (or the edges') end-of-step normal, with the vertices summed over the ranks that own them, or,
+   face to face with a rigid shape's face (c->face1), along that face's turned normal; against a rigid mesh's
+   triangle along its rotated normal. */
 #include "collisionimpl.h"
+
+PetscErrorCode FCCollisionBodyDirection(FCBody B, PetscInt when, const PetscReal nb[3], PetscReal n[3])
+{
+  FCProximity o = {0}, e = {0};
+  PetscReal   p0[3], pe[3];
+
+  PetscFunctionBegin;
+  for (int d = 0; d < 3; d++) e.r[d] = nb[d];
+  PetscCall(FCBodyProximityPosition(B, &o, when, p0));
+  PetscCall(FCBodyProximityPosition(B, &e, when, pe));
+  for (int d = 0; d < 3; d++) n[d] = pe[d] - p0[d];
+  PetscFunctionReturn(0);
+}
 
 /* The end gaps of the contacts against FE triangles and edges (g: per contact gap, normal, d, p1): the
    point and the triangle's vertices now, summed over the ranks that own them; the gap is measured along
@@ -64,20 +78,16 @@ static PetscErrorCode EndGapsOnSurfaces(MPI_Comm comm, FCBody bodies[], const FC
         p2[d]  = c->prox[1].w[0] * xs[12 * j + 6 + d] + c->prox[1].w[1] * xs[12 * j + 9 + d];
       }
     } else if (c->side2 == FC_SIDE_RIGID_TRIANGLE) { /* the triangle moved rigidly: rotate its normal */
-      FCProximity o = {0}, e = {0};
-      PetscReal   p0[3], pe[3];
-      FCBody      B = bodies[c->body[1]];
-      for (int d = 0; d < 3; d++) e.r[d] = c->nb[d];
-      PetscCall(FCBodyProximityPosition(B, &c->prox[1], FC_AT_NOW, p2));
-      PetscCall(FCBodyProximityPosition(B, &o, FC_AT_NOW, p0));
-      PetscCall(FCBodyProximityPosition(B, &e, FC_AT_NOW, pe));
-      for (int d = 0; d < 3; d++) nrm[d] = pe[d] - p0[d];
+      PetscCall(FCBodyProximityPosition(bodies[c->body[1]], &c->prox[1], FC_AT_NOW, p2));
+      PetscCall(FCCollisionBodyDirection(bodies[c->body[1]], FC_AT_NOW, c->nb, nrm));
     } else {
       for (int a = 0; a < 3; a++)
         for (int d = 0; d < 3; d++) tri[a][d] = xs[12 * j + 3 + 3 * a + d];
       for (int a = 0; a < 3; a++)
         for (int d = 0; d < 3; d++) p2[d] += c->prox[1].w[a] * tri[a][d];
-      FCTriangleNormal(tri, nrm);
+      if (c->face1) /* face to face with a rigid shape's face (shapepoints.c): that face's normal, turned with it */
+        PetscCall(FCCollisionBodyDirection(bodies[c->body[0]], FC_AT_NOW, c->nb, nrm));
+      else FCTriangleNormal(tri, nrm);
     }
     for (int d = 0; d < 3; d++) {
       gk[1 + d] = nrm[d];

@@ -135,11 +135,34 @@ static PetscErrorCode PicturePointOnSurface(const FCSurfaceTriangle *T, const Pe
   PetscFunctionReturn(0);
 }
 
+/* A box's point face to face with its landing FE triangle: the box's face at the point (body frame r) whose inward
+   normal is within FACE_ANGLE of the triangle's normal nb (body frame, pointing to the box). The box's face is then
+   the contact's surface, as it is for the FE vertices' own contacts against it: the triangle, bent a few degrees
+   where the box's edge presses into it, would tilt the force of a sliding box off its face and Coulomb's sum over
+   the face with it. Beyond that angle the point is a corner or an edge pressed into a slope: the triangle's normal. */
+#define FACE_ANGLE 10.0 /* degrees */
+static PetscBool BoxFaceOf(FCBody Sh, const PetscReal r[3], const PetscReal nb[3], PetscReal m[3])
+{
+  PetscReal h[3], best = PetscCosReal(FACE_ANGLE * PETSC_PI / 180.0);
+  PetscBool found = PETSC_FALSE;
+
+  FCBodyGetBoxHalfExtents(Sh, h);
+  for (int i = 0; i < 3; i++) {
+    PetscReal s = r[i] > 0 ? -1.0 : 1.0; /* the face's inward normal, along which the FE surface lies beyond it */
+    if (PetscAbsReal(r[i]) < h[i] * (1 - 1e-6) || s * nb[i] < best) continue;
+    best  = s * nb[i];
+    found = PETSC_TRUE;
+    for (int d = 0; d < 3; d++) m[d] = d == i ? s : 0.0;
+  }
+  return found;
+}
+
 /* The second form (a box, a cylinder): the picture points against the FE triangles as a rigid
    mesh's vertices (FCCollisionVerticesAgainstSurface), dormant (solver.c, SolveLazy): where the
    vertices' own contacts already hold the shape, a point's row is nearly a combination of theirs
    (W nearly singular, the forces not unique); the solver takes it up only where the solution
-   leaves the point deeper inside than -contact_dormant_depth */
+   leaves the point deeper inside than -contact_dormant_depth. A box's point face to face with its triangle has the
+   box's face's normal (BoxFaceOf; c->face1, fixed in the box's frame: endgaps.c turns it with the box). */
 static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                            const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
@@ -147,7 +170,19 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
 
   PetscFunctionBegin;
   PetscCall(FCCollisionVerticesAgainstSurface(Sh, F, ish, ife, S, 0, NULL, pair, pairs, rank, set));
-  for (PetscInt k = first; k < set->n; k++) set->c[k].dormant = PETSC_TRUE;
+  for (PetscInt k = first; k < set->n; k++) {
+    FCContact *c = &set->c[k];
+    PetscReal  nb[3], m[3], diff[3];
+    c->dormant = PETSC_TRUE;
+    if (!FCBodyIsBox(Sh)) continue;
+    PetscCall(FCBodyToBodyFrame(Sh, FC_AT_NOW, c->n, PETSC_TRUE, nb));
+    if (!BoxFaceOf(Sh, c->prox[0].r, nb, m)) continue;
+    c->face1 = PETSC_TRUE;
+    for (int d = 0; d < 3; d++) c->nb[d] = m[d];
+    PetscCall(FCCollisionBodyDirection(Sh, FC_AT_NOW, m, c->n));
+    for (int d = 0; d < 3; d++) diff[d] = c->p0[0][d] - c->p0[1][d];
+    c->gap0 = FCDot(c->n, diff);
+  }
   PetscFunctionReturn(0);
 }
 

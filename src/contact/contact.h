@@ -29,7 +29,8 @@ typedef struct {
   PetscReal force[3];        /* lambda in the [n t1 t2] frame (force units)      */
   PetscInt  state;           /* 0 open, 1 stick, 2 slip */
   PetscInt  side2; /* what side 2 is: FC_SIDE_SHAPE, FC_SIDE_FE_TRIANGLE, FC_SIDE_RIGID_TRIANGLE, FC_SIDE_FE_EDGE */
-  PetscReal nb[3]; /* FC_SIDE_RIGID_TRIANGLE: the normal in side 2's body frame             */
+  PetscReal nb[3]; /* the normal in a body frame: side 2's (FC_SIDE_RIGID_TRIANGLE), side 1's (face1) */
+  PetscBool face1; /* a rigid shape's point against an FE triangle face to face: the normal is side 1's face's */
   PetscReal wnn;   /* normal diagonal entry of the step's W (m/N): scales the end measures  */
   PetscReal n_end[3], d_end[3]; /* end of the step: normal on the real geometry, d = p1 - p2 (world)  */
   PetscReal p_end[3];           /* end of the step: the side-1 proximity point (world)                */
