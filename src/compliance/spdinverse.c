@@ -176,6 +176,11 @@ PetscErrorCode FCSPDInverseApply(FCSPDInverse v, PetscInt ns, PetscReal a[])
       info = (int)binfo;
     }
     PetscCallMPI(MPI_Bcast(&info, 1, MPI_INT, 0, v->comm)); /* one verdict */
+    if (info) { /* a failed step (step control tries a smaller one): nothing left allocated */
+      if (v->rank) PetscCall(PetscFree(u));
+      PetscCall(PetscFree(c));
+      PetscCall(PetscFree(cut));
+    }
     PetscCheck(info == 0, v->comm, PETSC_ERR_CONV_FAILED,
                "The Schur complement of A of body '%s' on its %d contact DOFs is not positive definite (LAPACK "
                "potrf info %d)",

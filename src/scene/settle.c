@@ -68,7 +68,7 @@ PetscErrorCode FCSceneSolveContacts(FCScene s, PetscInt step, PetscBool *failed)
   PetscFunctionBegin;
   *failed = PETSC_FALSE;
   for (PetscInt i = 0; i < s->nbodies; i++) PetscCall(FCBodySaveFreeMotion(s->bodies[i]));
-  PetscCall(FCSchemeSolve(s->scheme, &s->set, &s->previous, &s->stats));
+  STEP_TRY(s, failed, FCSchemeSolve(s->scheme, &s->set, &s->previous, &s->stats));
   STEP_TRY(s, failed, FCSchemeCheck(s->scheme, step, &s->stats));
   sweeps = s->stats.sweeps;
   for (PetscInt it = 0;; it++) {
@@ -83,11 +83,11 @@ PetscErrorCode FCSceneSolveContacts(FCScene s, PetscInt step, PetscBool *failed)
     if (held <= st->rtol || it == st->max_it || !s->set.n) break;
     for (PetscInt i = 0; i < s->nbodies; i++) {
       PetscCall(FCBodyRestoreFreeMotion(s->bodies[i]));
-      if (moving[i]) PetscCall(FCBodyRelinearize(s->bodies[i]));
+      if (moving[i]) STEP_TRY(s, failed, FCBodyRelinearize(s->bodies[i])); /* A there may be indefinite */
     }
     PetscCall(MoveFreePoints(s, moving));
     PetscCall(FCContactSetCopy(&s->set, &st->last));
-    PetscCall(FCSchemeSolve(s->scheme, &s->set, &st->last, &s->stats));
+    STEP_TRY(s, failed, FCSchemeSolve(s->scheme, &s->set, &st->last, &s->stats));
     STEP_TRY(s, failed, FCSchemeCheck(s->scheme, step, &s->stats));
     sweeps += s->stats.sweeps;
   }
