@@ -87,7 +87,8 @@ static PetscErrorCode EndGapsOnSurfaces(MPI_Comm comm, FCBody bodies[], const FC
         for (int d = 0; d < 3; d++) p2[d] += c->prox[1].w[a] * tri[a][d];
       if (c->face1) /* face to face with a rigid shape's face (shapepoints.c): that face's normal, turned with it */
         PetscCall(FCCollisionBodyDirection(bodies[c->body[0]], FC_AT_NOW, c->nb, nrm));
-      else FCTriangleNormal(tri, nrm);
+      else
+        FCTriangleNormal(tri, nrm);
     }
     for (int d = 0; d < 3; d++) {
       gk[1 + d] = nrm[d];
