@@ -135,11 +135,13 @@ static PetscErrorCode PicturePointOnSurface(const FCSurfaceTriangle *T, const Pe
   PetscFunctionReturn(0);
 }
 
-/* A box's point face to face with its landing FE triangle: the box's face at the point (body frame r) whose inward
-   normal is within FACE_ANGLE of the triangle's normal nb (body frame, pointing to the box). The box's face is then
-   the contact's surface, as it is for the FE vertices' own contacts against it: the triangle, bent a few degrees
-   where the box's edge presses into it, would tilt the force of a sliding box off its face and Coulomb's sum over
-   the face with it. Beyond that angle the point is a corner or an edge pressed into a slope: the triangle's normal. */
+/* A box's point face to face with the FE surface it lands on: the box's face at the point (body frame r) whose inward
+   normal is within FACE_ANGLE of the landing triangle's normal nb (body frame, pointing to the box), where that face
+   touches the triangle: one of the triangle's vertices lies on it (within the intersection depth, the face its
+   nearest feature; FaceTouches). The box's face is then the contact's surface, as it is for the FE vertices' own
+   contacts against it: the triangle, bent a few degrees where the box's edge presses into it, would tilt the force of a
+   sliding box off its face and Coulomb's sum over the face with it. A box on its edge or corner (the face off the
+   surface: a box landing tilted) and a point pressed into a steeper slope keep the triangle's normal. */
 #define FACE_ANGLE 10.0 /* degrees */
 static PetscBool BoxFaceOf(FCBody Sh, const PetscReal r[3], const PetscReal nb[3], PetscReal m[3])
 {
@@ -157,12 +159,44 @@ static PetscBool BoxFaceOf(FCBody Sh, const PetscReal r[3], const PetscReal nb[3
   return found;
 }
 
+/* Whether the box's face with inward normal n (world) touches the FE surface S near contact c's point at the start of
+   the step: an FE vertex within twice the landing triangle's longest edge of the point lies on the face, inside it
+   (its nearest feature the face itself, not an edge) within the intersection depth. A box resting on its edge, tilted
+   from the surface, has no such vertex unless the tilt is small enough that its face is within that depth of them */
+static PetscErrorCode FaceTouches(FCBody Sh, Surface *S, const FCContact *c, const PetscReal n[3],
+                                  const FCContactPairs *pairs, PetscBool *touches)
+{
+  PetscReal tol = PetscMax(pairs->intersection_depth, PETSC_SMALL), R2 = 0.0;
+
+  PetscFunctionBegin;
+  *touches = PETSC_FALSE;
+  for (PetscInt t = 0; t < S->n && R2 == 0.0; t++) { /* the landing triangle: its size */
+    const FCSurfaceTriangle *T = &S->tri[t];
+    PetscBool                same;
+    PetscCall(PetscArraycmp(&T->X[0][0], &c->prox[1].X[0][0], 9, &same));
+    for (int a = 0; a < 3 && same; a++) {
+      PetscReal l2 = 0.0;
+      for (int d = 0; d < 3; d++) l2 += PetscSqr(T->x0[a][d] - T->x0[(a + 1) % 3][d]);
+      R2 = PetscMax(R2, 4.0 * l2);
+    }
+  }
+  for (PetscInt t = 0; t < S->n && !*touches; t++)
+    for (int a = 0; a < 3 && !*touches; a++) {
+      const PetscReal *x = S->tri[t].x0[a];
+      PetscReal        d, nrm[3], cp[3];
+      if (PetscSqr(x[0] - c->p0[0][0]) + PetscSqr(x[1] - c->p0[0][1]) + PetscSqr(x[2] - c->p0[0][2]) > R2) continue;
+      PetscCall(FCBodyShapeDistance(Sh, FC_AT_NOW, x, &d, nrm, cp));
+      *touches = (PetscBool)(PetscAbsReal(d) <= tol && -FCDot(nrm, n) >= 1.0 - 1e-9);
+    }
+  PetscFunctionReturn(0);
+}
+
 /* The second form (a box, a cylinder): the picture points against the FE triangles as a rigid
    mesh's vertices (FCCollisionVerticesAgainstSurface), dormant (solver.c, SolveLazy): where the
    vertices' own contacts already hold the shape, a point's row is nearly a combination of theirs
    (W nearly singular, the forces not unique); the solver takes it up only where the solution
-   leaves the point deeper inside than -contact_dormant_depth. A box's point face to face with its triangle has the
-   box's face's normal (BoxFaceOf; c->face1, fixed in the box's frame: endgaps.c turns it with the box). */
+   leaves the point deeper inside than -contact_dormant_depth. A box's point face to face with the surface has the
+   box's face's normal (BoxFaceOf, FaceTouches; c->face1, fixed in the box's frame: endgaps.c turns it with the box). */
 static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                            const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
@@ -172,15 +206,21 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
   PetscCall(FCCollisionVerticesAgainstSurface(Sh, F, ish, ife, S, 0, NULL, pair, pairs, rank, set));
   for (PetscInt k = first; k < set->n; k++) {
     FCContact *c = &set->c[k];
-    PetscReal  nb[3], m[3], diff[3];
+    PetscReal  nb[3], m[3], n[3], diff[3];
+    PetscBool  touches;
     c->dormant = PETSC_TRUE;
     if (!FCBodyIsBox(Sh)) continue;
     PetscCall(FCBodyToBodyFrame(Sh, FC_AT_NOW, c->n, PETSC_TRUE, nb));
     if (!BoxFaceOf(Sh, c->prox[0].r, nb, m)) continue;
+    PetscCall(FCCollisionBodyDirection(Sh, FC_AT_NOW, m, n));
+    PetscCall(FaceTouches(Sh, S, c, n, pairs, &touches));
+    if (!touches) continue;
     c->face1 = PETSC_TRUE;
-    for (int d = 0; d < 3; d++) c->nb[d] = m[d];
-    PetscCall(FCCollisionBodyDirection(Sh, FC_AT_NOW, m, c->n));
-    for (int d = 0; d < 3; d++) diff[d] = c->p0[0][d] - c->p0[1][d];
+    for (int d = 0; d < 3; d++) {
+      c->nb[d] = m[d];
+      c->n[d]  = n[d];
+      diff[d]  = c->p0[0][d] - c->p0[1][d];
+    }
     c->gap0 = FCDot(c->n, diff);
   }
   PetscFunctionReturn(0);
