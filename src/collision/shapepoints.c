@@ -137,11 +137,11 @@ static PetscErrorCode PicturePointOnSurface(const FCSurfaceTriangle *T, const Pe
 
 /* A box's point face to face with the FE surface it lands on: the box's face at the point (body frame r) whose inward
    normal is within FACE_ANGLE of the landing triangle's normal nb (body frame, pointing to the box), where that face
-   touches the triangle: one of the triangle's vertices lies on it (within the intersection depth, the face its
-   nearest feature; FaceTouches). The box's face is then the contact's surface, as it is for the FE vertices' own
-   contacts against it: the triangle, bent a few degrees where the box's edge presses into it, would tilt the force of a
-   sliding box off its face and Coulomb's sum over the face with it. A box on its edge or corner (the face off the
-   surface: a box landing tilted) and a point pressed into a steeper slope keep the triangle's normal. */
+   touches the FE surface near the point (FaceTouches). The box's face is then the contact's surface, as it is for the
+   FE vertices' own contacts against it: the triangle, bent a few degrees where the box's edge presses into it, would
+   tilt the force of a sliding box off its face and Coulomb's sum over the face with it. A box on its edge or corner
+   (the face off the surface: a box landing tilted) and a point pressed into a steeper slope keep the triangle's normal.
+ */
 #define FACE_ANGLE 10.0 /* degrees */
 static PetscBool BoxFaceOf(FCBody Sh, const PetscReal r[3], const PetscReal nb[3], PetscReal m[3])
 {
