@@ -17,7 +17,9 @@ mu = 0.2. The punch's force is the sum of its contacts' world forces (fctest.con
 - --np 1: the explicit scheme (one linearization per step, the default before the fast scheme), over the first
   8 sliding steps, is measurably worse: a row of vertices that the punch's rear edge leaves within a step keeps its
   start-of-step normal and pushes across the gap that opens (/steps/violation at least 4 times the default's), and
-  its cone violation is above 0.1 where the default's is at most 0.01."""
+  its cone violation is above 0.1 where the default's is at most 0.01;
+- --np 1, the face rule's condition: a box resting tilted by 5 degrees on its edge on input/box_on_slab.opts' slab
+  (its face off the slab) keeps its corners' triangles' normals, more than 1 degree from its face's."""
 import h5py
 import numpy as np
 
@@ -81,6 +83,33 @@ if NP == 1:
             % (ratio.min(), ratio.max(), 100 * dev, cv))
     _, cve = coulomb(scene(1, "faces_explicit", ["-contact_shape_points", "0", "-constraint_scheme", "explicit"]))
     c.check(cve > 0.5, "the same with the explicit scheme: cone violation %.2f (above 0.5)" % cve)
+
+def box_axis_z(q):
+    """The third column of the rotation of quaternion q = (w, x, y, z): a box's +z face's outward normal"""
+    w, x, y, z = q
+    return np.array([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)])
+
+
+if NP == 1:
+    # the rule's condition: a box resting tilted on its edge, its face off the slab, keeps its corners' landing
+    # triangles' normals (input/box_on_slab.opts, the box turned 5 degrees about x, its lowest edge 0.6 mm above the
+    # slab, frictionless, 3 steps: the edge lands and the box stays tilted by more than 4 degrees)
+    f = out("tilted_box.h5")
+    run(["-options_file", "input/box_on_slab.opts", "-box_angular_velocity", "0,0,0", "-box_rotate", "1,0,0,5",
+         "-box_center", "0,0,0.226", "-contact_mu", "0", "-time_steps", "3", "-output_every", "1",
+         "-output_file", f, "-quiet"], 1)
+    T = h5py.File(f, "r")
+    ib = T.attrs["scene_bodies"].decode().split(",").index("box")
+    q, off, b, nrm = (T[k][:] for k in ("bodies/box/rotation", "contacts/offset", "contacts/bodies", "contacts/normal"))
+    ang, tilt = [], []
+    for k in range(1, 3):  # the steps that start with the edge on the slab
+        m = b[off[k]:off[k + 1], 0] == ib
+        e = box_axis_z(q[k - 1])  # the box's bottom face's inward normal at the step's start
+        tilt.append(np.degrees(np.arccos(e[2])))
+        ang += list(np.degrees(np.arccos(np.clip(nrm[off[k]:off[k + 1]][m] @ e, -1, 1))))
+    c.check(len(ang) > 0 and min(tilt) > 4 and min(ang) > 1, "a box resting tilted by %.1f-%.1f degrees on its edge: "
+            "its %d corner contacts keep their triangles' normals, %.1f-%.1f degrees from its face's (bound: above 1)"
+            % (min(tilt), max(tilt), len(ang), min(ang) if ang else 0, max(ang) if ang else 0))
 
 if NP > 1:
     H1 = scene(1, "default")
