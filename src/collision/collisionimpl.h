@@ -22,7 +22,7 @@ struct _FCSurface {
   PetscReal         *nrm;     /* 3 n: each triangle's unit normal at the start of the step */
   PetscReal          h;       /* cell size */
   PetscBool          swept;   /* triangles hashed by their boxes over the step (x0 and xf) */
-  PetscInt          *stamp;   /* per triangle: the last query that visited it (swept queries) */
+  PetscInt          *stamp;   /* per triangle: the last box query that visited it (FCSurfaceQueryBox) */
   PetscInt           nquery;  /* swept queries so far */
   PetscReal          inflate; /* what each triangle's box was inflated by */
   PetscReal          arc;     /* SurfaceBuild: how far a turning mesh's vertices leave their chords (FCCCDArcMargin) */

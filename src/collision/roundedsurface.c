@@ -248,7 +248,7 @@ static PetscErrorCode NearTriangles(FCBody Sh, Surface *S, PetscInt ncore, const
   }
   PetscCall(PetscMalloc1(S->n + 1, cand));
   *nc = 0;
-  if (S->stamp)
+  if (S->swept) /* boxes over the step: they hold the triangles' free positions too */
     FCSurfaceQueryBox(S, lo, hi, *cand, nc);
   else
     for (PetscInt t = 0; t < S->n; t++) (*cand)[(*nc)++] = t;

@@ -162,16 +162,19 @@ static PetscBool BoxFaceOf(FCBody Sh, const PetscReal r[3], const PetscReal nb[3
 /* Whether the box's face with inward normal n (world) touches the FE surface S near contact c's point at the start of
    the step: an FE vertex within twice the landing triangle's longest edge of the point lies on the face, inside it
    (its nearest feature the face itself, not an edge) within the intersection depth. A box resting on its edge, tilted
-   from the surface, has no such vertex unless the tilt is small enough that its face is within that depth of them */
+   from the surface, has no such vertex unless the tilt is small enough that its face is within that depth of them.
+   The triangles from S's hash (cand: work, S->n entries): the landing one is among those at its point p0[1] */
 static PetscErrorCode FaceTouches(FCBody Sh, Surface *S, const FCContact *c, const PetscReal n[3],
-                                  const FCContactPairs *pairs, PetscBool *touches)
+                                  const FCContactPairs *pairs, PetscInt cand[], PetscBool *touches)
 {
-  PetscReal tol = PetscMax(pairs->intersection_depth, PETSC_SMALL), R2 = 0.0;
+  PetscReal tol = PetscMax(pairs->intersection_depth, PETSC_SMALL), R2 = 0.0, lo[3], hi[3];
+  PetscInt  nc;
 
   PetscFunctionBegin;
   *touches = PETSC_FALSE;
-  for (PetscInt t = 0; t < S->n && R2 == 0.0; t++) { /* the landing triangle: its size */
-    const FCSurfaceTriangle *T = &S->tri[t];
+  FCSurfaceQueryBox(S, c->p0[1], c->p0[1], cand, &nc);
+  for (PetscInt i = 0; i < nc && R2 == 0.0; i++) { /* the landing triangle: its size */
+    const FCSurfaceTriangle *T = &S->tri[cand[i]];
     PetscBool                same;
     PetscCall(PetscArraycmp(&T->X[0][0], &c->prox[1].X[0][0], 9, &same));
     for (int a = 0; a < 3 && same; a++) {
@@ -180,9 +183,14 @@ static PetscErrorCode FaceTouches(FCBody Sh, Surface *S, const FCContact *c, con
       R2 = PetscMax(R2, 4.0 * l2);
     }
   }
-  for (PetscInt t = 0; t < S->n && !*touches; t++)
+  for (int d = 0; d < 3; d++) {
+    lo[d] = c->p0[0][d] - PetscSqrtReal(R2);
+    hi[d] = c->p0[0][d] + PetscSqrtReal(R2);
+  }
+  FCSurfaceQueryBox(S, lo, hi, cand, &nc);
+  for (PetscInt i = 0; i < nc && !*touches; i++)
     for (int a = 0; a < 3 && !*touches; a++) {
-      const PetscReal *x = S->tri[t].x0[a];
+      const PetscReal *x = S->tri[cand[i]].x0[a];
       PetscReal        d, nrm[3], cp[3];
       if (PetscSqr(x[0] - c->p0[0][0]) + PetscSqr(x[1] - c->p0[0][1]) + PetscSqr(x[2] - c->p0[0][2]) > R2) continue;
       PetscCall(FCBodyShapeDistance(Sh, FC_AT_NOW, x, &d, nrm, cp));
@@ -200,10 +208,11 @@ static PetscErrorCode FaceTouches(FCBody Sh, Surface *S, const FCContact *c, con
 static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, PetscInt ife, Surface *S, PetscInt pair,
                                            const FCContactPairs *pairs, PetscMPIInt rank, FCContactSet *set)
 {
-  PetscInt first = set->n;
+  PetscInt first = set->n, *cand = NULL;
 
   PetscFunctionBegin;
   PetscCall(FCCollisionVerticesAgainstSurface(Sh, F, ish, ife, S, 0, NULL, pair, pairs, rank, set));
+  if (FCBodyIsBox(Sh) && set->n > first) PetscCall(PetscMalloc1(S->n + 1, &cand));
   for (PetscInt k = first; k < set->n; k++) {
     FCContact *c = &set->c[k];
     PetscReal  nb[3], m[3], n[3], diff[3];
@@ -213,7 +222,7 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
     PetscCall(FCBodyToBodyFrame(Sh, FC_AT_NOW, c->n, PETSC_TRUE, nb));
     if (!BoxFaceOf(Sh, c->prox[0].r, nb, m)) continue;
     PetscCall(FCCollisionBodyDirection(Sh, FC_AT_NOW, m, n));
-    PetscCall(FaceTouches(Sh, S, c, n, pairs, &touches));
+    PetscCall(FaceTouches(Sh, S, c, n, pairs, cand, &touches));
     if (!touches) continue;
     c->face1 = PETSC_TRUE;
     for (int d = 0; d < 3; d++) {
@@ -223,6 +232,7 @@ static PetscErrorCode ShapePointsOnSurface(FCBody Sh, FCBody F, PetscInt ish, Pe
     }
     c->gap0 = FCDot(c->n, diff);
   }
+  PetscCall(PetscFree(cand));
   PetscFunctionReturn(0);
 }
 

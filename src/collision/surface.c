@@ -125,7 +125,7 @@ static PetscErrorCode SurfaceCreate(PetscInt n, FCSurfaceTriangle *tri, PetscRea
   PetscCall(FCCellEntrySort(S->nentries, S->cells));
   PetscCall(PetscMalloc1(3 * S->n + 1, &S->nrm));
   for (PetscInt t = 0; t < S->n; t++) FCTriangleNormal(S->tri[t].x0, &S->nrm[3 * t]);
-  if (swept) PetscCall(PetscCalloc1(S->n + 1, &S->stamp));
+  PetscCall(PetscCalloc1(S->n + 1, &S->stamp)); /* FCSurfaceQueryBox's */
   *surface = S;
   PetscFunctionReturn(0);
 }
