@@ -259,6 +259,31 @@ c.check(p.returncode != 0 and "option -cube_young is" in p.stdout + p.stderr and
 p = run(RS[:-3] + ["-cube_displacement", "zmax=0:0,0,0;0.3:0.05,0,-0.05;1:0,0,0", "-time_step", 0.01, "-quiet", "-time_steps", 20,
                    "-output_file", out("rs_table.h5"), "-restart", half], NP, check=False)
 c.check(p.returncode == 0, "a restart whose table continues with new rows runs (the rule)")
+# a table moved to another region, a region that names other vertices, a body dropped from the
+# scene, and an option of a body whose name extends another's: each another scene, refused
+def refused(extra, scene, what, opts=None):
+    p = run((opts or RS) + ["-time_steps", 20, "-output_file", out("rs_bad.h5"), "-restart", half] + extra, NP, check=False)
+    text = p.stdout + p.stderr
+    c.check(p.returncode == 1 and what in text, "a restart with %s is refused, naming %s" % (scene, what))
+refused(["-cube_displacement", "box:-0.3,-0.3,0.45,0.3,0.3,1=0:0,0,0;0.3:0.05,0,-0.05"], "the prescribed motion moved",
+        "has the regions [fixed:zmin displacement:box:-0.3,-0.3,0.45,0.3,0.3,1] here but [fixed:zmin displacement:zmax]")
+refused(["-cube_force", "xmax=0:0,0,0;1:1,0,0"], "a load added", "[fixed:zmin displacement:zmax force:xmax] here")
+PAD = ["-cube_force_type", "rigid", "-cube_force_shape", "sphere", "-cube_force_radius", 0.1, "-cube_force_density", 100,
+       "-cube_force_center", "0,3,0"]
+RS2 = RS + PAD + ["-scene_bodies", "cube,ball,cube_force", "-ball_type", "kinematic", "-ball_shape", "sphere",
+                  "-ball_radius", 0.1, "-ball_center", "0,0,3"]
+half2 = out("rs_half2.h5")
+run(RS2 + ["-time_steps", 10, "-output_every", 10, "-output_file", half2], NP)
+p = run(RS2 + ["-time_steps", 20, "-output_file", out("rs_ok2.h5"), "-restart", half2], NP, check=False)
+c.check(p.returncode == 0, "a restart of the three-body scene as written runs")
+p = run(RS + PAD + ["-scene_bodies", "cube,cube_force", "-time_steps", 20, "-output_file", out("rs_bad.h5"), "-restart", half2],
+        NP, check=False)
+c.check(p.returncode == 1 and "option -scene_bodies is 'cube,cube_force' here but 'cube,ball,cube_force'" in p.stdout + p.stderr,
+        "a restart with a body dropped from -scene_bodies is refused, naming it")
+p = run(RS2 + ["-cube_force_density", 200, "-time_steps", 20, "-output_file", out("rs_bad.h5"), "-restart", half2], NP,
+        check=False)
+c.check(p.returncode == 1 and "option -cube_force_density is '200' here but '100'" in p.stdout + p.stderr,
+        "a restart with another -cube_force_density (body cube_force beside body cube) is refused, naming it")
 
 # constrained vertices against a kinematic plane: no contact there
 f = out("fixplane.h5")

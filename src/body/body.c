@@ -290,6 +290,22 @@ PetscErrorCode FCBodyGetReactions(FCBody body, PetscInt *n, const char ***names,
   PetscFunctionReturn(0);
 }
 
+/* What identifies the body's regions from one run to the next (a restart's check): n entries,
+   names "kind:region" separated by '\n', 4 values each (a constraint's vertex count and their
+   reference centroid); none: n = 0, names "". Collective; the caller PetscFrees names and values */
+PetscErrorCode FCBodyGetRegions(FCBody body, PetscInt *n, char **names, PetscReal **values)
+{
+  PetscFunctionBegin;
+  if (body->ops.getregions) {
+    PetscCall((*body->ops.getregions)(body, n, names, values));
+    PetscFunctionReturn(0);
+  }
+  *n = 0;
+  PetscCall(PetscStrallocpy("", names));
+  PetscCall(PetscCalloc1(1, values));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCBodyGetEnergy(FCBody body, FCEnergy *E)
 {
   PetscFunctionBegin;

@@ -77,6 +77,7 @@ PETSC_INTERN PetscErrorCode FCBodyShapeDistanceLocal(FCBody, const PetscReal r[3
 PETSC_INTERN PetscErrorCode FCBodyAddPartialPosition(FCBody, const FCProximity *, PetscReal x[3]);
 /* bytes on this rank: W_b, Sigma / C, the factorization of A (0 where the body has none) */
 PETSC_INTERN PetscErrorCode FCBodyGetContactMemory(FCBody, PetscReal bytes[3]);
+PETSC_INTERN PetscErrorCode FCBodyGetRegions(FCBody, PetscInt *n, char **names, PetscReal **values);
 /* Contact response */
 PETSC_INTERN PetscErrorCode FCBodySetUpContact(FCBody); /* a body named in a contact pair, after FCBodySetUp */
 /* W += the body's part, on this rank's rows of W (NULL: all) */

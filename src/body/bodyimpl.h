@@ -86,6 +86,8 @@ typedef struct {
   /* optional (rigid, kinematic): the velocity and angular velocity over the last step */
   PetscErrorCode (*getvelocity)(FCBody, PetscReal v[3], PetscReal w[3]);
   PetscErrorCode (*getreactions)(FCBody, PetscInt *n, const char ***names, const PetscReal **values);
+  /* optional (fem): what identifies its regions across runs (FCBodyGetRegions) */
+  PetscErrorCode (*getregions)(FCBody, PetscInt *n, char **names, PetscReal **values);
   /* optional: factorizations and Krylov iterations so far */
   PetscErrorCode (*getsolvercounts)(FCBody, PetscInt *nfactor, PetscInt *nkrylov, PetscInt *nnewton);
   PetscErrorCode (*getcontactmemory)(FCBody, PetscReal bytes[3]); /* W_b, Sigma / C, factor on this rank */

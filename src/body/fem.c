@@ -410,6 +410,7 @@ PetscErrorCode FCBodyCreate_FEM(FCBody body)
   body->ops.restorefree        = RestoreFree_FEM;
   body->ops.trialposition      = TrialPosition_FEM;
   body->ops.getreactions       = GetReactions_FEM;
+  body->ops.getregions         = GetRegions_FEM;
   body->ops.settime            = FCFEMBCPoses;
   body->ops.changetimestep     = FCFEMChangeTimeStep;
   body->ops.getexternalwork    = GetExternalWork_FEM;

@@ -11,7 +11,8 @@
      fem_warp.c     reuse without K: cell and vertex rotations, Q, the matrix-free A, the builder's table
      fem_bc.c       regions' constraints (fixed, prescribed, attached): options, set-up, poses, eq. 5's coupling
      fem_load.c     loads on regions
-     fem_reaction.c the constrained regions' reactions */
+     fem_reaction.c the constrained regions' reactions
+     fem_regions.c  what identifies the regions across runs (a restart's check) */
 #pragma once
 #include "bodyimpl.h"
 #include <petscsnes.h>
@@ -215,6 +216,7 @@ PETSC_INTERN PetscErrorCode FCFEMLoadsAt(FCBody, PetscReal t);
 PETSC_INTERN PetscErrorCode FCFEMBCEndStep(FCBody);
 PETSC_INTERN PetscErrorCode GetExternalWork_FEM(FCBody, PetscReal *);
 PETSC_INTERN PetscErrorCode GetReactions_FEM(FCBody, PetscInt *, const char ***, const PetscReal **);
+PETSC_INTERN PetscErrorCode GetRegions_FEM(FCBody, PetscInt *, char **, PetscReal **); /* fem_regions.c */
 /* fem_rotation.c */
 PETSC_INTERN PetscBool      FCFEMRotationActive(FEM *);
 PETSC_INTERN PetscErrorCode FCFEMRotationPredict(FCBody);

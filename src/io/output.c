@@ -242,6 +242,16 @@ static PetscErrorCode WriteBodyHeader(FCOutput out, hid_t gb, PetscInt i, FCBody
       PetscCall(PetscMalloc1(6 * bo->nreact * out->maxrows, &bo->rreact));
     }
   }
+  { /* what identifies the regions (FCBodyGetRegions), for a restart's check (restartcheck.c) */
+    PetscInt   n;
+    char      *names;
+    PetscReal *val;
+    PetscCall(FCBodyGetRegions(b, &n, &names, &val));
+    PetscCall(FCH5AttrString(bo->group, "regions", names));
+    if (n) PetscCall(FCH5AttrReals(bo->group, "region_vertices", 4 * n, val));
+    PetscCall(PetscFree(names));
+    PetscCall(PetscFree(val));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -1,6 +1,6 @@
 /* A restart continues the scene that its file holds (docs/options.md, -restart): the options that
    define that scene must be those of the run that wrote the file (its "options" attribute). They
-   are every option of a body (-<name>_...), -gravity and -time_integration, except those that
+   are -scene_bodies, every option of a body (-<name>_...), -gravity and -time_integration, except those that
    say how the scene is solved or written (the body's solver, partition, factorization schedule,
    checks) and the tables of time (a trajectory, a prescribed displacement, a load), which may
    continue with new rows: the new table's values from the restart time on are used. A change is an
@@ -43,21 +43,132 @@ static void Split(char *s, char *keys[], char *vals[], PetscInt max, PetscInt *n
   }
 }
 
+/* Whether key is an option that defines the scene: -scene_bodies, -gravity, -time_integration, or an
+   option of a body that is not free to change. A key belongs to the body with the longest name that
+   prefixes it ("pad_force_young" is pad_force's where bodies pad and pad_force exist) */
 static PetscBool Defines(const char key[], PetscInt nbodies, FCBody bodies[])
 {
-  if (!strcmp(key, "gravity") || !strcmp(key, "time_integration")) return PETSC_TRUE;
+  size_t best = 0;
+
+  if (!strcmp(key, "scene_bodies") || !strcmp(key, "gravity") || !strcmp(key, "time_integration")) return PETSC_TRUE;
   for (PetscInt i = 0; i < nbodies; i++) {
     const char *name;
     size_t      l;
     if (FCBodyGetName(bodies[i], &name)) return PETSC_FALSE;
     l = strlen(name);
-    if (!strncmp(key, name, l) && key[l] == '_') {
-      for (size_t k = 0; k < sizeof(Free) / sizeof(Free[0]); k++)
-        if (!strncmp(key + l + 1, Free[k], strlen(Free[k]))) return PETSC_FALSE;
-      return PETSC_TRUE;
-    }
+    if (l > best && !strncmp(key, name, l) && key[l] == '_') best = l;
   }
-  return PETSC_FALSE;
+  if (!best) return PETSC_FALSE;
+  for (size_t k = 0; k < sizeof(Free) / sizeof(Free[0]); k++)
+    if (!strncmp(key + best + 1, Free[k], strlen(Free[k]))) return PETSC_FALSE;
+  return PETSC_TRUE;
+}
+
+/* Attribute `name` of /bodies/<body> in the file f (rank 0): a string (len: its size, 0 when absent)
+   or n doubles */
+static PetscErrorCode ReadBodyAttr(hid_t f, const char body[], const char name[], char **str, double **val, size_t *n)
+{
+  char  path[PETSC_MAX_PATH_LEN];
+  hid_t g, a, t;
+
+  PetscFunctionBegin;
+  *n = 0;
+  PetscCall(PetscSNPrintf(path, sizeof(path), "/bodies/%s", body));
+  if (H5Lexists(f, "bodies", H5P_DEFAULT) <= 0 || H5Lexists(f, path, H5P_DEFAULT) <= 0) PetscFunctionReturn(0);
+  g = H5Gopen2(f, path, H5P_DEFAULT);
+  if (g < 0) PetscFunctionReturn(0);
+  if (H5Aexists(g, name) > 0 && (a = H5Aopen(g, name, H5P_DEFAULT)) >= 0) {
+    if (str) {
+      t  = H5Aget_type(a);
+      *n = H5Tget_size(t);
+      PetscCall(PetscCalloc1(*n + 1, str));
+      if (H5Aread(a, t, *str) < 0) *n = 0;
+      H5Tclose(t);
+    } else {
+      hid_t s = H5Aget_space(a);
+      *n      = (size_t)H5Sget_simple_extent_npoints(s);
+      H5Sclose(s);
+      PetscCall(PetscCalloc1(*n + 1, val));
+      if (H5Aread(a, H5T_NATIVE_DOUBLE, *val) < 0) *n = 0;
+    }
+    H5Aclose(a);
+  }
+  H5Gclose(g);
+  PetscFunctionReturn(0);
+}
+
+/* The bodies' regions (FCBodyGetRegions) against those of the run that wrote the file: the same
+   kinds and regions in the same order, each constraint on as many vertices with the same reference
+   centroid (to 1e-9 of the body's size). A file without them (written before they were) is not
+   checked. Collective; msg: the difference, "" when none */
+static PetscErrorCode CheckRegions(MPI_Comm comm, const char file[], PetscInt nbodies, FCBody bodies[], char msg[],
+                                   size_t len)
+{
+  PetscMPIInt rank;
+  hid_t       f = -1;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) f = H5Fopen(file, H5F_ACC_RDONLY, H5P_DEFAULT);
+  for (PetscInt i = 0; i < nbodies && !msg[0]; i++) {
+    const char *name;
+    char       *now, *old = NULL;
+    PetscReal  *vnow;
+    double     *vold = NULL;
+    PetscInt    n;
+    size_t      lold = 0, nold = 0;
+    long        sizes[2];
+    PetscCall(FCBodyGetName(bodies[i], &name));
+    PetscCall(FCBodyGetRegions(bodies[i], &n, &now, &vnow));
+    if (!rank && f >= 0) {
+      PetscCall(ReadBodyAttr(f, name, "regions", &old, NULL, &lold));
+      if (lold) PetscCall(ReadBodyAttr(f, name, "region_vertices", NULL, &vold, &nold));
+    }
+    sizes[0] = (long)lold;
+    sizes[1] = (long)nold;
+    PetscCallMPI(MPI_Bcast(sizes, 2, MPI_LONG, 0, comm));
+    if (sizes[0]) {
+      if (rank) PetscCall(PetscCalloc1(sizes[0] + 1, &old));
+      if (rank) PetscCall(PetscCalloc1(sizes[1] + 1, &vold));
+      PetscCallMPI(MPI_Bcast(old, (PetscMPIInt)sizes[0], MPI_CHAR, 0, comm));
+      PetscCallMPI(MPI_Bcast(vold, (PetscMPIInt)sizes[1], MPI_DOUBLE, 0, comm));
+      if (strcmp(old, now) || sizes[1] != 4 * n) {
+        char *a = old, *b = now;
+        for (char *p = a; *p; p++)
+          if (*p == '\n') *p = p[1] ? ' ' : 0;
+        for (char *p = b; *p; p++)
+          if (*p == '\n') *p = p[1] ? ' ' : 0;
+        PetscCall(PetscSNPrintf(msg, len, "body '%s' has the regions [%s] here but [%s] in the run that wrote it", name,
+                                b, a));
+      } else {
+        PetscReal size = 0.0;
+        for (PetscInt k = 0; k < n; k++)
+          for (int d = 1; d < 4; d++) size = PetscMax(size, PetscAbsReal(vold[4 * k + d]));
+        for (PetscInt k = 0; k < n && !msg[0]; k++) {
+          PetscReal dx = 0.0;
+          for (int d = 1; d < 4; d++) dx = PetscMax(dx, PetscAbsReal(vold[4 * k + d] - vnow[4 * k + d]));
+          if (vold[4 * k] != vnow[4 * k] || dx > 1e-9 * PetscMax(size, 1e-300)) {
+            char *line = now, *end;
+            for (PetscInt j = 0; j < k; j++) line = strchr(line, '\n') + 1;
+            if ((end = strchr(line, '\n'))) *end = 0;
+            PetscCall(
+                PetscSNPrintf(msg, len,
+                              "body '%s', %s: %g vertices centred at (%g, %g, %g) here, %g at (%g, %g, %g) in the "
+                              "run that wrote it",
+                              name, line, (double)vnow[4 * k], (double)vnow[4 * k + 1], (double)vnow[4 * k + 2],
+                              (double)vnow[4 * k + 3], (double)vold[4 * k], (double)vold[4 * k + 1],
+                              (double)vold[4 * k + 2], (double)vold[4 * k + 3]));
+          }
+        }
+      }
+    }
+    PetscCall(PetscFree(old));
+    PetscCall(PetscFree(vold));
+    PetscCall(PetscFree(now));
+    PetscCall(PetscFree(vnow));
+  }
+  if (f >= 0) H5Fclose(f);
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode FCRestartCheckScene(MPI_Comm comm, const char file[], PetscInt nbodies, FCBody bodies[])
@@ -107,6 +218,7 @@ PetscErrorCode FCRestartCheckScene(MPI_Comm comm, const char file[], PetscInt nb
   }
   PetscCall(PetscFree(old));
   PetscCall(PetscFree(now));
+  if (!msg[0]) PetscCall(CheckRegions(comm, file, nbodies, bodies, msg, sizeof(msg)));
   PetscCheck(
       !msg[0], comm, PETSC_ERR_USER_INPUT,
       "-restart %s: %s. A restart continues the scene that the file holds (bodies, meshes, materials, placement, "
