@@ -58,6 +58,8 @@ PETSC_EXTERN PetscErrorCode FCOptionsInt(PetscOptionItems *, const char opt[], c
                                          PetscBool *);
 PETSC_EXTERN PetscErrorCode FCOptionsBool(PetscOptionItems *, const char opt[], const char text[], PetscBool *,
                                           PetscBool *);
+PETSC_EXTERN PetscErrorCode FCOptionsEList(PetscOptionItems *, const char opt[], const char text[],
+                                           const char *const list[], PetscInt n, PetscInt *, PetscBool *);
 PETSC_EXTERN PetscErrorCode FCOptionsReal(PetscOptionItems *, const char opt[], const char text[], PetscReal *,
                                           PetscBool *);
 PETSC_EXTERN PetscErrorCode FCOptionsRealArray(PetscOptionItems *, const char opt[], const char text[], PetscInt n,

@@ -157,4 +157,33 @@ for what, args, expect in cases:
     ok = p.returncode != 0 and not crashed and any(e in text for e in alts)
     c.check(ok, "%-28s exit %d, message names '%s'%s" % (what, p.returncode, expect,
             "" if ok else "\n----\n" + text[-1500:]))
+
+# the documented exit status (docs/options.md, "Exit status") and one line, no traceback: a bad word
+# for an option that takes one of a list, an option that does not apply to the body's material, an
+# output file that cannot be created
+D = ["-options_file", "input/cube_drop.opts", "-quiet"]
+status = [
+    ("bad -time_integration", D + ["-time_integration", "leapfrog"], 1,
+     "Option -time_integration takes one of euler or static; got 'leapfrog'"),
+    ("bad -<b>_free_motion", D + ["-cube_free_motion", "exact"], 1,
+     "Option -cube_free_motion takes one of linearized or newton; got 'exact'"),
+    ("bad -<b>_inverted", D + ["-cube_inverted", "maybe"], 1, "Option -cube_inverted takes one of error or allow; got 'maybe'"),
+    ("bad -contact_newton_lu", D + ["-constraint_scheme", "standard", "-contact_newton_lu", "qr"], 1,
+     "Option -contact_newton_lu takes one of auto, dense or sparse; got 'qr'"),
+    ("bad -time_step_control", D + ["-time_step_control", "maybe"], 1, "Option -time_step_control takes one of off or on"),
+    ("factorization of a linear body", D + ["-cube_material", "linear", "-cube_factorization", "reuse"], 1,
+     "-cube_factorization is for a body whose A changes"),
+    ("factorization reuse, Neo-Hookean", D + ["-cube_material", "neohookean", "-cube_factorization", "reuse"], 1,
+     "-cube_factorization reuse warps the factor of a co-rotational body"),
+    ("output directory missing", D + ["-output_file", out("no/such/dir/x.h5")], 3, "Cannot create output file"),
+]
+if NP > 1:
+    status = [cs for cs in status if cs[0] in ("bad -<b>_inverted", "output directory missing")]
+for what, args, code, expect in status:
+    p = run(args + ([] if "-output_file" in args else ["-output_file", out("bad_np%d.h5" % NP)]), np_=NP, check=False,
+            timeout=120)
+    text = p.stdout + p.stderr
+    ok = p.returncode == code and expect in text and "PETSC ERROR" not in text
+    c.check(ok, "%-28s exit %d (documented: %d), one line naming '%s'%s" % (what, p.returncode, code, expect,
+            "" if ok else "\n----\n" + text[-1500:]))
 c.done()

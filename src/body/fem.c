@@ -51,26 +51,32 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
        linear elasticity no force against it */
     const char *inv[] = {"error", "allow"};
     PetscInt    a     = strcmp(fem->material, "corotational") ? 0 : 1;
-    PetscCall(PetscOptionsEList("-inverted",
-                                "An element turned inside out (J = det F <= 0) at the end of a step: error (stop) or "
-                                "allow (run on); default allow for corotational, error for the other materials",
-                                NULL, inv, 2, inv[a], &a, NULL));
+    PetscCall(FCOptionsEList(PetscOptionsObject, "-inverted",
+                             "An element turned inside out (J = det F <= 0) at the end of a step: error (stop) or "
+                             "allow (run on); default allow for corotational, error for the other materials",
+                             inv, 2, &a, NULL));
     fem->allow_inverted = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
   if (strcmp(fem->material, "linear")) { /* a linear A never changes: nothing to refactor or re-sum */
     const char *how[] = {"values", "coo"}, *rot[] = {"linear", "exact"};
     PetscInt    a = fem->coo ? 1 : 0, r = fem->rotation_exact ? 1 : 0;
     PetscCall(FCFEMScheduleSetFromOptions(PetscOptionsObject, body));
-    PetscCall(
-        PetscOptionsEList("-assembly", "How K is summed every step (co-rotational)", NULL, how, 2, how[a], &a, NULL));
+    PetscCall(FCOptionsEList(PetscOptionsObject, "-assembly", "How K is summed every step (co-rotational)", how, 2, &a,
+                             NULL));
     fem->coo = a == 1 ? PETSC_TRUE : PETSC_FALSE;
     if (!strcmp(fem->material, "corotational")) { /* a hyperelastic body's Newton step turns exactly */
-      PetscCall(PetscOptionsEList("-rotation", "The rotation within a step: exact or linear (co-rotational)", NULL, rot,
-                                  2, rot[r], &r, NULL));
+      PetscCall(FCOptionsEList(PetscOptionsObject, "-rotation",
+                               "The rotation within a step: exact or linear (co-rotational)", rot, 2, &r, NULL));
       fem->rotation_exact = r == 1 ? PETSC_TRUE : PETSC_FALSE;
     } else
       fem->rotation_exact = PETSC_FALSE;
   } else {
+    PetscBool given;
+    PetscCall(PetscOptionsHasName(NULL, body->prefix, "-factorization", &given));
+    PetscCheck(!given, body->comm, PETSC_ERR_USER_INPUT,
+               "Body '%s': -%sfactorization is for a body whose A changes (co-rotational, hyperelastic); the linear "
+               "material's A is factored once",
+               body->name, body->prefix);
     fem->coo            = PETSC_FALSE;
     fem->rotation_exact = PETSC_FALSE;
     fem->factorization  = FC_FACTORIZATION_EVERY_STEP; /* factored once: nothing to schedule */

@@ -96,10 +96,10 @@ PetscErrorCode FCFEMNewtonSetFromOptions(PetscOptionItems *PetscOptionsObject, F
   PetscBool   set;
 
   PetscFunctionBegin;
-  PetscCall(PetscOptionsEList("-free_motion",
-                              "The free motion (eq. 5): linearized (one linearization at the step's start) or newton "
-                              "(the implicit Euler step solved by SNES; the default of neohookean and stvk)",
-                              NULL, kind, 2, kind[k], &k, &set));
+  PetscCall(FCOptionsEList(PetscOptionsObject, "-free_motion",
+                           "The free motion (eq. 5): linearized (one linearization at the step's start) or newton "
+                           "(the implicit Euler step solved by SNES; the default of neohookean and stvk)",
+                           kind, 2, &k, &set));
   if (set) fem->free_motion = k == 1 ? FC_FREE_MOTION_NEWTON : FC_FREE_MOTION_LINEARIZED;
   PetscFunctionReturn(0);
 }
@@ -113,16 +113,16 @@ PetscErrorCode FCFEMNewtonSetUp(FCBody body)
   PetscFunctionBegin;
   if (fem->free_motion < 0)
     fem->free_motion = fem->mat->hyperelastic ? FC_FREE_MOTION_NEWTON : FC_FREE_MOTION_LINEARIZED;
-  PetscCheck(fem->factorization == FC_FACTORIZATION_EVERY_STEP || fem->mat->rotation, body->comm, PETSC_ERR_SUP,
+  PetscCheck(fem->factorization == FC_FACTORIZATION_EVERY_STEP || fem->mat->rotation, body->comm, PETSC_ERR_USER_INPUT,
              "Body '%s': -%sfactorization reuse warps the factor of a co-rotational body; the %s material has no "
              "element rotation (use every_step)",
              body->name, body->prefix, fem->material);
   if (fem->free_motion != FC_FREE_MOTION_NEWTON) PetscFunctionReturn(0);
-  PetscCheck(fem->beta == 0.0, body->comm, PETSC_ERR_SUP,
+  PetscCheck(fem->beta == 0.0, body->comm, PETSC_ERR_USER_INPUT,
              "Body '%s': -%sfree_motion newton takes no -%srayleigh_stiffness (the damping of a tangent that changes "
              "within the step); use -%srayleigh_mass",
              body->name, body->prefix, body->prefix, body->prefix);
-  PetscCheck(fem->factorization == FC_FACTORIZATION_EVERY_STEP, body->comm, PETSC_ERR_SUP,
+  PetscCheck(fem->factorization == FC_FACTORIZATION_EVERY_STEP, body->comm, PETSC_ERR_USER_INPUT,
              "Body '%s': -%sfree_motion newton factors A at every Newton iteration; -%sfactorization reuse is for the "
              "one-linearization step of a co-rotational body",
              body->name, body->prefix, body->prefix);

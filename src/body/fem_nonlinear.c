@@ -57,12 +57,11 @@ PetscErrorCode FCFEMNonlinearSetFromOptions(PetscOptionItems *PetscOptionsObject
   PetscBool   set;
 
   PetscFunctionBegin;
-  PetscCall(
-      PetscOptionsEList("-correction",
-                        "The contact correction of a body with a Newton free motion: linear (eq. 20 from the free "
-                        "motion) or nonlinear (the last step's contact forces a load of the free motion, the "
-                        "equilibrium solved again with this step's, and the contact problem re-solved there)",
-                        NULL, kind, 2, kind[k], &k, &set));
+  PetscCall(FCOptionsEList(PetscOptionsObject, "-correction",
+                           "The contact correction of a body with a Newton free motion: linear (eq. 20 from the free "
+                           "motion) or nonlinear (the last step's contact forces a load of the free motion, the "
+                           "equilibrium solved again with this step's, and the contact problem re-solved there)",
+                           kind, 2, &k, &set));
   if (set) fem->correction = (PetscInt)k;
   PetscCall(FCOptionsReal(PetscOptionsObject, "-correction_penalty",
                           "The nonlinear correction's springs along the contact forces: their stiffness over the "

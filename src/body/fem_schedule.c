@@ -94,7 +94,7 @@ PetscErrorCode FCFEMScheduleSetFromOptions(PetscOptionItems *PetscOptionsObject,
     PetscCall(PetscOptionsString(
         "-factorization", "When A is factored: every_step, or reuse (CG with the last factor, warped compliance)", NULL,
         fmode, fmode, sizeof(fmode), NULL));
-    PetscCheck(strcmp(fmode, "async"), body->comm, PETSC_ERR_SUP,
+    PetscCheck(strcmp(fmode, "async"), body->comm, PETSC_ERR_USER_INPUT,
                "-%sfactorization async (the factorization in the background) is not available: a second MUMPS "
                "factorization beside the step needs MPI_THREAD_MULTIPLE or a spare rank, and on 2 cores it would "
                "share them with the step (docs/method.md, \"When A is factored\"); use reuse",

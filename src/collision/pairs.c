@@ -76,10 +76,9 @@ static PetscErrorCode ReadDetection(FCCollision s, PetscOptionItems *PetscOption
   {
     const char *kinds[] = {"picture", "exact"};
     PetscInt    kind    = 1;
-    PetscCall(
-        PetscOptionsEList("-contact_rounded_surface",
-                          "A sphere or a capsule against an FE surface: its picture's points or the exact nearest",
-                          NULL, kinds, 2, kinds[1], &kind, NULL));
+    PetscCall(FCOptionsEList(PetscOptionsObject, "-contact_rounded_surface",
+                             "A sphere or a capsule against an FE surface: its picture's points or the exact nearest",
+                             kinds, 2, &kind, NULL));
     s->pairs.rounded_exact = kind == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
   PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_separation_speed",

@@ -64,12 +64,12 @@ static PetscErrorCode SetFromOptions_Condensed(FCCompliance comp, PetscOptionIte
   Condensed *cd = (Condensed *)comp->data;
 
   PetscFunctionBegin;
-  PetscCall(PetscOptionsEList("-compliance_condensed_inverse",
-                              "Where Sigma^-1 is formed: rank 0 (LAPACK), every rank (ScaLAPACK) and gathered on "
-                              "rank 0, the host's Cholesky factor and the ranks' blocks of columns of its inverse, "
-                              "Sigma and its inverse distributed (MUMPS and ScaLAPACK, never gathered), or auto: "
-                              "distributed from -compliance_condensed_distributed_size on several ranks, else rank 0",
-                              NULL, InverseTypes, 5, InverseTypes[cd->inverse], &cd->inverse, NULL));
+  PetscCall(FCOptionsEList(PetscOptionsObject, "-compliance_condensed_inverse",
+                           "Where Sigma^-1 is formed: rank 0 (LAPACK), every rank (ScaLAPACK) and gathered on "
+                           "rank 0, the host's Cholesky factor and the ranks' blocks of columns of its inverse, "
+                           "Sigma and its inverse distributed (MUMPS and ScaLAPACK, never gathered), or auto: "
+                           "distributed from -compliance_condensed_distributed_size on several ranks, else rank 0",
+                           InverseTypes, 5, &cd->inverse, NULL));
   PetscCall(
       FCOptionsIntRange(PetscOptionsObject, "-compliance_condensed_distributed_size",
                         "Schur block size (DOFs) from which -compliance_condensed_inverse auto keeps Sigma and its "

@@ -80,12 +80,12 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
   {
     const char *acc[] = {"none", "nncg"};
     PetscInt    a     = s->nncg ? 1 : 0; /* default nncg: docs/contact-solver.md */
-    PetscCall(PetscOptionsEList("-pgs_acceleration", "Acceleration of the sweeps", NULL, acc, 2, acc[a], &a, NULL));
+    PetscCall(FCOptionsEList(PetscOptionsObject, "-pgs_acceleration", "Acceleration of the sweeps", acc, 2, &a, NULL));
     s->nncg = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
-  PetscCall(PetscOptionsEList("-pgs_ranks",
-                              "Where the contact solver runs: by size, every rank, rank 0, or split by blocks", NULL,
-                              PGSPlacements, 4, PGSPlacements[s->placement], &s->placement, NULL));
+  PetscCall(FCOptionsEList(PetscOptionsObject, "-pgs_ranks",
+                           "Where the contact solver runs: by size, every rank, rank 0, or split by blocks",
+                           PGSPlacements, 4, &s->placement, NULL));
   if (s->placement == PGS_SPLIT || s->placement == PGS_AUTO)
     PetscCall(FCOptionsReal(PetscOptionsObject, "-pgs_split_damping",
                             "With -pgs_ranks split or auto: the fraction of each block's step taken (0, 1]",
@@ -112,9 +112,9 @@ PetscErrorCode FCContactSolverSetFromOptions(FCContactSolver s)
     const char *lus[] = {"auto", "dense", "sparse"};
     PetscCall(FCOptionsInt(PetscOptionsObject, "-contact_newton_max_it",
                            "Newton steps at most (-contact_solver auto or newton)", &s->newton_max_it, NULL));
-    PetscCall(PetscOptionsEList("-contact_newton_lu",
-                                "The LU of a Newton step: by W's fill, LAPACK's dense LU, or MUMPS' sparse LU", NULL,
-                                lus, 3, lus[s->newton_lu], &s->newton_lu, NULL));
+    PetscCall(FCOptionsEList(PetscOptionsObject, "-contact_newton_lu",
+                             "The LU of a Newton step: by W's fill, LAPACK's dense LU, or MUMPS' sparse LU", lus, 3,
+                             &s->newton_lu, NULL));
   }
   PetscCall(PetscOptionsString("-pgs_dump_problem", "Write a contact problem to this FCLIB file", NULL, s->dump,
                                s->dump, sizeof(s->dump), NULL));

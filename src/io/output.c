@@ -75,7 +75,7 @@ PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *ou
     if (out->file >= 0) H5Fclose(out->file);
     PetscCall(FCH5ContextClear());
     PetscCall(PetscFree(out));
-    SETERRQ(comm, PETSC_ERR_FILE_OPEN,
+    SETERRQ(comm, PETSC_ERR_FILE_WRITE,
             "Cannot create output file '%s' (-output_file): check that its directory exists and is writable", filename);
   }
   *output = out;

@@ -53,8 +53,8 @@ static PetscErrorCode SetFromOptions_Metis(PetscPartitioner part, PetscOptionIte
   PetscOptionsHeadBegin(PetscOptionsObject, "PetscPartitioner METIS options");
   PetscCall(PetscOptionsReal("-petscpartitioner_metis_imbalance", "Allowed load imbalance (max part / mean part)", "",
                              m->imbalance, &m->imbalance, NULL));
-  PetscCall(PetscOptionsEList("-petscpartitioner_metis_objective", "Objective: edge cut or communication volume", "",
-                              objectives, 2, objectives[m->objective], &m->objective, NULL));
+  PetscCall(FCOptionsEList(PetscOptionsObject, "-petscpartitioner_metis_objective",
+                           "Objective: edge cut or communication volume", objectives, 2, &m->objective, NULL));
   PetscCall(FCOptionsIntRange(PetscOptionsObject, "-petscpartitioner_metis_seed", "METIS random seed", 0, PETSC_MAX_INT,
                               &m->seed, NULL));
   PetscOptionsHeadEnd();

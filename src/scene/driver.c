@@ -1,5 +1,5 @@
 /* The executable (src/main.c is main over it): PetscInitialize, a scene from the options,
-   FCSceneRun, and the exit status of docs/output.md. */
+   FCSceneRun, and the exit status of docs/options.md (FCExitStatus, src/util/errors.c). */
 #include "../fcimpl.h"
 #include <unistd.h>
 
@@ -22,6 +22,7 @@ static PetscErrorCode RunScene(void)
 int FCMain(int argc, char **argv)
 {
   PetscErrorCode ierr;
+  int            status;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(FCPushErrorHandler(PETSC_TRUE));
@@ -30,32 +31,19 @@ int FCMain(int argc, char **argv)
      decided collectively), a failed write of the output (collective) and SIGINT/SIGTERM are
      detected on every rank alike: finish cleanly with exit status 1, 2, 3 or 128 + signal; anything else may have
      happened on one rank only: abort them all */
-  if (ierr == PETSC_ERR_USER_INPUT || ierr == PETSC_ERR_ARG_UNKNOWN_TYPE) {
-    (void)PetscFinalize();
-    return 1;
+  status = ierr ? FCExitStatus(ierr) : 0;
+  if (status == 3 && FCOutputFileLeftOpen()) {
+    /* a failed write inside HDF5: the file stays open as its last flush left it (HDF5 1.10 cannot
+       close a file whose metadata it cannot write, and its clean-up inside MPI_Finalize would crash
+       on it: src/io/output.c, FCOutputDestroy), so the ranks meet and leave without that clean-up */
+    (void)MPI_Barrier(PETSC_COMM_WORLD);
+    fflush(stdout);
+    fflush(stderr);
+    _exit(3);
   }
-  if (ierr == PETSC_ERR_FP || ierr == PETSC_ERR_CONV_FAILED || ierr == PETSC_ERR_MEM) {
+  if (status) {
     (void)PetscFinalize();
-    return 2;
-  }
-  if (ierr == PETSC_ERR_FILE_WRITE) { /* a failed write of the output, made collective (src/io/h5util.c) */
-    if (FCOutputFileLeftOpen()) {
-      /* it failed inside HDF5: the file stays open as its last flush left it (HDF5 1.10 cannot
-         close a file whose metadata it cannot write, and its clean-up inside MPI_Finalize would
-         crash on it: src/io/output.c, FCOutputDestroy), so the ranks meet and leave without
-         that clean-up */
-      (void)MPI_Barrier(PETSC_COMM_WORLD);
-      fflush(stdout);
-      fflush(stderr);
-      _exit(3);
-    }
-    (void)PetscFinalize();
-    return 3;
-  }
-  if (ierr == PETSC_ERR_SIG) {
-    int sig = FCSignalsCaught();
-    (void)PetscFinalize();
-    return 128 + sig;
+    return status;
   }
   if (ierr) PETSCABORT(PETSC_COMM_WORLD, ierr);
   PetscCall(PetscFinalize());

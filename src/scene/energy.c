@@ -113,6 +113,16 @@ PetscErrorCode FCEnergyGuardCheck(FCEnergyGuard *g, MPI_Comm comm, PetscInt nbod
   }
   g->reported = PETSC_TRUE;
   PetscCall(FCBodyGetName(bodies[worst], &name));
+  if (PetscIsInfOrNanReal(Etot) || PetscIsInfOrNanReal(work)) { /* not a growth: no figure to compare */
+    PetscCall(FCBodyGetEnergy(bodies[worst], &E));
+    SETERRQ(comm, PETSC_ERR_FP,
+            "step %" PetscInt_FMT " (t = %g s): the energy of body '%s' is not finite (kinetic %g, elastic %g, gravity "
+            "%g J; work of its loads and prescribed motion %g J): its state holds a NaN or an infinity. A numerical "
+            "blow-up grows finite first, and this guard stops it there (-energy_growth_limit); a state that is not "
+            "finite at once comes from an input that is not: a load, a table of time or a trajectory, a kinematic "
+            "body's pose",
+            step, (double)t, name, (double)E.kinetic, (double)E.elastic, (double)E.gravity, (double)work);
+  }
   if (FCBodyIsDeformable(bodies[worst]))
     PetscCall(PetscSNPrintf(cause, sizeof(cause), " or body '%s' too stiff for it (-%s_young)", name, name));
   SETERRQ(comm, PETSC_ERR_CONV_FAILED,

@@ -59,9 +59,9 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   {
     const char *ti[] = {"euler", "static"};
     PetscInt    k    = s->quasistatic ? 1 : 0;
-    PetscCall(PetscOptionsEList(
-        "-time_integration", "euler: implicit Euler (eq. 5); static: no inertia, each step the equilibrium of its time",
-        NULL, ti, 2, ti[k], &k, NULL));
+    PetscCall(FCOptionsEList(PetscOptionsObject, "-time_integration",
+                             "euler: implicit Euler (eq. 5); static: no inertia, each step the equilibrium of its time",
+                             ti, 2, &k, NULL));
     s->quasistatic = k == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
   PetscCall(PetscOptionsString("-restart", "Continue from the last complete output step of this HDF5 file", NULL,

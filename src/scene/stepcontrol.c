@@ -28,9 +28,9 @@ PetscErrorCode FCStepControlSetFromOptions(FCStepControl *c, MPI_Comm comm, Pets
   {
     const char *onoff[] = {"off", "on"};
     PetscInt    a       = 1;
-    PetscCall(PetscOptionsEList("-time_step_control",
-                                "Redo a failed step from its start with half the time step (on), or stop (off)", NULL,
-                                onoff, 2, onoff[a], &a, NULL));
+    PetscCall(FCOptionsEList(PetscOptionsObject, "-time_step_control",
+                             "Redo a failed step from its start with half the time step (on), or stop (off)", onoff, 2,
+                             &a, NULL));
     c->on = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
   PetscCall(FCOptionsReal(PetscOptionsObject, "-time_step_min",

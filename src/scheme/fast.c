@@ -64,9 +64,9 @@ static PetscErrorCode SetFromOptions_Fast(FCScheme scheme, PetscOptionItems *Pet
   {
     const char *when[] = {"newton", "sweep"};
     PetscInt    a      = fast->sweep_update ? 1 : 0;
-    PetscCall(PetscOptionsEList("-fast_update",
-                                "When the frames follow the forces: between contact solves, or after every sweep", NULL,
-                                when, 2, when[a], &a, NULL));
+    PetscCall(FCOptionsEList(PetscOptionsObject, "-fast_update",
+                             "When the frames follow the forces: between contact solves, or after every sweep", when, 2,
+                             &a, NULL));
     fast->sweep_update = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
   PetscCall(PetscOptionsBool("-fast_wk_rows", "With split contact sweeps, each rank forms only its block rows of W_k",

@@ -16,13 +16,33 @@ PetscBool FCErrorIsStepFailure(PetscErrorCode n)
   return n == PETSC_ERR_CONV_FAILED || n == PETSC_ERR_FP ? PETSC_TRUE : PETSC_FALSE;
 }
 
+/* The exit status of an error that every rank raises alike (docs/options.md, "Exit status"; the one
+   table of them): 1 an input error, 2 a run that diverged or could not go on, 3 an output that could
+   not be written, 128 + the signal an interruption; 0 for any other error, which may have happened on
+   one rank only (the driver aborts every rank) */
+int FCExitStatus(PetscErrorCode n)
+{
+  switch (n) {
+  case PETSC_ERR_USER_INPUT:
+  case PETSC_ERR_ARG_UNKNOWN_TYPE:
+    return 1;
+  case PETSC_ERR_FP:
+  case PETSC_ERR_CONV_FAILED:
+  case PETSC_ERR_MEM:
+    return 2;
+  case PETSC_ERR_FILE_WRITE:
+    return 3;
+  case PETSC_ERR_SIG:
+    return 128 + FCSignalsCaught();
+  default:
+    return 0;
+  }
+}
+
+/* Errors reported in one line: those of the table above, and a file that cannot be opened */
 static PetscBool IsUserError(PetscErrorCode n)
 {
-  return n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_WRITE ||
-                 n == PETSC_ERR_ARG_UNKNOWN_TYPE || n == PETSC_ERR_SIG || n == PETSC_ERR_FP ||
-                 n == PETSC_ERR_CONV_FAILED || n == PETSC_ERR_MEM
-             ? PETSC_TRUE
-             : PETSC_FALSE;
+  return FCExitStatus(n) || n == PETSC_ERR_FILE_OPEN ? PETSC_TRUE : PETSC_FALSE;
 }
 
 /* ctx: non-NULL, print (the handler pushed with print) */

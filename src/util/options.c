@@ -96,6 +96,30 @@ PetscErrorCode FCOptionsBool(PetscOptionItems *PetscOptionsObject, const char op
   PetscFunctionReturn(0);
 }
 
+/* A choice among words: PETSc's own error on another word is a traceback that does not say what is
+   accepted. The value is the index of the word in list (compared as PETSc does, ignoring case) */
+PetscErrorCode FCOptionsEList(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[],
+                              const char *const list[], PetscInt n, PetscInt *v, PetscBool *set)
+{
+  char      buf[256], known[1024] = "";
+  PetscBool flg, ok               = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCall(
+      PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, buf, sizeof(buf), &flg));
+  if (flg) {
+    for (PetscInt i = 0; i < n && !ok; i++) PetscCall(PetscStrcasecmp(buf, list[i], &ok));
+    for (PetscInt i = 0; i < n; i++) {
+      PetscCall(PetscStrlcat(known, i ? (i == n - 1 ? " or " : ", ") : "", sizeof(known)));
+      PetscCall(PetscStrlcat(known, list[i], sizeof(known)));
+    }
+    PetscCheck(ok, PetscOptionsObject->comm, PETSC_ERR_USER_INPUT, "Option -%s%s takes %s%s; got '%s'",
+               PrefixOf(PetscOptionsObject), opt + 1, n > 1 ? "one of " : "", known, buf);
+  }
+  PetscCall(PetscOptionsEList(opt, text, NULL, list, n, list[*v], v, set));
+  PetscFunctionReturn(0);
+}
+
 /* A real value must be finite and, unless 0, normal: a subnormal (below 2.2e-308 in magnitude)
    has lost precision and makes every quantity derived from it meaningless. entry < 0: a scalar */
 static PetscErrorCode CheckReal(PetscOptionItems *obj, const char opt[], PetscInt entry, PetscReal v)

@@ -82,4 +82,5 @@ PETSC_INTERN PetscErrorCode FCTableDestroy(FCTable *);
 
 /* Errors a scene's step control redoes, and the handler around the calls that raise them (src/util/errors.c) */
 PETSC_INTERN PetscBool      FCErrorIsStepFailure(PetscErrorCode);
+PETSC_INTERN int            FCExitStatus(PetscErrorCode);
 PETSC_INTERN PetscErrorCode FCPushStepErrorHandler(void);
