@@ -176,9 +176,13 @@ status = [
     ("factorization reuse, Neo-Hookean", D + ["-cube_material", "neohookean", "-cube_factorization", "reuse"], 1,
      "-cube_factorization reuse warps the factor of a co-rotational body"),
     ("output directory missing", D + ["-output_file", out("no/such/dir/x.h5")], 3, "Cannot create output file"),
+    ("output file a FIFO", D + ["-output_file", out("fifo.h5")], 1, "exists and is not a regular file"),
+    ("output file a directory", D + ["-output_file", out("optsdir")], 1, "exists and is not a regular file"),
 ]
+if not os.path.exists(out("fifo.h5")):
+    os.mkfifo(out("fifo.h5"))
 if NP > 1:
-    status = [cs for cs in status if cs[0] in ("bad -<b>_inverted", "output directory missing")]
+    status = [cs for cs in status if cs[0] in ("bad -<b>_inverted", "output directory missing", "output file a FIFO")]
 for what, args, code, expect in status:
     p = run(args + ([] if "-output_file" in args else ["-output_file", out("bad_np%d.h5" % NP)]), np_=NP, check=False,
             timeout=120)
