@@ -24,6 +24,7 @@ int FCMain(int argc, char **argv)
   PetscErrorCode ierr;
   int            status;
 
+  if (FCSignalsBlock()) return 1; /* before MPI starts its threads (src/util/signals.c) */
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   PetscCall(FCPushErrorHandler(PETSC_TRUE));
   ierr = RunScene();

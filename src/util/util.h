@@ -54,6 +54,7 @@ PETSC_INTERN PetscErrorCode FCInputsAddOptionsFiles(void);
 PETSC_INTERN PetscErrorCode FCInputsCheckOutput(MPI_Comm, const char path[], const char what[]);
 
 /* SIGINT/SIGTERM: recorded by a handler, acted on between steps (src/util/signals.c) */
+PETSC_INTERN PetscErrorCode FCSignalsBlock(void);
 PETSC_INTERN PetscErrorCode FCSignalsInstall(void);
 PETSC_INTERN PetscErrorCode FCSignalsPending(MPI_Comm, int *sig);
 PETSC_INTERN int            FCSignalsCaught(void);
