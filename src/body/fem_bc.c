@@ -150,9 +150,6 @@ static PetscErrorCode NewConstraint(FCBody body, const char region[], FCFEMConst
              "Body '%s': a region is longer than %d characters", body->name, (int)sizeof((*c)->region) - 1);
   PetscCheck(!strchr(region, '/'), body->comm, PETSC_ERR_USER_INPUT,
              "Body '%s': region '%s' has a '/', which cannot name its reaction in the output", body->name, region);
-  for (PetscInt k = 0; k < fem->ncons; k++)
-    PetscCheck(strcmp(fem->cons[k].region, region), body->comm, PETSC_ERR_USER_INPUT,
-               "Body '%s': region '%s' is constrained twice", body->name, region);
   *c = &fem->cons[fem->ncons];
   PetscCall(PetscStrncpy((*c)->region, region, sizeof((*c)->region)));
   PetscFunctionReturn(0);
