@@ -39,7 +39,6 @@ static PetscErrorCode SetFromOptions_Kinematic(FCBody body)
   PetscOptionsBegin(body->comm, body->prefix, "Kinematic body options", "FCBody");
   PetscCall(FCOptionsRealArray(PetscOptionsObject, "-pivot", "Point the angular velocity turns the body about", 3,
                                k->pivot, &set));
-  PetscCall(PetscFree(k->trajectory));
   PetscCall(FCOptionsStringAlloc(PetscOptionsObject, "-trajectory",
                                  "Table of t,x,y,z[,qw,qx,qy,qz]: the centre (and orientation) over time",
                                  &k->trajectory, NULL));

@@ -48,7 +48,8 @@ static PetscErrorCode CheckNumbers(PetscOptionItems *obj, const char opt[], Pets
 
 /* A string option of any length (PETSc's own copy into a fixed buffer would cut a long value
    silently): PetscOptionsString registers it for -help, and its whole value is then taken from
-   the options database */
+   the options database. *value is NULL or an earlier value, which is freed (PetscOptionsBegin
+   may run its block more than once) */
 PetscErrorCode FCOptionsStringAlloc(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[],
                                     char **value, PetscBool *set)
 {
@@ -59,6 +60,7 @@ PetscErrorCode FCOptionsStringAlloc(PetscOptionItems *PetscOptionsObject, const 
   PetscFunctionBegin;
   PetscCall(PetscOptionsString(opt, text, NULL, "", scratch, sizeof(scratch), NULL));
   PetscCall(PetscOptionsFindPair(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, &v, &flg));
+  PetscCall(PetscFree(*value));
   PetscCall(PetscStrallocpy(flg && v ? v : "", value));
   if (set) *set = flg;
   PetscFunctionReturn(0);
