@@ -66,6 +66,10 @@ PETSC_EXTERN PetscErrorCode FCOptionsRealArray(PetscOptionItems *, const char op
                                                PetscReal[], PetscBool *);
 PETSC_EXTERN PetscErrorCode FCOptionsRealList(PetscOptionItems *, const char opt[], const char text[], PetscInt nmax,
                                               PetscReal[], PetscInt *n, PetscBool *);
+/* A string option of any length: *value (NULL or an earlier value, freed) is allocated (PetscFree),
+   "" when the option is not given */
+PETSC_EXTERN PetscErrorCode FCOptionsStringAlloc(PetscOptionItems *, const char opt[], const char text[], char **value,
+                                                 PetscBool *);
 /* Range checks whose error names the option with its prefix */
 PETSC_EXTERN PetscErrorCode FCCheckPositive(MPI_Comm, const char prefix[], const char opt[], PetscReal);
 PETSC_EXTERN PetscErrorCode FCCheckNonNegative(MPI_Comm, const char prefix[], const char opt[], PetscReal);

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (tools/fuzz/, clang -fsanitize=fuzzer,address, in build-fuzz/) and
 # runs each for a bounded time on a seed corpus; exits non-zero when one crashed.
-#   scripts/fuzz.sh [seconds per target, default 60] [target ...]   (targets: fuzz_options fuzz_mesh)
+#   scripts/fuzz.sh [seconds per target, default 60] [target ...]   (targets: fuzz_options fuzz_mesh fuzz_table)
 # Needs clang and its runtime (apt-get install clang libclang-rt-14-dev; scripts/setup.sh does it);
 # exits 77 (ctest: skipped) without clang. Environment:
 #   FUZZ_DIR   where corpora, logs and crash inputs go (default build-fuzz/run)
-# Seeds: the scenes of input/ (options, the Table 1 meshes swapped for a small one) and the
+# Seeds: the scenes of input/ (options, the Table 1 meshes swapped for a small one), the
 # repository's meshes (meshes/cube_coarse.msh, beam_n2.msh, tests/data/*.msh, plus small ASCII
-# meshes written by gmsh). A crash leaves its input as $FUZZ_DIR/<target>/crash-*; replay it with
+# meshes written by gmsh) and tables of time (inline and CSV, each shape fuzz_table asks for). A crash leaves its input as $FUZZ_DIR/<target>/crash-*; replay it with
 #   build-fuzz/tools/fuzz/<target> <crash file>
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,7 +15,7 @@ ROOT="$(pwd)"
 SECONDS_PER_TARGET="${1:-60}"
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_options fuzz_mesh)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_options fuzz_mesh fuzz_table)
 FUZZ_DIR="${FUZZ_DIR:-$ROOT/build-fuzz/run}"
 
 if ! command -v clang >/dev/null 2>&1; then
@@ -52,6 +52,15 @@ seed_mesh() { # $1: corpus directory
       cp "$tmp/cube_$fmt.msh" "$1/seed_ascii_cube_$fmt.msh" || true
   done
   rm -rf "$tmp"
+}
+
+seed_table() { # $1: corpus directory; the first byte chooses the table's shape (tools/fuzz/fuzz_table.c)
+  printf '\0000:0,0,0;1:0.3,0,0.5' >"$1/seed_trajectory_inline"
+  printf '\000t,x,y,z,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n1,0.3,0,0.5,0,0,0,1\n' >"$1/seed_trajectory_csv"
+  printf '\001t,ux,uy,uz\n# a comment\n0,0,0,0\r\n0.5,0,0,-0.01\r\n1,0,0,-0.02\r\n' >"$1/seed_displacement_csv"
+  printf '\0010:0,0,0;1:0,0,-100' >"$1/seed_force_inline"
+  printf '\0020:0;1:1e5' >"$1/seed_pressure_inline"
+  printf '\003t,a,b\n0,1,2\n1,3,4\n' >"$1/seed_any_csv"
 }
 
 # A crash input is replayed alone for its stack. One whose stack reaches PETSc's gmsh reader
@@ -92,15 +101,19 @@ for t in "${TARGETS[@]}"; do
   case "$t" in
     fuzz_options) seed_options "$dir/seeds"; extra=(-dict="$ROOT/tools/fuzz/options.dict" -max_len=4096) ;;
     fuzz_mesh) seed_mesh "$dir/seeds"; extra=(-max_len=65536) ;;
+    fuzz_table) seed_table "$dir/seeds"; extra=(-max_len=65536) ;;
     *) echo "fuzz: unknown target $t" >&2; exit 2 ;;
   esac
-  echo "fuzz: $t for ${SECONDS_PER_TARGET} s (log $dir/log.txt)"
+  secs="$SECONDS_PER_TARGET"
+  # a table is parsed in microseconds: a third of the time covers far more inputs than the others'
+  [ "$t" != fuzz_table ] || secs=$(((SECONDS_PER_TARGET + 2) / 3))
+  echo "fuzz: $t for ${secs} s (log $dir/log.txt)"
   start=$(date +%s)
   set +e
   # fork mode: the campaign goes on after a crash (each is saved and classified below); from the
   # repository root, as the seeds name meshes by relative paths
   mkdir -p "$dir/tmp" # the targets' scratch files and libFuzzer's fork directory
-  TMPDIR="$dir/tmp" "$bin" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 -max_total_time="$SECONDS_PER_TARGET" \
+  TMPDIR="$dir/tmp" "$bin" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 -max_total_time="$secs" \
     -timeout=60 -rss_limit_mb=4096 -close_fd_mask=1 -artifact_prefix="$dir/" "${extra[@]}" \
     "$dir/corpus" "$dir/seeds" >"$dir/log.txt" 2>&1
   rc=$?

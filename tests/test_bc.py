@@ -20,6 +20,9 @@ on --np ranks:
   step the block's discrete momentum balance holds, R + F_contact + m g = m (c'' + alpha c') with c
   the block's centroid (the sum of the rows of the step's equations: the elastic forces of a linear
   body sum to zero), to 1e-8 of m g;
+- a load on a region sharing vertices with the fixed one (xmax, the volume group "body"): its share
+  on the fixed vertices goes to the support, statically the reaction is the whole load (and the
+  weight);
 - quasi-static (-time_integration static): the compression's reaction follows its ramp at every
   step; the sphere of input/pressed.opts pressed on its block: the cap's reaction is the contact
   force at every step, and its contact_pressure field sums to that force over the vertex areas;
@@ -75,6 +78,17 @@ uz = pos[:, 2] - ref[:, 2]
 c.check(np.abs(uz - (-0.01) * (ref[:, 2] + 0.5)).max() < 1e-6 * 0.01,
         "a total force E A eps on zmax: u_z = -eps (z + 1/2) everywhere (%.1e)" % np.abs(uz + 0.01 * (ref[:, 2] + 0.5)).max())
 c.check(abs(h["bodies/cube/reactions/zmin"][-1][2] - E * 0.01) < 1e-6 * E * 0.01, "its reaction on zmin is the force")
+
+# a load on a region that shares vertices with the fixed one (xmax's bottom edge is on zmin; the volume
+# group "body" holds zmin): the share on the fixed vertices goes to the support, so that statically the
+# reaction is the whole load, and with gravity the load and the weight
+for reg, g in [("xmax", 0.0), ("body", 0.0), ("xmax", -9.81)]:
+    h = cube("share_" + reg, ["-cube_poisson", 0.3, "-cube_fixed", "zmin", "-cube_force", reg + "=0:100,0,0",
+                              "-time_integration", "static", "-gravity", "0,0,%g" % g])
+    R, W = h["bodies/cube/reactions/zmin"][-1], 100 * 1.0 * g
+    c.check(np.abs(R[:3] - [-100.0, 0.0, -W]).max() < 1e-9 * 100,
+            "100 N on %s of a cube fixed on zmin (gravity %g): the reaction is %s, the load and the weight"
+            % (reg, g, R[:3]))
 
 
 # quasi-static: every step is the equilibrium of its time

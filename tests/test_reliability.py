@@ -8,7 +8,14 @@
    files by identity (hard and symbolic links, the XDMF index);
 3. physically absurd runs stop: the energy guard, derived quantities at set-up, integer options
    past their range, a restart with another -time_step (continues at the stored time);
-4. messages that name the option, body, file or vertex and the accepted range.
+4. messages that name the option, body, file or vertex and the accepted range;
+5. tables and regions (issue 56): values of any length (a 500-row trajectory and a 2000-row load,
+   inline and as CSV, give the same run), and each of these a one-line error naming the option,
+   exit 1: an empty region prescribed, a zero quaternion in a trajectory, -translate or -center
+   beside a trajectory, a region given twice or under its name and its number, a box with a
+   seventh number or a bound not finite, an empty table cell, a contact pair given twice, a FIFO or
+   a directory as a table file, a region named with a '/' (before the output file is made); a
+   group named "7" is selected by its name.
 Usage: test_reliability.py [--np N]"""
 import hashlib
 import os
@@ -221,4 +228,102 @@ for what, f in [("node at x = -1e300", "tests/data/far_node.msh"),
                  "-cube_dm_plex_filename", "magnitude at most 1e+100")
 expect_error("second-order tetrahedra", DROP + o + ["-cube_dm_plex_filename", "tests/data/second_order.msh"], 1,
              "tests/data/second_order.msh", "-cube_dm_plex_filename", "first-order", "gmsh -order 1")
+
+# ---------------------------------------------------------------------------------------------
+# 5. Issue 56: long values, tables and regions (docs/options.md, "Tables of time" and "Regions")
+# ---------------------------------------------------------------------------------------------
+CUBE = ["-scene_bodies", "cube", "-cube_type", "fem", "-cube_dm_plex_filename", "meshes/cube_coarse.msh",
+        "-cube_material", "linear", "-cube_young", "1e5", "-cube_poisson", "0.3", "-cube_density", "100",
+        "-gravity", "0,0,0", "-time_step", "0.1", "-time_steps", "2", "-quiet"]
+TOOL = ["-scene_bodies", "cube,tool", "-tool_type", "kinematic", "-tool_shape", "sphere", "-tool_radius", "0.1",
+        "-cube_fixed", "zmin", "-time_step", "0.25", "-time_steps", "6"]
+
+
+def csv(name, header, rows):
+    path = out(name)
+    with open(path, "w") as f:
+        f.write(header + "\n" + "".join(",".join(r) + "\n" for r in rows))
+    return path
+
+
+def inline(rows):
+    return ";".join(r[0] + ":" + ",".join(r[1:]) for r in rows)
+
+
+# a 500-row trajectory and a 2000-row load table, inline (tens of kB of option value) and as CSV files,
+# give the same run: no value is cut at any length
+traj = [["%.17g" % t, "%.17g" % (0.3 * t), "0", "%.17g" % (0.5 * t)] for t in np.linspace(0.0, 1.0, 500)]
+load = [["%.17g" % t, "0", "0", "%.17g" % (100.0 + 0.0 * t)] for t in np.linspace(0.0, 1.0, 2000)]
+runs = {}
+for how, tv, lv in [("inline", inline(traj), inline(load)),
+                    ("csv", csv("traj500_np%d.csv" % NP, "t,x,y,z", traj), csv("load2000_np%d.csv" % NP, "t,fx,fy,fz", load))]:
+    f = out("long_%s_np%d.h5" % (how, NP))
+    p = run(CUBE + TOOL + ["-tool_trajectory", tv, "-cube_force", "zmax=" + lv, "-output_file", f], np_=NP, check=False)
+    with h5py.File(f, "r") as h:
+        runs[how] = (p.returncode, h["bodies/tool/centroid"][:], h["bodies/cube/reactions/zmin"][:],
+                     fctest.sorted_positions(h, "cube")[1])
+(ra, ta, Ra, xa), (rb, tb, Rb, xb) = runs["inline"], runs["csv"]
+# the same tables: the same run, bit for bit on one rank (on two, the partition and the sums' order may differ)
+tol = 0.0 if NP == 1 else 1e-12
+ok = ra == 0 and rb == 0 and np.array_equal(ta, tb) and np.abs(Ra - Rb).max() <= tol * 100 and \
+    np.abs(xa - xb).max() <= tol
+c.check(ok, "a 500-row trajectory and a 2000-row load, inline (%d and %d characters) and as CSV: the same run (exit %d, %d)"
+        % (len(inline(traj)), len(inline(load)), ra, rb))
+c.check(np.abs(ta[-1] - [0.3, 0.0, 0.5]).max() < 1e-12 and abs(Ra[-1][2] + 100.0) < 1e-3 * 100,
+        "... the tool ends at the last row (%s), the load is the table's 100 N (reaction %.12g)" % (ta[-1], Ra[-1][2]))
+
+o5 = ["-output_file", out("inputs_np%d.h5" % NP)]
+q0 = "0:0,0,0,1,0,0,0;1:0.3,0,0.5,0,0,0,0"
+for what, args, needles in [
+        ("displacement on an empty region", ["-cube_displacement", "box:5,5,5,6,6,6=0:0,0,0;1:0,0,0.1"],
+         ("-cube_displacement", "box:5,5,5,6,6,6", "empty")),
+        ("zero quaternion in a trajectory", TOOL + ["-tool_trajectory", q0, "-energy_growth_limit", "0"],
+         ("-tool_trajectory", "row 2", "quaternion")),
+        ("-tool_translate beside -tool_trajectory", TOOL + ["-tool_trajectory", "0:0,0,1;1:0,0,2", "-tool_translate", "1,0,0"],
+         ("-tool_trajectory", "-tool_translate")),
+        ("-tool_center beside -tool_trajectory", TOOL + ["-tool_trajectory", "0:0,0,1;1:0,0,2", "-tool_center", "1,0,0"],
+         ("-tool_trajectory", "-tool_center")),
+        ("one region under its name and number", ["-cube_fixed", "zmin,5"], ("-cube_fixed", "'5'", "'zmin'")),
+        ("a region given twice", ["-cube_fixed", "zmin,zmin"], ("zmin", "twice")),
+        ("a box with a seventh number", ["-cube_fixed", "box:-1,-1,-1,1,1,-0.4,5"], ("-cube_fixed", "seventh number")),
+        ("a box with infinite bounds", ["-cube_fixed", "box:-inf,-inf,-inf,inf,inf,-0.4"], ("-cube_fixed", "finite")),
+        ("a box with NaN bounds", ["-cube_fixed", "box:nan,-1,-1,1,1,-0.4"], ("-cube_fixed", "finite")),
+        ("an empty cell in a CSV table",
+         ["-cube_fixed", "zmin", "-cube_force", "zmax=" + csv("emptycell_np%d.csv" % NP, "t,fx,fy,fz", [["0", "", "0", "0", "100"]])],
+         ("-cube_force", "row 1", "empty")),
+        ("an empty cell inline", ["-cube_fixed", "zmin", "-cube_force", "zmax=0:0,,100"], ("-cube_force", "empty"))]:
+    expect_error(what, CUBE + args + o5, 1, *needles)
+expect_error("a contact pair given twice", DROP + o5 + ["-contact_pairs", "cube:ground,ground:cube"], 1, "-contact_pairs",
+             "twice")
+
+# a table file that is not a regular file: a FIFO (its read would block), a directory
+fifo = out("fifo_np%d.csv" % NP)
+os.mkfifo(fifo)
+os.makedirs(out("tabledir"), exist_ok=True)
+for what, path in [("a FIFO as a table file", fifo), ("a directory as a table file", out("tabledir"))]:
+    expect_error(what, CUBE + ["-cube_fixed", "zmin", "-cube_force", "zmax=" + path] + o5, 1, "-cube_force", path,
+                 "not a regular file")
+    expect_error(what + " (trajectory)", CUBE + TOOL + ["-tool_trajectory", path] + o5, 1, "-tool_trajectory",
+                 "not a regular file")
+
+# region names: a group named with a '/' cannot name its reaction (refused at set-up: no output file
+# is made), a group named "7" is selected by its name
+with open(os.path.join(ROOT, "meshes/cube_coarse.msh"), "rb") as f:
+    msh = f.read()
+for name, a, b in [("slash", b'"xmax"', b'"x/ax"'), ("seven", b'"ymax"', b'"7"')]:
+    with open(out("cube_%s.msh" % name), "wb") as f:
+        f.write(msh.replace(a, b, 1))
+f = out("slash_np%d.h5" % NP)
+expect_error("a region named with a '/'", CUBE + ["-cube_dm_plex_filename", out("cube_slash.msh"), "-cube_fixed", "x/ax",
+                                                  "-output_file", f], 1, "x/ax", "'/'")
+c.check(not os.path.exists(f), "... refused before the output file is made")
+f = out("seven_np%d.h5" % NP)
+p = run(CUBE + ["-cube_dm_plex_filename", out("cube_seven.msh"), "-cube_fixed", "7", "-gravity", "0,0,-9.81",
+                "-output_file", f], np_=NP, check=False)
+ok = p.returncode == 0
+if ok:
+    with h5py.File(f, "r") as h:
+        R = h["bodies/cube/reactions/7"][-1]
+        ok = abs(R[2]) > 0.0 and abs(R[1]) > 0.0
+c.check(ok, "a group named '7' (number 4) is selected by its name (exit %d)%s" % (p.returncode, "" if ok else text(p)[-1500:]))
 c.done()

@@ -16,9 +16,10 @@
 #include "femimpl.h"
 
 /* Splits "region=table,region=table": a region is a name, a number or box: and 6 numbers, and a
-   table's text has no '='; each pair's region and table are copied into reg[], tab[] */
+   table's text has no '='; each pair's region is copied into reg[] (at most 255 characters) and its
+   table, of any length, into tab[] (allocated: the caller frees each) */
 PetscErrorCode FCFEMSplitPairs(FCBody body, const char option[], const char spec[], PetscInt *n, char reg[][256],
-                               char tab[][768])
+                               char *tab[])
 {
   const char *eq[FC_MAX_REGIONS + 1], *start[FC_MAX_REGIONS + 1], *p;
   PetscInt    k = 0;
@@ -50,11 +51,14 @@ PetscErrorCode FCFEMSplitPairs(FCBody body, const char option[], const char spec
   start[k] = spec + strlen(spec) + 1;
   for (PetscInt i = 0; i < k; i++) {
     size_t lr = (size_t)(eq[i] - start[i]), lt = (size_t)(start[i + 1] - 1 - (eq[i] + 1));
-    PetscCheck(lr > 0 && lr < 256 && lt > 0 && lt < 768, body->comm, PETSC_ERR_USER_INPUT,
-               "Option -%s%s: pair %" PetscInt_FMT " of '%s' has an empty or too long region or table", body->prefix,
-               option, i + 1, spec);
+    PetscCheck(lr > 0 && lt > 0, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%s%s: pair %" PetscInt_FMT " has an empty region or table", body->prefix, option, i + 1);
+    PetscCheck(lr < 256, body->comm, PETSC_ERR_USER_INPUT,
+               "Option -%s%s: the region of pair %" PetscInt_FMT " is longer than 255 characters", body->prefix, option,
+               i + 1);
     memcpy(reg[i], start[i], lr);
     reg[i][lr] = 0;
+    PetscCall(PetscMalloc1(lt + 1, &tab[i]));
     memcpy(tab[i], eq[i] + 1, lt);
     tab[i][lt] = 0;
   }
@@ -67,20 +71,24 @@ PetscErrorCode FCFEMBCSetFromOptions(PetscOptionItems *PetscOptionsObject, FCBod
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
-  PetscCall(PetscOptionsString("-fixed",
-                               "Regions with zero displacement: gmsh groups (name or number) or box:x0,y0,z0,x1,y1,z1",
-                               NULL, fem->bcspec[0], fem->bcspec[0], sizeof(fem->bcspec[0]), NULL));
-  PetscCall(PetscOptionsString("-displacement", "Prescribed displacement: region=table of t,ux,uy,uz[,region=table...]",
-                               NULL, fem->bcspec[1], fem->bcspec[1], sizeof(fem->bcspec[1]), NULL));
-  PetscCall(PetscOptionsString("-force", "Total force on a region: region=table of t,fx,fy,fz[,...]", NULL,
-                               fem->bcspec[2], fem->bcspec[2], sizeof(fem->bcspec[2]), NULL));
-  PetscCall(PetscOptionsString("-traction", "Force per area on a surface region: region=table of t,tx,ty,tz[,...]",
-                               NULL, fem->bcspec[3], fem->bcspec[3], sizeof(fem->bcspec[3]), NULL));
-  PetscCall(PetscOptionsString("-attach", "Regions that follow a kinematic body: region:body[,region:body...]", NULL,
-                               fem->bcspec[5], fem->bcspec[5], sizeof(fem->bcspec[5]), NULL));
-  PetscCall(PetscOptionsString("-pressure",
-                               "Pressure on a surface region (positive into the body): region=table of t,p[,...]", NULL,
-                               fem->bcspec[4], fem->bcspec[4], sizeof(fem->bcspec[4]), NULL));
+  /* values of any length (a table written inline may have thousands of rows) */
+  PetscCall(FCOptionsStringAlloc(
+      PetscOptionsObject, "-fixed",
+      "Regions with zero displacement: gmsh groups (name or number) or box:x0,y0,z0,x1,y1,z1", &fem->bcspec[0], NULL));
+  PetscCall(FCOptionsStringAlloc(PetscOptionsObject, "-displacement",
+                                 "Prescribed displacement: region=table of t,ux,uy,uz[,region=table...]",
+                                 &fem->bcspec[1], NULL));
+  PetscCall(FCOptionsStringAlloc(PetscOptionsObject, "-force",
+                                 "Total force on a region: region=table of t,fx,fy,fz[,...]", &fem->bcspec[2], NULL));
+  PetscCall(FCOptionsStringAlloc(PetscOptionsObject, "-traction",
+                                 "Force per area on a surface region: region=table of t,tx,ty,tz[,...]",
+                                 &fem->bcspec[3], NULL));
+  PetscCall(FCOptionsStringAlloc(PetscOptionsObject, "-attach",
+                                 "Regions that follow a kinematic body: region:body[,region:body...]", &fem->bcspec[5],
+                                 NULL));
+  PetscCall(FCOptionsStringAlloc(PetscOptionsObject, "-pressure",
+                                 "Pressure on a surface region (positive into the body): region=table of t,p[,...]",
+                                 &fem->bcspec[4], NULL));
   PetscFunctionReturn(0);
 }
 
@@ -107,6 +115,26 @@ static PetscErrorCode MarkConstraint(FCBody body, PetscInt k, const char option[
              "Body '%s': regions '%s' and '%s' share vertices, and one of them is prescribed (-%sdisplacement or "
              "-%sattach): a vertex has one constraint",
              body->name, fem->cons[clash].region, fem->cons[k].region, body->prefix, body->prefix);
+  { /* an empty region constrains nothing; one whose vertices all belong to a region before it (the
+       same region given twice, or under its name and its number) would report a reaction of 0 */
+    PetscInt cnt[2] = {0, 0}, first = PETSC_MAX_INT;
+    for (PetscInt v = 0; v < m->vEnd - m->vStart; v++) {
+      if (!mark[v]) continue;
+      cnt[0]++;
+      if (fem->creg[v] == k)
+        cnt[1]++;
+      else
+        first = PetscMin(first, fem->creg[v]);
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, 2, MPIU_INT, MPI_SUM, body->comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &first, 1, MPIU_INT, MPI_MIN, body->comm));
+    PetscCheck(cnt[0] > 0, body->comm, PETSC_ERR_USER_INPUT, "Option %s: region '%s' of body '%s' is empty", opt,
+               fem->cons[k].region, body->name);
+    PetscCheck(cnt[1] > 0, body->comm, PETSC_ERR_USER_INPUT,
+               "Option %s: every vertex of region '%s' of body '%s' is in region '%s' given before it (a region given "
+               "twice?): its reaction would be 0",
+               opt, fem->cons[k].region, body->name, fem->cons[first].region);
+  }
   PetscFunctionReturn(0);
 }
 
@@ -118,6 +146,10 @@ static PetscErrorCode NewConstraint(FCBody body, const char region[], FCFEMConst
   PetscFunctionBegin;
   PetscCheck(fem->ncons < FC_MAX_REGIONS, body->comm, PETSC_ERR_USER_INPUT, "Body '%s': more than %d constraints",
              body->name, FC_MAX_REGIONS);
+  PetscCheck(strlen(region) < sizeof((*c)->region), body->comm, PETSC_ERR_USER_INPUT,
+             "Body '%s': a region is longer than %d characters", body->name, (int)sizeof((*c)->region) - 1);
+  PetscCheck(!strchr(region, '/'), body->comm, PETSC_ERR_USER_INPUT,
+             "Body '%s': region '%s' has a '/', which cannot name its reaction in the output", body->name, region);
   *c = &fem->cons[fem->ncons];
   PetscCall(PetscStrncpy((*c)->region, region, sizeof((*c)->region)));
   PetscFunctionReturn(0);
@@ -125,7 +157,7 @@ static PetscErrorCode NewConstraint(FCBody body, const char region[], FCFEMConst
 
 /* The next item of a comma-separated list of regions (a box takes its six numbers, and what follows
    the sixth up to the next comma, as -attach's ":body"); *s moves past it */
-static PetscErrorCode NextItem(char **s, char item[], size_t len)
+static PetscErrorCode NextItem(FCBody body, const char option[], char **s, char item[], size_t len)
 {
   char    *tok    = *s;
   PetscInt commas = !strncmp(tok, "box:", 4) ? 6 : 1;
@@ -135,7 +167,9 @@ static PetscErrorCode NextItem(char **s, char item[], size_t len)
     if (**s == ',') commas--;
     if (commas) (*s)++;
   }
-  PetscCall(PetscStrncpy(item, tok, PetscMin(len, (size_t)(*s - tok) + 1)));
+  PetscCheck((size_t)(*s - tok) < len, body->comm, PETSC_ERR_USER_INPUT,
+             "Option -%s%s: an item is longer than %d characters", body->prefix, option, (int)len - 1);
+  PetscCall(PetscStrncpy(item, tok, (size_t)(*s - tok) + 1));
   if (**s == ',') (*s)++;
   PetscFunctionReturn(0);
 }
@@ -161,13 +195,21 @@ PetscErrorCode FCFEMBCSetUpConstraints(FCBody body)
     PetscCall(NewConstraint(body, item, &c));
     PetscCall(MarkConstraint(body, fem->ncons++, "fixed_box", mark));
   }
-  for (char *s = fem->bcspec[0]; *s;) { /* -fixed: names and boxes */
-    PetscCall(NextItem(&s, item, sizeof(item)));
+  for (char *s = fem->bcspec[0]; s && *s;) { /* -fixed: names and boxes */
+    char *end;
+    if (s != fem->bcspec[0] && !strncmp(fem->cons[fem->ncons - 1].region, "box:", 4)) { /* a box's seventh number? */
+      (void)strtod(s, &end);
+      PetscCheck(end == s || (*end && *end != ','), body->comm, PETSC_ERR_USER_INPUT,
+                 "Option -%sfixed: '%s' has a seventh number after it (a box has six: x0,y0,z0,x1,y1,z1; a group "
+                 "given by number goes before the box)",
+                 body->prefix, fem->cons[fem->ncons - 1].region);
+    }
+    PetscCall(NextItem(body, "fixed", &s, item, sizeof(item)));
     PetscCall(NewConstraint(body, item, &c));
     PetscCall(MarkConstraint(body, fem->ncons++, "fixed", mark));
   }
-  if (fem->bcspec[1][0]) { /* -displacement */
-    char     reg[FC_MAX_REGIONS][256], tab[FC_MAX_REGIONS][768], what[FC_MAX_NAME + 300];
+  if (fem->bcspec[1] && fem->bcspec[1][0]) { /* -displacement */
+    char     reg[FC_MAX_REGIONS][256], *tab[FC_MAX_REGIONS], what[FC_MAX_NAME + 300];
     PetscInt n;
     PetscCall(FCFEMSplitPairs(body, "displacement", fem->bcspec[1], &n, reg, tab));
     for (PetscInt i = 0; i < n; i++) {
@@ -177,11 +219,12 @@ PetscErrorCode FCFEMBCSetUpConstraints(FCBody body)
       PetscCall(FCTableCreate(body->comm, tab[i], 3, 3, what, &c->table));
       PetscCall(MarkConstraint(body, fem->ncons++, "displacement", mark));
     }
+    for (PetscInt i = 0; i < n; i++) PetscCall(PetscFree(tab[i]));
   }
-  for (char *s = fem->bcspec[5]; *s;) { /* -attach region:body */
+  for (char *s = fem->bcspec[5]; s && *s;) { /* -attach region:body */
     char  *colon;
     FCBody b = NULL;
-    PetscCall(NextItem(&s, item, sizeof(item)));
+    PetscCall(NextItem(body, "attach", &s, item, sizeof(item)));
     colon = strrchr(item, ':');
     PetscCheck(colon && colon != item + 3 && colon[1], body->comm, PETSC_ERR_USER_INPUT,
                "Option -%sattach: '%s' is not region:body", body->prefix, item);
@@ -342,7 +385,9 @@ PetscErrorCode FCFEMBCDestroy(FCBody body)
     PetscCall(PetscFree(fem->load[l].facev));
     PetscCall(PetscFree(fem->load[l].weight));
   }
+  for (int i = 0; i < 6; i++) PetscCall(PetscFree(fem->bcspec[i]));
   PetscCall(VecDestroy(&fem->fload));
+  PetscCall(PetscFree(fem->fcons));
   PetscCall(VecDestroy(&fem->varea));
   PetscCall(PetscFree(fem->creg));
   PetscCall(PetscFree(fem->ccell));

@@ -10,10 +10,10 @@ static PetscErrorCode SetUpLoads(FCBody body, FCLoadKind kind, const char option
   FEM     *fem = (FEM *)body->data;
   FCMesh  *m   = &fem->mesh;
   PetscInt nv = m->vEnd - m->vStart, nc = m->cEnd - m->cStart, n;
-  char     reg[FC_MAX_REGIONS][256], tab[FC_MAX_REGIONS][768], what[FC_MAX_NAME + 300], opt[FC_MAX_NAME + 32];
+  char     reg[FC_MAX_REGIONS][256], *tab[FC_MAX_REGIONS], what[FC_MAX_NAME + 300], opt[FC_MAX_NAME + 32];
 
   PetscFunctionBegin;
-  if (!spec[0]) PetscFunctionReturn(0);
+  if (!spec || !spec[0]) PetscFunctionReturn(0);
   PetscCall(FCFEMSplitPairs(body, option, spec, &n, reg, tab));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s%s", body->prefix, option));
   for (PetscInt i = 0; i < n; i++) {
@@ -66,6 +66,7 @@ static PetscErrorCode SetUpLoads(FCBody body, FCLoadKind kind, const char option
     PetscCall(PetscFree2(vmark, cmark));
     fem->nload++;
   }
+  for (PetscInt i = 0; i < n; i++) PetscCall(PetscFree(tab[i]));
   PetscFunctionReturn(0);
 }
 
@@ -77,10 +78,11 @@ PetscErrorCode FCFEMLoadsSetUp(FCBody body)
   PetscCall(SetUpLoads(body, FC_LOAD_FORCE, "force", fem->bcspec[2]));
   PetscCall(SetUpLoads(body, FC_LOAD_TRACTION, "traction", fem->bcspec[3]));
   PetscCall(SetUpLoads(body, FC_LOAD_PRESSURE, "pressure", fem->bcspec[4]));
-  for (PetscInt l = 0; l < fem->nload; l++) /* a force on a constrained vertex is taken by the support */
-    for (PetscInt v = 0; v < fem->mesh.vEnd - fem->mesh.vStart; v++)
-      if (fem->fixed[v]) fem->load[l].weight[v] = 0.0;
-  if (fem->nload) PetscCall(VecDuplicate(fem->u, &fem->fload));
+  /* a load on a constrained vertex is taken by its support: it goes into fcons, for the reaction */
+  if (fem->nload) {
+    PetscCall(VecDuplicate(fem->u, &fem->fload));
+    PetscCall(PetscCalloc1(3 * (fem->mesh.vEnd - fem->mesh.vStart) + 1, &fem->fcons));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -100,14 +102,19 @@ PetscErrorCode FCFEMLoadsAt(FCBody body, PetscReal t)
     PetscCall(VecGetArray(fl, &f));
     PetscCall(DMGlobalToLocal(m->dm, fem->u, INSERT_VALUES, fem->uloc));
     PetscCall(VecGetArrayRead(fem->uloc, &ul));
+    PetscCall(PetscArrayzero(fem->fcons, 3 * (m->vEnd - m->vStart)));
     for (PetscInt l = 0; l < fem->nload; l++) {
       FCFEMLoad *L = &fem->load[l];
       PetscReal  val[3];
       FCTableEval(L->table, t, val);
       if (L->kind == FC_LOAD_FORCE) {
         for (PetscInt v = 0; v < m->vEnd - m->vStart; v++)
-          if (L->weight[v] != 0.0)
-            for (int d = 0; d < 3; d++) f[fem->ldof[v] + d] += L->weight[v] * val[d];
+          if (L->weight[v] != 0.0) {
+            if (fem->fixed[v])
+              for (int d = 0; d < 3; d++) fem->fcons[3 * v + d] += L->weight[v] * val[d];
+            else
+              for (int d = 0; d < 3; d++) f[fem->ldof[v] + d] += L->weight[v] * val[d];
+          }
         continue;
       }
       for (PetscInt k = 0; k < L->nface; k++) { /* area / 3 to each vertex; pressure along the current normal */
@@ -125,6 +132,8 @@ PetscErrorCode FCFEMLoadsAt(FCBody body, PetscReal t)
         for (int a = 0; a < 3; a++)
           if (!fem->fixed[tv[a]])
             for (int d = 0; d < 3; d++) f[fem->ldof[tv[a]] + d] += load[d];
+          else
+            for (int d = 0; d < 3; d++) fem->fcons[3 * tv[a] + d] += load[d];
       }
     }
     PetscCall(VecRestoreArrayRead(fem->uloc, &ul));

@@ -39,26 +39,28 @@ typedef struct {
   PetscInt  *gdof;           /* per local vertex: first global DOF, -1 when fixed */
   PetscBool *fixed;          /* per local vertex: constrained (fixed or prescribed) */
   /* boundary conditions and loads (fem_bc.c) */
-  char            bcspec[6][1024]; /* -fixed, -displacement, -force, -traction, -pressure, -attach as given */
+  char           *bcspec[6]; /* -fixed, -displacement, -force, -traction, -pressure, -attach as given (allocated) */
   PetscInt        ncons, nload;
   FCFEMConstraint cons[FC_MAX_REGIONS];
   FCFEMLoad       load[FC_MAX_REGIONS];
-  PetscInt       *creg;           /* per local vertex: its constraint, -1 when free */
-  PetscInt        nccell, *ccell; /* the cells with a constrained vertex */
-  PetscBool       moving;         /* some constraint moves */
-  Vec             fload;          /* the loads at the end of the step */
-  Vec             varea;          /* per DOF: a third of the boundary faces' area at the vertex (contact_pressure) */
-  const char     *rname[FC_MAX_REGIONS]; /* the constraints' regions and reactions, for the output */
-  PetscReal       rval[6 * FC_MAX_REGIONS];
-  PetscReal       extwork;     /* magnitude of the work of the prescribed motions and loads so far (energy guard) */
-  PetscReal      *Dminv, *vol; /* per cell */
-  Mat             M, K, A;
-  Vec             u, v, dv, b, fint, fgrav, work, uloc, floc;
-  KSP             ksp;
-  PetscInt        nassembly, nfactor;
-  PetscBool       Acurrent;   /* K and f_int belong to the current state */
-  PetscBool       factored;   /* the factor of A is that of the current A */
-  PetscInt        factor_age; /* steps since A was last factored */
+  PetscInt       *creg;              /* per local vertex: its constraint, -1 when free */
+  PetscInt        nccell, *ccell;    /* the cells with a constrained vertex */
+  PetscBool       moving;            /* some constraint moves */
+  Vec             fload;             /* the loads at the end of the step */
+  PetscReal      *fcons;             /* per local vertex, 3: this rank's share of the loads at the end of the step on
+                                        constrained vertices (their supports take them: the reactions) */
+  Vec         varea;                 /* per DOF: a third of the boundary faces' area at the vertex (contact_pressure) */
+  const char *rname[FC_MAX_REGIONS]; /* the constraints' regions and reactions, for the output */
+  PetscReal   rval[6 * FC_MAX_REGIONS];
+  PetscReal   extwork;     /* magnitude of the work of the prescribed motions and loads so far (energy guard) */
+  PetscReal  *Dminv, *vol; /* per cell */
+  Mat         M, K, A;
+  Vec         u, v, dv, b, fint, fgrav, work, uloc, floc;
+  KSP         ksp;
+  PetscInt    nassembly, nfactor;
+  PetscBool   Acurrent;   /* K and f_int belong to the current state */
+  PetscBool   factored;   /* the factor of A is that of the current A */
+  PetscInt    factor_age; /* steps since A was last factored */
   /* the factorization schedule (fem_schedule.c, fem_warp.c; docs/method.md "When A is factored") */
   PetscInt     factorization;                                            /* FC_FACTORIZATION_EVERY_STEP or _REUSE */
   PetscReal    ksp_rtol, refactor_rotation, refactor_residual;           /* reuse: CG's tolerance, the triggers */
@@ -197,7 +199,7 @@ PETSC_INTERN PetscErrorCode FCFEMBCSetUpConstraints(FCBody); /* fixed[], creg[] 
 PETSC_INTERN PetscErrorCode FCFEMBCSetUp(FCBody);            /* loads and the constrained cells, after it */
 PETSC_INTERN PetscErrorCode FCFEMBCPoses(FCBody, PetscReal t);
 PETSC_INTERN PetscErrorCode FCFEMSplitPairs(FCBody, const char option[], const char spec[], PetscInt *n,
-                                            char reg[][256], char tab[][768]);
+                                            char reg[][256], char *tab[]);
 PETSC_INTERN PetscErrorCode FCFEMBCBeginStep(FCBody, PetscReal t);
 /* b += the loads and the prescribed motion's coupling: its inertia, and with stiffness its elastic
    coupling too (the Newton free motion takes the latter from f_int at the prescribed positions) */

@@ -24,10 +24,10 @@ typedef struct {
 typedef struct {
   FCPose    pose;
   PetscReal pivot[3];
-  char      trajectory[PETSC_MAX_PATH_LEN];
-  FCTable   table;   /* -trajectory */
-  PetscReal tnow;    /* the time of the pose x, q: the end of the last step */
-  Command   command; /* a program's, which replaces the options' motion */
+  char     *trajectory; /* -trajectory as given (allocated: an inline table has any length) */
+  FCTable   table;      /* -trajectory */
+  PetscReal tnow;       /* the time of the pose x, q: the end of the last step */
+  Command   command;    /* a program's, which replaces the options' motion */
 } Kinematic;
 
 static PetscErrorCode SetFromOptions_Kinematic(FCBody body)
@@ -39,8 +39,9 @@ static PetscErrorCode SetFromOptions_Kinematic(FCBody body)
   PetscOptionsBegin(body->comm, body->prefix, "Kinematic body options", "FCBody");
   PetscCall(FCOptionsRealArray(PetscOptionsObject, "-pivot", "Point the angular velocity turns the body about", 3,
                                k->pivot, &set));
-  PetscCall(PetscOptionsString("-trajectory", "Table of t,x,y,z[,qw,qx,qy,qz]: the centre (and orientation) over time",
-                               NULL, k->trajectory, k->trajectory, sizeof(k->trajectory), NULL));
+  PetscCall(FCOptionsStringAlloc(PetscOptionsObject, "-trajectory",
+                                 "Table of t,x,y,z[,qw,qx,qy,qz]: the centre (and orientation) over time",
+                                 &k->trajectory, NULL));
   PetscOptionsEnd();
   if (k->trajectory[0]) {
     char      what[FC_MAX_NAME + 32];
@@ -56,6 +57,28 @@ static PetscErrorCode SetFromOptions_Kinematic(FCBody body)
                "Body '%s': -%strajectory gives its motion; -%svelocity, -%sangular_velocity and -%spivot cannot be "
                "given with it",
                body->name, body->prefix, body->prefix, body->prefix, body->prefix);
+    /* the table gives the centre's position (and, with 7 columns, the orientation): a placement
+       that moves the centre, or turns a body whose orientation the table gives, would be ignored */
+    PetscCall(PetscOptionsHasName(NULL, body->prefix, "-translate", &v));
+    PetscCall(PetscOptionsHasName(NULL, body->prefix, "-center", &w));
+    PetscCheck(!v && !w, body->comm, PETSC_ERR_USER_INPUT,
+               "Body '%s': -%strajectory gives its centre's position; -%stranslate and -%scenter cannot be given with "
+               "it",
+               body->name, body->prefix, body->prefix, body->prefix);
+    if (FCTableColumns(k->table) == 7) {
+      PetscInt         nrow;
+      const PetscReal *row = FCTableValues(k->table, &nrow);
+      PetscCall(PetscOptionsHasName(NULL, body->prefix, "-rotate", &v));
+      PetscCheck(!v, body->comm, PETSC_ERR_USER_INPUT,
+                 "Body '%s': -%strajectory gives its orientation (qw,qx,qy,qz); -%srotate cannot be given with it",
+                 body->name, body->prefix, body->prefix);
+      for (PetscInt r = 0; r < nrow; r++) { /* a quaternion is normalized at use: it cannot be zero */
+        const PetscReal *q = &row[7 * r + 3];
+        PetscCheck(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] > 0.0, body->comm, PETSC_ERR_USER_INPUT,
+                   "Option -%strajectory, row %" PetscInt_FMT ": the quaternion qw,qx,qy,qz is zero", body->prefix,
+                   r + 1);
+      }
+    }
   }
   if (!set) k->pivot[0] = PETSC_MAX_REAL; /* the centre, known after set-up */
   PetscFunctionReturn(0);
@@ -296,6 +319,7 @@ static PetscErrorCode Destroy_Kinematic(FCBody body)
   PetscFunctionBegin;
   PetscCall(FCPoseDestroy(&((Kinematic *)body->data)->pose));
   PetscCall(FCTableDestroy(&((Kinematic *)body->data)->table));
+  PetscCall(PetscFree(((Kinematic *)body->data)->trajectory));
   PetscCall(PetscFree(body->data));
   PetscFunctionReturn(0);
 }

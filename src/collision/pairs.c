@@ -174,6 +174,13 @@ static PetscErrorCode SetPairs(FCCollision s, PetscInt np, char *pairs[], const 
         !(FCBodyIsPrescribed(s->bodies[s->pairs.body[p][0]]) && FCBodyIsPrescribed(s->bodies[s->pairs.body[p][1]])),
         s->comm, PETSC_ERR_USER_INPUT, "Contact pair '%s:%s' joins two kinematic bodies: nothing can respond", pairs[p],
         colon + 1);
+    for (PetscInt q = 0; q < p; q++) /* a pair given twice would make every contact of it twice */
+      PetscCheck(!((s->pairs.body[q][0] == s->pairs.body[p][0] && s->pairs.body[q][1] == s->pairs.body[p][1]) ||
+                   (s->pairs.body[q][0] == s->pairs.body[p][1] && s->pairs.body[q][1] == s->pairs.body[p][0])),
+                 s->comm, PETSC_ERR_USER_INPUT,
+                 "Option -contact_pairs: the pair '%s:%s' is given twice (pairs %" PetscInt_FMT " and %" PetscInt_FMT
+                 ")",
+                 pairs[p], colon + 1, q + 1, p + 1);
     s->pairs.mu[p]          = mu[nmu == 1 ? 0 : p];
     s->pairs.self_inside[p] = PETSC_TRUE;
   }

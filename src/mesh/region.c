@@ -85,6 +85,22 @@ static PetscErrorCode FindGroup(FCMesh *m, const char region[], const char optio
         found  = 1;
       }
     }
+  if (!(end == region || *end)) { /* a number that is also a group's name ("7"): the name when no number matches */
+    PetscCall(DMHasLabel(m->dm, region, &has));
+    if (has && !Internal(region)) {
+      DMLabel named;
+      PetscCall(DMGetLabel(m->dm, region, &named));
+      PetscCheck(!found || named == *label, comm, PETSC_ERR_USER_INPUT,
+                 "Region %s of option %s (body '%s'): a group is named '%s' and another has the number %ld; the "
+                 "region is ambiguous",
+                 region, option, bodyname, region, num);
+      if (!found) {
+        *label = named;
+        *value = -1;
+        found  = 1;
+      }
+    }
+  }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_INT, MPI_MAX, comm));
   if (!found) {
     char list[1024];
@@ -118,6 +134,9 @@ static PetscErrorCode ParseBox(const char region[], const char option[], const c
   PetscCheck(n == 6 && !*p, comm, PETSC_ERR_USER_INPUT,
              "Option %s (body '%s'): region '%s' is not a box x0,y0,z0,x1,y1,z1 (6 numbers after 'box:')", option,
              bodyname, region);
+  for (int d = 0; d < 6; d++)
+    PetscCheck(PetscIsNormalReal(box[d]) || box[d] == 0.0, comm, PETSC_ERR_USER_INPUT,
+               "Option %s (body '%s'): box '%s' has a bound that is not a finite number", option, bodyname, region);
   for (int d = 0; d < 3; d++)
     PetscCheck(box[d] <= box[3 + d], comm, PETSC_ERR_USER_INPUT, "Option %s (body '%s'): box '%s' has min > max in %c",
                option, bodyname, region, "xyz"[d]);

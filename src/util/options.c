@@ -15,24 +15,54 @@ static const char *PrefixOf(PetscOptionItems *obj)
    own parse error would not name the option. */
 static PetscErrorCode CheckNumbers(PetscOptionItems *obj, const char opt[], PetscBool integer)
 {
-  char      buf[1024], *tok, *save = NULL;
-  PetscBool set;
+  const char *value;
+  char       *buf, *tok, *save = NULL;
+  PetscBool   set;
 
   PetscFunctionBegin;
-  PetscCall(PetscOptionsGetString(obj->options, obj->prefix, opt, buf, sizeof(buf), &set));
+  PetscCall(PetscOptionsFindPair(obj->options, obj->prefix, opt, &value, &set));
   if (!set) PetscFunctionReturn(0);
-  PetscCheck(buf[0], obj->comm, PETSC_ERR_USER_INPUT, "Option -%s%s needs a value", PrefixOf(obj), opt + 1);
+  PetscCheck(value && value[0], obj->comm, PETSC_ERR_USER_INPUT, "Option -%s%s needs a value", PrefixOf(obj), opt + 1);
+  PetscCall(PetscStrallocpy(value, &buf)); /* the whole text, whatever its length */
   for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-    char *end;
+    char     *end;
+    PetscBool ok;
     while (*tok == ' ') tok++;
     if (integer)
       (void)strtoll(tok, &end, 10);
     else
       (void)strtod(tok, &end);
     while (*end == ' ') end++;
-    PetscCheck(end != tok && *end == 0, obj->comm, PETSC_ERR_USER_INPUT, "Option -%s%s: '%s' is not %s", PrefixOf(obj),
-               opt + 1, tok, integer ? "an integer" : "a number");
+    ok = (PetscBool)(end != tok && *end == 0);
+    if (!ok) {
+      char shown[256];
+      PetscCall(PetscStrncpy(shown, tok, sizeof(shown)));
+      PetscCall(PetscFree(buf));
+      SETERRQ(obj->comm, PETSC_ERR_USER_INPUT, "Option -%s%s: '%s' is not %s", PrefixOf(obj), opt + 1, shown,
+              integer ? "an integer" : "a number");
+    }
   }
+  PetscCall(PetscFree(buf));
+  PetscFunctionReturn(0);
+}
+
+/* A string option of any length (PETSc's own copy into a fixed buffer would cut a long value
+   silently): PetscOptionsString registers it for -help, and its whole value is then taken from
+   the options database. *value is NULL or an earlier value, which is freed (PetscOptionsBegin
+   may run its block more than once) */
+PetscErrorCode FCOptionsStringAlloc(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[],
+                                    char **value, PetscBool *set)
+{
+  char        scratch[2];
+  const char *v = NULL;
+  PetscBool   flg;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsString(opt, text, NULL, "", scratch, sizeof(scratch), NULL));
+  PetscCall(PetscOptionsFindPair(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, &v, &flg));
+  PetscCall(PetscFree(*value));
+  PetscCall(PetscStrallocpy(flg && v ? v : "", value));
+  if (set) *set = flg;
   PetscFunctionReturn(0);
 }
 
@@ -42,17 +72,17 @@ static PetscErrorCode CheckNumbers(PetscOptionItems *obj, const char opt[], Pets
 PetscErrorCode FCOptionsIntRange(PetscOptionItems *PetscOptionsObject, const char opt[], const char text[],
                                  PetscInt min, PetscInt max, PetscInt *v, PetscBool *set)
 {
-  char      buf[256], *end;
-  PetscBool flg;
-  long long x;
+  const char *buf;
+  char       *end;
+  PetscBool   flg;
+  long long   x;
 
   PetscFunctionBegin;
   min = PetscMax(min, PETSC_MIN_INT);
   max = PetscMin(max, PETSC_MAX_INT);
   PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_TRUE));
-  PetscCall(
-      PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, buf, sizeof(buf), &flg));
-  if (flg) {
+  PetscCall(PetscOptionsFindPair(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, &buf, &flg));
+  if (flg && buf) {
     errno = 0;
     x     = strtoll(buf, &end, 10);
     PetscCheck(errno != ERANGE && x >= (long long)min && x <= (long long)max, PetscOptionsObject->comm,

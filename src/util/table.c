@@ -5,6 +5,7 @@
    file is read on rank 0 and its text broadcast, so every rank holds the same table. */
 #include "../fcimpl.h"
 #include <errno.h>
+#include <sys/stat.h>
 
 struct _p_FCTable {
   PetscInt   nrow, ncol; /* ncol values per row besides t */
@@ -21,6 +22,8 @@ static PetscErrorCode ParseNumber(MPI_Comm comm, const char what[], PetscInt row
   errno = 0;
   *x    = strtod(tok, &end);
   while (*end == ' ' || *end == '\t' || *end == '\r') end++;
+  PetscCheck(*tok && *tok != '\r', comm, PETSC_ERR_USER_INPUT, "%s, row %" PetscInt_FMT ": a cell is empty", what,
+             row + 1);
   PetscCheck(end != tok && !*end, comm, PETSC_ERR_USER_INPUT, "%s, row %" PetscInt_FMT ": '%s' is not a number", what,
              row + 1, tok);
   PetscCheck(PetscIsNormalReal(*x) || *x == 0.0, comm, PETSC_ERR_USER_INPUT,
@@ -41,7 +44,7 @@ static PetscErrorCode ParseRows(MPI_Comm comm, const char what[], char *text, co
   PetscCall(PetscMalloc2(cap, &tab->t, cap * nmax, &tab->v));
   tab->ncol = -1;
   for (row = strtok_r(text, rsep, &rs); row; row = strtok_r(NULL, rsep, &rs)) {
-    char     *p = row, *vals, *tok, *vs = NULL;
+    char     *p = row, *vals, *tok, *vs;
     PetscInt  n = 0;
     PetscReal vv[16];
     while (*p == ' ' || *p == '\t' || *p == '\r') p++;
@@ -62,7 +65,9 @@ static PetscErrorCode ParseRows(MPI_Comm comm, const char what[], char *text, co
       cap *= 2;
     }
     PetscCall(ParseNumber(comm, what, k, p, &tab->t[k]));
-    for (tok = strtok_r(vals, ",", &vs); tok; tok = strtok_r(NULL, ",", &vs)) {
+    for (tok = vals; tok; tok = vs) { /* every cell, an empty one too (it would shift the columns) */
+      vs = strchr(tok, ',');
+      if (vs) *vs++ = 0;
       PetscCheck(n < nmax, comm, PETSC_ERR_USER_INPUT, "%s, row %" PetscInt_FMT ": more than %" PetscInt_FMT " values",
                  what, k + 1, nmax);
       PetscCall(ParseNumber(comm, what, k, tok, &vv[n++]));
@@ -108,18 +113,22 @@ PetscErrorCode FCTableCreate(MPI_Comm comm, const char spec[], PetscInt nmin, Pe
     PetscCallMPI(MPI_Comm_rank(comm, &rank));
     text = NULL;
     if (!rank) {
-      FILE *fp = fopen(spec, "rb");
+      struct stat st;
+      /* a regular file only: a FIFO would block the read, a directory has no text */
+      FILE *fp = !stat(spec, &st) && S_ISREG(st.st_mode) ? fopen(spec, "rb") : NULL;
+      if (!fp && !stat(spec, &st) && !S_ISREG(st.st_mode)) len = -2;
       if (fp && !fseek(fp, 0, SEEK_END) && (len = ftell(fp)) >= 0 && !fseek(fp, 0, SEEK_SET)) {
         PetscCall(PetscMalloc1(len + 1, &text));
         if ((long)fread(text, 1, len, fp) != len)
           len = -1;
         else
           text[len] = 0;
-      } else
+      } else if (len != -2)
         len = -1;
       if (fp) fclose(fp);
     }
     PetscCallMPI(MPI_Bcast(&len, 1, MPI_LONG, 0, comm));
+    PetscCheck(len != -2, comm, PETSC_ERR_USER_INPUT, "%s: the table file '%s' is not a regular file", what, spec);
     PetscCheck(len >= 0, comm, PETSC_ERR_USER_INPUT,
                "%s: cannot read the table file '%s' (inline tables are written t0:v,v;t1:v,v)", what, spec);
     if (rank) PetscCall(PetscMalloc1(len + 1, &text));
@@ -140,6 +149,13 @@ PetscErrorCode FCTableCreate(MPI_Comm comm, const char spec[], PetscInt nmin, Pe
 PetscInt FCTableColumns(FCTable tab)
 {
   return tab->ncol;
+}
+
+/* The rows' values (nrow rows of FCTableColumns each), for checks of their meaning */
+const PetscReal *FCTableValues(FCTable tab, PetscInt *nrow)
+{
+  *nrow = tab->nrow;
+  return tab->v;
 }
 
 /* The rows around time t and where t lies between them, s in [0, 1] (outside the table: the

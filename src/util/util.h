@@ -76,7 +76,8 @@ typedef struct _p_FCTable  *FCTable;
 PETSC_INTERN PetscErrorCode FCTableCreate(MPI_Comm, const char spec[], PetscInt nmin, PetscInt nmax, const char what[],
                                           FCTable *);
 PETSC_INTERN PetscInt       FCTableColumns(FCTable);
-PETSC_INTERN void           FCTableEval(FCTable, PetscReal t, PetscReal v[]);
+PETSC_INTERN const PetscReal *FCTableValues(FCTable, PetscInt *nrow);
+PETSC_INTERN void             FCTableEval(FCTable, PetscReal t, PetscReal v[]);
 PETSC_INTERN void      FCTableBracket(FCTable, PetscReal t, const PetscReal **a, const PetscReal **b, PetscReal *s);
 PETSC_INTERN PetscReal FCTableMaxRate(FCTable, PetscInt j0, PetscInt j1);
 PETSC_INTERN PetscErrorCode FCTableDestroy(FCTable *);
