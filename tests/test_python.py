@@ -21,15 +21,17 @@ scripts under mpirun -n NP):
   finds the installed library through its pkg-config file (1 rank)."""
 import os
 import shutil
+import signal
 import subprocess
 import sys
 
 import h5py
 import numpy as np
 
-from fctest import run, out, Checker, np_from_argv, sorted_positions, ROOT, ENV, EXE
+from fctest import run, out, Checker, np_from_argv, only_from_argv, sorted_positions, ROOT, ENV, EXE
 
 NP = np_from_argv()
+ONLY = only_from_argv()  # --only reliability: the checks of issue 56 alone (reliability() below)
 c = Checker("python np%d" % NP)
 PY = "/usr/bin/python3"
 LIB = os.path.join(os.path.dirname(os.path.abspath(EXE)), "libfecontact.so")
@@ -37,14 +39,32 @@ PENV = dict(ENV, FECONTACT_LIBRARY=LIB, PYTHONPATH=os.path.join(ROOT, "python"))
 SCENE = ["-options_file", "input/finger_push.opts", "-time_steps", "60", "-output_every", "5", "-quiet"]
 
 
-def python(code, np_=NP, check=True):
-    """Run a Python script (fecontact importable) on np_ ranks; returns the CompletedProcess"""
+def python(code, np_=NP, check=True, timeout=600):
+    """Run a Python script (fecontact importable) on np_ ranks; returns the CompletedProcess (None if it
+    ran past timeout seconds: it is killed)"""
     f = out("script_%d.py" % abs(hash(code)))
     with open(f, "w") as g:
         g.write("import sys\nimport numpy as np\nimport fecontact\nfrom petsc4py import PETSc\n"
                 "say = print if PETSc.COMM_WORLD.getRank() == 0 else (lambda *a: None)  # one rank's lines\n" + code)
     cmd = ([] if np_ == 1 else ["mpirun", "-n", str(np_), "--oversubscribe"]) + [PY, f]
-    p = subprocess.run(cmd, cwd=ROOT, env=PENV, capture_output=True, text=True, timeout=600)
+    # a session of its own: past the timeout, SIGTERM reaches mpirun and every rank (mpirun killed alone
+    # would leave its ranks waiting forever)
+    q = subprocess.Popen(cmd, cwd=ROOT, env=PENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         start_new_session=True)
+    try:
+        o, e = q.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        for sig in (signal.SIGTERM, signal.SIGKILL):
+            try:
+                os.killpg(q.pid, sig)
+                q.communicate(timeout=20)
+                break
+            except (subprocess.TimeoutExpired, ProcessLookupError):
+                pass
+        if check:
+            raise RuntimeError("python script ran past %d s: %s" % (timeout, f))
+        return None
+    p = subprocess.CompletedProcess(cmd, q.returncode, o, e)
     if check and p.returncode:
         sys.stderr.write(p.stdout + p.stderr)
         raise RuntimeError("python script failed (%d): %s" % (p.returncode, f))
@@ -67,6 +87,67 @@ def differing(fa, fb):
     walk(a, "")
     return bad
 
+
+def reliability():
+    """Issue 56: each check fails without its fix (a wrong answer, a crash, a hang or a leak)"""
+    quick = SCENE[:2] + ["-time_steps", "3", "-quiet"]
+    # 1. an option value with spaces is passed whole: the trajectory's three rows, not the first one
+    traj = "0:0.03,0,0.08; 0.5:0.0195,0,0.08; 1.0:0.0,0,0.08"
+    p = python("""
+with fecontact.Scene(options_file="input/finger_push.opts", options={"time_steps": 10, "quiet": None,
+                     "output_file": %r, "tool_trajectory": %r}) as s:
+    s.step(10)
+    say("TOOL", s.body("tool").centroid[0])
+""" % (out("rel_traj.h5"), traj), check=False)
+    x = [float(ln.split()[1]) for ln in p.stdout.splitlines() if ln.startswith("TOOL")]
+    c.check(len(x) == 1 and abs(x[0] - (0.03 - 0.0105 * 0.1 / 0.5)) < 1e-12, "an option value with spaces (%r) is "
+            "passed whole: the tool at x = %s m after 10 steps (its second row: 0.0279 m)" % (traj, x or p.stderr[-300:]))
+    # 8. a step beyond -time_steps: a clear error, the scene unchanged (time, finish(), the output's /memory)
+    f8 = out("rel_past.h5")
+    p = python("""
+s = fecontact.Scene(options=%r)
+s.step(3)
+for n in (1, 2):
+    try:
+        s.step(n)
+        say("NOERROR")
+    except fecontact.FecontactError as e:
+        say("PAST", e)
+say("AFTER", s.time, s.step_index)
+s.finish()
+s.destroy()
+""" % " ".join(quick + ["-output_file", f8]), check=False)
+    past = [ln for ln in p.stdout.splitlines() if ln.startswith("PAST")]
+    after = [ln.split() for ln in p.stdout.splitlines() if ln.startswith("AFTER")]
+    mem = os.path.exists(f8) and "memory" in h5py.File(f8, "r")
+    c.check(p.returncode == 0 and len(past) == 2 and "-time_steps 3" in past[0] and after and
+            float(after[0][1]) == 0.03 and after[0][2] == "3" and mem, "step() beyond -time_steps: FecontactError "
+            "'%s', then time %s, finish() and the output's /memory (%s)" %
+            (past[0][5:] if past else p.stderr[-300:], after[0][1:] if after else "-", mem))
+    # 3. a Body used after its scene is destroyed (destroy(), the end of a with block): FecontactError
+    p = python("""
+s = fecontact.Scene(options=%r)
+b = s.body("tool")
+s.destroy()
+with fecontact.Scene(options=%r) as s2:
+    b2 = s2.body("finger")
+for what, f in (("centroid", lambda: b.centroid), ("set_pose", lambda: b.set_pose([0, 0, 0])),
+                ("positions", lambda: b2.positions), ("energy", lambda: b2.energy)):
+    try:
+        f()
+        say("NOERROR", what)
+    except fecontact.FecontactError as e:
+        say("GONE", what, "|", e)
+""" % (" ".join(quick + ["-output_file", out("rel_gone1.h5")]), " ".join(quick + ["-output_file", out("rel_gone2.h5")])),
+               check=False)
+    gone = [ln for ln in p.stdout.splitlines() if ln.startswith("GONE") and "scene is destroyed" in ln]
+    c.check(p.returncode == 0 and len(gone) == 4, "a Body after its scene's destroy() or with block: FecontactError "
+            "(%s), no crash (exit %d)" % (gone[0].split("| ")[-1] if gone else p.stderr[-300:], p.returncode))
+
+
+if ONLY == "reliability":
+    reliability()
+    c.done()
 
 # the executable's run, and the same scene stepped from Python
 fe = out("exe.h5")
@@ -256,4 +337,5 @@ with fecontact.Scene(options=%r) as s:
             q.stdout.split()[-1] == "2", "pip install of python/, outside the repository: it finds the installed "
             "library through pkg-config and steps a scene (%s)" % (q.stdout.strip() or pip.stderr[-200:] + q.stderr[-300:]))
     shutil.rmtree(prefix, ignore_errors=True)
+reliability()
 c.done()
