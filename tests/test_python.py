@@ -19,6 +19,7 @@ scripts under mpirun -n NP):
   against it with pkg-config and with CMake (find_package(fecontact)), and its run steering the tool
   writes the file the same steering from Python writes; pip installs python/ and the installed module
   finds the installed library through its pkg-config file (1 rank)."""
+import glob
 import os
 import shutil
 import signal
@@ -28,7 +29,7 @@ import sys
 import h5py
 import numpy as np
 
-from fctest import run, out, Checker, np_from_argv, only_from_argv, sorted_positions, ROOT, ENV, EXE
+from fctest import run, out, Checker, TMP, np_from_argv, only_from_argv, sorted_positions, ROOT, ENV, EXE
 
 NP = np_from_argv()
 ONLY = only_from_argv()  # --only reliability: the checks of issue 56 alone (reliability() below)
@@ -36,6 +37,7 @@ c = Checker("python np%d" % NP)
 PY = "/usr/bin/python3"
 LIB = os.path.join(os.path.dirname(os.path.abspath(EXE)), "libfecontact.so")
 PENV = dict(ENV, FECONTACT_LIBRARY=LIB, PYTHONPATH=os.path.join(ROOT, "python"))
+TOLD = out("told")  # tell()'s files: TOLD.<rank>
 SCENE = ["-options_file", "input/finger_push.opts", "-time_steps", "60", "-output_every", "5", "-quiet"]
 
 
@@ -45,7 +47,10 @@ def python(code, np_=NP, check=True, timeout=600):
     f = out("script_%d.py" % abs(hash(code)))
     with open(f, "w") as g:
         g.write("import sys\nimport numpy as np\nimport fecontact\nfrom petsc4py import PETSc\n"
-                "say = print if PETSc.COMM_WORLD.getRank() == 0 else (lambda *a: None)  # one rank's lines\n" + code)
+                "say = print if PETSc.COMM_WORLD.getRank() == 0 else (lambda *a: None)  # one rank's lines\n"
+                "def tell(*a):  # a line of this rank's (a file each: the ranks' stdout may interleave)\n"
+                "    with open(%r + '.%%d' %% PETSc.COMM_WORLD.getRank(), 'a') as g:\n"
+                "        g.write(' '.join(str(x) for x in a) + '\\n')\n" % TOLD + code)
     cmd = ([] if np_ == 1 else ["mpirun", "-n", str(np_), "--oversubscribe"]) + [PY, f]
     # a session of its own: past the timeout, SIGTERM reaches mpirun and every rank (mpirun killed alone
     # would leave its ranks waiting forever)
@@ -69,6 +74,15 @@ def python(code, np_=NP, check=True, timeout=600):
         sys.stderr.write(p.stdout + p.stderr)
         raise RuntimeError("python script failed (%d): %s" % (p.returncode, f))
     return p
+
+
+def told():
+    """The lines the ranks of the last script wrote with tell(), every rank's (then forgotten)"""
+    lines = []
+    for f in glob.glob(TOLD + ".*"):
+        lines += open(f).read().splitlines()
+        os.remove(f)
+    return lines
 
 
 def differing(fa, fb):
@@ -144,6 +158,49 @@ for what, f in (("centroid", lambda: b.centroid), ("set_pose", lambda: b.set_pos
     c.check(p.returncode == 0 and len(gone) == 4, "a Body after its scene's destroy() or with block: FecontactError "
             "(%s), no crash (exit %d)" % (gone[0].split("| ")[-1] if gone else p.stderr[-300:], p.returncode))
 
+    # 5. an input that fails on rank 0 only (PETSc's gmsh reader reads there; a table file is read there):
+    # every rank raises, none waits (timeout 120 s)
+    trunc = out("truncated.msh")
+    with open(os.path.join(ROOT, "meshes/finger.msh"), "rb") as g, open(trunc, "wb") as h:
+        h.write(g.read(100000))
+    for what, opt, msg in (("a truncated mesh", {"finger_dm_plex_filename": trunc}, "Cannot read mesh file"),
+                           ("a directory as a table file", {"tool_trajectory": TMP}, "cannot read the table file")):
+        p = python("""
+try:
+    with fecontact.Scene(options_file="input/finger_push.opts", options=dict(%r, time_steps=3, quiet=None,
+                         output_file=%r)) as s:
+        s.step()
+    tell("NOERROR")
+except fecontact.FecontactError as e:
+    tell("RAISED", e)
+""" % (opt, out("rel_rank0.h5")), check=False, timeout=120)
+        raised = [ln for ln in told() if ln.startswith("RAISED") and msg in ln]
+        c.check(p is not None and len(raised) == NP, "%s, on %d rank(s): FecontactError on every rank (%s)" %
+                (what, NP, "ran past 120 s: a rank waits" if p is None else raised[0][7:] if raised else
+                 p.stdout[-300:] + p.stderr[-300:]))
+    # 2. set_pose (set_velocity) with different values on different ranks: an error naming the body on every rank
+    if NP > 1:
+        p = python("""
+r = PETSc.COMM_WORLD.getRank()
+with fecontact.Scene(options=%r) as s:
+    b = s.body("tool")
+    for what, f in (("pose", lambda: b.set_pose(b.centroid + [1e-3 * r, 0, 0])),
+                    ("velocity", lambda: b.set_velocity([0, 0, 0], [r, 0, 0]))):
+        try:
+            f()
+            tell("NOERROR", what)
+        except fecontact.FecontactError as e:
+            tell("DIFFER", what, "|", e)
+    b.set_pose(b.centroid)  # the same on every rank: accepted, and the scene steps on
+    s.step()
+    tell("STEPPED", s.step_index)
+""" % " ".join(quick + ["-output_file", out("rel_differ.h5")]), check=False, timeout=120)
+        lines = told()
+        differ = [ln for ln in lines if ln.startswith("DIFFER") and "Body 'tool'" in ln and "differs between" in ln]
+        stepped = [ln for ln in lines if ln == "STEPPED 1"]
+        c.check(len(differ) == 2 * NP and len(stepped) == NP, "set_pose and set_velocity with values that differ "
+                "between the ranks: FecontactError on every rank (%s); the same pose then steps" %
+                (differ[0].split("| ")[-1] + "...)" if differ else "-" if p is None else p.stdout[-300:] + p.stderr[-300:]))
 
 if ONLY == "reliability":
     reliability()

@@ -362,6 +362,34 @@ PetscErrorCode FCBodyDestroy(FCBody *body)
   PetscFunctionReturn(0);
 }
 
+/* A program's motion of a kinematic body (n values: pose or velocities) must be the same on every rank,
+   or the ranks would hold different scenes: compared collectively (largest and smallest value of
+   each), and an error on every rank naming the body when they differ or one is not finite */
+static PetscErrorCode CheckSameOnRanks(FCBody body, const char what[], PetscInt n, const PetscReal a[])
+{
+  PetscReal buf[2 * 7 + 1] = {0};
+
+  PetscFunctionBegin;
+  PetscCheck(n <= 7, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%" PetscInt_FMT " values", n);
+  for (PetscInt d = 0; d < n; d++) {
+    if (PetscIsInfOrNanReal(a[d]))
+      buf[2 * n] = 1.0;
+    else {
+      buf[d]     = a[d];
+      buf[n + d] = -a[d];
+    }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, buf, 2 * n + 1, MPIU_REAL, MPIU_MAX, body->comm));
+  PetscCheck(buf[2 * n] == 0.0, body->comm, PETSC_ERR_USER_INPUT,
+             "Body '%s': its %s is not finite (on at least one rank)", body->name, what);
+  for (PetscInt d = 0; d < n; d++)
+    PetscCheck(buf[d] == -buf[n + d], body->comm, PETSC_ERR_USER_INPUT,
+               "Body '%s': its %s differs between the ranks (component %" PetscInt_FMT " from %.17g to %.17g): every "
+               "rank must give the same values",
+               body->name, what, d, (double)-buf[n + d], (double)buf[d]);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCBodySetKinematicPose(FCBody body, const PetscReal x[3], const PetscReal q[4])
 {
   PetscReal n = 0.0;
@@ -372,6 +400,10 @@ PetscErrorCode FCBodySetKinematicPose(FCBody body, const PetscReal x[3], const P
   PetscCheck(body->setupcalled, body->comm, PETSC_ERR_ORDER,
              "Body '%s': set the scene up (FCSceneSetUp) before setting its pose: its motion starts from its placement",
              body->name);
+  {
+    PetscReal xq[7] = {x[0], x[1], x[2], q[0], q[1], q[2], q[3]};
+    PetscCall(CheckSameOnRanks(body, "pose (position, quaternion)", 7, xq));
+  }
   for (int d = 0; d < 4; d++) n += q[d] * q[d];
   for (int d = 0; d < 3; d++)
     PetscCheck(!PetscIsInfOrNanReal(x[d]), body->comm, PETSC_ERR_USER_INPUT,
@@ -393,6 +425,10 @@ PetscErrorCode FCBodySetKinematicVelocity(FCBody body, const PetscReal v[3], con
              "Body '%s': set the scene up (FCSceneSetUp) before setting its velocity: its motion starts from its "
              "placement",
              body->name);
+  {
+    PetscReal vw[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
+    PetscCall(CheckSameOnRanks(body, "velocity (linear, angular)", 6, vw));
+  }
   for (int d = 0; d < 3; d++)
     PetscCheck(!PetscIsInfOrNanReal(v[d]) && !PetscIsInfOrNanReal(w[d]), body->comm, PETSC_ERR_USER_INPUT,
                "Body '%s': velocity %g, %g, %g or angular velocity %g, %g, %g is not finite", body->name, (double)v[0],

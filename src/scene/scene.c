@@ -14,7 +14,7 @@
 #include <signal.h>
 #include <stdlib.h>
 
-PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
+static PetscErrorCode SceneCreate(MPI_Comm comm, FCScene *scene)
 {
   FCScene s;
 
@@ -33,7 +33,15 @@ PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSceneSetFromOptions(FCScene s)
+/* collective failure: an error on one rank is raised on every rank (FCErrorAgree) */
+PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
+{
+  PetscFunctionBegin;
+  PetscCall(FCErrorAgree(comm, SceneCreate(comm, scene)));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SceneSetFromOptions(FCScene s)
 {
   char      fields[256] = "displacement,velocity,von_mises";
   char     *names[FC_MAX_BODIES];
@@ -89,6 +97,14 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   PetscFunctionReturn(0);
 }
 
+/* collective failure: an error on one rank is raised on every rank (FCErrorAgree) */
+PetscErrorCode FCSceneSetFromOptions(FCScene s)
+{
+  PetscFunctionBegin;
+  PetscCall(FCErrorAgree(s->comm, SceneSetFromOptions(s)));
+  PetscFunctionReturn(0);
+}
+
 /* The state of the current step as a frame (positions, with the step rows before it) and then
    as the restart state, each flushed: if a write fails, the restart state is never ahead of the
    frames and rows (docs/output.md) */
@@ -137,7 +153,7 @@ static PetscErrorCode ExpectContacts(FCScene s)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSceneSetUp(FCScene s)
+static PetscErrorCode SceneSetUp(FCScene s)
 {
   PetscFunctionBegin;
   if (s->setupcalled) PetscFunctionReturn(0);
@@ -193,6 +209,14 @@ PetscErrorCode FCSceneSetUp(FCScene s)
   PetscCall(FCPhaseResetTimes()); /* the phases, and the first step's wall time, count from here */
   PetscCall(PetscTime(&s->tmark));
   s->setupcalled = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+/* collective failure: an error on one rank is raised on every rank (FCErrorAgree) */
+PetscErrorCode FCSceneSetUp(FCScene s)
+{
+  PetscFunctionBegin;
+  PetscCall(FCErrorAgree(s->comm, SceneSetUp(s)));
   PetscFunctionReturn(0);
 }
 
@@ -285,7 +309,7 @@ static void StepWarning(FCScene s, char buf[], size_t len)
 /* Runs the remaining steps. If a step fails, or SIGINT/SIGTERM arrives, the output file is
    closed cleanly first, so that every completed step stays readable, and the run stops with a
    line saying at which step and why. */
-PetscErrorCode FCSceneRun(FCScene s)
+static PetscErrorCode SceneRun(FCScene s)
 {
   PetscFunctionBegin;
   PetscCall(FCSceneSetUp(s));
@@ -342,12 +366,28 @@ PetscErrorCode FCSceneRun(FCScene s)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSceneFinish(FCScene s)
+/* collective failure: an error on one rank is raised on every rank (FCErrorAgree) */
+PetscErrorCode FCSceneRun(FCScene s)
+{
+  PetscFunctionBegin;
+  PetscCall(FCErrorAgree(s->comm, SceneRun(s)));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SceneFinish(FCScene s)
 {
   PetscFunctionBegin;
   PetscCall(FCSceneSetUp(s));
   if (!s->quiet) PetscCall(PrintSummary(s, s->wall));
   PetscCall(FCMemoryReport(s->comm, s->memory, (PetscBool)!s->quiet, s->output));
+  PetscFunctionReturn(0);
+}
+
+/* collective failure: an error on one rank is raised on every rank (FCErrorAgree) */
+PetscErrorCode FCSceneFinish(FCScene s)
+{
+  PetscFunctionBegin;
+  PetscCall(FCErrorAgree(s->comm, SceneFinish(s)));
   PetscFunctionReturn(0);
 }
 

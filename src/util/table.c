@@ -4,6 +4,7 @@
    first line may be a header ("t,ux,uy,uz"); times strictly increasing, every number finite. The
    file is read on rank 0 and its text broadcast, so every rank holds the same table. */
 #include "../fcimpl.h"
+#include <sys/stat.h>
 #include <errno.h>
 
 struct _p_FCTable {
@@ -107,8 +108,9 @@ PetscErrorCode FCTableCreate(MPI_Comm comm, const char spec[], PetscInt nmin, Pe
     PetscMPIInt rank;
     PetscCallMPI(MPI_Comm_rank(comm, &rank));
     text = NULL;
-    if (!rank) {
-      FILE *fp = fopen(spec, "rb");
+    if (!rank) { /* a regular file only: a directory opens, and its "size" would be read as the table's */
+      struct stat st;
+      FILE       *fp = stat(spec, &st) || !S_ISREG(st.st_mode) ? NULL : fopen(spec, "rb");
       if (fp && !fseek(fp, 0, SEEK_END) && (len = ftell(fp)) >= 0 && !fseek(fp, 0, SEEK_SET)) {
         PetscCall(PetscMalloc1(len + 1, &text));
         if ((long)fread(text, 1, len, fp) != len)

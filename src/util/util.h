@@ -83,3 +83,4 @@ PETSC_INTERN PetscErrorCode FCTableDestroy(FCTable *);
 /* Errors a scene's step control redoes, and the handler around the calls that raise them (src/util/errors.c) */
 PETSC_INTERN PetscBool      FCErrorIsStepFailure(PetscErrorCode);
 PETSC_INTERN PetscErrorCode FCPushStepErrorHandler(void);
+PETSC_INTERN PetscErrorCode FCErrorAgree(MPI_Comm, PetscErrorCode);
