@@ -201,6 +201,37 @@ with fecontact.Scene(options=%r) as s:
         c.check(len(differ) == 2 * NP and len(stepped) == NP, "set_pose and set_velocity with values that differ "
                 "between the ranks: FecontactError on every rank (%s); the same pose then steps" %
                 (differ[0].split("| ")[-1] + "...)" if differ else "-" if p is None else p.stdout[-300:] + p.stderr[-300:]))
+    # 6. two live scenes on one output file (by its name, by a symbolic link to it): the second is refused at
+    # set-up; the first steps on and writes a complete file; once it is destroyed the name is free again
+    f6, link = out("rel_shared.h5"), out("rel_shared_link.h5")
+    if os.path.lexists(link):
+        os.remove(link)
+    os.symlink(f6, link)
+    p = python("""
+a = fecontact.Scene(options=%r)
+a.step()
+for name in (%r, %r):
+    b = fecontact.Scene(options=%r + " -output_file " + name)
+    try:
+        b.step()
+        tell("NOERROR")
+    except fecontact.FecontactError as e:
+        tell("REFUSED", e)
+    b.destroy()
+a.step(2)
+a.finish()
+a.destroy()
+with fecontact.Scene(options=%r) as s:
+    s.step()
+    tell("AFTER", s.step_index)
+""" % (" ".join(quick + ["-output_file", f6]), f6, link, " ".join(quick), " ".join(quick + ["-output_file", f6])),
+               check=False, timeout=300)
+    lines = told() if p is not None else []
+    refused = [ln for ln in lines if ln.startswith("REFUSED") and "another live scene" in ln]
+    ok = os.path.exists(f6) and h5py.File(f6, "r")["complete"][0] == 1  # the third scene's file: 1 step
+    c.check(len(refused) == 2 * NP and lines.count("AFTER 1") == NP and ok, "a second live scene on the output file "
+            "of another (its name, a symbolic link): refused (%s); the first ends its run, and a scene after it "
+            "writes the file" % (refused[0][8:] if refused else lines or (p.stderr[-300:] if p else "timeout")))
 
 if ONLY == "reliability":
     reliability()

@@ -52,6 +52,10 @@ PETSC_INTERN PetscErrorCode FCInputsReset(void);
 PETSC_INTERN PetscErrorCode FCInputsAdd(const char path[], const char what[]);
 PETSC_INTERN PetscErrorCode FCInputsAddOptionsFiles(void);
 PETSC_INTERN PetscErrorCode FCInputsCheckOutput(MPI_Comm, const char path[], const char what[]);
+/* The output files of the live scenes, by identity: no two write one file (src/util/inputs.c) */
+PETSC_INTERN PetscErrorCode FCOutputsCheckLive(MPI_Comm, const char path[]);
+PETSC_INTERN PetscErrorCode FCOutputsAddLive(const void *owner, const char path[]);
+PETSC_INTERN PetscErrorCode FCOutputsRemoveLive(const void *owner);
 
 /* SIGINT/SIGTERM: recorded by a handler, acted on between steps (src/util/signals.c) */
 PETSC_INTERN PetscErrorCode FCSignalsInstall(void);
