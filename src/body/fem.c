@@ -113,6 +113,7 @@ static PetscErrorCode SetUpSection(FCBody body)
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc3(nv, &fem->ldof, nv, &fem->gdof, nv, &fem->fixed));
+  PetscCall(FCFEMBCSetUpConstraints(body)); /* fixed[]; first: an error in a region leaves no section to free */
   PetscCall(PetscSectionCreate(body->comm, &s));
   PetscCall(PetscSectionSetNumFields(s, 1));
   PetscCall(PetscSectionSetFieldName(s, 0, "displacement"));
@@ -120,7 +121,6 @@ static PetscErrorCode SetUpSection(FCBody body)
   /* chart from 0: PETSc 3.18's PetscSectionSetConstraintIndices() indexes by point, not by
      point - pStart, and rejects valid indices when the chart does not start at 0 */
   PetscCall(PetscSectionSetChart(s, 0, m->vEnd));
-  PetscCall(FCFEMBCSetUpConstraints(body)); /* fixed[] */
   for (PetscInt v = 0; v < nv; v++) {
     PetscCall(PetscSectionSetDof(s, m->vStart + v, 3));
     PetscCall(PetscSectionSetFieldDof(s, m->vStart + v, 0, 3));

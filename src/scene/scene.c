@@ -41,12 +41,32 @@ PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
   PetscFunctionReturn(0);
 }
 
+/* The bodies of -scene_bodies (n names), each with its options, and the output's fields */
+static PetscErrorCode CreateBodies(FCScene s, PetscBool set, PetscInt n, char *names[], const char fields[])
+{
+  PetscFunctionBegin;
+  PetscCheck(set && n > 0, s->comm, PETSC_ERR_USER_INPUT,
+             "No bodies: give -scene_bodies name1,name2,... (see docs/options.md)");
+  PetscCheck(s->h > 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -time_step must be > 0, got %g", (double)s->h);
+  PetscCall(FCOutputFieldsParse(s->comm, fields, &s->fields));
+  for (PetscInt i = 0; i < n; i++) {
+    for (PetscInt j = 0; j < i; j++)
+      PetscCheck(strcmp(names[i], names[j]), s->comm, PETSC_ERR_USER_INPUT, "Body '%s' appears twice in -scene_bodies",
+                 names[i]);
+    PetscCall(FCBodyCreate(s->comm, names[i], &s->bodies[i]));
+    s->nbodies++;
+    PetscCall(FCBodySetFromOptions(s->bodies[i]));
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode SceneSetFromOptions(FCScene s)
 {
-  char      fields[256] = "displacement,velocity,von_mises";
-  char     *names[FC_MAX_BODIES];
-  PetscInt  n = FC_MAX_BODIES;
-  PetscBool set;
+  char           fields[256]          = "displacement,velocity,von_mises";
+  char          *names[FC_MAX_BODIES] = {NULL};
+  PetscInt       n                    = FC_MAX_BODIES;
+  PetscBool      set;
+  PetscErrorCode ierr;
 
   PetscFunctionBegin;
   PetscOptionsBegin(s->comm, NULL, "Scene options", "FCScene");
@@ -75,19 +95,9 @@ static PetscErrorCode SceneSetFromOptions(FCScene s)
   PetscCall(PetscOptionsString("-restart", "Continue from the last complete output step of this HDF5 file", NULL,
                                s->restart, s->restart, sizeof(s->restart), NULL));
   PetscOptionsEnd();
-  PetscCheck(set && n > 0, s->comm, PETSC_ERR_USER_INPUT,
-             "No bodies: give -scene_bodies name1,name2,... (see docs/options.md)");
-  PetscCheck(s->h > 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -time_step must be > 0, got %g", (double)s->h);
-  PetscCall(FCOutputFieldsParse(s->comm, fields, &s->fields));
-  for (PetscInt i = 0; i < n; i++) {
-    for (PetscInt j = 0; j < i; j++)
-      PetscCheck(strcmp(names[i], names[j]), s->comm, PETSC_ERR_USER_INPUT, "Body '%s' appears twice in -scene_bodies",
-                 names[i]);
-    PetscCall(FCBodyCreate(s->comm, names[i], &s->bodies[i]));
-    s->nbodies++;
-    PetscCall(FCBodySetFromOptions(s->bodies[i]));
-  }
-  for (PetscInt i = 0; i < n; i++) PetscCall(PetscFree(names[i]));
+  ierr = CreateBodies(s, set, n, names, fields); /* the names are freed after an error too */
+  for (PetscInt i = 0; i < FC_MAX_BODIES; i++) PetscCall(PetscFree(names[i]));
+  PetscCall(ierr);
   PetscCall(FCCollisionCreate(s->comm, s->nbodies, s->bodies, &s->collision));
   PetscCall(FCCollisionSetFromOptions(s->collision));
   s->pairs = FCCollisionGetPairs(s->collision);
