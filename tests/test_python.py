@@ -21,6 +21,7 @@ scripts under mpirun -n NP):
   finds the installed library through its pkg-config file (1 rank)."""
 import glob
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -259,6 +260,43 @@ for what, opt in (("region", {"finger_fixed": "nosuch"}), ("table", {"finger_dis
             "by %s over 30 failures (< 1 MB; per rank and case: %s)" %
             ("%.0f kB" % (worst / 1024) if growth else "-", [g[1] + " " + g[2] for g in growth] if growth else
              (p.stderr[-300:] if p else "timeout")))
+    # 4. the C API with NULL arguments: every function of include/fecontact.h that takes a pointer or a handle,
+    # called with NULL for all of its arguments, and the red team's calls with a live scene: an error whose
+    # message names the argument, no crash
+    header = open(os.path.join(ROOT, "include/fecontact.h")).read()
+    sigs = re.findall(r"PETSC_EXTERN\s+PetscErrorCode\s+(FC\w+)\(([^;]*)\);", re.sub(r"/\*.*?\*/", "", header, flags=re.S))
+    handles = ("*", "[", "FCBody", "FCScene", "Vec", "DM ")
+    sweep = [(n, len(re.split(r",(?![^(]*\))", a))) for n, a in sigs if any(h in a for h in handles)]
+    p = python("""
+import ctypes
+from fecontact import scene as S
+lib = S._lib
+def null(name, *args):
+    f = lib[name]  # a new function object: none of the argument types scene.py declares
+    f.restype = ctypes.c_int
+    try:
+        S._call(f, *args)
+        say("NULLNOERROR", name)
+    except fecontact.FecontactError as e:
+        say("NULLERROR", name, "|", e)
+for name, n in %r:
+    null(name, *([None] * n))
+with fecontact.Scene(options=%r) as s:
+    b = s.body("tool")
+    null("FCSceneGetBody", s._h, None, ctypes.byref(ctypes.c_void_p()))
+    null("FCSceneGetContacts", s._h, None, None)
+    null("FCBodyGetCentroid", b._h, None)
+    null("FCBodySetKinematicPose", b._h, None, None)
+    s.step()
+    say("STEPPED", s.step_index)
+""" % (sweep, " ".join(quick + ["-output_file", out("rel_null.h5")])), check=False, timeout=300)
+    errs = [ln for ln in p.stdout.splitlines() if ln.startswith("NULLERROR") and "is NULL" in ln] if p else []
+    c.check(p is not None and p.returncode == 0 and len(errs) == len(sweep) + 4 and "STEPPED 1" in p.stdout,
+            "the C API's %d functions with pointers or handles, called with NULL, and FCSceneGetBody(s, NULL), "
+            "FCSceneGetContacts(s, NULL), FCBodyGetCentroid(b, NULL), FCBodySetKinematicPose(b, NULL, NULL): %d errors "
+            "naming the argument (%s), no crash; the scene then steps" %
+            (len(sweep), len(errs), errs[-3].split("| ")[-1] if errs else
+             "exit %s: %s" % (p.returncode if p else "timeout", [ln for ln in p.stdout.splitlines()[-2:]] if p else "")))
 
 if ONLY == "reliability":
     reliability()

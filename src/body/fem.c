@@ -437,6 +437,8 @@ PetscErrorCode FCBodyFEMGetDM(FCBody body, DM *dm)
 {
   FEM *fem = NULL;
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(dm, 2);
   PetscCall(FCFEMGet(body, &fem));
   *dm = fem->mesh.dm;
   PetscFunctionReturn(0);
@@ -446,6 +448,7 @@ PetscErrorCode FCBodyFEMGetState(FCBody body, Vec *u, Vec *v)
 {
   FEM *fem = NULL;
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   PetscCall(FCFEMGet(body, &fem));
   if (u) *u = fem->u;
   if (v) *v = fem->v;
@@ -456,6 +459,9 @@ PetscErrorCode FCBodyFEMComputeElasticForce(FCBody body, Vec u, Vec f)
 {
   FEM *fem = NULL;
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(u, 2);
+  FCValidPointer(f, 3);
   PetscCall(FCFEMGet(body, &fem));
   PetscCall(FCFEMAssembleElastic(body, u, f, NULL));
   PetscFunctionReturn(0);
@@ -469,6 +475,8 @@ PetscErrorCode FCBodyFEMGetReferenceCoordinates(FCBody body, Vec *X)
   PetscInt     lo;
 
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(X, 2);
   PetscCall(FCFEMGet(body, &fem));
   PetscCall(VecDuplicate(fem->u, X));
   PetscCall(VecGetOwnershipRange(*X, &lo, NULL));
@@ -484,6 +492,7 @@ PetscErrorCode FCBodyFEMGetCounters(FCBody body, PetscInt *nassembly, PetscInt *
 {
   FEM *fem = NULL;
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   PetscCall(FCFEMGet(body, &fem));
   if (nassembly) *nassembly = fem->nassembly;
   if (nfactorization) *nfactorization = fem->nfactor;

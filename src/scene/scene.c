@@ -37,6 +37,7 @@ static PetscErrorCode SceneCreate(MPI_Comm comm, FCScene *scene)
 PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
 {
   PetscFunctionBegin;
+  FCValidPointer(scene, 2);
   PetscCall(FCErrorAgree(comm, SceneCreate(comm, scene)));
   PetscFunctionReturn(0);
 }
@@ -111,6 +112,7 @@ static PetscErrorCode SceneSetFromOptions(FCScene s)
 PetscErrorCode FCSceneSetFromOptions(FCScene s)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
   PetscCall(FCErrorAgree(s->comm, SceneSetFromOptions(s)));
   PetscFunctionReturn(0);
 }
@@ -226,6 +228,7 @@ static PetscErrorCode SceneSetUp(FCScene s)
 PetscErrorCode FCSceneSetUp(FCScene s)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
   PetscCall(FCErrorAgree(s->comm, SceneSetUp(s)));
   PetscFunctionReturn(0);
 }
@@ -233,6 +236,9 @@ PetscErrorCode FCSceneSetUp(FCScene s)
 PetscErrorCode FCSceneGetBody(FCScene s, const char name[], FCBody *body)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  FCValidPointer(name, 2);
+  FCValidPointer(body, 3);
   *body = NULL;
   for (PetscInt i = 0; i < s->nbodies; i++)
     if (!strcmp(FCBodyName(s->bodies[i]), name)) *body = s->bodies[i];
@@ -380,6 +386,7 @@ static PetscErrorCode SceneRun(FCScene s)
 PetscErrorCode FCSceneRun(FCScene s)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
   PetscCall(FCErrorAgree(s->comm, SceneRun(s)));
   PetscFunctionReturn(0);
 }
@@ -397,6 +404,7 @@ static PetscErrorCode SceneFinish(FCScene s)
 PetscErrorCode FCSceneFinish(FCScene s)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
   PetscCall(FCErrorAgree(s->comm, SceneFinish(s)));
   PetscFunctionReturn(0);
 }
@@ -404,6 +412,7 @@ PetscErrorCode FCSceneFinish(FCScene s)
 PetscErrorCode FCSceneDestroy(FCScene *scene)
 {
   PetscFunctionBegin;
+  FCValidPointer(scene, 1);
   if (!*scene) PetscFunctionReturn(0);
   PetscCall(FCOutputDestroy(&(*scene)->output));
   PetscCall(FCSchemeDestroy(&(*scene)->scheme));
@@ -421,6 +430,7 @@ PetscErrorCode FCSceneDestroy(FCScene *scene)
 PetscErrorCode FCSceneGetTime(FCScene s, PetscReal *t, PetscInt *step)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
   if (t) *t = s->t;
   if (step) *step = s->step;
   PetscFunctionReturn(0);
@@ -429,6 +439,7 @@ PetscErrorCode FCSceneGetTime(FCScene s, PetscReal *t, PetscInt *step)
 PetscErrorCode FCSceneGetTimeStep(FCScene s, PetscReal *h, PetscInt *nsteps)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
   if (h) *h = s->h;
   if (nsteps) *nsteps = s->nsteps;
   PetscFunctionReturn(0);
@@ -437,6 +448,8 @@ PetscErrorCode FCSceneGetTimeStep(FCScene s, PetscReal *h, PetscInt *nsteps)
 PetscErrorCode FCSceneGetNumBodies(FCScene s, PetscInt *n)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  FCValidPointer(n, 2);
   *n = s->nbodies;
   PetscFunctionReturn(0);
 }
@@ -444,6 +457,8 @@ PetscErrorCode FCSceneGetNumBodies(FCScene s, PetscInt *n)
 PetscErrorCode FCSceneGetBodyByIndex(FCScene s, PetscInt i, FCBody *body)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  FCValidPointer(body, 3);
   PetscCheck(i >= 0 && i < s->nbodies, s->comm, PETSC_ERR_USER_INPUT,
              "Body index %" PetscInt_FMT " out of range: the scene has %" PetscInt_FMT " bodies", i, s->nbodies);
   *body = s->bodies[i];
@@ -454,6 +469,8 @@ PetscErrorCode FCSceneGetBodyByIndex(FCScene s, PetscInt i, FCBody *body)
 PetscErrorCode FCSceneGetContacts(FCScene s, PetscInt *n, FCContactInfo info[])
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  FCValidPointer(n, 2);
   *n = s->pairs && s->pairs->n ? s->set.n : 0;
   if (!info) PetscFunctionReturn(0);
   for (PetscInt k = 0; k < *n; k++) {

@@ -129,6 +129,7 @@ static PetscErrorCode SceneStep(FCScene s)
 PetscErrorCode FCSceneStep(FCScene s)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
   PetscCall(FCErrorAgree(s->comm, SceneStep(s)));
   PetscFunctionReturn(0);
 }

@@ -88,3 +88,9 @@ PETSC_INTERN PetscErrorCode FCTableDestroy(FCTable *);
 PETSC_INTERN PetscBool      FCErrorIsStepFailure(PetscErrorCode);
 PETSC_INTERN PetscErrorCode FCPushStepErrorHandler(void);
 PETSC_INTERN PetscErrorCode FCErrorAgree(MPI_Comm, PetscErrorCode);
+/* A pointer argument of a public function (include/fecontact.h) that may not be NULL: an error naming the
+   function and the argument rather than a crash (PETSc's PetscValidPointer checks nothing in an optimized
+   build) */
+#define FCValidPointer(p, arg)                                                                                         \
+  PetscCheck((p) != NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument %d (%s) is NULL", PETSC_FUNCTION_NAME,    \
+             (int)(arg), #p)
