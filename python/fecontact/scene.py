@@ -151,18 +151,17 @@ def _option_pairs(options):
     else:
         words, items, i = [str(o) for o in options], [], 0
         while i < len(words):
-            if words[i].split() != [words[i]] and _is_name(words[i]):  # several words in one ("-a 1"): as text
+            if words[i].split() != [words[i]] or not _is_name(words[i]):
+                # several words in one ("-a 1"), or a word that follows no option: as text, for PETSc to read
                 items.append((words[i], None))
                 i += 1
                 continue
-            if not _is_name(words[i]):
-                raise ValueError("option list: '%s' is not an option name (-name) and follows no option" % words[i])
             value = words[i + 1] if i + 1 < len(words) and not _is_name(words[i + 1]) else None
             items.append((words[i], value))
             i += 1 if value is None else 2
     pairs, text = [], []
     for k, v in items:
-        if k in _DIRECTIVES or k.split() != [k]:
+        if k in _DIRECTIVES or k.split() != [k] or not _is_name(k):
             text += [k] + ([] if v is None else [v])
         else:
             pairs.append((k, v))
