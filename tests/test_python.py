@@ -179,6 +179,26 @@ except fecontact.FecontactError as e:
         c.check(p is not None and len(raised) == NP, "%s, on %d rank(s): FecontactError on every rank (%s)" %
                 (what, NP, "ran past 120 s: a rank waits" if p is None else raised[0][7:] if raised else
                  p.stdout[-300:] + p.stderr[-300:]))
+    # 5b. an error of one rank only at the scene's entry points (here an option whose value differs between the
+    # ranks, checked after the last collective call of FCSceneSetFromOptions): raised on every rank, the others
+    # naming the failing rank (FCErrorAgree)
+    if NP > 1:
+        p = python("""
+r = PETSc.COMM_WORLD.getRank()
+try:
+    with fecontact.Scene(options_file="input/finger_push.opts", options={"time_steps": 3, "quiet": None,
+                         "output_file": %r, "contact_settle_rtol": -1 if r == 1 else 1e-8}) as s:
+        s.step()
+    tell("NOERROR")
+except fecontact.FecontactError as e:
+    tell("RAISED", e)
+""" % out("rel_onerank.h5"), check=False, timeout=120)
+        lines = told() if p is not None else []
+        raised = [ln for ln in lines if ln.startswith("RAISED") and "-contact_settle_rtol" in ln]
+        named = [ln for ln in raised if "(on rank 1)" in ln]
+        c.check(len(raised) == NP and len(named) == NP - 1, "an error on rank 1 only (-contact_settle_rtol -1 there): "
+                "FecontactError on every rank, the others naming rank 1 (%s)" %
+                ("ran past 120 s: a rank waits" if p is None else named[0][7:] if named else lines or p.stderr[-300:]))
     # 2. set_pose (set_velocity) with different values on different ranks: an error naming the body on every rank
     if NP > 1:
         p = python("""
