@@ -195,7 +195,10 @@ PETSC_EXTERN PetscErrorCode FCSceneDestroy(FCScene *);
    two steps it may read the time, the bodies' state and the contacts of the last step, and steer
    its kinematic bodies. FCSceneStep sets the scene up at its first call and refuses a step beyond
    -time_steps; FCSceneFinish, after the last step, prints the summary and writes the memory report
-   as the end of FCSceneRun does. */
+   as the end of FCSceneRun does. FCSceneCreate, SetFromOptions, SetUp, Step, Run and Finish fail on
+   every rank when one rank fails (the first failing rank's error and message on the others).
+   Every function of this header checks its pointer and handle arguments: a NULL one that is not
+   documented as optional is an error (PETSC_ERR_ARG_NULL) naming the function and the argument. */
 PETSC_EXTERN PetscErrorCode FCSceneFinish(FCScene);
 PETSC_EXTERN PetscErrorCode FCSceneGetTime(FCScene, PetscReal *t, PetscInt *step);
 PETSC_EXTERN PetscErrorCode FCSceneGetTimeStep(FCScene, PetscReal *h, PetscInt *nsteps);

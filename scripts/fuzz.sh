@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (tools/fuzz/, clang -fsanitize=fuzzer,address, in build-fuzz/) and
 # runs each for a bounded time on a seed corpus; exits non-zero when one crashed.
-#   scripts/fuzz.sh [seconds per target, default 60] [target ...]   (targets: fuzz_options fuzz_mesh fuzz_table)
+#   scripts/fuzz.sh [seconds per target, default 60] [target[:seconds] ...]
+#   (targets: fuzz_options fuzz_mesh fuzz_table fuzz_option_pairs; by default all four, fuzz_table
+#   and fuzz_option_pairs, the Python module's option dict, for a third of the time: a table is parsed
+#   in microseconds, and the option pairs' parser after the insertion is fuzz_options')
 # Needs clang and its runtime (apt-get install clang libclang-rt-14-dev; scripts/setup.sh does it);
 # exits 77 (ctest: skipped) without clang. Environment:
 #   FUZZ_DIR   where corpora, logs and crash inputs go (default build-fuzz/run)
@@ -15,7 +18,8 @@ ROOT="$(pwd)"
 SECONDS_PER_TARGET="${1:-60}"
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_options fuzz_mesh fuzz_table)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(fuzz_options fuzz_mesh "fuzz_table:$(((SECONDS_PER_TARGET + 2) / 3))" "fuzz_option_pairs:$((SECONDS_PER_TARGET / 3))")
+NAMES=("${TARGETS[@]%%:*}")
 FUZZ_DIR="${FUZZ_DIR:-$ROOT/build-fuzz/run}"
 
 if ! command -v clang >/dev/null 2>&1; then
@@ -24,7 +28,7 @@ if ! command -v clang >/dev/null 2>&1; then
 fi
 scripts/make_meshes.sh
 cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=Release -DFC_FUZZ=ON >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target "${TARGETS[@]}" >/dev/null
+cmake --build build-fuzz -j"$(nproc)" --target "${NAMES[@]}" >/dev/null
 
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1
 # leaks on error paths are not findings here (valgrind checks the normal runs); a huge
@@ -39,6 +43,21 @@ seed_options() { # $1: corpus directory
     sed -e 's/#.*//' -e 's#meshes/\(table1_[0-9]*k\|beam_n16\|beam_n8\)\.msh#meshes/cube_coarse.msh#' "$f" |
       tr -s ' \n' ' ' >"$1/seed_$(basename "$(dirname "$f")")_$(basename "$f" .opts)"
   done
+}
+
+seed_pairs() { # $1: corpus directory; a few scenes of input/ as an option dict: "name<TAB>value" lines
+  # (fuzz_options runs all of them through the same parser; here the seeds are the run's time)
+  local f
+  for f in input/cube_drop.opts input/finger_push.opts input/two_cubes.opts input/sliding.opts; do
+    sed -e 's/#.*//' -e 's#meshes/\(table1_[0-9]*k\|beam_n16\|beam_n8\)\.msh#meshes/cube_coarse.msh#' "$f" |
+      tr -s ' \n' '\n\n' | awk '/^-[A-Za-z]/ {if (n) print n; n = $0; next} n {print n "\t" $0; n = ""} END {if (n) print n}' \
+        >"$1/seed_$(basename "$(dirname "$f")")_$(basename "$f" .opts)"
+  done
+  # a value with spaces, passed whole (a trajectory's rows after '; ')
+  sed -e 's/#.*//' input/finger_push.opts | tr -s ' \n' '\n\n' | grep -v -e '^-tool_trajectory$' -e '^0:' |
+    awk '/^-[A-Za-z]/ {if (n) print n; n = $0; next} n {print n "\t" $0; n = ""} END {if (n) print n}' \
+      >"$1/seed_spaced_trajectory"
+  printf -- '-tool_trajectory\t0:0.03,0,0.08; 0.5:0.0195,0,0.08; 1.0:0.0,0,0.08\n-time_steps\t2\n' >>"$1/seed_spaced_trajectory"
 }
 
 seed_mesh() { # $1: corpus directory
@@ -91,7 +110,10 @@ classify() { # $1: target binary, $2: crash input; prints "petsc-gmsh <frame>" o
 }
 
 status=0
-for t in "${TARGETS[@]}"; do
+for spec in "${TARGETS[@]}"; do
+  t="${spec%%:*}"
+  seconds="$SECONDS_PER_TARGET"
+  [ "$spec" = "$t" ] || seconds="${spec#*:}"
   dir="$FUZZ_DIR/$t"
   bin="$ROOT/build-fuzz/tools/fuzz/$t"
   mkdir -p "$dir/corpus" "$dir/seeds"
@@ -100,20 +122,18 @@ for t in "${TARGETS[@]}"; do
   export FUZZ_PETSC_CRASHES="$dir/petsc-reader" # fuzz_mesh keeps the inputs that crash PETSc's reader
   case "$t" in
     fuzz_options) seed_options "$dir/seeds"; extra=(-dict="$ROOT/tools/fuzz/options.dict" -max_len=4096) ;;
+    fuzz_option_pairs) seed_pairs "$dir/seeds"; extra=(-dict="$ROOT/tools/fuzz/options.dict" -max_len=4096) ;;
     fuzz_mesh) seed_mesh "$dir/seeds"; extra=(-max_len=65536) ;;
     fuzz_table) seed_table "$dir/seeds"; extra=(-max_len=65536) ;;
     *) echo "fuzz: unknown target $t" >&2; exit 2 ;;
   esac
-  secs="$SECONDS_PER_TARGET"
-  # a table is parsed in microseconds: a third of the time covers far more inputs than the others'
-  [ "$t" != fuzz_table ] || secs=$(((SECONDS_PER_TARGET + 2) / 3))
-  echo "fuzz: $t for ${secs} s (log $dir/log.txt)"
+  echo "fuzz: $t for ${seconds} s (log $dir/log.txt)"
   start=$(date +%s)
   set +e
   # fork mode: the campaign goes on after a crash (each is saved and classified below); from the
   # repository root, as the seeds name meshes by relative paths
   mkdir -p "$dir/tmp" # the targets' scratch files and libFuzzer's fork directory
-  TMPDIR="$dir/tmp" "$bin" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 -max_total_time="$secs" \
+  TMPDIR="$dir/tmp" "$bin" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 -max_total_time="$seconds" \
     -timeout=60 -rss_limit_mb=4096 -close_fd_mask=1 -artifact_prefix="$dir/" "${extra[@]}" \
     "$dir/corpus" "$dir/seeds" >"$dir/log.txt" 2>&1
   rc=$?

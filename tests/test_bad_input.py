@@ -131,6 +131,9 @@ cases = [
      "-compliance_inverse_block"),
     ("redundant compliance without MUMPS", ["-options_file", "input/cube_drop.opts", "-cube_pc_factor_mat_solver_type",
                                             "petsc", "-compliance_type", "redundant", "-quiet"], "needs MUMPS"),
+    # a table file read on rank 0 that is a directory: an error on every rank (it hung rank 1)
+    ("table file a directory", ["-options_file", "input/finger_push.opts", "-tool_trajectory", out("optsdir"),
+                                "-time_steps", "2", "-quiet"], "cannot read the table file"),
     ("condensed compliance with another solver", ["-options_file", "input/cube_drop.opts", "-cube_pc_factor_mat_solver_type",
                                                   "petsc", "-compliance_type", "condensed", "-quiet"],
      "-compliance_type condensed factors A of body 'cube' itself"),
@@ -139,7 +142,8 @@ cases = [
 PARALLEL = {"missing mesh file", "not a gmsh file", "truncated mesh", "2D mesh", "inverted element", "zero-volume element",
             "unknown body type", "NaN Young", "misspelt option", "misspelt output field", "unwritable output path", "fixed box fixes everything",
             "surface not closed", "contact pair, unknown body", "mesh that crashes PETSc's reader",
-            "contact matrices over the memory limit", "redundant groups 0", "dump path unwritable"}
+            "contact matrices over the memory limit", "redundant groups 0", "dump path unwritable",
+            "table file a directory"}
 if NP > 1:
     cases = [cs for cs in cases if cs[0] in PARALLEL]
     # only on several ranks does the default builder keep copies of A

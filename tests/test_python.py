@@ -19,36 +19,71 @@ scripts under mpirun -n NP):
   against it with pkg-config and with CMake (find_package(fecontact)), and its run steering the tool
   writes the file the same steering from Python writes; pip installs python/ and the installed module
   finds the installed library through its pkg-config file (1 rank)."""
+import glob
 import os
+import re
 import shutil
+import signal
 import subprocess
 import sys
 
 import h5py
 import numpy as np
 
-from fctest import run, out, Checker, np_from_argv, sorted_positions, ROOT, ENV, EXE
+from fctest import run, out, Checker, TMP, np_from_argv, only_from_argv, sorted_positions, ROOT, ENV, EXE
 
 NP = np_from_argv()
+ONLY = only_from_argv()  # --only reliability: the checks of issue 56 alone (reliability() below)
 c = Checker("python np%d" % NP)
 PY = "/usr/bin/python3"
 LIB = os.path.join(os.path.dirname(os.path.abspath(EXE)), "libfecontact.so")
 PENV = dict(ENV, FECONTACT_LIBRARY=LIB, PYTHONPATH=os.path.join(ROOT, "python"))
+TOLD = out("told")  # tell()'s files: TOLD.<rank>
 SCENE = ["-options_file", "input/finger_push.opts", "-time_steps", "60", "-output_every", "5", "-quiet"]
 
 
-def python(code, np_=NP, check=True):
-    """Run a Python script (fecontact importable) on np_ ranks; returns the CompletedProcess"""
+def python(code, np_=NP, check=True, timeout=600):
+    """Run a Python script (fecontact importable) on np_ ranks; returns the CompletedProcess (None if it
+    ran past timeout seconds: it is killed)"""
     f = out("script_%d.py" % abs(hash(code)))
     with open(f, "w") as g:
         g.write("import sys\nimport numpy as np\nimport fecontact\nfrom petsc4py import PETSc\n"
-                "say = print if PETSc.COMM_WORLD.getRank() == 0 else (lambda *a: None)  # one rank's lines\n" + code)
+                "say = print if PETSc.COMM_WORLD.getRank() == 0 else (lambda *a: None)  # one rank's lines\n"
+                "def tell(*a):  # a line of this rank's (a file each: the ranks' stdout may interleave)\n"
+                "    with open(%r + '.%%d' %% PETSc.COMM_WORLD.getRank(), 'a') as g:\n"
+                "        g.write(' '.join(str(x) for x in a) + '\\n')\n" % TOLD + code)
     cmd = ([] if np_ == 1 else ["mpirun", "-n", str(np_), "--oversubscribe"]) + [PY, f]
-    p = subprocess.run(cmd, cwd=ROOT, env=PENV, capture_output=True, text=True, timeout=600)
+    # a session of its own: past the timeout, SIGTERM reaches mpirun and every rank (mpirun killed alone
+    # would leave its ranks waiting forever)
+    q = subprocess.Popen(cmd, cwd=ROOT, env=PENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         start_new_session=True)
+    try:
+        o, e = q.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        for sig in (signal.SIGTERM, signal.SIGKILL):
+            try:
+                os.killpg(q.pid, sig)
+                q.communicate(timeout=20)
+                break
+            except (subprocess.TimeoutExpired, ProcessLookupError):
+                pass
+        if check:
+            raise RuntimeError("python script ran past %d s: %s" % (timeout, f))
+        return None
+    p = subprocess.CompletedProcess(cmd, q.returncode, o, e)
     if check and p.returncode:
         sys.stderr.write(p.stdout + p.stderr)
         raise RuntimeError("python script failed (%d): %s" % (p.returncode, f))
     return p
+
+
+def told():
+    """The lines the ranks of the last script wrote with tell(), every rank's (then forgotten)"""
+    lines = []
+    for f in glob.glob(TOLD + ".*"):
+        lines += open(f).read().splitlines()
+        os.remove(f)
+    return lines
 
 
 def differing(fa, fb):
@@ -67,6 +102,225 @@ def differing(fa, fb):
     walk(a, "")
     return bad
 
+
+def reliability():
+    """Issue 56: each check fails without its fix (a wrong answer, a crash, a hang or a leak)"""
+    quick = SCENE[:2] + ["-time_steps", "3", "-quiet"]
+    # 1. an option value with spaces is passed whole: the trajectory's three rows, not the first one
+    traj = "0:0.03,0,0.08; 0.5:0.0195,0,0.08; 1.0:0.0,0,0.08"
+    p = python("""
+with fecontact.Scene(options_file="input/finger_push.opts", options={"time_steps": 10, "quiet": None,
+                     "output_file": %r, "tool_trajectory": %r}) as s:
+    s.step(10)
+    say("TOOL", s.body("tool").centroid[0])
+""" % (out("rel_traj.h5"), traj), check=False)
+    x = [float(ln.split()[1]) for ln in p.stdout.splitlines() if ln.startswith("TOOL")]
+    c.check(len(x) == 1 and abs(x[0] - (0.03 - 0.0105 * 0.1 / 0.5)) < 1e-12, "an option value with spaces (%r) is "
+            "passed whole: the tool at x = %s m after 10 steps (its second row: 0.0279 m)" % (traj, x or p.stderr[-300:]))
+    # 8. a step beyond -time_steps: a clear error, the scene unchanged (time, finish(), the output's /memory)
+    f8 = out("rel_past.h5")
+    p = python("""
+s = fecontact.Scene(options=%r)
+s.step(3)
+for n in (1, 2):
+    try:
+        s.step(n)
+        say("NOERROR")
+    except fecontact.FecontactError as e:
+        say("PAST", e)
+say("AFTER", s.time, s.step_index)
+s.finish()
+s.destroy()
+""" % " ".join(quick + ["-output_file", f8]), check=False)
+    past = [ln for ln in p.stdout.splitlines() if ln.startswith("PAST")]
+    after = [ln.split() for ln in p.stdout.splitlines() if ln.startswith("AFTER")]
+    mem = os.path.exists(f8) and "memory" in h5py.File(f8, "r")
+    c.check(p.returncode == 0 and len(past) == 2 and "-time_steps 3" in past[0] and after and
+            float(after[0][1]) == 0.03 and after[0][2] == "3" and mem, "step() beyond -time_steps: FecontactError "
+            "'%s', then time %s, finish() and the output's /memory (%s)" %
+            (past[0][5:] if past else p.stderr[-300:], after[0][1:] if after else "-", mem))
+    # 3. a Body used after its scene is destroyed (destroy(), the end of a with block): FecontactError
+    p = python("""
+s = fecontact.Scene(options=%r)
+b = s.body("tool")
+s.destroy()
+with fecontact.Scene(options=%r) as s2:
+    b2 = s2.body("finger")
+for what, f in (("centroid", lambda: b.centroid), ("set_pose", lambda: b.set_pose([0, 0, 0])),
+                ("positions", lambda: b2.positions), ("energy", lambda: b2.energy)):
+    try:
+        f()
+        say("NOERROR", what)
+    except fecontact.FecontactError as e:
+        say("GONE", what, "|", e)
+""" % (" ".join(quick + ["-output_file", out("rel_gone1.h5")]), " ".join(quick + ["-output_file", out("rel_gone2.h5")])),
+               check=False)
+    gone = [ln for ln in p.stdout.splitlines() if ln.startswith("GONE") and "scene is destroyed" in ln]
+    c.check(p.returncode == 0 and len(gone) == 4, "a Body after its scene's destroy() or with block: FecontactError "
+            "(%s), no crash (exit %d)" % (gone[0].split("| ")[-1] if gone else p.stderr[-300:], p.returncode))
+
+    # 5. an input that fails on rank 0 only (PETSc's gmsh reader reads there; a table file is read there):
+    # every rank raises, none waits (timeout 120 s)
+    trunc = out("truncated.msh")
+    with open(os.path.join(ROOT, "meshes/finger.msh"), "rb") as g, open(trunc, "wb") as h:
+        h.write(g.read(100000))
+    for what, opt, msg in (("a truncated mesh", {"finger_dm_plex_filename": trunc}, "Cannot read mesh file"),
+                           ("a directory as a table file", {"tool_trajectory": TMP}, "cannot read the table file")):
+        p = python("""
+try:
+    with fecontact.Scene(options_file="input/finger_push.opts", options=dict(%r, time_steps=3, quiet=None,
+                         output_file=%r)) as s:
+        s.step()
+    tell("NOERROR")
+except fecontact.FecontactError as e:
+    tell("RAISED", e)
+""" % (opt, out("rel_rank0.h5")), check=False, timeout=120)
+        raised = [ln for ln in told() if ln.startswith("RAISED") and msg in ln]
+        c.check(p is not None and len(raised) == NP, "%s, on %d rank(s): FecontactError on every rank (%s)" %
+                (what, NP, "ran past 120 s: a rank waits" if p is None else raised[0][7:] if raised else
+                 p.stdout[-300:] + p.stderr[-300:]))
+    # 5b. an error of one rank only at the scene's entry points (here an option whose value differs between the
+    # ranks, checked after the last collective call of FCSceneSetFromOptions): raised on every rank, the others
+    # naming the failing rank (FCErrorAgree)
+    if NP > 1:
+        p = python("""
+r = PETSc.COMM_WORLD.getRank()
+try:
+    with fecontact.Scene(options_file="input/finger_push.opts", options={"time_steps": 3, "quiet": None,
+                         "output_file": %r, "contact_settle_rtol": -1 if r == 1 else 1e-8}) as s:
+        s.step()
+    tell("NOERROR")
+except fecontact.FecontactError as e:
+    tell("RAISED", e)
+""" % out("rel_onerank.h5"), check=False, timeout=120)
+        lines = told() if p is not None else []
+        raised = [ln for ln in lines if ln.startswith("RAISED") and "-contact_settle_rtol" in ln]
+        named = [ln for ln in raised if "(on rank 1)" in ln]
+        c.check(len(raised) == NP and len(named) == NP - 1, "an error on rank 1 only (-contact_settle_rtol -1 there): "
+                "FecontactError on every rank, the others naming rank 1 (%s)" %
+                ("ran past 120 s: a rank waits" if p is None else named[0][7:] if named else lines or p.stderr[-300:]))
+    # 2. set_pose (set_velocity) with different values on different ranks: an error naming the body on every rank
+    if NP > 1:
+        p = python("""
+r = PETSc.COMM_WORLD.getRank()
+with fecontact.Scene(options=%r) as s:
+    b = s.body("tool")
+    for what, f in (("pose", lambda: b.set_pose(b.centroid + [1e-3 * r, 0, 0])),
+                    ("velocity", lambda: b.set_velocity([0, 0, 0], [r, 0, 0]))):
+        try:
+            f()
+            tell("NOERROR", what)
+        except fecontact.FecontactError as e:
+            tell("DIFFER", what, "|", e)
+    b.set_pose(b.centroid)  # the same on every rank: accepted, and the scene steps on
+    s.step()
+    tell("STEPPED", s.step_index)
+""" % " ".join(quick + ["-output_file", out("rel_differ.h5")]), check=False, timeout=120)
+        lines = told()
+        differ = [ln for ln in lines if ln.startswith("DIFFER") and "Body 'tool'" in ln and "differs between" in ln]
+        stepped = [ln for ln in lines if ln == "STEPPED 1"]
+        c.check(len(differ) == 2 * NP and len(stepped) == NP, "set_pose and set_velocity with values that differ "
+                "between the ranks: FecontactError on every rank (%s); the same pose then steps" %
+                (differ[0].split("| ")[-1] + "...)" if differ else "-" if p is None else p.stdout[-300:] + p.stderr[-300:]))
+    # 6. two live scenes on one output file (by its name, by a symbolic link to it): the second is refused at
+    # set-up; the first steps on and writes a complete file; once it is destroyed the name is free again
+    f6, link = out("rel_shared.h5"), out("rel_shared_link.h5")
+    if os.path.lexists(link):
+        os.remove(link)
+    os.symlink(f6, link)
+    p = python("""
+a = fecontact.Scene(options=%r)
+a.step()
+for name in (%r, %r):
+    b = fecontact.Scene(options=%r + " -output_file " + name)
+    try:
+        b.step()
+        tell("NOERROR")
+    except fecontact.FecontactError as e:
+        tell("REFUSED", e)
+    b.destroy()
+a.step(2)
+a.finish()
+a.destroy()
+with fecontact.Scene(options=%r) as s:
+    s.step()
+    tell("AFTER", s.step_index)
+""" % (" ".join(quick + ["-output_file", f6]), f6, link, " ".join(quick), " ".join(quick + ["-output_file", f6])),
+               check=False, timeout=300)
+    lines = told() if p is not None else []
+    refused = [ln for ln in lines if ln.startswith("REFUSED") and "another live scene" in ln]
+    ok = os.path.exists(f6) and h5py.File(f6, "r")["complete"][0] == 1  # the third scene's file: 1 step
+    c.check(len(refused) == 2 * NP and lines.count("AFTER 1") == NP and ok, "a second live scene on the output file "
+            "of another (its name, a symbolic link): refused (%s); the first ends its run, and a scene after it "
+            "writes the file" % (refused[0][8:] if refused else lines or (p.stderr[-300:] if p else "timeout")))
+    # 7. a set-up that fails (a fixed region the mesh does not have; a table file that is a directory) frees what it
+    # built: the resident memory (after malloc_trim) over 30 such failures, after 10 first ones, grows < 1 MB
+    p = python("""
+import ctypes
+libc = ctypes.CDLL("libc.so.6")
+def rss():
+    libc.malloc_trim(0)
+    return int(open("/proc/self/statm").read().split()[1]) * 4096
+for what, opt in (("region", {"finger_fixed": "nosuch"}), ("table", {"finger_displacement": "base=%s"})):
+    for i in range(40):
+        if i == 10:
+            r0 = rss()
+        try:
+            with fecontact.Scene(options_file="input/finger_push.opts", options=dict(opt, time_steps=3, quiet=None,
+                                 output_file=%r)) as s:
+                s.setup()
+        except fecontact.FecontactError:
+            pass
+    tell("GROWTH", what, rss() - r0)
+""" % (TMP, out("rel_leak.h5")), check=False, timeout=300)
+    growth = [ln.split() for ln in (told() if p is not None else []) if ln.startswith("GROWTH")]
+    worst = max((int(g[2]) for g in growth), default=-1)
+    c.check(len(growth) == 2 * NP and worst < 1 << 20,
+            "a failing set-up repeated (a wrong fixed region, a directory as a table file): the resident memory grows "
+            "by %s over 30 failures (< 1 MB; per rank and case: %s)" %
+            ("%.0f kB" % (worst / 1024) if growth else "-", [g[1] + " " + g[2] for g in growth] if growth else
+             (p.stderr[-300:] if p else "timeout")))
+    # 4. the C API with NULL arguments: every function of include/fecontact.h that takes a pointer or a handle,
+    # called with NULL for all of its arguments, and the red team's calls with a live scene: an error whose
+    # message names the argument, no crash
+    header = open(os.path.join(ROOT, "include/fecontact.h")).read()
+    sigs = re.findall(r"PETSC_EXTERN\s+PetscErrorCode\s+(FC\w+)\(([^;]*)\);", re.sub(r"/\*.*?\*/", "", header, flags=re.S))
+    handles = ("*", "[", "FCBody", "FCScene", "Vec", "DM ")
+    sweep = [(n, len(re.split(r",(?![^(]*\))", a))) for n, a in sigs if any(h in a for h in handles)]
+    p = python("""
+import ctypes
+from fecontact import scene as S
+lib = S._lib
+def null(name, *args):
+    f = lib[name]  # a new function object: none of the argument types scene.py declares
+    f.restype = ctypes.c_int
+    try:
+        S._call(f, *args)
+        say("NULLNOERROR", name)
+    except fecontact.FecontactError as e:
+        say("NULLERROR", name, "|", e)
+for name, n in %r:
+    null(name, *([None] * n))
+with fecontact.Scene(options=%r) as s:
+    b = s.body("tool")
+    null("FCSceneGetBody", s._h, None, ctypes.byref(ctypes.c_void_p()))
+    null("FCSceneGetContacts", s._h, None, None)
+    null("FCBodyGetCentroid", b._h, None)
+    null("FCBodySetKinematicPose", b._h, None, None)
+    s.step()
+    say("STEPPED", s.step_index)
+""" % (sweep, " ".join(quick + ["-output_file", out("rel_null.h5")])), check=False, timeout=300)
+    errs = [ln for ln in p.stdout.splitlines() if ln.startswith("NULLERROR") and "is NULL" in ln] if p else []
+    c.check(p is not None and p.returncode == 0 and len(errs) == len(sweep) + 4 and "STEPPED 1" in p.stdout,
+            "the C API's %d functions with pointers or handles, called with NULL, and FCSceneGetBody(s, NULL), "
+            "FCSceneGetContacts(s, NULL), FCBodyGetCentroid(b, NULL), FCBodySetKinematicPose(b, NULL, NULL): %d errors "
+            "naming the argument (%s), no crash; the scene then steps" %
+            (len(sweep), len(errs), errs[-3].split("| ")[-1] if errs else
+             "exit %s: %s" % (p.returncode if p else "timeout", [ln for ln in p.stdout.splitlines()[-2:]] if p else "")))
+
+if ONLY == "reliability":
+    reliability()
+    c.done()
 
 # the executable's run, and the same scene stepped from Python
 fe = out("exe.h5")
@@ -256,4 +510,5 @@ with fecontact.Scene(options=%r) as s:
             q.stdout.split()[-1] == "2", "pip install of python/, outside the repository: it finds the installed "
             "library through pkg-config and steps a scene (%s)" % (q.stdout.strip() or pip.stderr[-200:] + q.stderr[-300:]))
     shutil.rmtree(prefix, ignore_errors=True)
+reliability()
 c.done()

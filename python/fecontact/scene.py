@@ -55,6 +55,7 @@ _PetscOptionsCreate = _declare("PetscOptionsCreate", ctypes.POINTER(_ptr))
 _PetscOptionsDestroy = _declare("PetscOptionsDestroy", ctypes.POINTER(_ptr))
 _PetscOptionsInsertFile = _declare("PetscOptionsInsertFile", _ptr, _ptr, ctypes.c_char_p, ctypes.c_int)
 _PetscOptionsInsertString = _declare("PetscOptionsInsertString", _ptr, ctypes.c_char_p)
+_PetscOptionsSetValue = _declare("PetscOptionsSetValue", _ptr, ctypes.c_char_p, ctypes.c_char_p)
 _PetscOptionsPush = _declare("PetscOptionsPush", _ptr)
 _PetscOptionsPop = _declare("PetscOptionsPop")
 _FCSceneCreate = _declare("FCSceneCreate", _ptr, ctypes.POINTER(_ptr))
@@ -114,28 +115,57 @@ def _vector(x, n, what):
     return a
 
 
-def _option_string(options):
-    """-name value pairs from a dict ({"time_steps": 10, "quiet": None}), a list of strings
-    (["-time_steps", "10"]) or a string"""
+def _value(v):
+    """An option's value as the options database holds it (None: an option without a value)"""
+    if v is None:
+        return None
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (list, tuple, np.ndarray)):
+        return ",".join(repr(float(x)) if isinstance(x, (float, np.floating)) else str(x) for x in v)
+    if isinstance(v, (float, np.floating)):
+        return repr(float(v))
+    return str(v)
+
+
+def _is_name(word):
+    """Whether a word of an option list is an option's name (-name, not a negative number)"""
+    return len(word) > 1 and word[0] == "-" and not (word[1].isdigit() or word[1] == ".")
+
+
+# options that PetscOptionsInsertString acts on rather than stores (another file, a prefix): passed as
+# words, never as a name and its value
+_DIRECTIVES = ("-options_file", "-options_file_yaml", "-options_string_yaml", "-prefix_push", "-prefix_pop")
+
+
+def _option_pairs(options):
+    """(name, value) pairs from a dict ({"time_steps": 10, "quiet": None}) or a list of strings
+    (["-time_steps", "10"]), each value whole (a value with spaces, e.g. a trajectory "0:0,0,0; 1:1,0,0",
+    is one value), and the text of a string (split at spaces by PETSc); returns (pairs, text)"""
     if options is None:
-        return ""
+        return [], ""
     if isinstance(options, str):
-        return options
+        return [], options
     if isinstance(options, dict):
-        words = []
-        for k, v in options.items():
-            words.append(k if k.startswith("-") else "-" + k)
-            if v is None:
+        items = [(k if k.startswith("-") else "-" + k, _value(v)) for k, v in options.items()]
+    else:
+        words, items, i = [str(o) for o in options], [], 0
+        while i < len(words):
+            if words[i].split() != [words[i]] or not _is_name(words[i]):
+                # several words in one ("-a 1"), or a word that follows no option: as text, for PETSc to read
+                items.append((words[i], None))
+                i += 1
                 continue
-            if isinstance(v, bool):
-                v = "true" if v else "false"
-            elif isinstance(v, (list, tuple, np.ndarray)):
-                v = ",".join(repr(float(x)) if isinstance(x, (float, np.floating)) else str(x) for x in v)
-            elif isinstance(v, (float, np.floating)):
-                v = repr(float(v))
-            words.append(str(v))
-        return " ".join(words)
-    return " ".join(str(o) for o in options)
+            value = words[i + 1] if i + 1 < len(words) and not _is_name(words[i + 1]) else None
+            items.append((words[i], value))
+            i += 1 if value is None else 2
+    pairs, text = [], []
+    for k, v in items:
+        if k in _DIRECTIVES or k.split() != [k] or not _is_name(k):
+            text += [k] + ([] if v is None else [v])
+        else:
+            pairs.append((k, v))
+    return pairs, " ".join(text)
 
 
 _live = weakref.WeakSet()
@@ -154,24 +184,31 @@ class Body:
     def __repr__(self):
         return "<fecontact.Body %s (%s)>" % (self.name, self.type)
 
+    def _do(self, f, *args):
+        """f(self's handle, *args) through the scene; FecontactError naming the body once the scene is
+        destroyed (its handle then points to freed memory)"""
+        if not self._scene._h:
+            raise FecontactError("body '%s': its scene is destroyed" % self.name)
+        self._scene._do(f, self._h, *args)
+
     @property
     def centroid(self):
         c = np.zeros(3, REAL)
-        self._scene._do(_FCBodyGetCentroid, self._h, c)
+        self._do(_FCBodyGetCentroid, c)
         return c
 
     @property
     def rotation(self):
         """The unit quaternion (w, x, y, z) of a rigid or kinematic body; None for an FE body"""
         q, has = np.zeros(4, REAL), ctypes.c_int()
-        self._scene._do(_FCBodyGetRotation, self._h, q, ctypes.byref(has))
+        self._do(_FCBodyGetRotation, q, ctypes.byref(has))
         return q if has.value else None
 
     def _picture(self, f, gathered):
         n = _cint()
-        self._scene._do(f, self._h, int(gathered), ctypes.byref(n), None)
+        self._do(f, int(gathered), ctypes.byref(n), None)
         x = np.zeros((n.value, 3), REAL)
-        self._scene._do(f, self._h, int(gathered), ctypes.byref(n), x.ctypes.data_as(_ptr))
+        self._do(f, int(gathered), ctypes.byref(n), x.ctypes.data_as(_ptr))
         return x
 
     def get_positions(self, gathered=True):
@@ -190,14 +227,14 @@ class Body:
         if self.type == "fem":
             return self._picture(_FCBodyGetVelocities, True)
         v, w = np.zeros(3, REAL), np.zeros(3, REAL)
-        self._scene._do(_FCBodyGetVelocity, self._h, v, w)
+        self._do(_FCBodyGetVelocity, v, w)
         return v, w
 
     @property
     def energy(self):
         """(kinetic, elastic, gravity) in joules"""
         e = np.zeros(3, REAL)
-        self._scene._do(_FCBodyGetEnergy, self._h, e)
+        self._do(_FCBodyGetEnergy, e)
         return dict(kinetic=e[0], elastic=e[1], gravity=e[2])
 
     @property
@@ -205,20 +242,20 @@ class Body:
         """The reactions of its constrained regions in the last step: name -> (force, moment about the
         region's centroid), the supports' action on the body"""
         n, names, vals = _cint(), ctypes.POINTER(ctypes.c_char_p)(), ctypes.POINTER(_creal)()
-        self._scene._do(_FCBodyGetReactions, self._h, ctypes.byref(n), ctypes.byref(names), ctypes.byref(vals))
+        self._do(_FCBodyGetReactions, ctypes.byref(n), ctypes.byref(names), ctypes.byref(vals))
         return {names[k].decode(): (np.array(vals[6 * k:6 * k + 3]), np.array(vals[6 * k + 3:6 * k + 6]))
                 for k in range(n.value)}
 
     def set_pose(self, position, quaternion=(1.0, 0.0, 0.0, 0.0)):
         """A kinematic body: the pose it reaches at the end of the next step (centre, unit quaternion
         (w, x, y, z)), moving there at constant velocity and angular velocity over that step, then held"""
-        self._scene._do(_FCBodySetKinematicPose, self._h, _vector(position, 3, "position"),
+        self._do(_FCBodySetKinematicPose, _vector(position, 3, "position"),
                         _vector(quaternion, 4, "quaternion"))
 
     def set_velocity(self, v, w=(0.0, 0.0, 0.0)):
         """A kinematic body: a constant velocity and angular velocity (about its centre) from the next
         step on"""
-        self._scene._do(_FCBodySetKinematicVelocity, self._h, _vector(v, 3, "velocity"),
+        self._do(_FCBodySetKinematicVelocity, _vector(v, 3, "velocity"),
                         _vector(w, 3, "angular velocity"))
 
 
@@ -238,9 +275,11 @@ class Scene:
                 if not os.path.exists(options_file):
                     raise FecontactError("Options file '%s' not found" % options_file)
                 _call(_PetscOptionsInsertFile, self._comm, self._opts, str(options_file).encode(), 1)
-            text = _option_string(options)
+            pairs, text = _option_pairs(options)
             if text:
                 _call(_PetscOptionsInsertString, self._opts, text.encode())
+            for k, v in pairs:  # each value whole: PetscOptionsInsertString would split it at its spaces
+                _call(_PetscOptionsSetValue, self._opts, k.encode(), None if v is None else v.encode())
             self._do(_FCSceneCreate, self._comm, ctypes.byref(self._h))
             self._do(_FCSceneSetFromOptions, self._h)
         except Exception:
@@ -273,11 +312,16 @@ class Scene:
     def setup(self):
         """Set the scene up (the first step does it otherwise): bodies, contact, output header"""
         self._check()
-        self._do(_FCSceneSetUp, self._h)
+        self._advance(_FCSceneSetUp)  # a failed set-up leaves the scene half built: destroy it
 
     def step(self, n=1):
-        """n time steps (each writes its output as the executable's does)"""
-        self._check()
+        """n time steps (each writes its output as the executable's does). More steps than remain to
+        -time_steps: FecontactError before any step, the scene unchanged (still stepped, read, finished)"""
+        self.setup()  # a restart's step is known at set-up
+        k, last = self._time()[1], self._stepping()[1]
+        if k + n > last:
+            raise FecontactError("step(%d): the scene is at step %d of -time_steps %d, %d step(s) remain (raise "
+                                 "-time_steps)" % (n, k, last, last - k))
         for _ in range(n):
             self._advance(_FCSceneStep)
 

@@ -9,6 +9,8 @@ PetscFunctionList FCBodyList = NULL;
 PetscErrorCode FCBodyRegister(const char name[], PetscErrorCode (*create)(FCBody))
 {
   PetscFunctionBegin;
+  FCValidPointer(name, 1);
+  FCValidPointer(create, 2);
   PetscCall(PetscFunctionListAdd(&FCBodyList, name, create));
   PetscFunctionReturn(0);
 }
@@ -33,6 +35,8 @@ PetscErrorCode FCBodyCreate(MPI_Comm comm, const char name[], FCBody *body)
   size_t len;
 
   PetscFunctionBegin;
+  FCValidPointer(name, 2);
+  FCValidPointer(body, 3);
   PetscCall(FCInitializePackage());
   PetscCall(PetscStrlen(name, &len));
   PetscCheck(len > 0 && len < FC_MAX_NAME - 1, comm, PETSC_ERR_USER_INPUT,
@@ -57,6 +61,8 @@ PetscErrorCode FCBodySetType(FCBody body, FCBodyType type)
   PetscErrorCode (*create)(FCBody) = NULL;
 
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(type, 2);
   PetscCheck(!body->data, body->comm, PETSC_ERR_ORDER, "Body '%s' already has a type", body->name);
   {
     char option[FC_MAX_NAME + 8];
@@ -71,6 +77,8 @@ PetscErrorCode FCBodySetType(FCBody body, FCBodyType type)
 PetscErrorCode FCBodyGetType(FCBody body, FCBodyType *type)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(type, 2);
   *type = body->type;
   PetscFunctionReturn(0);
 }
@@ -78,6 +86,8 @@ PetscErrorCode FCBodyGetType(FCBody body, FCBodyType *type)
 PetscErrorCode FCBodyGetName(FCBody body, const char **name)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(name, 2);
   *name = body->name;
   PetscFunctionReturn(0);
 }
@@ -115,6 +125,7 @@ PetscErrorCode FCBodySetFromOptions(FCBody body)
   PetscBool set;
 
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   PetscOptionsBegin(body->comm, body->prefix, "Body options", "FCBody");
   PetscCall(PetscOptionsFList("-type", "Body type", "FCBodySetType", FCBodyList, body->type, type, sizeof(type), &set));
   PetscOptionsEnd();
@@ -129,6 +140,7 @@ PetscErrorCode FCBodySetFromOptions(FCBody body)
 PetscErrorCode FCBodySetTimeStep(FCBody body, PetscReal h)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   PetscCheck(!body->setupcalled, body->comm, PETSC_ERR_ORDER, "Set the time step of body '%s' before FCBodySetUp()",
              body->name);
   body->h = h;
@@ -149,6 +161,7 @@ PetscErrorCode FCBodyChangeTimeStep(FCBody body, PetscReal h)
 PetscErrorCode FCBodySetQuasiStatic(FCBody body, PetscBool quasistatic)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   PetscCheck(!body->setupcalled, body->comm, PETSC_ERR_ORDER, "Set the analysis of body '%s' before FCBodySetUp()",
              body->name);
   body->quasistatic = quasistatic;
@@ -159,6 +172,7 @@ PetscErrorCode FCBodySetQuasiStatic(FCBody body, PetscBool quasistatic)
 PetscErrorCode FCBodySetSceneBodies(FCBody body, PetscInt n, FCBody bodies[])
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   body->nscene = n;
   body->scene  = bodies;
   PetscFunctionReturn(0);
@@ -178,6 +192,7 @@ PetscErrorCode FCBodySetStepContacts(FCBody body, PetscInt self, const FCContact
 PetscErrorCode FCBodySetTime(FCBody body, PetscReal t)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   if (body->ops.settime) PetscCall((*body->ops.settime)(body, t));
   PetscFunctionReturn(0);
 }
@@ -186,6 +201,9 @@ PetscErrorCode FCBodySetTime(FCBody body, PetscReal t)
 PetscErrorCode FCBodyGetPoseAt(FCBody body, PetscReal t, PetscReal x[3], PetscReal q[4])
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(x, 3);
+  FCValidPointer(q, 4);
   PetscCheck(body->ops.poseat, body->comm, PETSC_ERR_SUP, "Body '%s' (type %s) has no prescribed pose", body->name,
              body->type);
   PetscCall((*body->ops.poseat)(body, t, x, q));
@@ -195,6 +213,8 @@ PetscErrorCode FCBodyGetPoseAt(FCBody body, PetscReal t, PetscReal x[3], PetscRe
 PetscErrorCode FCBodySetGravity(FCBody body, const PetscReal g[3])
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(g, 2);
   for (int i = 0; i < 3; i++) body->gravity[i] = g[i];
   PetscFunctionReturn(0);
 }
@@ -202,6 +222,7 @@ PetscErrorCode FCBodySetGravity(FCBody body, const PetscReal g[3])
 PetscErrorCode FCBodySetUp(FCBody body)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   if (body->setupcalled) PetscFunctionReturn(0);
   PetscCheck(body->type[0], body->comm, PETSC_ERR_ORDER, "Body '%s' has no type", body->name);
   PetscCheck(!body->quasistatic || body->deformable || body->prescribed, body->comm, PETSC_ERR_USER_INPUT,
@@ -216,6 +237,7 @@ PetscErrorCode FCBodySetUp(FCBody body)
 PetscErrorCode FCBodyComputeFreeMotion(FCBody body, PetscReal t)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   if (body->ops.freemotion) PetscCall((*body->ops.freemotion)(body, t));
   PetscFunctionReturn(0);
 }
@@ -223,6 +245,7 @@ PetscErrorCode FCBodyComputeFreeMotion(FCBody body, PetscReal t)
 PetscErrorCode FCBodyIntegrate(FCBody body, PetscReal t)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   PetscCall(FCPhaseBegin(FC_PHASE_INTEGRATION));
   PetscCall((*body->ops.integrate)(body, t));
   PetscCall(FCPhaseEnd(FC_PHASE_INTEGRATION));
@@ -232,6 +255,8 @@ PetscErrorCode FCBodyIntegrate(FCBody body, PetscReal t)
 PetscErrorCode FCBodyGetCentroid(FCBody body, PetscReal c[3])
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(c, 2);
   PetscCall((*body->ops.getcentroid)(body, c));
   PetscFunctionReturn(0);
 }
@@ -239,6 +264,9 @@ PetscErrorCode FCBodyGetCentroid(FCBody body, PetscReal c[3])
 PetscErrorCode FCBodyGetRotation(FCBody body, PetscReal q[4], PetscBool *has)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(q, 2);
+  FCValidPointer(has, 3);
   *has = PETSC_FALSE;
   if (body->ops.getrotation) PetscCall((*body->ops.getrotation)(body, q, has));
   PetscFunctionReturn(0);
@@ -248,6 +276,8 @@ PetscErrorCode FCBodyGetRotation(FCBody body, PetscReal q[4], PetscBool *has)
 PetscErrorCode FCBodyGetExternalWork(FCBody body, PetscReal *w)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(w, 2);
   *w = 0.0;
   if (body->ops.getexternalwork) PetscCall((*body->ops.getexternalwork)(body, w));
   PetscFunctionReturn(0);
@@ -256,6 +286,10 @@ PetscErrorCode FCBodyGetExternalWork(FCBody body, PetscReal *w)
 PetscErrorCode FCBodyGetSolverCounts(FCBody body, PetscInt *nfactor, PetscInt *nkrylov, PetscInt *nnewton)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(nfactor, 2);
+  FCValidPointer(nkrylov, 3);
+  FCValidPointer(nnewton, 4);
   *nfactor = *nkrylov = *nnewton = 0;
   if (body->ops.getsolvercounts) PetscCall((*body->ops.getsolvercounts)(body, nfactor, nkrylov, nnewton));
   PetscFunctionReturn(0);
@@ -264,6 +298,9 @@ PetscErrorCode FCBodyGetSolverCounts(FCBody body, PetscInt *nfactor, PetscInt *n
 PetscErrorCode FCBodyGetInverted(FCBody body, FCInverted *inv, PetscBool *has)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(inv, 2);
+  FCValidPointer(has, 3);
   *has = PETSC_FALSE;
   if (body->ops.getinverted) PetscCall((*body->ops.getinverted)(body, inv, has));
   PetscFunctionReturn(0);
@@ -283,6 +320,8 @@ PetscErrorCode FCBodyGetContactMemory(FCBody body, PetscReal bytes[3])
 PetscErrorCode FCBodyGetReactions(FCBody body, PetscInt *n, const char ***names, const PetscReal **values)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(n, 2);
   *n = 0;
   if (names) *names = NULL;
   if (values) *values = NULL;
@@ -309,6 +348,8 @@ PetscErrorCode FCBodyGetRegions(FCBody body, PetscInt *n, char **names, PetscRea
 PetscErrorCode FCBodyGetEnergy(FCBody body, FCEnergy *E)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(E, 2);
   E->kinetic = E->elastic = E->gravity = 0.0;
   if (body->ops.getenergy) PetscCall((*body->ops.getenergy)(body, E));
   PetscFunctionReturn(0);
@@ -317,6 +358,8 @@ PetscErrorCode FCBodyGetEnergy(FCBody body, FCEnergy *E)
 PetscErrorCode FCBodyGetVisual(FCBody body, const FCBodyVisual **vis)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(vis, 2);
   *vis = &body->visual;
   PetscFunctionReturn(0);
 }
@@ -324,6 +367,8 @@ PetscErrorCode FCBodyGetVisual(FCBody body, const FCBodyVisual **vis)
 PetscErrorCode FCBodyGetVisualPositions(FCBody body, PetscReal x[])
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(x, 2);
   PetscCall((*body->ops.getvisualpositions)(body, x));
   PetscFunctionReturn(0);
 }
@@ -332,6 +377,7 @@ PetscErrorCode FCBodyGetVisualPositions(FCBody body, PetscReal x[])
 PetscErrorCode FCBodyCheckState(FCBody body, PetscInt step)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   if (body->ops.checkstate) PetscCall((*body->ops.checkstate)(body, step));
   PetscFunctionReturn(0);
 }
@@ -371,10 +417,39 @@ PetscErrorCode FCBodyVisualDestroy(FCBodyVisual *vis)
 PetscErrorCode FCBodyDestroy(FCBody *body)
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   if (!*body) PetscFunctionReturn(0);
   if ((*body)->ops.destroy) PetscCall((*(*body)->ops.destroy)(*body));
   PetscCall(FCBodyVisualDestroy(&(*body)->visual));
   PetscCall(PetscFree(*body));
+  PetscFunctionReturn(0);
+}
+
+/* A program's motion of a kinematic body (n values: pose or velocities) must be the same on every rank,
+   or the ranks would hold different scenes: compared collectively (largest and smallest value of
+   each), and an error on every rank naming the body when they differ or one is not finite */
+static PetscErrorCode CheckSameOnRanks(FCBody body, const char what[], PetscInt n, const PetscReal a[])
+{
+  PetscReal buf[2 * 7 + 1] = {0};
+
+  PetscFunctionBegin;
+  PetscCheck(n <= 7, PETSC_COMM_SELF, PETSC_ERR_PLIB, "%" PetscInt_FMT " values", n);
+  for (PetscInt d = 0; d < n; d++) {
+    if (PetscIsInfOrNanReal(a[d]))
+      buf[2 * n] = 1.0;
+    else {
+      buf[d]     = a[d];
+      buf[n + d] = -a[d];
+    }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, buf, 2 * n + 1, MPIU_REAL, MPIU_MAX, body->comm));
+  PetscCheck(buf[2 * n] == 0.0, body->comm, PETSC_ERR_USER_INPUT,
+             "Body '%s': its %s is not finite (on at least one rank)", body->name, what);
+  for (PetscInt d = 0; d < n; d++)
+    PetscCheck(buf[d] == -buf[n + d], body->comm, PETSC_ERR_USER_INPUT,
+               "Body '%s': its %s differs between the ranks (component %" PetscInt_FMT " from %.17g to %.17g): every "
+               "rank must give the same values",
+               body->name, what, d, (double)-buf[n + d], (double)buf[d]);
   PetscFunctionReturn(0);
 }
 
@@ -383,11 +458,18 @@ PetscErrorCode FCBodySetKinematicPose(FCBody body, const PetscReal x[3], const P
   PetscReal n = 0.0;
 
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(x, 2);
+  FCValidPointer(q, 3);
   PetscCheck(body->ops.setkinematicpose, body->comm, PETSC_ERR_USER_INPUT,
              "Body '%s' is %s, not kinematic: only a kinematic body's pose can be set", body->name, body->type);
   PetscCheck(body->setupcalled, body->comm, PETSC_ERR_ORDER,
              "Body '%s': set the scene up (FCSceneSetUp) before setting its pose: its motion starts from its placement",
              body->name);
+  {
+    PetscReal xq[7] = {x[0], x[1], x[2], q[0], q[1], q[2], q[3]};
+    PetscCall(CheckSameOnRanks(body, "pose (position, quaternion)", 7, xq));
+  }
   for (int d = 0; d < 4; d++) n += q[d] * q[d];
   for (int d = 0; d < 3; d++)
     PetscCheck(!PetscIsInfOrNanReal(x[d]), body->comm, PETSC_ERR_USER_INPUT,
@@ -403,12 +485,19 @@ PetscErrorCode FCBodySetKinematicPose(FCBody body, const PetscReal x[3], const P
 PetscErrorCode FCBodySetKinematicVelocity(FCBody body, const PetscReal v[3], const PetscReal w[3])
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(v, 2);
+  FCValidPointer(w, 3);
   PetscCheck(body->ops.setkinematicvel, body->comm, PETSC_ERR_USER_INPUT,
              "Body '%s' is %s, not kinematic: only a kinematic body's velocity can be set", body->name, body->type);
   PetscCheck(body->setupcalled, body->comm, PETSC_ERR_ORDER,
              "Body '%s': set the scene up (FCSceneSetUp) before setting its velocity: its motion starts from its "
              "placement",
              body->name);
+  {
+    PetscReal vw[6] = {v[0], v[1], v[2], w[0], w[1], w[2]};
+    PetscCall(CheckSameOnRanks(body, "velocity (linear, angular)", 6, vw));
+  }
   for (int d = 0; d < 3; d++)
     PetscCheck(!PetscIsInfOrNanReal(v[d]) && !PetscIsInfOrNanReal(w[d]), body->comm, PETSC_ERR_USER_INPUT,
                "Body '%s': velocity %g, %g, %g or angular velocity %g, %g, %g is not finite", body->name, (double)v[0],
@@ -420,6 +509,9 @@ PetscErrorCode FCBodySetKinematicVelocity(FCBody body, const PetscReal v[3], con
 PetscErrorCode FCBodyGetVelocity(FCBody body, PetscReal v[3], PetscReal w[3])
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(v, 2);
+  FCValidPointer(w, 3);
   PetscCheck(body->ops.getvelocity, body->comm, PETSC_ERR_USER_INPUT,
              "Body '%s' is %s: its vertices' velocities are FCBodyGetVelocities", body->name, body->type);
   PetscCall((*body->ops.getvelocity)(body, v, w));
@@ -458,6 +550,8 @@ static PetscErrorCode PictureValues(FCBody body, PetscBool velocity, PetscBool g
 PetscErrorCode FCBodyGetPositions(FCBody body, PetscBool gathered, PetscInt *n, PetscReal x[])
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(n, 3);
   PetscCall(PictureValues(body, PETSC_FALSE, gathered, n, x));
   PetscFunctionReturn(0);
 }
@@ -465,6 +559,8 @@ PetscErrorCode FCBodyGetPositions(FCBody body, PetscBool gathered, PetscInt *n, 
 PetscErrorCode FCBodyGetVelocities(FCBody body, PetscBool gathered, PetscInt *n, PetscReal v[])
 {
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(n, 3);
   PetscCall(PictureValues(body, PETSC_TRUE, gathered, n, v));
   PetscFunctionReturn(0);
 }

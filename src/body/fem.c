@@ -119,6 +119,7 @@ static PetscErrorCode SetUpSection(FCBody body)
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc3(nv, &fem->ldof, nv, &fem->gdof, nv, &fem->fixed));
+  PetscCall(FCFEMBCSetUpConstraints(body)); /* fixed[]; first: an error in a region leaves no section to free */
   PetscCall(PetscSectionCreate(body->comm, &s));
   PetscCall(PetscSectionSetNumFields(s, 1));
   PetscCall(PetscSectionSetFieldName(s, 0, "displacement"));
@@ -126,7 +127,6 @@ static PetscErrorCode SetUpSection(FCBody body)
   /* chart from 0: PETSc 3.18's PetscSectionSetConstraintIndices() indexes by point, not by
      point - pStart, and rejects valid indices when the chart does not start at 0 */
   PetscCall(PetscSectionSetChart(s, 0, m->vEnd));
-  PetscCall(FCFEMBCSetUpConstraints(body)); /* fixed[] */
   for (PetscInt v = 0; v < nv; v++) {
     PetscCall(PetscSectionSetDof(s, m->vStart + v, 3));
     PetscCall(PetscSectionSetFieldDof(s, m->vStart + v, 0, 3));
@@ -444,6 +444,8 @@ PetscErrorCode FCBodyFEMGetDM(FCBody body, DM *dm)
 {
   FEM *fem = NULL;
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(dm, 2);
   PetscCall(FCFEMGet(body, &fem));
   *dm = fem->mesh.dm;
   PetscFunctionReturn(0);
@@ -453,6 +455,7 @@ PetscErrorCode FCBodyFEMGetState(FCBody body, Vec *u, Vec *v)
 {
   FEM *fem = NULL;
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   PetscCall(FCFEMGet(body, &fem));
   if (u) *u = fem->u;
   if (v) *v = fem->v;
@@ -463,6 +466,9 @@ PetscErrorCode FCBodyFEMComputeElasticForce(FCBody body, Vec u, Vec f)
 {
   FEM *fem = NULL;
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(u, 2);
+  FCValidPointer(f, 3);
   PetscCall(FCFEMGet(body, &fem));
   PetscCall(FCFEMAssembleElastic(body, u, f, NULL));
   PetscFunctionReturn(0);
@@ -476,6 +482,8 @@ PetscErrorCode FCBodyFEMGetReferenceCoordinates(FCBody body, Vec *X)
   PetscInt     lo;
 
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
+  FCValidPointer(X, 2);
   PetscCall(FCFEMGet(body, &fem));
   PetscCall(VecDuplicate(fem->u, X));
   PetscCall(VecGetOwnershipRange(*X, &lo, NULL));
@@ -491,6 +499,7 @@ PetscErrorCode FCBodyFEMGetCounters(FCBody body, PetscInt *nassembly, PetscInt *
 {
   FEM *fem = NULL;
   PetscFunctionBegin;
+  FCValidPointer(body, 1);
   PetscCall(FCFEMGet(body, &fem));
   if (nassembly) *nassembly = fem->nassembly;
   if (nfactorization) *nfactorization = fem->nfactor;

@@ -174,18 +174,17 @@ static PetscErrorCode NextItem(FCBody body, const char option[], char **s, char 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCFEMBCSetUpConstraints(FCBody body)
+/* FCFEMBCSetUpConstraints with the scratch marks of a region's vertices (mark, nv long) */
+static PetscErrorCode SetUpConstraints(FCBody body, PetscBool mark[])
 {
   FEM             *fem = (FEM *)body->data;
   FCMesh          *m   = &fem->mesh;
   PetscInt         nv  = m->vEnd - m->vStart;
-  PetscBool       *mark;
   FCFEMConstraint *c;
   char             item[512];
 
   PetscFunctionBegin;
   PetscCall(PetscMalloc1(nv + 1, &fem->creg));
-  PetscCall(PetscMalloc1(nv + 1, &mark));
   for (PetscInt v = 0; v < nv; v++) fem->creg[v] = -1;
   fem->ncons = 0;
   for (PetscInt b = 0; b < fem->nfixed_box; b++) { /* -fixed_box: constraints named box:... */
@@ -247,7 +246,20 @@ PetscErrorCode FCFEMBCSetUpConstraints(FCBody body)
   fem->moving = PETSC_FALSE;
   for (PetscInt k = 0; k < fem->ncons; k++) fem->moving = (PetscBool)(fem->moving || fem->cons[k].moves);
   for (PetscInt v = 0; v < nv; v++) fem->fixed[v] = (PetscBool)(fem->creg[v] >= 0);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCFEMBCSetUpConstraints(FCBody body)
+{
+  FEM           *fem = (FEM *)body->data;
+  PetscBool     *mark;
+  PetscErrorCode ierr;
+
+  PetscFunctionBegin;
+  PetscCall(PetscMalloc1(fem->mesh.vEnd - fem->mesh.vStart + 1, &mark));
+  ierr = SetUpConstraints(body, mark); /* a wrong region fails here: the marks are freed all the same */
   PetscCall(PetscFree(mark));
+  PetscCall(ierr);
   PetscFunctionReturn(0);
 }
 

@@ -21,6 +21,8 @@ PetscFunctionList FCComplianceList = NULL;
 PetscErrorCode FCComplianceRegister(const char name[], PetscErrorCode (*create)(FCCompliance))
 {
   PetscFunctionBegin;
+  FCValidPointer(name, 1);
+  FCValidPointer(create, 2);
   PetscCall(PetscFunctionListAdd(&FCComplianceList, name, create));
   PetscFunctionReturn(0);
 }

@@ -32,6 +32,7 @@ PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *ou
     PetscCall(FCInputsCheckOutput(comm, filename, "-output_file"));
     PetscCall(FCOutputXdmfName(filename, xmf, sizeof(xmf)));
     PetscCall(FCInputsCheckOutput(comm, xmf, "the XDMF index of -output_file"));
+    PetscCall(FCOutputsCheckLive(comm, filename)); /* nor the file of another live scene */
   }
   PetscCall(PetscNew(&out));
   out->comm = comm;
@@ -78,6 +79,7 @@ PetscErrorCode FCOutputCreate(MPI_Comm comm, const char filename[], FCOutput *ou
     SETERRQ(comm, PETSC_ERR_FILE_WRITE,
             "Cannot create output file '%s' (-output_file): check that its directory exists and is writable", filename);
   }
+  PetscCall(FCOutputsAddLive(out, filename));
   *output = out;
   PetscFunctionReturn(0);
 }
@@ -438,6 +440,7 @@ PetscErrorCode FCOutputDestroy(FCOutput *output)
   PetscFunctionBegin;
   if (!out) PetscFunctionReturn(0);
   comm = out->comm;
+  PetscCall(FCOutputsRemoveLive(out));
   if (out->bo && !FCH5Failed()) {
     PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL)); /* reported once, at the end */
     ierr = FCOutputFlush(out);

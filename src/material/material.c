@@ -13,6 +13,8 @@ PETSC_INTERN PetscErrorCode FCMaterialCreate_StVK(FCMaterial);
 PetscErrorCode FCMaterialRegister(const char name[], PetscErrorCode (*create)(FCMaterial))
 {
   PetscFunctionBegin;
+  FCValidPointer(name, 1);
+  FCValidPointer(create, 2);
   PetscCall(PetscFunctionListAdd(&FCMaterialList, name, create));
   PetscFunctionReturn(0);
 }

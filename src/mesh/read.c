@@ -64,6 +64,37 @@ static int UnterminatedComments(FILE *fp)
   return inside;
 }
 
+/* On several ranks PETSc's reader reads the file on rank 0 while the other ranks wait for what it
+   sends them: a file it fails on (truncated, malformed) would leave them waiting for ever. Rank 0
+   first reads it alone (not interpolated), and every rank learns the outcome: a file the reader
+   rejects is then an input error on every rank, naming it. On 1 rank nothing waits: no trial read. */
+static PetscErrorCode TrialRead(MPI_Comm comm, const char fname[], const char prefix[], const char bodyname[])
+{
+  PetscMPIInt rank, size;
+  int         ierr     = 0;
+  char        msg[512] = "";
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (size == 1) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    DM trial = NULL;
+    ReaderGuard(PETSC_TRUE, fname, prefix, bodyname);
+    ierr = (int)DMPlexCreateGmshFromFile(PETSC_COMM_SELF, fname, PETSC_FALSE, &trial);
+    ReaderGuard(PETSC_FALSE, fname, prefix, bodyname);
+    if (ierr) (void)PetscStrncpy(msg, FCGetLastErrorMessage(), sizeof(msg));
+    (void)DMDestroy(&trial);
+  }
+  PetscCallMPI(MPI_Bcast(&ierr, 1, MPI_INT, 0, comm));
+  PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, comm));
+  PetscCheck(!ierr, comm, PETSC_ERR_USER_INPUT,
+             "Cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': not a valid or complete gmsh file "
+             "(PETSc's gmsh reader: %s)",
+             fname, prefix, bodyname, msg[0] ? msg : "no message");
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCMeshRead(MPI_Comm comm, const char prefix[], const char bodyname[], FCMesh *mesh,
                           char fname[PETSC_MAX_PATH_LEN], PetscBool *distribute)
 {
@@ -109,8 +140,7 @@ PetscErrorCode FCMeshRead(MPI_Comm comm, const char prefix[], const char bodynam
   PetscCall(PetscObjectSetName((PetscObject)mesh->dm, bodyname));
   PetscCall(DMSetOptionsPrefix(mesh->dm, prefix));
   {
-    /* reads (on rank 0), interpolates, refines; a malformed file fails on rank 0 only, so this
-       stays an abort-class error. Not distributed here: the reader replaces the DM's data, and
+    /* reads (on rank 0), interpolates, refines. Not distributed here: the reader replaces the DM's data, and
        with it the partitioner, by a default one that never sees the body's options; the mesh is
        distributed below, by a partitioner that does (-<body>_dm_distribute, read here, is
        restored after the read) */
@@ -127,17 +157,17 @@ PetscErrorCode FCMeshRead(MPI_Comm comm, const char prefix[], const char bodynam
     if (!regions) PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_mark_vertices", "1"));
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%sdm_distribute", prefix));
     PetscCall(PetscOptionsSetValue(NULL, opt, "0"));
+    PetscCall(TrialRead(comm, fname, prefix, bodyname));
     ReaderGuard(PETSC_TRUE, fname, prefix, bodyname);
     ierr = DMSetFromOptions(mesh->dm);
     ReaderGuard(PETSC_FALSE, fname, prefix, bodyname);
     PetscCall(PetscOptionsSetValue(NULL, opt, *distribute ? "1" : "0"));
-    if (ierr) { /* PETSc has printed the reader's message; name the file and the option */
-      fprintf(stderr,
-              "fecontact: error: cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': not a valid or "
-              "complete gmsh file\n",
-              fname, prefix, bodyname);
-      return ierr;
-    }
+    /* an input error naming the file and the option, with the reader's message (on several ranks the
+       trial read has caught such a file on every rank already) */
+    PetscCheck(!ierr, comm, PETSC_ERR_USER_INPUT,
+               "Cannot read mesh file '%s' (-%sdm_plex_filename) of body '%s': not a valid or complete gmsh file "
+               "(PETSc's gmsh reader: %s)",
+               fname, prefix, bodyname, FCGetLastErrorMessage()[0] ? FCGetLastErrorMessage() : "no message");
   }
   PetscFunctionReturn(0);
 }

@@ -143,19 +143,19 @@ static PetscErrorCode ParseBox(const char region[], const char option[], const c
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCMeshRegion(FCMesh *m, const char region[], const char option[], const char bodyname[],
-                            PetscBool vmark[], PetscInt *nface, PetscInt **facev, PetscBool cmark[])
+/* FCMeshRegion with the scratch marks of the region's points (fmark, zeroed, one per point of the chart) */
+static PetscErrorCode Region(FCMesh *m, const char region[], const char option[], const char bodyname[],
+                             PetscBool vmark[], PetscInt *nface, PetscInt **facev, PetscBool cmark[], PetscBool fmark[])
 {
-  MPI_Comm   comm = PetscObjectComm((PetscObject)m->dm);
-  PetscInt   nv = m->vEnd - m->vStart, nc = m->cEnd - m->cStart, fStart, fEnd, nf = 0;
-  PetscBool *fmark, isbox = (PetscBool)!strncmp(region, "box:", 4);
-  DMLabel    label = NULL, bnd;
-  PetscInt   value = -1, pStart, pEnd;
+  MPI_Comm  comm = PetscObjectComm((PetscObject)m->dm);
+  PetscInt  nv = m->vEnd - m->vStart, nc = m->cEnd - m->cStart, fStart, fEnd, nf = 0;
+  PetscBool isbox = (PetscBool)!strncmp(region, "box:", 4);
+  DMLabel   label = NULL, bnd;
+  PetscInt  value = -1, pStart, pEnd;
 
   PetscFunctionBegin;
   PetscCall(DMPlexGetChart(m->dm, &pStart, &pEnd));
   PetscCall(DMPlexGetHeightStratum(m->dm, 1, &fStart, &fEnd));
-  PetscCall(PetscCalloc1(pEnd - pStart, &fmark)); /* every point of the region on this rank */
   if (isbox) {
     PetscReal box[6];
     PetscCall(ParseBox(region, option, bodyname, comm, box));
@@ -237,6 +237,21 @@ PetscErrorCode FCMeshRegion(FCMesh *m, const char region[], const char option[],
     }
     *nface = nf;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCMeshRegion(FCMesh *m, const char region[], const char option[], const char bodyname[],
+                            PetscBool vmark[], PetscInt *nface, PetscInt **facev, PetscBool cmark[])
+{
+  PetscBool     *fmark;
+  PetscInt       pStart, pEnd;
+  PetscErrorCode ierr;
+
+  PetscFunctionBegin;
+  PetscCall(DMPlexGetChart(m->dm, &pStart, &pEnd));
+  PetscCall(PetscCalloc1(pEnd - pStart + 1, &fmark)); /* every point of the region on this rank */
+  ierr = Region(m, region, option, bodyname, vmark, nface, facev, cmark, fmark); /* freed on an error too */
   PetscCall(PetscFree(fmark));
+  PetscCall(ierr);
   PetscFunctionReturn(0);
 }

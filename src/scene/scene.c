@@ -14,7 +14,7 @@
 #include <signal.h>
 #include <stdlib.h>
 
-PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
+static PetscErrorCode SceneCreate(MPI_Comm comm, FCScene *scene)
 {
   FCScene s;
 
@@ -33,12 +33,41 @@ PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSceneSetFromOptions(FCScene s)
+/* collective failure: an error on one rank is raised on every rank (FCErrorAgree) */
+PetscErrorCode FCSceneCreate(MPI_Comm comm, FCScene *scene)
 {
-  char      fields[256] = "displacement,velocity,von_mises";
-  char     *names[FC_MAX_BODIES];
-  PetscInt  n = FC_MAX_BODIES;
-  PetscBool set;
+  PetscFunctionBegin;
+  FCValidPointer(scene, 2);
+  PetscCall(FCErrorAgree(comm, SceneCreate(comm, scene)));
+  PetscFunctionReturn(0);
+}
+
+/* The bodies of -scene_bodies (n names), each with its options, and the output's fields */
+static PetscErrorCode CreateBodies(FCScene s, PetscBool set, PetscInt n, char *names[], const char fields[])
+{
+  PetscFunctionBegin;
+  PetscCheck(set && n > 0, s->comm, PETSC_ERR_USER_INPUT,
+             "No bodies: give -scene_bodies name1,name2,... (see docs/options.md)");
+  PetscCheck(s->h > 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -time_step must be > 0, got %g", (double)s->h);
+  PetscCall(FCOutputFieldsParse(s->comm, fields, &s->fields));
+  for (PetscInt i = 0; i < n; i++) {
+    for (PetscInt j = 0; j < i; j++)
+      PetscCheck(strcmp(names[i], names[j]), s->comm, PETSC_ERR_USER_INPUT, "Body '%s' appears twice in -scene_bodies",
+                 names[i]);
+    PetscCall(FCBodyCreate(s->comm, names[i], &s->bodies[i]));
+    s->nbodies++;
+    PetscCall(FCBodySetFromOptions(s->bodies[i]));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SceneSetFromOptions(FCScene s)
+{
+  char           fields[256]          = "displacement,velocity,von_mises";
+  char          *names[FC_MAX_BODIES] = {NULL};
+  PetscInt       n                    = FC_MAX_BODIES;
+  PetscBool      set;
+  PetscErrorCode ierr;
 
   PetscFunctionBegin;
   PetscOptionsBegin(s->comm, NULL, "Scene options", "FCScene");
@@ -67,25 +96,24 @@ PetscErrorCode FCSceneSetFromOptions(FCScene s)
   PetscCall(PetscOptionsString("-restart", "Continue from the last complete output step of this HDF5 file", NULL,
                                s->restart, s->restart, sizeof(s->restart), NULL));
   PetscOptionsEnd();
-  PetscCheck(set && n > 0, s->comm, PETSC_ERR_USER_INPUT,
-             "No bodies: give -scene_bodies name1,name2,... (see docs/options.md)");
-  PetscCheck(s->h > 0.0, s->comm, PETSC_ERR_USER_INPUT, "Option -time_step must be > 0, got %g", (double)s->h);
-  PetscCall(FCOutputFieldsParse(s->comm, fields, &s->fields));
-  for (PetscInt i = 0; i < n; i++) {
-    for (PetscInt j = 0; j < i; j++)
-      PetscCheck(strcmp(names[i], names[j]), s->comm, PETSC_ERR_USER_INPUT, "Body '%s' appears twice in -scene_bodies",
-                 names[i]);
-    PetscCall(FCBodyCreate(s->comm, names[i], &s->bodies[i]));
-    s->nbodies++;
-    PetscCall(FCBodySetFromOptions(s->bodies[i]));
-  }
-  for (PetscInt i = 0; i < n; i++) PetscCall(PetscFree(names[i]));
+  ierr = CreateBodies(s, set, n, names, fields); /* the names are freed after an error too */
+  for (PetscInt i = 0; i < FC_MAX_BODIES; i++) PetscCall(PetscFree(names[i]));
+  PetscCall(ierr);
   PetscCall(FCCollisionCreate(s->comm, s->nbodies, s->bodies, &s->collision));
   PetscCall(FCCollisionSetFromOptions(s->collision));
   s->pairs = FCCollisionGetPairs(s->collision);
   PetscCall(FCEnergyGuardSetFromOptions(&s->guard, s->comm));
   PetscCall(FCStepControlSetFromOptions(&s->control, s->comm, s->h));
   PetscCall(FCSettleSetFromOptions(&s->settle, s->comm));
+  PetscFunctionReturn(0);
+}
+
+/* collective failure: an error on one rank is raised on every rank (FCErrorAgree) */
+PetscErrorCode FCSceneSetFromOptions(FCScene s)
+{
+  PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  PetscCall(FCErrorAgree(s->comm, SceneSetFromOptions(s)));
   PetscFunctionReturn(0);
 }
 
@@ -137,7 +165,7 @@ static PetscErrorCode ExpectContacts(FCScene s)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSceneSetUp(FCScene s)
+static PetscErrorCode SceneSetUp(FCScene s)
 {
   PetscFunctionBegin;
   if (s->setupcalled) PetscFunctionReturn(0);
@@ -196,9 +224,21 @@ PetscErrorCode FCSceneSetUp(FCScene s)
   PetscFunctionReturn(0);
 }
 
+/* collective failure: an error on one rank is raised on every rank (FCErrorAgree) */
+PetscErrorCode FCSceneSetUp(FCScene s)
+{
+  PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  PetscCall(FCErrorAgree(s->comm, SceneSetUp(s)));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCSceneGetBody(FCScene s, const char name[], FCBody *body)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  FCValidPointer(name, 2);
+  FCValidPointer(body, 3);
   *body = NULL;
   for (PetscInt i = 0; i < s->nbodies; i++)
     if (!strcmp(FCBodyName(s->bodies[i]), name)) *body = s->bodies[i];
@@ -285,7 +325,7 @@ static void StepWarning(FCScene s, char buf[], size_t len)
 /* Runs the remaining steps. If a step fails, or SIGINT/SIGTERM arrives, the output file is
    closed cleanly first, so that every completed step stays readable, and the run stops with a
    line saying at which step and why. */
-PetscErrorCode FCSceneRun(FCScene s)
+static PetscErrorCode SceneRun(FCScene s)
 {
   PetscFunctionBegin;
   PetscCall(FCSceneSetUp(s));
@@ -342,7 +382,16 @@ PetscErrorCode FCSceneRun(FCScene s)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSceneFinish(FCScene s)
+/* collective failure: an error on one rank is raised on every rank (FCErrorAgree) */
+PetscErrorCode FCSceneRun(FCScene s)
+{
+  PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  PetscCall(FCErrorAgree(s->comm, SceneRun(s)));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SceneFinish(FCScene s)
 {
   PetscFunctionBegin;
   PetscCall(FCSceneSetUp(s));
@@ -351,9 +400,19 @@ PetscErrorCode FCSceneFinish(FCScene s)
   PetscFunctionReturn(0);
 }
 
+/* collective failure: an error on one rank is raised on every rank (FCErrorAgree) */
+PetscErrorCode FCSceneFinish(FCScene s)
+{
+  PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  PetscCall(FCErrorAgree(s->comm, SceneFinish(s)));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCSceneDestroy(FCScene *scene)
 {
   PetscFunctionBegin;
+  FCValidPointer(scene, 1);
   if (!*scene) PetscFunctionReturn(0);
   PetscCall(FCOutputDestroy(&(*scene)->output));
   PetscCall(FCSchemeDestroy(&(*scene)->scheme));
@@ -371,6 +430,7 @@ PetscErrorCode FCSceneDestroy(FCScene *scene)
 PetscErrorCode FCSceneGetTime(FCScene s, PetscReal *t, PetscInt *step)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
   if (t) *t = s->t;
   if (step) *step = s->step;
   PetscFunctionReturn(0);
@@ -379,6 +439,7 @@ PetscErrorCode FCSceneGetTime(FCScene s, PetscReal *t, PetscInt *step)
 PetscErrorCode FCSceneGetTimeStep(FCScene s, PetscReal *h, PetscInt *nsteps)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
   if (h) *h = s->h;
   if (nsteps) *nsteps = s->nsteps;
   PetscFunctionReturn(0);
@@ -387,6 +448,8 @@ PetscErrorCode FCSceneGetTimeStep(FCScene s, PetscReal *h, PetscInt *nsteps)
 PetscErrorCode FCSceneGetNumBodies(FCScene s, PetscInt *n)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  FCValidPointer(n, 2);
   *n = s->nbodies;
   PetscFunctionReturn(0);
 }
@@ -394,6 +457,8 @@ PetscErrorCode FCSceneGetNumBodies(FCScene s, PetscInt *n)
 PetscErrorCode FCSceneGetBodyByIndex(FCScene s, PetscInt i, FCBody *body)
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  FCValidPointer(body, 3);
   PetscCheck(i >= 0 && i < s->nbodies, s->comm, PETSC_ERR_USER_INPUT,
              "Body index %" PetscInt_FMT " out of range: the scene has %" PetscInt_FMT " bodies", i, s->nbodies);
   *body = s->bodies[i];
@@ -404,6 +469,8 @@ PetscErrorCode FCSceneGetBodyByIndex(FCScene s, PetscInt i, FCBody *body)
 PetscErrorCode FCSceneGetContacts(FCScene s, PetscInt *n, FCContactInfo info[])
 {
   PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  FCValidPointer(n, 2);
   *n = s->pairs && s->pairs->n ? s->set.n : 0;
   if (!info) PetscFunctionReturn(0);
   for (PetscInt k = 0; k < *n; k++) {

@@ -41,7 +41,7 @@ static PetscErrorCode SubStep(FCScene s, PetscInt step, PetscReal hs, PetscBool 
 }
 
 /* One requested time step of -time_step h, in sub-steps of h / 2^k where one fails (step control) */
-PetscErrorCode FCSceneStep(FCScene s)
+static PetscErrorCode SceneStep(FCScene s)
 {
   PetscReal      timing[FC_PHASE_NUM + 1]; /* per phase, then the step's wall time */
   PetscLogDouble now;
@@ -122,5 +122,14 @@ PetscErrorCode FCSceneStep(FCScene s)
     PetscCall(FCOutputRecordContacts(s->output, &v));
   }
   if (s->step % s->every == 0 || s->step == s->nsteps) PetscCall(FCSceneWriteOutputStep(s));
+  PetscFunctionReturn(0);
+}
+
+/* collective failure: an error on one rank is raised on every rank (FCErrorAgree) */
+PetscErrorCode FCSceneStep(FCScene s)
+{
+  PetscFunctionBegin;
+  FCValidPointer(s, 1);
+  PetscCall(FCErrorAgree(s->comm, SceneStep(s)));
   PetscFunctionReturn(0);
 }

@@ -20,6 +20,8 @@ PetscFunctionList FCSchemeList = NULL;
 PetscErrorCode FCSchemeRegister(const char name[], PetscErrorCode (*create)(FCScheme))
 {
   PetscFunctionBegin;
+  FCValidPointer(name, 1);
+  FCValidPointer(create, 2);
   PetscCall(PetscFunctionListAdd(&FCSchemeList, name, create));
   PetscFunctionReturn(0);
 }

@@ -17,6 +17,8 @@ PETSC_INTERN PetscErrorCode FCShapeCreate_Mesh(FCShape);
 PetscErrorCode FCShapeRegister(const char name[], PetscErrorCode (*create)(FCShape))
 {
   PetscFunctionBegin;
+  FCValidPointer(name, 1);
+  FCValidPointer(create, 2);
   PetscCall(PetscFunctionListAdd(&FCShapeList, name, create));
   PetscFunctionReturn(0);
 }

@@ -93,3 +93,32 @@ const char *FCGetLastErrorMessage(void)
 {
   return last;
 }
+
+/* After a call that may fail on some ranks only (a check of one rank's data, a file read on rank 0):
+   every rank of comm learns it, so that none goes on alone into the next collective call while another
+   has returned. ierr: this rank's result. A rank that failed returns its own error; one that did not
+   raises the first failing rank's error (its class and message, which names that rank). Collective. */
+PetscErrorCode FCErrorAgree(MPI_Comm comm, PetscErrorCode ierr)
+{
+  PetscMPIInt rank, size;
+  int         first, code;
+  char        msg[sizeof(last)];
+
+  PetscFunctionBegin;
+  if (comm == MPI_COMM_NULL || MPI_Comm_size(comm, &size) || size == 1 || MPI_Comm_rank(comm, &rank))
+    PetscFunctionReturn(ierr);
+  first = ierr ? rank : size;
+  if (MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm)) PetscFunctionReturn(ierr ? ierr : PETSC_ERR_MPI);
+  if (first == size) PetscFunctionReturn(0);
+  code = (int)ierr;
+  (void)PetscStrncpy(msg, last, sizeof(msg));
+  if (rank == first && !msg[0]) {
+    const char *text = NULL;
+    (void)PetscErrorMessage(ierr, &text, NULL);
+    (void)PetscStrncpy(msg, text ? text : "", sizeof(msg));
+  }
+  if (MPI_Bcast(&code, 1, MPI_INT, first, comm) || MPI_Bcast(msg, sizeof(msg), MPI_CHAR, first, comm))
+    PetscFunctionReturn(ierr ? ierr : PETSC_ERR_MPI);
+  if (ierr) PetscFunctionReturn(ierr);
+  SETERRQ(comm, (PetscErrorCode)code, "%s (on rank %d)", msg, first);
+}

@@ -126,3 +126,71 @@ PetscErrorCode FCInputsCheckOutput(MPI_Comm comm, const char path[], const char 
              what, path, inputs[clash].path, inputs[clash].what);
   PetscFunctionReturn(0);
 }
+
+/* The output files of this process' live scenes, by identity, each with the output that writes it:
+   a second scene may not write a file another one is writing (two writers of one file leave a file
+   that neither wrote, and that reads without a warning). Unlike the inputs, the list outlives
+   FCSceneCreate: an entry is removed when its output is destroyed. */
+typedef struct {
+  const void *owner;
+  char        path[PETSC_MAX_PATH_LEN];
+  dev_t       dev;
+  ino_t       ino;
+} FCLiveOutput;
+
+static FCLiveOutput *outputs  = NULL;
+static PetscInt      noutputs = 0, maxoutputs = 0;
+
+/* Refuses (collectively) to write `path` when a live output of this process writes it */
+PetscErrorCode FCOutputsCheckLive(MPI_Comm comm, const char path[])
+{
+  struct stat st;
+  PetscInt    clash = -1;
+
+  PetscFunctionBegin;
+  if (!stat(path, &st))
+    for (PetscInt i = 0; i < noutputs && clash < 0; i++)
+      if (outputs[i].dev == st.st_dev && outputs[i].ino == st.st_ino) clash = i;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &clash, 1, MPIU_INT, MPI_MAX, comm));
+  PetscCheck(clash < 0, comm, PETSC_ERR_USER_INPUT,
+             "-output_file '%s' is the file '%s' that another live scene of this program writes (same device and "
+             "inode): destroy that scene first, or choose another output file name",
+             path, outputs[clash].path);
+  PetscFunctionReturn(0);
+}
+
+/* Records `path`, just created by `owner`, as a live output (nothing if it cannot be found) */
+PetscErrorCode FCOutputsAddLive(const void *owner, const char path[])
+{
+  struct stat st;
+
+  PetscFunctionBegin;
+  if (stat(path, &st)) PetscFunctionReturn(0);
+  if (noutputs == maxoutputs) {
+    FCLiveOutput *tmp;
+    maxoutputs = PetscMax(4, 2 * maxoutputs);
+    PetscCall(PetscMalloc1(maxoutputs, &tmp));
+    if (noutputs) PetscCall(PetscArraycpy(tmp, outputs, noutputs));
+    PetscCall(PetscFree(outputs));
+    outputs = tmp;
+  }
+  outputs[noutputs].owner = owner;
+  PetscCall(PetscStrncpy(outputs[noutputs].path, path, sizeof(outputs[noutputs].path)));
+  outputs[noutputs].dev = st.st_dev;
+  outputs[noutputs].ino = st.st_ino;
+  noutputs++;
+  PetscFunctionReturn(0);
+}
+
+/* Forgets the live output of `owner` (its file closed); the list freed when it is empty */
+PetscErrorCode FCOutputsRemoveLive(const void *owner)
+{
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < noutputs; i++)
+    if (outputs[i].owner == owner) outputs[i--] = outputs[--noutputs];
+  if (!noutputs) {
+    PetscCall(PetscFree(outputs));
+    maxoutputs = 0;
+  }
+  PetscFunctionReturn(0);
+}

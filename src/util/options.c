@@ -78,6 +78,10 @@ PetscErrorCode FCOptionsIntRange(PetscOptionItems *PetscOptionsObject, const cha
   long long   x;
 
   PetscFunctionBegin;
+  FCValidPointer(PetscOptionsObject, 1);
+  FCValidPointer(opt, 2);
+  FCValidPointer(text, 3);
+  FCValidPointer(v, 6);
   min = PetscMax(min, PETSC_MIN_INT);
   max = PetscMin(max, PETSC_MAX_INT);
   PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_TRUE));
@@ -100,6 +104,10 @@ PetscErrorCode FCOptionsInt(PetscOptionItems *PetscOptionsObject, const char opt
                             PetscBool *set)
 {
   PetscFunctionBegin;
+  FCValidPointer(PetscOptionsObject, 1);
+  FCValidPointer(opt, 2);
+  FCValidPointer(text, 3);
+  FCValidPointer(v, 4);
   PetscCall(FCOptionsIntRange(PetscOptionsObject, opt, text, PETSC_MIN_INT, PETSC_MAX_INT, v, set));
   PetscFunctionReturn(0);
 }
@@ -114,6 +122,10 @@ PetscErrorCode FCOptionsBool(PetscOptionItems *PetscOptionsObject, const char op
   PetscBool          flg, ok = PETSC_FALSE;
 
   PetscFunctionBegin;
+  FCValidPointer(PetscOptionsObject, 1);
+  FCValidPointer(opt, 2);
+  FCValidPointer(text, 3);
+  FCValidPointer(v, 4);
   PetscCall(
       PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, buf, sizeof(buf), &flg));
   if (flg && buf[0]) {
@@ -173,6 +185,10 @@ PetscErrorCode FCOptionsReal(PetscOptionItems *PetscOptionsObject, const char op
   PetscBool flg = PETSC_FALSE;
 
   PetscFunctionBegin;
+  FCValidPointer(PetscOptionsObject, 1);
+  FCValidPointer(opt, 2);
+  FCValidPointer(text, 3);
+  FCValidPointer(v, 4);
   PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_FALSE));
   PetscCall(PetscOptionsReal(opt, text, NULL, *v, v, &flg));
   if (flg) PetscCall(CheckReal(PetscOptionsObject, opt, -1, *v));
@@ -188,6 +204,10 @@ PetscErrorCode FCOptionsRealArray(PetscOptionItems *PetscOptionsObject, const ch
   PetscReal tmp[16];
 
   PetscFunctionBegin;
+  FCValidPointer(PetscOptionsObject, 1);
+  FCValidPointer(opt, 2);
+  FCValidPointer(text, 3);
+  FCValidPointer(v, 5);
   PetscCheck(n <= 15, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Array option too long");
   got = 16;
   PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_FALSE));
@@ -211,6 +231,11 @@ PetscErrorCode FCOptionsRealList(PetscOptionItems *PetscOptionsObject, const cha
   PetscBool flg = PETSC_FALSE;
 
   PetscFunctionBegin;
+  FCValidPointer(PetscOptionsObject, 1);
+  FCValidPointer(opt, 2);
+  FCValidPointer(text, 3);
+  FCValidPointer(v, 5);
+  FCValidPointer(n, 6);
   PetscCall(CheckNumbers(PetscOptionsObject, opt, PETSC_FALSE));
   *n = nmax;
   PetscCall(PetscOptionsRealArray(opt, text, NULL, v, n, &flg));
@@ -222,6 +247,7 @@ PetscErrorCode FCOptionsRealList(PetscOptionItems *PetscOptionsObject, const cha
 PetscErrorCode FCCheckPositive(MPI_Comm comm, const char prefix[], const char opt[], PetscReal v)
 {
   PetscFunctionBegin;
+  FCValidPointer(opt, 3);
   PetscCheck(v > 0.0, comm, PETSC_ERR_USER_INPUT, "Option -%s%s must be > 0, got %g", prefix ? prefix : "", opt + 1,
              (double)v);
   PetscFunctionReturn(0);
@@ -230,6 +256,7 @@ PetscErrorCode FCCheckPositive(MPI_Comm comm, const char prefix[], const char op
 PetscErrorCode FCCheckNonNegative(MPI_Comm comm, const char prefix[], const char opt[], PetscReal v)
 {
   PetscFunctionBegin;
+  FCValidPointer(opt, 3);
   PetscCheck(v >= 0.0, comm, PETSC_ERR_USER_INPUT, "Option -%s%s must be >= 0, got %g", prefix ? prefix : "", opt + 1,
              (double)v);
   PetscFunctionReturn(0);

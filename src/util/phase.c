@@ -72,6 +72,7 @@ PetscErrorCode FCPhaseEnd(FCPhase p)
 PetscErrorCode FCPhaseGetMemoryGrowth(PetscReal g[FC_PHASE_NUM])
 {
   PetscFunctionBegin;
+  FCValidPointer(g, 1);
   for (int p = 0; p < FC_PHASE_NUM; p++) g[p] = grown[p];
   PetscFunctionReturn(0);
 }
@@ -79,6 +80,7 @@ PetscErrorCode FCPhaseGetMemoryGrowth(PetscReal g[FC_PHASE_NUM])
 PetscErrorCode FCPhaseGetTimes(PetscReal t[FC_PHASE_NUM])
 {
   PetscFunctionBegin;
+  FCValidPointer(t, 1);
   for (int p = 0; p < FC_PHASE_NUM; p++) t[p] = (PetscReal)total[p];
   PetscFunctionReturn(0);
 }

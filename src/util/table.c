@@ -94,18 +94,16 @@ static PetscErrorCode ParseRows(MPI_Comm comm, const char what[], char *text, co
 }
 
 /* A table of nmin to nmax (at most 16) values per time from spec; what names its option in errors */
-PetscErrorCode FCTableCreate(MPI_Comm comm, const char spec[], PetscInt nmin, PetscInt nmax, const char what[],
-                             FCTable *table)
+/* FCTableCreate into tab, with the text it reads (*text, freed by the caller, also after an error) */
+static PetscErrorCode TableFill(MPI_Comm comm, const char spec[], PetscInt nmin, PetscInt nmax, const char what[],
+                                FCTable tab, char **textp)
 {
-  FCTable tab;
-  char   *text;
+  char *text = NULL;
 
   PetscFunctionBegin;
-  PetscCheck(nmax <= 16 && nmin >= 1 && nmin <= nmax, comm, PETSC_ERR_PLIB,
-             "table of %" PetscInt_FMT "..%" PetscInt_FMT " values", nmin, nmax);
-  PetscCall(PetscNew(&tab));
   if (strchr(spec, ':')) {
     PetscCall(PetscStrallocpy(spec, &text));
+    *textp = text;
     PetscCall(ParseRows(comm, what, text, ";", ':', nmin, nmax, tab));
   } else { /* a file */
     long        len = -1;
@@ -119,6 +117,7 @@ PetscErrorCode FCTableCreate(MPI_Comm comm, const char spec[], PetscInt nmin, Pe
       if (!fp && !stat(spec, &st) && !S_ISREG(st.st_mode)) len = -2;
       if (fp && !fseek(fp, 0, SEEK_END) && (len = ftell(fp)) >= 0 && !fseek(fp, 0, SEEK_SET)) {
         PetscCall(PetscMalloc1(len + 1, &text));
+        *textp = text;
         if ((long)fread(text, 1, len, fp) != len)
           len = -1;
         else
@@ -132,6 +131,7 @@ PetscErrorCode FCTableCreate(MPI_Comm comm, const char spec[], PetscInt nmin, Pe
     PetscCheck(len >= 0, comm, PETSC_ERR_USER_INPUT,
                "%s: cannot read the table file '%s' (inline tables are written t0:v,v;t1:v,v)", what, spec);
     if (rank) PetscCall(PetscMalloc1(len + 1, &text));
+    if (rank) *textp = text;
     PetscCallMPI(MPI_Bcast(text, (PetscMPIInt)len + 1, MPI_CHAR, 0, comm));
     {
       char w[512];
@@ -141,7 +141,26 @@ PetscErrorCode FCTableCreate(MPI_Comm comm, const char spec[], PetscInt nmin, Pe
       PetscCall(ParseRows(comm, w, text, "\n", ',', nmin, nmax, tab));
     }
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCTableCreate(MPI_Comm comm, const char spec[], PetscInt nmin, PetscInt nmax, const char what[],
+                             FCTable *table)
+{
+  FCTable        tab;
+  char          *text = NULL;
+  PetscErrorCode ierr;
+
+  PetscFunctionBegin;
+  PetscCheck(nmax <= 16 && nmin >= 1 && nmin <= nmax, comm, PETSC_ERR_PLIB,
+             "table of %" PetscInt_FMT "..%" PetscInt_FMT " values", nmin, nmax);
+  PetscCall(PetscNew(&tab));
+  ierr = TableFill(comm, spec, nmin, nmax, what, tab, &text); /* a wrong table frees what it had read */
   PetscCall(PetscFree(text));
+  if (ierr) {
+    PetscCall(FCTableDestroy(&tab));
+    PetscCall(ierr);
+  }
   *table = tab;
   PetscFunctionReturn(0);
 }

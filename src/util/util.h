@@ -52,6 +52,10 @@ PETSC_INTERN PetscErrorCode FCInputsReset(void);
 PETSC_INTERN PetscErrorCode FCInputsAdd(const char path[], const char what[]);
 PETSC_INTERN PetscErrorCode FCInputsAddOptionsFiles(void);
 PETSC_INTERN PetscErrorCode FCInputsCheckOutput(MPI_Comm, const char path[], const char what[]);
+/* The output files of the live scenes, by identity: no two write one file (src/util/inputs.c) */
+PETSC_INTERN PetscErrorCode FCOutputsCheckLive(MPI_Comm, const char path[]);
+PETSC_INTERN PetscErrorCode FCOutputsAddLive(const void *owner, const char path[]);
+PETSC_INTERN PetscErrorCode FCOutputsRemoveLive(const void *owner);
 
 /* SIGINT/SIGTERM: recorded by a handler, acted on between steps (src/util/signals.c) */
 PETSC_INTERN PetscErrorCode FCSignalsBlock(void);
@@ -86,3 +90,10 @@ PETSC_INTERN PetscErrorCode FCTableDestroy(FCTable *);
 PETSC_INTERN PetscBool      FCErrorIsStepFailure(PetscErrorCode);
 PETSC_INTERN int            FCExitStatus(PetscErrorCode);
 PETSC_INTERN PetscErrorCode FCPushStepErrorHandler(void);
+PETSC_INTERN PetscErrorCode FCErrorAgree(MPI_Comm, PetscErrorCode);
+/* A pointer argument of a public function (include/fecontact.h) that may not be NULL: an error naming the
+   function and the argument rather than a crash (PETSc's PetscValidPointer checks nothing in an optimized
+   build) */
+#define FCValidPointer(p, arg)                                                                                         \
+  PetscCheck((p) != NULL, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s: argument %d (%s) is NULL", PETSC_FUNCTION_NAME,    \
+             (int)(arg), #p)

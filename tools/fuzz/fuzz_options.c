@@ -15,7 +15,12 @@
        unless the input sets it, and -time_step_min -time_step / 2 (one cut of step control at
        most: a scene that fails its steps, each redone down to h / 1024, runs for minutes);
      - a mesh file (..._filename) larger than 800 kB (the Table 1 meshes: minutes per step).
-   The output file is always redirected to a scratch directory. */
+   The output file is always redirected to a scratch directory.
+
+   Built with FUZZ_OPTION_PAIRS (tools/fuzz/fuzz_option_pairs.c), the input is instead what the
+   Python module makes of an option dict (python/fecontact/scene.py, _option_pairs): one option a
+   line, its name, then a tab and its value, each value inserted whole with PetscOptionsSetValue
+   (spaces, ';' and any other bytes included). */
 #include "fuzz_common.h"
 #include <sys/stat.h>
 
@@ -67,6 +72,28 @@ static PetscErrorCode RunScene(void)
   PetscFunctionReturn(ierr);
 }
 
+/* The input into the options database: a command line's text, or (FUZZ_OPTION_PAIRS) name<TAB>value
+   lines, each a name ("-" prepended when missing, as the Python module does) and its whole value */
+static PetscErrorCode Insert(char *s)
+{
+#if defined(FUZZ_OPTION_PAIRS)
+  char *save = NULL;
+
+  for (char *line = strtok_r(s, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
+    char          *tab = strchr(line, '\t'), name[256];
+    PetscErrorCode ierr;
+    if (tab) *tab = 0;
+    if (!line[0]) continue;
+    snprintf(name, sizeof(name), "%s%s", line[0] == '-' ? "" : "-", line);
+    ierr = PetscOptionsSetValue(NULL, name, tab ? tab + 1 : NULL);
+    if (ierr) return ierr;
+  }
+  return 0;
+#else
+  return PetscOptionsInsertString(NULL, s);
+#endif
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
   char          *s, out[PETSC_MAX_PATH_LEN + 32];
@@ -82,7 +109,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
       return -1;
     }
   if (PetscOptionsClear(NULL)) FuzzFail("PetscOptionsClear", 1);
-  ierr = PetscOptionsInsertString(NULL, s);
+  ierr = Insert(s);
   free(s);
   if (!ierr && TooExpensive()) {
     (void)PetscOptionsClear(NULL);
