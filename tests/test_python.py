@@ -165,7 +165,7 @@ for what, f in (("centroid", lambda: b.centroid), ("set_pose", lambda: b.set_pos
     with open(os.path.join(ROOT, "meshes/finger.msh"), "rb") as g, open(trunc, "wb") as h:
         h.write(g.read(100000))
     for what, opt, msg in (("a truncated mesh", {"finger_dm_plex_filename": trunc}, "Cannot read mesh file"),
-                           ("a directory as a table file", {"tool_trajectory": TMP}, "cannot read the table file")):
+                           ("a directory as a table file", {"tool_trajectory": TMP}, "is not a regular file")):
         p = python("""
 try:
     with fecontact.Scene(options_file="input/finger_push.opts", options=dict(%r, time_steps=3, quiet=None,

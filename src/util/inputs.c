@@ -100,8 +100,8 @@ PetscErrorCode FCInputsAddOptionsFiles(void)
   PetscFunctionReturn(0);
 }
 
-/* Refuses (collectively) to write `path` when it is one of the inputs or exists as anything but a
-   regular file; what: the output, as the
+/* Refuses (collectively) to write `path` when it is one of the inputs or exists as a FIFO, a
+   directory or a socket; what: the output, as the
    message names it (e.g. "-output_file") */
 PetscErrorCode FCInputsCheckOutput(MPI_Comm comm, const char path[], const char what[])
 {
@@ -112,13 +112,15 @@ PetscErrorCode FCInputsCheckOutput(MPI_Comm comm, const char path[], const char 
   if (!stat(path, &st)) {
     for (PetscInt i = 0; i < ninputs && clash < 0; i++)
       if (inputs[i].dev == st.st_dev && inputs[i].ino == st.st_ino) clash = i;
-    special = S_ISREG(st.st_mode) ? 0 : 1; /* a FIFO would block the writer until someone reads it */
+    /* a FIFO would block the writer until someone reads it; a device is written (/dev/full fails
+       there, exit status 3) */
+    special = S_ISFIFO(st.st_mode) || S_ISDIR(st.st_mode) || S_ISSOCK(st.st_mode) ? 1 : 0;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &clash, 1, MPIU_INT, MPI_MAX, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &special, 1, MPIU_INT, MPI_MAX, comm));
   PetscCheck(!special, comm, PETSC_ERR_USER_INPUT,
-             "%s '%s' exists and is not a regular file (a FIFO, a directory, a device or a socket): the output is "
-             "written to a regular file, created or overwritten",
+             "%s '%s' exists and is a FIFO, a directory or a socket: the output is written to a regular file, "
+             "created or overwritten",
              what, path);
   PetscCheck(clash < 0, comm, PETSC_ERR_USER_INPUT,
              "%s '%s' is the same file as '%s', the %s this run reads (same device and inode: a hard or symbolic "

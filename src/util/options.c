@@ -58,6 +58,10 @@ PetscErrorCode FCOptionsStringAlloc(PetscOptionItems *PetscOptionsObject, const 
   PetscBool   flg;
 
   PetscFunctionBegin;
+  FCValidPointer(PetscOptionsObject, 1);
+  FCValidPointer(opt, 2);
+  FCValidPointer(text, 3);
+  FCValidPointer(value, 4);
   PetscCall(PetscOptionsString(opt, text, NULL, "", scratch, sizeof(scratch), NULL));
   PetscCall(PetscOptionsFindPair(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, &v, &flg));
   PetscCall(PetscFree(*value));
@@ -147,6 +151,11 @@ PetscErrorCode FCOptionsEList(PetscOptionItems *PetscOptionsObject, const char o
   PetscBool flg, ok               = PETSC_FALSE;
 
   PetscFunctionBegin;
+  FCValidPointer(PetscOptionsObject, 1);
+  FCValidPointer(opt, 2);
+  FCValidPointer(text, 3);
+  FCValidPointer(list, 4);
+  FCValidPointer(v, 6);
   PetscCall(
       PetscOptionsGetString(PetscOptionsObject->options, PetscOptionsObject->prefix, opt, buf, sizeof(buf), &flg));
   if (flg) {
