@@ -14,9 +14,10 @@
 
 static PetscErrorCode SetFromOptions_FEM(FCBody body)
 {
-  FEM      *fem = (FEM *)body->data;
-  PetscBool set, setE, setRho;
-  char      masstype[FC_MAX_NAME] = "consistent";
+  FEM        *fem = (FEM *)body->data;
+  PetscBool   set, setE, setRho;
+  const char *mass[] = {"consistent", "lumped"};
+  PetscInt    lumped = fem->lumped ? 1 : 0;
 
   PetscFunctionBegin;
   PetscOptionsBegin(body->comm, body->prefix, "FE body options", "FCBody");
@@ -25,8 +26,9 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
   PetscCall(FCOptionsReal(PetscOptionsObject, "-young", "Young's modulus (Pa)", &fem->young, &setE));
   PetscCall(FCOptionsReal(PetscOptionsObject, "-poisson", "Poisson's ratio", &fem->poisson, NULL));
   PetscCall(FCOptionsReal(PetscOptionsObject, "-density", "Density (kg/m^3)", &body->density, &setRho));
-  PetscCall(PetscOptionsString("-mass_type", "Mass matrix: consistent or lumped", NULL, masstype, masstype,
-                               sizeof(masstype), NULL));
+  PetscCall(
+      FCOptionsEList(PetscOptionsObject, "-mass_type", "Mass matrix: consistent or lumped", mass, 2, &lumped, NULL));
+  fem->lumped = lumped == 1 ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(FCOptionsReal(PetscOptionsObject, "-rayleigh_mass", "Rayleigh damping alpha (B = alpha M + beta K)",
                           &fem->alpha, NULL));
   PetscCall(FCOptionsReal(PetscOptionsObject, "-rayleigh_stiffness", "Rayleigh damping beta (B = alpha M + beta K)",
@@ -57,10 +59,10 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
                              inv, 2, &a, NULL));
     fem->allow_inverted = a == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
+  PetscCall(FCFEMScheduleSetFromOptions(PetscOptionsObject, body));
   if (strcmp(fem->material, "linear")) { /* a linear A never changes: nothing to refactor or re-sum */
     const char *how[] = {"values", "coo"}, *rot[] = {"linear", "exact"};
     PetscInt    a = fem->coo ? 1 : 0, r = fem->rotation_exact ? 1 : 0;
-    PetscCall(FCFEMScheduleSetFromOptions(PetscOptionsObject, body));
     PetscCall(FCOptionsEList(PetscOptionsObject, "-assembly", "How K is summed every step (co-rotational)", how, 2, &a,
                              NULL));
     fem->coo = a == 1 ? PETSC_TRUE : PETSC_FALSE;
@@ -71,20 +73,11 @@ static PetscErrorCode SetFromOptions_FEM(FCBody body)
     } else
       fem->rotation_exact = PETSC_FALSE;
   } else {
-    PetscBool given;
-    PetscCall(PetscOptionsHasName(NULL, body->prefix, "-factorization", &given));
-    PetscCheck(!given, body->comm, PETSC_ERR_USER_INPUT,
-               "Body '%s': -%sfactorization is for a body whose A changes (co-rotational, hyperelastic); the linear "
-               "material's A is factored once",
-               body->name, body->prefix);
     fem->coo            = PETSC_FALSE;
     fem->rotation_exact = PETSC_FALSE;
     fem->factorization  = FC_FACTORIZATION_EVERY_STEP; /* factored once: nothing to schedule */
   }
   PetscOptionsEnd();
-  PetscCheck(!strcmp(masstype, "consistent") || !strcmp(masstype, "lumped"), body->comm, PETSC_ERR_USER_INPUT,
-             "Unknown mass type '%s' in -%smass_type (known: consistent, lumped)", masstype, body->prefix);
-  fem->lumped = !strcmp(masstype, "lumped") ? PETSC_TRUE : PETSC_FALSE;
   {
     PetscErrorCode (*create)(FCMaterial) = NULL;
     char option[FC_MAX_NAME + 12];

@@ -1,8 +1,8 @@
 /* FE body, the reactions of its constrained regions (docs/scenes.md): after the integration, the
    residual of the constrained rows at the end of the step, R_p = M_p a + B_p v + f_int,p - f_g,p
    (quasi-static: f_int,p - f_g,p), less the loads on its vertices (which their supports take),
-   summed over each region, with its moment about the region's centroid; and the work that the prescribed motions and
-   loads have done (the energy guard's). */
+   summed over each region, with its moment about the region's centroid; and the work that the
+   prescribed motions and loads have done (the energy guard's). */
 #include "femimpl.h"
 
 /* The centroid of each constrained region now (cen: 4 per region, the last the weight): of its
@@ -43,6 +43,28 @@ static PetscErrorCode RegionCentroids(FCBody body, PetscReal cen[])
   for (PetscInt k = 0; k < fem->ncons; k++)
     for (int d = 0; d < 3; d++) cen[4 * k + d] /= cen[4 * k + 3] > 0.0 ? cen[4 * k + 3] : 1.0;
   PetscFunctionReturn(0);
+}
+
+/* The loads on the constrained vertices, which their supports take (fcons: each rank its share),
+   subtracted from the reactions R and their moments about the regions' centroids cen */
+static void LoadsOnSupports(const FEM *fem, const PetscScalar *ul, const PetscReal cen[], PetscReal R[])
+{
+  const FCMesh *m = &fem->mesh;
+
+  for (PetscInt v = 0; v < m->vEnd - m->vStart; v++) {
+    PetscInt  k = fem->creg[v];
+    PetscReal arm[3], r[3], mo[3];
+    if (k < 0) continue;
+    for (int d = 0; d < 3; d++) {
+      r[d]   = -fem->fcons[3 * v + d];
+      arm[d] = m->X[3 * v + d] + FCFEMLocalU(fem, v, ul, d) - cen[4 * k + d];
+    }
+    FCCross(arm, r, mo);
+    for (int d = 0; d < 3; d++) {
+      R[6 * k + d] += r[d];
+      R[6 * k + 3 + d] += mo[d];
+    }
+  }
 }
 
 /* After the integration: the constraints move to their end-of-step displacement, and each one's
@@ -124,21 +146,7 @@ PetscErrorCode FCFEMBCEndStep(FCBody body)
       }
     }
   }
-  if (fem->nload) /* the loads on the constrained vertices, which their supports take (fcons: each rank its share) */
-    for (PetscInt v = 0; v < m->vEnd - m->vStart; v++) {
-      PetscInt  k = fem->creg[v];
-      PetscReal arm[3], r[3], mo[3];
-      if (k < 0) continue;
-      for (int d = 0; d < 3; d++) {
-        r[d]   = -fem->fcons[3 * v + d];
-        arm[d] = m->X[3 * v + d] + FCFEMLocalU(fem, v, ul, d) - cen[4 * k + d];
-      }
-      FCCross(arm, r, mo);
-      for (int d = 0; d < 3; d++) {
-        R[6 * k + d] += r[d];
-        R[6 * k + 3 + d] += mo[d];
-      }
-    }
+  if (fem->nload) LoadsOnSupports(fem, ul, cen, R);
   PetscCall(VecRestoreArrayRead(fem->uloc, &ul));
   PetscCall(VecRestoreArrayRead(vloc, &vl));
   PetscCall(VecRestoreArrayRead(dvloc, &dl));

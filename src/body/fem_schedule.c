@@ -81,13 +81,22 @@ static PetscErrorCode WarpedSolve(PC pc, Vec r, Vec z)
   PetscFunctionReturn(0);
 }
 
-/* -factorization and, with reuse, its tolerance and triggers (read in the co-rotational block of
-   the body's options) */
+/* -factorization and, with reuse, its tolerance and triggers (read with the body's options; a
+   linear body refuses the option) */
 PetscErrorCode FCFEMScheduleSetFromOptions(PetscOptionItems *PetscOptionsObject, FCBody body)
 {
   FEM *fem = (FEM *)body->data;
 
   PetscFunctionBegin;
+  if (!strcmp(fem->material, "linear")) { /* A never changes: factored once */
+    PetscBool given;
+    PetscCall(PetscOptionsHasName(NULL, body->prefix, "-factorization", &given));
+    PetscCheck(!given, body->comm, PETSC_ERR_USER_INPUT,
+               "Body '%s': -%sfactorization is for a body whose A changes (co-rotational, hyperelastic); the linear "
+               "material's A is factored once",
+               body->name, body->prefix);
+    PetscFunctionReturn(0);
+  }
   {
     char fmode[FC_MAX_NAME] = "every_step";
     if (fem->factorization == FC_FACTORIZATION_REUSE) PetscCall(PetscStrncpy(fmode, "reuse", sizeof(fmode)));
