@@ -31,7 +31,15 @@ static int Order(idx_t *xadj, idx_t *adj, idx_t n)
 
   METIS_SetDefaultOptions(opts);
   opts[METIS_OPTION_NUMBERING] = 0;
-  pthread_create(&th, NULL, Kill, NULL);
+  { /* the sending thread blocks SIGTERM, so that the process's signal is the main thread's (or, in
+       the executable's mode, its waiting thread's): GKlib's longjmp from another thread would crash */
+    sigset_t set, old;
+    sigemptyset(&set);
+    sigaddset(&set, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &set, &old);
+    pthread_create(&th, NULL, Kill, NULL);
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+  }
   err = METIS_NodeND(&n, xadj, adj, NULL, opts, perm, iperm);
   pthread_join(th, NULL);
   free(perm);
@@ -61,13 +69,17 @@ int main(int argc, char **argv)
   xadj[n] = k;
   /* without the mode: GKlib's handler takes the signal and METIS fails */
   pid = fork();
-  if (!pid) _exit(Order(xadj, adj, n) == METIS_ERROR ? 0 : 1);
+  if (!pid) {
+    alarm(60); /* a hang is a failure (SIGALRM ends the child) */
+    _exit(Order(xadj, adj, n) == METIS_ERROR ? 0 : 1);
+  }
   waitpid(pid, &st, 0);
   printf("%s: without the executable's signal mode, METIS_NodeND sent SIGTERM returns METIS_ERROR (child %s %d)\n",
          WIFEXITED(st) && WEXITSTATUS(st) == 0 ? "PASS" : "FAIL", WIFEXITED(st) ? "exit" : "signal",
          WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st));
   fails += !(WIFEXITED(st) && WEXITSTATUS(st) == 0);
   /* the executable's mode, MPI's threads started after it */
+  alarm(120); /* a hang is a failure */
   if (FCSignalsBlock()) return 2;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(FCSignalsInstall());
