@@ -59,6 +59,7 @@ MESHES=(
   "bar          table1.geo    nx 12 ny 3 nz 3 d 0.05"
   "u_bar        table1.geo    nx 41 ny 5 nz 3 d 0.025"
   "sheet        table1.geo    nx 49 ny 9 nz 2 d 0.025"
+  "membrane     table1.geo    nx 21 ny 21 nz 2 d 0.025 dz 0.02"
   "sheet_coarse table1.geo    nx 37 ny 7 nz 2 d 0.03333333333333333 dz 0.025"
   "hertz_sphere_1  hertz_sphere.geo  lc_min 0.04"
   "hertz_sphere_2  hertz_sphere.geo  lc_min 0.02"

@@ -153,3 +153,169 @@ PetscBool FCCCDEdgeEdge(const PetscReal *a0, const PetscReal *af, const PetscRea
 {
   return Advance(1, a0, af, b0, bf, tau, thit);
 }
+
+/* The exact crossing tests of the crossing audit (crossing.c): every point moving linearly over the step, the times
+   where four points become coplanar are the roots of a cubic in t */
+/* the value of the cubic c at t */
+static inline PetscReal Cubic(const PetscReal c[4], PetscReal t)
+{
+  return ((c[3] * t + c[2]) * t + c[1]) * t + c[0];
+}
+
+/* The cubic f(t) = n(t) . q(t) with n(t) = u(t) x v(t): u, v, q linear in t (u0 + t du, ...) */
+static void TripleCubic(const PetscReal u0[3], const PetscReal du[3], const PetscReal v0[3], const PetscReal dv[3],
+                        const PetscReal q0[3], const PetscReal dq[3], PetscReal c[4])
+{
+  PetscReal n0[3], n1[3], n2[3], a[3], b[3];
+
+  FCCross(u0, v0, n0);
+  FCCross(u0, dv, a);
+  FCCross(du, v0, b);
+  for (int d = 0; d < 3; d++) n1[d] = a[d] + b[d];
+  FCCross(du, dv, n2);
+  c[0] = FCDot(n0, q0);
+  c[1] = FCDot(n1, q0) + FCDot(n0, dq);
+  c[2] = FCDot(n2, q0) + FCDot(n1, dq);
+  c[3] = FCDot(n2, dq);
+}
+
+/* The times in [0, 1] where the cubic c changes sign (down: only from + to -), earliest first, each
+   to round-off: [0, 1] is split where c' = 0 into pieces on which c is monotone, and a piece whose
+   ends have opposite signs is bisected. At most 3. */
+static PetscInt SignChanges(const PetscReal c[4], PetscBool down, PetscReal roots[3])
+{
+  PetscReal br[4] = {0.0, 1.0, 1.0, 1.0}, A = 3.0 * c[3], B = 2.0 * c[2], C = c[1];
+  PetscInt  nb = 1, nr = 0;
+
+  if (A != 0.0) {
+    PetscReal disc = B * B - 4.0 * A * C;
+    if (disc > 0.0) {
+      PetscReal s = PetscSqrtReal(disc), q = -0.5 * (B + (B >= 0 ? s : -s)), t1 = q / A, t2 = q != 0.0 ? C / q : t1;
+      if (t1 > t2) {
+        PetscReal w = t1;
+        t1          = t2;
+        t2          = w;
+      }
+      if (t1 > 0.0 && t1 < 1.0) br[nb++] = t1;
+      if (t2 > 0.0 && t2 < 1.0 && t2 != t1) br[nb++] = t2;
+    }
+  } else if (B != 0.0) {
+    PetscReal t1 = -C / B;
+    if (t1 > 0.0 && t1 < 1.0) br[nb++] = t1;
+  }
+  br[nb++] = 1.0;
+  for (PetscInt i = 0; i + 1 < nb; i++) {
+    PetscReal lo = br[i], hi = br[i + 1], flo = Cubic(c, lo), fhi = Cubic(c, hi);
+    if (!(flo > 0.0 && fhi <= 0.0) && (down || !(flo < 0.0 && fhi >= 0.0))) continue;
+    for (int it = 0; it < 60; it++) {
+      PetscReal mid = 0.5 * (lo + hi), fm = Cubic(c, mid);
+      if ((fm > 0.0) == (flo > 0.0)) {
+        lo  = mid;
+        flo = fm;
+      } else
+        hi = mid;
+    }
+    roots[nr++] = hi;
+  }
+  return nr;
+}
+
+
+/* Whether the triangle a (at some time of the step; a0 at its start, a1 at its end) faces the way it did at both ends,
+   with at least a tenth of the smaller of their areas: one that turns over (an element inside out) changes the side a
+   point is on without the point going through it */
+static void AreaVector(const PetscReal a[3][3], PetscReal n[3])
+{
+  PetscReal u[3], v[3];
+  for (int d = 0; d < 3; d++) {
+    u[d] = a[1][d] - a[0][d];
+    v[d] = a[2][d] - a[0][d];
+  }
+  FCCross(u, v, n);
+}
+
+static PetscBool Keeps(const PetscReal a0[3][3], const PetscReal a1[3][3], const PetscReal a[3][3])
+{
+  PetscReal n0[3], n1[3], n[3], m0, m1, m;
+
+  AreaVector(a0, n0);
+  AreaVector(a1, n1);
+  AreaVector(a, n);
+  m0 = PetscSqrtReal(FCDot(n0, n0));
+  m1 = PetscSqrtReal(FCDot(n1, n1));
+  m  = PetscSqrtReal(FCDot(n, n));
+  return FCDot(n, n0) > 0.0 && FCDot(n, n1) > 0.0 && m >= 0.1 * PetscMin(m0, m1) ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* Whether the point p0 -> p1 passes through the triangle a0 -> a1 (corners, start and end) from its outer side to its
+   inner side during the step; *behind: how far the point ends behind the triangle's plane */
+PetscBool FCCCDPointCrossesTriangle(const PetscReal p0[3], const PetscReal p1[3], const PetscReal a0[3][3],
+                                    const PetscReal a1[3][3], PetscReal *behind)
+{
+  PetscReal u0[3], du[3], v0[3], dv[3], q0[3], dq[3], c[4], roots[3], n1[3];
+  PetscInt  nr;
+
+  for (int d = 0; d < 3; d++) {
+    u0[d] = a0[1][d] - a0[0][d];
+    du[d] = a1[1][d] - a1[0][d] - u0[d];
+    v0[d] = a0[2][d] - a0[0][d];
+    dv[d] = a1[2][d] - a1[0][d] - v0[d];
+    q0[d] = p0[d] - a0[0][d];
+    dq[d] = p1[d] - a1[0][d] - q0[d];
+  }
+  TripleCubic(u0, du, v0, dv, q0, dq, c);
+  {
+    PetscReal u1[3], v1[3];
+    for (int d = 0; d < 3; d++) {
+      u1[d] = u0[d] + du[d];
+      v1[d] = v0[d] + dv[d];
+    }
+    FCCross(u1, v1, n1);
+  }
+  *behind = -Cubic(c, 1.0) / PetscMax(PetscSqrtReal(FCDot(n1, n1)), PETSC_SMALL * PETSC_SMALL);
+  if (!(c[0] > 0.0)) return PETSC_FALSE; /* starts in the plane or behind it */
+  nr = SignChanges(c, PETSC_TRUE, roots);
+  for (PetscInt r = 0; r < nr; r++) {
+    PetscReal p[3], a[3][3], cp[3], w[3], d2 = 0.0, L2 = 0.0;
+    Lerp(1, p0, p1, roots[r], p);
+    for (int k = 0; k < 3; k++) Lerp(1, a0[k], a1[k], roots[r], a[k]);
+    if (!Keeps(a0, a1, a)) continue; /* a triangle turning over, not a point going through it */
+    FCClosestPointTriangle(p, a[0], a[1], a[2], cp, w);
+    for (int d = 0; d < 3; d++) {
+      d2 += PetscSqr(p[d] - cp[d]);
+      for (int k = 0; k < 3; k++) L2 = PetscMax(L2, PetscSqr(a[(k + 1) % 3][d] - a[k][d]));
+    }
+    if (d2 <= 1e-12 * 3.0 * L2) return PETSC_TRUE;
+  }
+  return PETSC_FALSE;
+}
+
+/* Whether the segments a (ends a0[0], a0[1] at the start, a1[] at the end) and b meet during the step */
+PetscBool FCCCDEdgesMeet(const PetscReal a0[2][3], const PetscReal a1[2][3], const PetscReal b0[2][3],
+                         const PetscReal b1[2][3])
+{
+  PetscReal u0[3], du[3], v0[3], dv[3], q0[3], dq[3], c[4], roots[3];
+  PetscInt  nr;
+
+  for (int d = 0; d < 3; d++) {
+    u0[d] = a0[1][d] - a0[0][d];
+    du[d] = a1[1][d] - a1[0][d] - u0[d];
+    v0[d] = b0[1][d] - b0[0][d];
+    dv[d] = b1[1][d] - b1[0][d] - v0[d];
+    q0[d] = b0[0][d] - a0[0][d];
+    dq[d] = b1[0][d] - a1[0][d] - q0[d];
+  }
+  TripleCubic(u0, du, v0, dv, q0, dq, c);
+  nr = SignChanges(c, PETSC_FALSE, roots);
+  for (PetscInt r = 0; r < nr; r++) {
+    PetscReal pa[2][3], pb[2][3], s, t, L2 = 0.0;
+    for (int k = 0; k < 2; k++) {
+      Lerp(1, a0[k], a1[k], roots[r], pa[k]);
+      Lerp(1, b0[k], b1[k], roots[r], pb[k]);
+    }
+    for (int d = 0; d < 3; d++)
+      L2 = PetscMax(L2, PetscMax(PetscSqr(pa[1][d] - pa[0][d]), PetscSqr(pb[1][d] - pb[0][d])));
+    if (FCClosestSegmentSegment(pa[0], pa[1], pb[0], pb[1], &s, &t) <= 1e-12 * 3.0 * L2) return PETSC_TRUE;
+  }
+  return PETSC_FALSE;
+}

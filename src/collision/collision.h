@@ -18,6 +18,7 @@ typedef struct {
   PetscBool  facing;        /* -contact_facing: a vertex lands only on triangles that face its own surface */
   PetscBool  continuous;    /* -contact_detection continuous (default) or discrete */
   PetscBool  edges;         /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
+  PetscReal  edge_angle;    /* -contact_edge_angle: an edge is a candidate where its triangles turn more (deg; 0 all) */
   PetscInt   self_ring;    /* -contact_self_ring: a self-contact vertex leaves out the triangles this many edges near */
   PetscBool  shape_points; /* -contact_shape_points: a bounded shape's points against an FE surface too */
   PetscBool  rounded_exact; /* -contact_rounded_surface exact: a sphere's or capsule's nearest FE surface points */
@@ -25,6 +26,8 @@ typedef struct {
       separation_speed; /* -contact_separation_speed: bodies that start inside each other part at most this fast */
   PetscReal           intersection_depth;    /* a point deeper than this inside another body is an intersection */
   PetscBool           fail_on_intersection;  /* -contact_fail_on_intersection: stop the run at the first one */
+  PetscInt            crossings;             /* -contact_crossings: FC_CROSSINGS_OFF, _COUNT, _REDO */
+  PetscInt            crossing_cuts;         /* -contact_crossings_cuts: the halvings a crossing may cause */
   PetscReal           check_cone;            /* -contact_check_cone: the end-of-step check's cone tolerance (-) */
   PetscReal           check_complementarity; /* -contact_check_complementarity: its natural-map tolerance (m) */
   FCSurfaceTopology **topo; /* per scene body: its surface's topology, built at its first use (NULL: none kept) */
@@ -42,6 +45,17 @@ PETSC_INTERN PetscErrorCode FCCollisionEndGapsOf(MPI_Comm, PetscInt nbodies, FCB
 PETSC_INTERN PetscErrorCode FCCollisionCountPairIntersections(MPI_Comm, PetscInt nbodies, FCBody bodies[],
                                                               const FCContactPairs *, PetscInt *count);
 
+/* The crossing audit (src/collision/crossing.c): what went through another body's surface over a step's actual
+   motion, from the positions at its start (Start) to those at its end (Count: how many features, and how far the
+   deepest ended behind the surface it crossed, the same on every rank) */
+enum { FC_CROSSINGS_OFF, FC_CROSSINGS_COUNT, FC_CROSSINGS_REDO };
+typedef struct _FCCrossingAudit *FCCrossingAudit;
+PETSC_INTERN PetscErrorCode      FCCrossingAuditCreate(PetscInt nbodies, FCCrossingAudit *);
+PETSC_INTERN PetscErrorCode FCCrossingAuditStart(FCCrossingAudit, MPI_Comm, FCBody bodies[], const FCContactPairs *);
+PETSC_INTERN PetscErrorCode FCCrossingAuditCount(FCCrossingAudit, MPI_Comm, FCBody bodies[], const FCContactPairs *,
+                                                 PetscInt *count, PetscReal *deepest);
+PETSC_INTERN PetscErrorCode FCCrossingAuditDestroy(FCCrossingAudit *);
+
 /* FCCollision (src/collision/pairs.c): the scene's contact pairs and detection options, read from the
    options database, and the step's detection on them */
 typedef struct _p_FCCollision     *FCCollision;
@@ -52,4 +66,8 @@ PETSC_INTERN const FCContactPairs *FCCollisionGetPairs(FCCollision);
 PETSC_INTERN PetscErrorCode FCCollisionDetect(FCCollision, PetscBool continuous, FCContactSet *);
 PETSC_INTERN PetscErrorCode FCCollisionEndGaps(FCCollision, FCContactSet *);
 PETSC_INTERN PetscErrorCode FCCollisionCountIntersections(FCCollision, PetscInt *count);
+/* the crossing audit of the step (-contact_crossings): its start, before the free motion; its count, after the
+   integration (0 when off) */
+PETSC_INTERN PetscErrorCode FCCollisionAuditStart(FCCollision);
+PETSC_INTERN PetscErrorCode FCCollisionCountCrossings(FCCollision, PetscInt *count, PetscReal *deepest);
 PETSC_INTERN PetscErrorCode FCCollisionDestroy(FCCollision *);

@@ -11,8 +11,7 @@ typedef struct {
   PetscInt tri;
 } FCCellEntry;
 
-typedef struct _FCSelfRing FCSelfRing; /* selfcontact.c */
-
+typedef struct _FCSelfRing  FCSelfRing;                               /* selfcontact.c */
 PETSC_INTERN PetscErrorCode FCCellEntrySort(PetscInt, FCCellEntry[]); /* surface.c: by key, stably */
 
 struct _FCSurface {
@@ -145,27 +144,22 @@ typedef PetscErrorCode (*FCLandingFn)(const FCSurfaceTriangle *T, const PetscRea
                                       const PetscReal X[3], void *ctx, PetscBool *made);
 PETSC_INTERN PetscErrorCode FCCollisionPictureLandings(FCBody Sh, Surface *S, const FCContactPairs *, FCLandingFn fn,
                                                        void *ctx);
-
 /* roundedsurface.c: the points of the FE surface S (of body ife) nearest the core of the sphere or capsule Sh (body
    ish), taken after the free motion, and the FE points a sphere's picture points land on (rank 0) */
 PETSC_INTERN PetscErrorCode FCCollisionRoundedOnSurface(FCBody Sh, PetscInt ish, PetscInt ife, Surface *S,
                                                         PetscInt pair, const FCContactPairs *, PetscMPIInt rank,
                                                         FCContactSet *);
-
 /* roundedsurface.c: whether the FE surface S's own free motion turns the normal of the sphere or capsule Sh at the
    surface's points nearest its core by more than -contact_intersection_depth allows (the same answer on every rank) */
 PETSC_INTERN PetscErrorCode FCCollisionRoundedSurfaceTurns(FCBody Sh, Surface *S, const FCContactPairs *,
                                                            PetscBool *turns);
-
 /* roundedsurface.c: whether the side of cylinder Sh lies on the FE surface S after the free motion (the same on every
    rank) */
 PETSC_INTERN PetscErrorCode FCCollisionCylinderLies(FCBody Sh, Surface *S, const FCContactPairs *, PetscBool *lies);
-
 /* smooth.c: a rounded shape P (sphere, capsule, cylinder; body ip) against the analytic shape of S
    (body is), from their exact closest points (rank 0) */
 PETSC_INTERN PetscErrorCode FCCollisionRoundedShape(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,
                                                     const FCContactPairs *, PetscMPIInt rank, FCContactSet *);
-
 /* smooth.c: the contact of point x (world, now) of rigid or kinematic body P (body ip) with the shape of S (body is)
    at signed distance d, with S's outward normal n there and closest point cpb (S's body frame), keyed by key; from
    the alarm distance on, only where the point's motion over the step reaches S (continuous detection) */
@@ -173,7 +167,6 @@ PETSC_INTERN PetscErrorCode FCCollisionAddShapeContact(FCBody P, FCBody S, Petsc
                                                        const PetscReal x[3], PetscReal d, const PetscReal n[3],
                                                        const PetscReal cpb[3], const PetscReal key[3],
                                                        const FCContactPairs *, PetscMPIInt     rank, FCContactSet *);
-
 /* boxbox.c: two boxes (P body ip, S body is) that have a face each parallel to the other's: the corners of each
    over the other's face in contact, along that face's normal (*done); otherwise nothing (*done false) */
 PETSC_INTERN PetscErrorCode FCCollisionBoxBox(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,
@@ -186,11 +179,11 @@ PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, Pe
                                                 const FCSurfaceTriangle *ta, PetscInt ntb, const FCSurfaceTriangle *tb,
                                                 PetscInt pair, const FCContactPairs *, FCContactSet *);
 
-/* The sharp edges of a closed surface (as edge-edge contacts take them) by their two ends' positions
-   x0: ends[6 k .. 6 k + 5]; full: 15 a row, then the ends' reference positions X and the sum of the
-   two adjacent triangles' outward normals (to be freed) */
-PETSC_INTERN PetscErrorCode FCSurfaceSharpEdgeEnds(const FCSurfaceTopology *, const FCSurfaceTriangle *, PetscBool full,
-                                                   PetscInt *ne, PetscReal **ends);
+/* The sharp edges of a closed surface (as edge-edge contacts take them: -contact_edge_angle) by their two ends'
+   positions x0: ends[6 k .. 6 k + 5]; full: 15 a row, then the ends' reference positions X and the sum of the two
+   adjacent triangles' outward normals (to be freed) */
+PETSC_INTERN PetscErrorCode FCSurfaceSharpEdgeEnds(const FCSurfaceTopology *, const FCSurfaceTriangle *,
+                                                   PetscReal angle, PetscBool full, PetscInt *ne, PetscReal **ends);
 
 /* geometry.c: closest point to p on triangle (a, b, c) with its barycentric weights (Ericson,
    5.1.5); the unit normal of a triangle (x[0], x[1], x[2]), counter-clockwise = outward; the
@@ -241,6 +234,13 @@ PETSC_INTERN PetscBool      FCCCDPointTriangle(const PetscReal p0[3], const Pets
 /* edges a and b as their two ends, flat: a0 = (start of end 0, start of end 1), af the same after the free motion */
 PETSC_INTERN PetscBool FCCCDEdgeEdge(const PetscReal *a0, const PetscReal *af, const PetscReal *b0, const PetscReal *bf,
                                      PetscReal tau, PetscReal *thit);
+/* crossing.c's exact tests: point p0 -> p1 through triangle a0 -> a1 from its outer side (counter-clockwise) to its
+   inner side, the triangle facing the same way throughout (*behind: how far p ends behind its plane); segments a, b
+   meet */
+PETSC_INTERN PetscBool FCCCDPointCrossesTriangle(const PetscReal p0[3], const PetscReal p1[3], const PetscReal a0[3][3],
+                                                 const PetscReal a1[3][3], PetscReal *behind);
+PETSC_INTERN PetscBool FCCCDEdgesMeet(const PetscReal a0[2][3], const PetscReal a1[2][3], const PetscReal b0[2][3],
+                                      const PetscReal b1[2][3]);
 /* How far the vertices of a body that turns over the step (a rigid or kinematic mesh) leave the
    chords the continuous tests follow: theta^2 / 8 times the largest distance of a vertex of tri
    (body-frame positions X) from the point the body turns about; 0 for FE bodies */

@@ -1,19 +1,17 @@
 /* Edge-edge contacts between two bodies with surface triangles (FE-FE, FE-mesh): two edges that
    cross each other where neither body has a vertex (crossed bars) are invisible to the
    vertex-triangle detection. The candidates are the sharp edges of each surface (adjacent
-   triangles' normals more than FC_SHARP_DEG apart; the edges of a flat face triangulation only
-   repeat what its vertices and triangles already constrain); a pair is a contact when its
-   closest points are inside both edges, the edges are not (nearly) parallel, and they come
-   within the alarm distance at the start of the step, or, with continuous detection, over the
-   step (ccd.c). Each edge of the first body keeps its nearest (or first reached) edge of the
-   other. The contact has two barycentric weights per side (prox nv = 2, eq. 6), so every
-   compliance builder and the fast scheme's H take it as they take a vertex-triangle contact;
-   its normal is the cross product of the two edges at the start, pointing out of the second
-   body. Against a rigid mesh the second side is a point and a normal fixed in the mesh's frame
-   (FC_SIDE_RIGID_TRIANGLE). */
+   triangles' normals more than -contact_edge_angle apart, 30 degrees by default: the edges of a flat
+   face triangulation mostly repeat what its vertices and triangles already constrain; 0: every edge, where two
+   flat faces of non-matching meshes pressed together cross each other between their vertices); a pair is a contact when
+   its closest points are inside both edges, the edges are not (nearly) parallel, and they come within the alarm
+   distance at the start of the step, or, with continuous detection, over the step (ccd.c). Each edge of the first body
+   keeps its nearest (or first reached) edge of the other. The contact has two barycentric weights per side (prox nv =
+   2, eq. 6), so every compliance builder and the fast scheme's H take it as they take a vertex-triangle contact; its
+   normal is the cross product of the two edges at the start, pointing out of the second body. Against a rigid mesh the
+   second side is a point and a normal fixed in the mesh's frame (FC_SIDE_RIGID_TRIANGLE). */
 #include "collisionimpl.h"
 
-#define FC_SHARP_DEG 30.0     /* dihedral turn above which an edge is a feature */
 #define FC_PARALLEL_DEG 10.0  /* edges closer than this to parallel: left to the vertex contacts */
 #define FC_EDGE_INTERIOR 0.02 /* closest points within this fraction of an end: a vertex contact's */
 
@@ -24,10 +22,11 @@ typedef struct {
 } Edge;
 
 /* The sharp edges of a closed surface: its interior edges (topology.c, in their order) whose two
-   triangles' normals at the start of the step turn more than FC_SHARP_DEG */
-static PetscErrorCode SharpEdges(const FCSurfaceTopology *T, const FCSurfaceTriangle *tri, PetscInt *ne, Edge **edges)
+   triangles' normals at the start of the step turn more than angle (degrees; 0: all of them) */
+static PetscErrorCode SharpEdges(const FCSurfaceTopology *T, const FCSurfaceTriangle *tri, PetscReal angle,
+                                 PetscInt *ne, Edge **edges)
 {
-  PetscReal cmax = PetscCosReal(FC_SHARP_DEG * PETSC_PI / 180.0), *nrm;
+  PetscReal cmax = PetscCosReal(angle * PETSC_PI / 180.0), *nrm;
   PetscInt  n    = 0;
 
   PetscFunctionBegin;
@@ -39,7 +38,7 @@ static PetscErrorCode SharpEdges(const FCSurfaceTopology *T, const FCSurfaceTria
     PetscReal               *n1 = &nrm[3 * t1], *n2 = &nrm[3 * t2], r1[3], r2[3];
     const FCSurfaceTriangle *Tr = &tri[t1];
     Edge                    *E  = &(*edges)[n];
-    if (FCDot(n1, n2) > cmax) continue;
+    if (angle > 0.0 && FCDot(n1, n2) > cmax) continue;
     for (int j = 0; j < 2; j++) {
       int v      = (a1 + j) % 3;
       E->gdof[j] = Tr->gdof[v];
@@ -180,11 +179,11 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(FCSurfaceTopologyGet(pairs, ia, nta, ta, &Ta));
-  PetscCall(SharpEdges(Ta, ta, &nea, &ea));
+  PetscCall(SharpEdges(Ta, ta, pairs->edge_angle, &nea, &ea));
   neb = nea, eb = ea, Tb = Ta;
   if (!self) {
     PetscCall(FCSurfaceTopologyGet(pairs, ib, ntb, tb, &Tb));
-    PetscCall(SharpEdges(Tb, tb, &neb, &eb));
+    PetscCall(SharpEdges(Tb, tb, pairs->edge_angle, &neb, &eb));
   }
   if (self) PetscCall(FCSelfRingCreate(Ta, pairs->self_ring, &R));
   { /* B a turning mesh: its edges' ends leave their chords (FCCCDArcMargin) */
@@ -241,14 +240,14 @@ PetscErrorCode FCCollisionEdgeEdge(MPI_Comm comm, FCBody A, FCBody B, PetscInt i
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FCSurfaceSharpEdgeEnds(const FCSurfaceTopology *T, const FCSurfaceTriangle *tri, PetscBool full,
-                                      PetscInt *ne, PetscReal **ends)
+PetscErrorCode FCSurfaceSharpEdgeEnds(const FCSurfaceTopology *T, const FCSurfaceTriangle *tri, PetscReal angle,
+                                      PetscBool full, PetscInt *ne, PetscReal **ends)
 {
   Edge    *E;
   PetscInt m = full ? 15 : 6;
 
   PetscFunctionBegin;
-  PetscCall(SharpEdges(T, tri, ne, &E));
+  PetscCall(SharpEdges(T, tri, angle, ne, &E));
   PetscCall(PetscMalloc1(m * (*ne) + 1, ends));
   for (PetscInt k = 0; k < *ne; k++) {
     PetscReal *e = &(*ends)[m * k];

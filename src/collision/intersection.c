@@ -264,8 +264,8 @@ static PetscErrorCode PointsInSurface(PetscInt n, const PetscReal x[], const Clo
 /* Sharp edges of the closed surface P through the closed surface B: both ends outside B, a point
    of the edge inside deeper than depth. The edges are on every rank: rank r counts those with
    k % size == r */
-static PetscErrorCode EdgesThroughSurface(MPI_Comm comm, const Closed *P, const Closed *B, PetscReal depth,
-                                          PetscInt *count)
+static PetscErrorCode EdgesThroughSurface(MPI_Comm comm, const Closed *P, const Closed *B, PetscReal angle,
+                                          PetscReal depth, PetscInt *count)
 {
   PetscInt    ne;
   PetscReal  *ends;
@@ -274,7 +274,7 @@ static PetscErrorCode EdgesThroughSurface(MPI_Comm comm, const Closed *P, const 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(FCSurfaceSharpEdgeEnds(P->T, P->S->tri, PETSC_FALSE, &ne, &ends));
+  PetscCall(FCSurfaceSharpEdgeEnds(P->T, P->S->tri, angle, PETSC_FALSE, &ne, &ends));
   for (PetscInt k = rank; k < ne; k += size) {
     const PetscReal *a = &ends[6 * k], *b = &ends[6 * k + 3];
     if (FCRayGridInside(B->S, &B->G, a) || FCRayGridInside(B->S, &B->G, b))
@@ -387,7 +387,7 @@ static PetscErrorCode SelfEdgesThrough(MPI_Comm comm, Closed *c, const FCContact
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(FCSurfaceSharpEdgeEnds(c->T, c->S->tri, PETSC_TRUE, &ne, &ed));
+  PetscCall(FCSurfaceSharpEdgeEnds(c->T, c->S->tri, pairs->edge_angle, PETSC_TRUE, &ne, &ed));
   for (PetscInt k = rank; k < ne; k += size) {
     const PetscReal *a = &ed[15 * k], *b = a + 3, *Xa = a + 6, *Xb = a + 9, *n = a + 12;
     PetscBool        deep = PETSC_FALSE, end = PETSC_FALSE;
@@ -460,8 +460,8 @@ PetscErrorCode FCCollisionCountPairIntersections(MPI_Comm comm, PetscInt nbodies
       PetscCall(CheckedPoints(comm, bodies, pairs->body[p][1], pairs, &cb, &n, &x));
       PetscCall(PointsInSurface(n, x, &ca, depth, &local));
       PetscCall(PetscFree(x));
-      PetscCall(EdgesThroughSurface(comm, &ca, &cb, depth, &local));
-      PetscCall(EdgesThroughSurface(comm, &cb, &ca, depth, &local));
+      PetscCall(EdgesThroughSurface(comm, &ca, &cb, pairs->edge_angle, depth, &local));
+      PetscCall(EdgesThroughSurface(comm, &cb, &ca, pairs->edge_angle, depth, &local));
       PetscCall(ClosedDestroy(pairs, &ca));
       PetscCall(ClosedDestroy(pairs, &cb));
       continue;

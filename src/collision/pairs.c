@@ -6,10 +6,11 @@
 #include "collisionimpl.h"
 
 struct _p_FCCollision {
-  MPI_Comm       comm;
-  PetscInt       nbodies;
-  FCBody        *bodies; /* the scene's, borrowed */
-  FCContactPairs pairs;
+  MPI_Comm        comm;
+  PetscInt        nbodies;
+  FCBody         *bodies; /* the scene's, borrowed */
+  FCContactPairs  pairs;
+  FCCrossingAudit audit;
 };
 
 PetscErrorCode FCCollisionCreate(MPI_Comm comm, PetscInt nbodies, FCBody bodies[], FCCollision *collision)
@@ -66,6 +67,10 @@ static PetscErrorCode ReadDetection(FCCollision s, PetscOptionItems *PetscOption
                                detection, 16, NULL));
   PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_edge_edge", "Edge-edge contacts between two meshed bodies",
                           &s->pairs.edges, NULL));
+  PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_edge_angle",
+                          "Edge-edge contacts: the edges whose two triangles turn by more than this angle (degrees; 0: "
+                          "every edge)",
+                          &s->pairs.edge_angle, NULL));
   PetscCall(FCOptionsInt(PetscOptionsObject, "-contact_self_ring",
                          "Self-contact (a pair a:a): a vertex leaves out the triangles that touch the surface vertices "
                          "fewer than this many edges from it",
@@ -87,8 +92,20 @@ static PetscErrorCode ReadDetection(FCCollision s, PetscOptionItems *PetscOption
   PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_intersection_depth",
                           "Depth inside another body that counts as an intersection (m)", &s->pairs.intersection_depth,
                           NULL));
-  PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_fail_on_intersection", "Stop the run at the first intersection",
-                          &s->pairs.fail_on_intersection, NULL));
+  PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_fail_on_intersection",
+                          "Stop the run at the first intersection or kept crossing", &s->pairs.fail_on_intersection,
+                          NULL));
+  {
+    const char *modes[] = {"off", "count", "redo"};
+    PetscCall(FCOptionsEList(PetscOptionsObject, "-contact_crossings",
+                             "What went through another body's surface over a step's motion: redo the step smaller "
+                             "(step control), count it, or no audit",
+                             modes, 3, &s->pairs.crossings, NULL));
+  }
+  PetscCall(FCOptionsIntRange(PetscOptionsObject, "-contact_crossings_cuts",
+                              "With -contact_crossings redo: how many times a step with crossings is halved before it "
+                              "is kept with them counted",
+                              0, 30, &s->pairs.crossing_cuts, NULL));
   /* the end-of-step check (src/contact/measures.c): a step whose contacts miss these on the real end-of-step
      geometry gets a warning on its progress line and is counted in the summary */
   PetscCall(FCOptionsReal(PetscOptionsObject, "-contact_check_cone",
@@ -125,6 +142,8 @@ static PetscErrorCode CheckDetection(FCCollision s, PetscInt np, PetscReal mu[],
   for (PetscInt i = 0; i < *nmu; i++)
     PetscCheck(mu[i] >= 0.0 && PetscIsNormalReal(mu[i] + 1.0), s->comm, PETSC_ERR_USER_INPUT,
                "Option -contact_mu: entry %" PetscInt_FMT " must be a finite number >= 0, got %g", i, (double)mu[i]);
+  PetscCheck(s->pairs.edge_angle >= 0.0 && s->pairs.edge_angle < 180.0, s->comm, PETSC_ERR_USER_INPUT,
+             "Option -contact_edge_angle must be in [0, 180) degrees, got %g", (double)s->pairs.edge_angle);
   PetscCheck(s->pairs.self_ring >= 1, s->comm, PETSC_ERR_USER_INPUT,
              "Option -contact_self_ring must be >= 1 (1: a vertex's own triangles), got %" PetscInt_FMT,
              s->pairs.self_ring);
@@ -205,10 +224,13 @@ PetscErrorCode FCCollisionSetFromOptions(FCCollision s)
   s->pairs.facing             = PETSC_TRUE;
   s->pairs.intersection_depth = 1e-4;
   s->pairs.edges              = PETSC_TRUE;
+  s->pairs.edge_angle         = 30.0;
   s->pairs.self_ring          = 2;
   s->pairs.shape_points       = PETSC_TRUE;
   s->pairs.separation_speed   = 1.0;
   s->pairs.check_cone         = 0.01;
+  s->pairs.crossings          = FC_CROSSINGS_REDO;
+  s->pairs.crossing_cuts      = 2;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
   PetscCall(
       PetscOptionsStringArray("-contact_pairs", "Pairs of bodies that may touch: a:b,c:d", NULL, pairs, &np, &set));
@@ -249,10 +271,30 @@ PetscErrorCode FCCollisionCountIntersections(FCCollision c, PetscInt *count)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode FCCollisionAuditStart(FCCollision c)
+{
+  PetscFunctionBegin;
+  if (c->pairs.crossings == FC_CROSSINGS_OFF || !c->pairs.n) PetscFunctionReturn(0);
+  if (!c->audit) PetscCall(FCCrossingAuditCreate(c->nbodies, &c->audit));
+  PetscCall(FCCrossingAuditStart(c->audit, c->comm, c->bodies, &c->pairs));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FCCollisionCountCrossings(FCCollision c, PetscInt *count, PetscReal *deepest)
+{
+  PetscFunctionBegin;
+  *count   = 0;
+  *deepest = 0.0;
+  if (c->pairs.crossings == FC_CROSSINGS_OFF || !c->audit) PetscFunctionReturn(0);
+  PetscCall(FCCrossingAuditCount(c->audit, c->comm, c->bodies, &c->pairs, count, deepest));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FCCollisionDestroy(FCCollision *c)
 {
   PetscFunctionBegin;
   if (!*c) PetscFunctionReturn(0);
+  PetscCall(FCCrossingAuditDestroy(&(*c)->audit));
   PetscCall(PetscFree3((*c)->pairs.body, (*c)->pairs.mu, (*c)->pairs.self_inside));
   for (PetscInt b = 0; b < (*c)->nbodies; b++) PetscCall(FCSurfaceTopologyDestroy(&(*c)->pairs.topo[b]));
   PetscCall(PetscFree((*c)->pairs.topo));

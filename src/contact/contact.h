@@ -98,8 +98,10 @@ PETSC_INTERN void FCContactForceWorld(const FCContact *, PetscReal F[3]);
 typedef struct {
   PetscReal max_penetration, rms_penetration, violation, complementarity, cone_violation;
   PetscReal max_complementarity; /* the largest contact's natural-map error (m) */
-  PetscInt  beyond;        /* contacts beyond the end-of-step check's tolerances (cone_tol, complementarity_tol) */
-  PetscInt  intersections; /* points inside another body (FCCollisionCountIntersections) */
+  PetscInt  beyond;         /* contacts beyond the end-of-step check's tolerances (cone_tol, complementarity_tol) */
+  PetscInt  intersections;  /* points inside another body (FCCollisionCountIntersections) */
+  PetscInt  crossings;      /* features that went through another body's surface over the step (crossing.c) */
+  PetscReal crossing_depth; /* how far the deepest of them ended behind that surface (m) */
 } FCContactMeasures;
 /* The measures, and the contacts whose cone excess (relative to the step's largest contact force)
    is above cone_tol or whose natural-map error is above complementarity_tol (m) */

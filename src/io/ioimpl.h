@@ -90,7 +90,7 @@ typedef struct {
   double    point_end[3], force_world[3], force_tangential;
 } FCContactRecord;
 typedef struct {
-  long long         contacts, rows, sweeps, offset, newton, intersections, beyond;
+  long long         contacts, rows, sweeps, offset, newton, intersections, beyond, crossings;
   double            residual;
   FCContactMeasures m;
 } FCStepRecord;
@@ -125,7 +125,7 @@ struct _p_FCOutput {
   PetscBool contacts;
   hid_t     c_offset, c_bodies, c_point, c_normal, c_force, c_gap, c_gapend, c_state, c_pointend, c_fworld, c_ftan;
   hid_t     s_contacts, s_rows, s_sweeps, s_residual, s_maxpen, s_newton, s_violation, s_rmspen, s_compl, s_cone,
-      s_intersections, s_beyond, s_maxcompl;
+      s_intersections, s_beyond, s_maxcompl, s_crossings, s_crossdepth;
   long long        ctotal;             /* contacts recorded so far */
   long long        clast;              /* contacts of the last recorded step */
   PetscInt         nc, maxc, ns, maxs; /* buffered contact records and per-step rows */

@@ -100,6 +100,8 @@ PetscErrorCode FCOutputRecordsCreate(FCOutput out, PetscInt nbodies, FCBody bodi
     PetscCall(FCH5CreateRows(gs, "intersections", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_intersections));
     PetscCall(FCH5CreateRows(gs, "contacts_beyond_check", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_beyond));
     PetscCall(FCH5CreateRows(gs, "max_complementarity", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_maxcompl));
+    PetscCall(FCH5CreateRows(gs, "crossings", H5T_NATIVE_LLONG, 1, NULL, 256, &out->s_crossings));
+    PetscCall(FCH5CreateRows(gs, "crossing_depth", H5T_NATIVE_DOUBLE, 1, NULL, 256, &out->s_crossdepth));
     PetscCall(FCH5AppendRows(out->rank, out->c_offset, H5T_NATIVE_LLONG, 1, &zero));
     H5Gclose(gs);
     H5Gclose(gc);
@@ -253,6 +255,7 @@ PetscErrorCode FCOutputRecordContacts(FCOutput out, const struct _FCContactSetVi
   out->sbuf[out->ns].newton        = v->stats->newton;
   out->sbuf[out->ns].intersections = v->measures->intersections;
   out->sbuf[out->ns].beyond        = v->measures->beyond;
+  out->sbuf[out->ns].crossings     = v->measures->crossings;
   out->sbuf[out->ns].offset        = out->ctotal;
   out->ns++;
   PetscFunctionReturn(0);
@@ -303,6 +306,8 @@ static PetscErrorCode FlushContacts(FCOutput out)
       {out->s_intersections, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, intersections), 1},
       {out->s_beyond, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, beyond), 1},
       {out->s_maxcompl, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.max_complementarity), 1},
+      {out->s_crossings, H5T_NATIVE_LLONG, 1, offsetof(FCStepRecord, crossings), 1},
+      {out->s_crossdepth, H5T_NATIVE_DOUBLE, 1, offsetof(FCStepRecord, m.crossing_depth), 1},
   };
   char *buf;
 
@@ -408,11 +413,12 @@ PetscErrorCode FCOutputRecordsDestroy(FCOutput out)
     if (out->s_inverted[k] >= 0) H5Dclose(out->s_inverted[k]);
   for (int p = 0; p < FC_PHASE_NUM; p++) H5Dclose(out->timing[p]);
   if (out->contacts) {
-    hid_t ds[] = {out->c_offset, out->c_bodies,   out->c_point,  out->c_normal,        out->c_force,
-                  out->c_gap,    out->c_gapend,   out->c_state,  out->s_contacts,      out->s_rows,
-                  out->s_sweeps, out->s_residual, out->s_maxpen, out->s_newton,        out->s_violation,
-                  out->s_rmspen, out->s_compl,    out->s_cone,   out->s_intersections, out->c_pointend,
-                  out->c_fworld, out->c_ftan,     out->s_beyond, out->s_maxcompl};
+    hid_t ds[] = {out->c_offset,    out->c_bodies,   out->c_point,  out->c_normal,        out->c_force,
+                  out->c_gap,       out->c_gapend,   out->c_state,  out->s_contacts,      out->s_rows,
+                  out->s_sweeps,    out->s_residual, out->s_maxpen, out->s_newton,        out->s_violation,
+                  out->s_rmspen,    out->s_compl,    out->s_cone,   out->s_intersections, out->c_pointend,
+                  out->c_fworld,    out->c_ftan,     out->s_beyond, out->s_maxcompl,      out->s_crossings,
+                  out->s_crossdepth};
     for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) H5Dclose(ds[i]);
   }
 release:

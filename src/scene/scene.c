@@ -291,9 +291,9 @@ static PetscErrorCode PrintSummary(FCScene s, PetscLogDouble wall)
         s->comm,
         "  contacts: %" PetscInt_FMT " step(s) beyond the end-of-step check (worst cone violation %.3g, "
         "-contact_check_cone %g; worst natural-map error %.3g m, -contact_check_complementarity %g), "
-        "%" PetscInt_FMT " step(s) with points inside another body\n",
+        "%" PetscInt_FMT " step(s) with points inside another body, %" PetscInt_FMT " step(s) with crossings\n",
         s->checks.beyond, (double)s->checks.cone, (double)s->pairs->check_cone, (double)s->checks.complementarity,
-        (double)s->pairs->check_complementarity, s->checks.intersecting));
+        (double)s->pairs->check_complementarity, s->checks.intersecting, s->checks.crossed));
   PetscCall(PetscPrintf(s->comm, "  output: %s (open the .xmf beside it in ParaView)\n", s->output_file));
   PetscFunctionReturn(0);
 }
@@ -312,6 +312,11 @@ static void StepWarning(FCScene s, char buf[], size_t len)
                           "  WARNING: %" PetscInt_FMT " point(s) inside another body (%" PetscInt_FMT
                           " step(s) so far; /steps/intersections)",
                           m->intersections, s->checks.intersecting);
+  if (m->crossings && n < len)
+    n += (size_t)snprintf(buf + n, len - n,
+                          "  WARNING: %" PetscInt_FMT " point(s) or edge(s) went through another body's surface, the "
+                          "deepest %.3g m (%" PetscInt_FMT " step(s) so far; /steps/crossings)",
+                          m->crossings, (double)m->crossing_depth, s->checks.crossed);
   if (m->beyond && n < len)
     (void)snprintf(buf + n, len - n,
                    "  WARNING: %" PetscInt_FMT " of %" PetscInt_FMT
@@ -358,15 +363,16 @@ static PetscErrorCode SceneRun(FCScene s)
       StepWarning(s, warning, sizeof(warning));
       PetscCall(FCProgressUpdate(&s->progress, s->comm, s->step, s->nsteps, s->t, warning));
     }
-    if (s->pairs->fail_on_intersection && s->measures.intersections) { /* the step's frame, then close */
-      if (s->step % s->every && s->step < s->nsteps) PetscCall(WriteOutputStepOrClose(s));
+    if (s->pairs->fail_on_intersection && (s->measures.intersections || s->measures.crossings)) {
+      if (s->step % s->every && s->step < s->nsteps) PetscCall(WriteOutputStepOrClose(s)); /* its frame, then close */
       PetscCall(FCOutputDestroy(&s->output));
       SETERRQ(s->comm, PETSC_ERR_NOT_CONVERGED,
               "step %" PetscInt_FMT " (t = %g s) ends with %" PetscInt_FMT
-              " point(s) deeper than -contact_intersection_depth %g inside another body, and "
+              " point(s) deeper than -contact_intersection_depth %g inside another body and %" PetscInt_FMT
+              " point(s) or edge(s) that went through another body's surface (the deepest %g m), and "
               "-contact_fail_on_intersection is set; %s is closed and holds the %" PetscInt_FMT " completed steps",
-              s->step, (double)s->t, s->measures.intersections, (double)s->pairs->intersection_depth, s->output_file,
-              s->step);
+              s->step, (double)s->t, s->measures.intersections, (double)s->pairs->intersection_depth,
+              s->measures.crossings, (double)s->measures.crossing_depth, s->output_file, s->step);
     }
     PetscCall(FCSignalsPending(s->comm, &sig));
     if (sig && s->step < s->nsteps) { /* the last step's frame and restart state, then close */

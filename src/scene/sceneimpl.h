@@ -40,6 +40,7 @@ struct _p_FCScene {
   FCSettle              settle;      /* -contact_settle_* (settle.c) */
   struct {                           /* the end-of-step checks over the steps run (the summary's) */
     PetscInt  intersecting, beyond;  /* steps with points inside another body; with contacts beyond the check */
+    PetscInt  crossed;               /* steps that kept crossings (-contact_crossings count, or at the smallest step) */
     PetscReal cone, complementarity; /* the worst cone violation and contact natural-map error of the run */
   } checks;
   struct { /* per FE body over the steps run (the summary's): the steps that ended with an element inside out, */

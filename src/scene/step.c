@@ -11,12 +11,31 @@ static PetscErrorCode PlantedFailure(FCScene s, PetscInt step)
   SETERRQ(s->comm, PETSC_ERR_CONV_FAILED, "a failure planted by -time_step_fail_at %" PetscInt_FMT, step);
 }
 
+/* The crossing audit's verdict on a sub-step of hs with -contact_crossings redo: a step failure, which step control
+   redoes with half the step, while the step has been cut fewer than -contact_crossings_cuts times and is above
+   -time_step_min; then the sub-step is kept with its crossings counted (docs/method.md, 2.6) */
+static PetscErrorCode Crossed(FCScene s, PetscReal hs)
+{
+  const FCContactMeasures *m = &s->measures;
+  PetscReal                floor;
+
+  PetscFunctionBegin;
+  if (s->pairs->crossings != FC_CROSSINGS_REDO || !m->crossings || !s->control.on) PetscFunctionReturn(0);
+  floor = s->h / PetscPowReal(2.0, (PetscReal)s->pairs->crossing_cuts);
+  if (hs <= floor * (1.0 + 1e-9) || hs < 2.0 * s->control.hmin * (1.0 - 1e-9)) PetscFunctionReturn(0);
+  SETERRQ(s->comm, PETSC_ERR_CONV_FAILED,
+          "%" PetscInt_FMT " point(s) or edge(s) went through another body's surface over the step, the deepest ending "
+          "%g m behind it (-contact_crossings redo)",
+          m->crossings, (double)m->crossing_depth);
+}
+
 /* One sub-step from s->t with the bodies' time step hs: free motion (eq. 5) -> [contacts] ->
    integration (eq. 2) -> the end-of-step measures and checks; `step` is the requested step it belongs to */
 static PetscErrorCode SubStep(FCScene s, PetscInt step, PetscReal hs, PetscBool *failed)
 {
   PetscFunctionBegin;
   *failed = PETSC_FALSE;
+  if (s->pairs->n) PetscCall(FCCollisionAuditStart(s->collision));
   for (PetscInt i = 0; i < s->nbodies; i++) STEP_TRY(s, failed, FCBodyComputeFreeMotion(s->bodies[i], s->t));
   if (s->pairs->n) {
     PetscCall(FCPhaseBegin(FC_PHASE_COLLISION));
@@ -32,7 +51,9 @@ static PetscErrorCode SubStep(FCScene s, PetscInt step, PetscReal hs, PetscBool 
     PetscCall(FCCollisionEndGaps(s->collision, &s->set));
     FCContactSetMeasure(&s->set, s->pairs->check_cone, s->pairs->check_complementarity, &s->measures);
     PetscCall(FCCollisionCountIntersections(s->collision, &s->measures.intersections));
+    PetscCall(FCCollisionCountCrossings(s->collision, &s->measures.crossings, &s->measures.crossing_depth));
     PetscCall(FCPhaseEnd(FC_PHASE_COLLISION));
+    STEP_TRY(s, failed, Crossed(s, hs));
   }
   for (PetscInt i = 0; i < s->nbodies; i++) STEP_TRY(s, failed, FCBodyCheckState(s->bodies[i], step));
   STEP_TRY(s, failed, FCEnergyGuardCheck(&s->guard, s->comm, s->nbodies, s->bodies, step, s->t + hs, hs));
@@ -96,6 +117,7 @@ static PetscErrorCode SceneStep(FCScene s)
   }
   if (s->pairs->n) {
     if (s->measures.intersections) s->checks.intersecting++;
+    if (s->measures.crossings) s->checks.crossed++;
     if (s->measures.beyond) s->checks.beyond++;
     s->checks.cone            = PetscMax(s->checks.cone, s->measures.cone_violation);
     s->checks.complementarity = PetscMax(s->checks.complementarity, s->measures.max_complementarity);
