@@ -220,7 +220,6 @@ static PetscInt SignChanges(const PetscReal c[4], PetscBool down, PetscReal root
   return nr;
 }
 
-
 /* Whether the triangle a (at some time of the step; a0 at its start, a1 at its end) faces the way it did at both ends,
    with at least a tenth of the smaller of their areas: one that turns over (an element inside out) changes the side a
    point is on without the point going through it */

@@ -1,4 +1,4 @@
-/* The crossing audit (docs/method.md, 2.6; /steps/crossings): after a step's solve and integration,
+/* The crossing audit (docs/method.md, 2.7; /steps/crossings): after a step's solve and integration,
    what went through the surface of another body over the step's actual motion without a contact
    holding it. Every point moves linearly from its start-of-step position to its end-of-step one;
    the features are those of the detection and of the intersection count (intersection.c):

@@ -98,8 +98,8 @@ static PetscErrorCode ReadDetection(FCCollision s, PetscOptionItems *PetscOption
   {
     const char *modes[] = {"off", "count", "redo"};
     PetscCall(FCOptionsEList(PetscOptionsObject, "-contact_crossings",
-                             "What went through another body's surface over a step's motion: redo the step smaller "
-                             "(step control), count it, or no audit",
+                             "What went through another body's surface over a step's motion: count it, redo the step "
+                             "smaller (step control), or no audit",
                              modes, 3, &s->pairs.crossings, NULL));
   }
   PetscCall(FCOptionsIntRange(PetscOptionsObject, "-contact_crossings_cuts",
@@ -229,7 +229,7 @@ PetscErrorCode FCCollisionSetFromOptions(FCCollision s)
   s->pairs.shape_points       = PETSC_TRUE;
   s->pairs.separation_speed   = 1.0;
   s->pairs.check_cone         = 0.01;
-  s->pairs.crossings          = FC_CROSSINGS_REDO;
+  s->pairs.crossings          = FC_CROSSINGS_COUNT;
   s->pairs.crossing_cuts      = 2;
   PetscOptionsBegin(s->comm, NULL, "Contact options", "FCScene");
   PetscCall(

@@ -64,6 +64,65 @@ static PetscErrorCode VertexAtFree(FCBody S, const PetscReal x0[3], const PetscR
   PetscFunctionReturn(0);
 }
 
+/* Whether the world point x is over the face of S (at `when`) whose plane is (point cb, outward normal nb, body frame):
+   its projection on the plane, moved out by eps, is nearest that plane (not an edge or another face) */
+static PetscErrorCode OverFace(FCBody S, PetscInt when, const PetscReal x[3], const PetscReal cb[3],
+                               const PetscReal nb[3], PetscReal eps, PetscBool *over)
+{
+  PetscReal xb[3], rel[3], h, nw[3], q[3], dq, nq[3], cq[3];
+
+  PetscFunctionBegin;
+  PetscCall(FCBodyToBodyFrame(S, when, x, PETSC_FALSE, xb));
+  for (int k = 0; k < 3; k++) rel[k] = xb[k] - cb[k];
+  h = FCDot(rel, nb);
+  PetscCall(FCCollisionBodyDirection(S, when, nb, nw));
+  for (int k = 0; k < 3; k++) q[k] = x[k] - (h - eps) * nw[k];
+  PetscCall(FCBodyShapeDistance(S, when, q, &dq, nq, cq));
+  *over = PetscAbsReal(dq - eps) < 0.5 * eps && FCDot(nq, nw) > 0.999 ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* the cosine of 1 degree: a vertex's contact whose normal is further than this from opposed to the vertex's own is at
+   an edge or a side of the shape (FacingFace) */
+#define FC_FACE_COS 0.9998476951563913
+
+/* A vertex x0 -> xf (own outward normal nv) near an edge or a side of the shape S, its nearest feature's normal n more
+   than a degree from facing it (a slab vertex at the front edge of a box sliding over it), takes instead the face of
+   S that faces it, where it is over that face at the start or after the free motion: the face nearest the point
+   c - R nv (c the shape's centre, R beyond its reach), whose outward normal is opposed to nv within 45 degrees; the
+   contact is against that face's plane, at the point of the plane under x0, with the depth of x0 below it as its gap.
+   Otherwise d, n and cpb stay. Along the edge's or the front face's normal the contact would be a wall across the
+   sliding motion: the box snags on the vertex and hops. */
+static PetscErrorCode FacingFace(FCBody S, const PetscReal x0[3], const PetscReal xf[3], const PetscReal nv[3],
+                                 PetscReal eps, PetscReal *d, PetscReal n[3], PetscReal cpb[3])
+{
+  FCProximity o = {0};
+  PetscReal   c[3], R, y[3], dy, ny[3], cb[3], nb[3], xb[3], h, rel[3];
+  PetscBool   over0, overf;
+
+  PetscFunctionBegin;
+  if (!(eps > 0.0)) PetscFunctionReturn(0);
+  PetscCall(FCBodyProximityPosition(S, &o, FC_AT_NOW, c));
+  for (int k = 0; k < 3; k++) rel[k] = x0[k] - c[k];
+  R = 2.0 * PetscSqrtReal(FCDot(rel, rel)) + eps;
+  for (int k = 0; k < 3; k++) y[k] = c[k] - R * nv[k];
+  PetscCall(FCBodyShapeDistance(S, FC_AT_NOW, y, &dy, ny, cb));
+  if (!(dy > 0.0) || FCDot(ny, nv) > -PetscSqrtReal(0.5)) PetscFunctionReturn(0);
+  PetscCall(FCBodyToBodyFrame(S, FC_AT_NOW, ny, PETSC_TRUE, nb));
+  PetscCall(OverFace(S, FC_AT_NOW, x0, cb, nb, eps, &over0));
+  PetscCall(OverFace(S, FC_AT_FREE, xf, cb, nb, eps, &overf));
+  if (!over0 && !overf) PetscFunctionReturn(0);
+  PetscCall(FCBodyToBodyFrame(S, FC_AT_NOW, x0, PETSC_FALSE, xb));
+  for (int k = 0; k < 3; k++) rel[k] = xb[k] - cb[k];
+  h  = FCDot(rel, nb);
+  *d = h;
+  for (int k = 0; k < 3; k++) {
+    n[k]   = ny[k];
+    cpb[k] = xb[k] - h * nb[k];
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The candidate points of P (an FE body's owned boundary vertices, a shape's picture points)
    against the signed distance of the shape of S. With vn (-contact_facing; the vertex normals of
    an FE P's surface), a vertex outside the shape whose closest point's normal is within 75 degrees
@@ -94,12 +153,14 @@ PetscErrorCode FCCollisionPointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, 
       for (int k = 0; k < 3; k++) key1.X[k] = prox[i].X[0][k];
       own = (const FCVertexNormal *)bsearch(&key1, vn, nvn, sizeof(FCVertexNormal), FCComparePoint);
     }
-    if (own && d > 0.0 && PetscAbsReal(FCDot(nrm, own->n)) < FC_FACING_COS) continue;
     if (d >= pairs->distance) { /* continuous: a speculative contact if the motion reaches the shape */
       PetscBool hit = PETSC_FALSE;
       if (pairs->continuous) PetscCall(FCCCDPointShape(S, &x0[3 * i], &xf[3 * i], d, tau, &hit));
       if (!hit) continue;
     }
+    if (own && FCBodyHasBoundedShape(S) && FCDot(nrm, own->n) > -FC_FACE_COS)
+      PetscCall(FacingFace(S, &x0[3 * i], &xf[3 * i], own->n, 1e-3 * pairs->distance, &d, nrm, cpb));
+    if (own && d > 0.0 && PetscAbsReal(FCDot(nrm, own->n)) < FC_FACING_COS) continue;
     PetscCall(PetscMemzero(&c, sizeof(c)));
     c.pair    = p;
     c.body[0] = ipts;

@@ -13,7 +13,7 @@ static PetscErrorCode PlantedFailure(FCScene s, PetscInt step)
 
 /* The crossing audit's verdict on a sub-step of hs with -contact_crossings redo: a step failure, which step control
    redoes with half the step, while the step has been cut fewer than -contact_crossings_cuts times and is above
-   -time_step_min; then the sub-step is kept with its crossings counted (docs/method.md, 2.6) */
+   -time_step_min; then the sub-step is kept with its crossings counted (docs/method.md, 2.7) */
 static PetscErrorCode Crossed(FCScene s, PetscReal hs)
 {
   const FCContactMeasures *m = &s->measures;
