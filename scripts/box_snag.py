@@ -5,7 +5,7 @@ elements (issue 57; docs/validation.md, "Frictionless box on FE slabs").
 The slab: meshes/slide_slab_coarse.msh, slide_slab.msh, slide_slab_fine.msh (1 m x 0.3 m x 5 cm,
 elements of 5, 2.5 and 1.25 cm), linear, E = 2e7, bottom fixed, its top at z = 0 from x = -0.1 to 0.9;
 the box (2000 kg/m^3) starts on it at x = -0.095 + its half edge, launched along x, mu = 0, h = 0.005,
-the alarm distance 5 mm, for T = min(0.5 s, the time its front face takes to 5 cm from the slab's end). Printed per case: the speed kept (the mean
+the alarm distance 5 mm, -contact_facing_face 1 (--default: 0, the default), for T = min(0.5 s, the time its front face takes to 5 cm from the slab's end). Printed per case: the speed kept (the mean
 speed of the last 5 steps over the launch speed), the hop (the range of the box's height), its
 lowest speed, /steps/crossings and /steps/intersections summed over the steps.
 
@@ -24,6 +24,7 @@ EXE = os.environ.get("FECONTACT", os.path.join(ROOT, "build", "fecontact"))
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OPENBLAS_NUM_THREADS="1")
 MESHES = {"coarse": ("slide_slab_coarse", 0.05), "medium": ("slide_slab", 0.025), "fine": ("slide_slab_fine", 0.0125)}
 H = 0.005
+FACE = True  # -contact_facing_face (--default: the default, off)
 
 
 def options(mesh, half, v):
@@ -33,7 +34,8 @@ def options(mesh, half, v):
             "meshes/%s.msh" % mesh, "-slab_material", "linear", "-slab_young", "2e7", "-slab_density", "1000",
             "-slab_translate", "0.4,0,-0.05", "-slab_fixed_box", "-3,-3,-1,3,3,-0.049", "-box_type", "rigid",
             "-box_shape", "box", "-box_half_extents", "%g,%g,%g" % (half, half, half), "-box_density", "2000",
-            "-box_center", "%g,0.0125,%g" % (-0.095 + half, half), "-box_velocity", "%g,0,0" % v]
+            "-box_center", "%g,0.0125,%g" % (-0.095 + half, half), "-box_velocity", "%g,0,0" % v,
+            "-contact_facing_face", "1" if FACE else "0"]
 
 
 def slide(mesh, half, v, np_=1, extra=(), tmp=None):
@@ -56,9 +58,13 @@ def main():
     ap.add_argument("--edges", default="1,2,4")
     ap.add_argument("--speeds", default="0.5,1,2")
     ap.add_argument("--meshes", default="coarse,medium,fine")
+    ap.add_argument("--default", action="store_true", help="without -contact_facing_face (the default)")
     a = ap.parse_args()
+    global FACE
+    FACE = not a.default
     tmp = tempfile.mkdtemp(prefix="fc-snag-")
-    print("frictionless rigid box on an FE slab (np %d): speed kept, hop, lowest speed / launch speed" % a.np)
+    print("frictionless rigid box on an FE slab (np %d, -contact_facing_face %d): speed kept, hop, lowest speed / "
+          "launch speed" % (a.np, FACE))
     print("%-7s %7s %6s %5s | %7s %9s %7s %6s %6s" % ("mesh", "element", "edge", "v", "kept", "hop m", "lowest",
                                                    "cross", "inter"))
     for m in a.meshes.split(","):

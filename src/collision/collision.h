@@ -16,6 +16,7 @@ typedef struct {
   PetscReal  pass2_dormant; /* -contact_fe_pass2_dormant: such contacts dormant instead (< 0: off) */
   PetscReal  dormant_depth; /* -contact_dormant_depth: a dormant contact wakes when left deeper than this (m) */
   PetscBool  facing;        /* -contact_facing: a vertex lands only on triangles that face its own surface */
+  PetscBool  facing_face;   /* -contact_facing_face: a vertex near a shape's edge takes the shape's face facing it */
   PetscBool  continuous;    /* -contact_detection continuous (default) or discrete */
   PetscBool  edges;         /* -contact_edge_edge: edge-edge contacts of meshed pairs (default) */
   PetscReal  edge_angle;    /* -contact_edge_angle: an edge is a candidate where its triangles turn more (deg; 0 all) */

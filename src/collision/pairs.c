@@ -61,6 +61,10 @@ static PetscErrorCode ReadDetection(FCCollision s, PetscOptionItems *PetscOption
                           NULL));
   PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_facing",
                           "A vertex lands only on triangles that face its own surface", &s->pairs.facing, NULL));
+  PetscCall(FCOptionsBool(PetscOptionsObject, "-contact_facing_face",
+                          "An FE vertex near an edge of a bounded shape, over the shape's face that faces it, is a "
+                          "contact against that face's plane",
+                          &s->pairs.facing_face, NULL));
   PetscCall(FCOptionsRealList(PetscOptionsObject, "-contact_mu", "Friction coefficient: one value, or one per pair",
                               FC_MAX_BODIES, mu, nmu, setmu));
   PetscCall(PetscOptionsString("-contact_detection", "Contact detection: continuous or discrete", NULL, detection,
@@ -222,6 +226,7 @@ PetscErrorCode FCCollisionSetFromOptions(FCCollision s)
   s->pairs.pass2_dormant      = 0.01;
   s->pairs.dormant_depth      = 1e-5;
   s->pairs.facing             = PETSC_TRUE;
+  s->pairs.facing_face        = PETSC_FALSE;
   s->pairs.intersection_depth = 1e-4;
   s->pairs.edges              = PETSC_TRUE;
   s->pairs.edge_angle         = 30.0;

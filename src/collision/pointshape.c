@@ -85,11 +85,14 @@ static PetscErrorCode OverFace(FCBody S, PetscInt when, const PetscReal x[3], co
 /* the cosine of 1 degree: a vertex's contact whose normal is further than this from opposed to the vertex's own is at
    an edge or a side of the shape (FacingFace) */
 #define FC_FACE_COS 0.9998476951563913
+/* the cosine of 10 degrees: the face of a shape that a vertex takes instead lies within this of parallel to the
+   vertex's own surface (a box flat on a slab, not a box's face pushing a curved body at an angle) */
+#define FC_PARALLEL_FACE_COS 0.984807753012208
 
 /* A vertex x0 -> xf (own outward normal nv) near an edge or a side of the shape S, its nearest feature's normal n more
    than a degree from facing it (a slab vertex at the front edge of a box sliding over it), takes instead the face of
    S that faces it, where it is over that face at the start or after the free motion: the face nearest the point
-   c - R nv (c the shape's centre, R beyond its reach), whose outward normal is opposed to nv within 45 degrees; the
+   c - R nv (c the shape's centre, R beyond its reach), whose outward normal is opposed to nv within 10 degrees; the
    contact is against that face's plane, at the point of the plane under x0, with the depth of x0 below it as its gap.
    Otherwise d, n and cpb stay. Along the edge's or the front face's normal the contact would be a wall across the
    sliding motion: the box snags on the vertex and hops. */
@@ -107,7 +110,7 @@ static PetscErrorCode FacingFace(FCBody S, const PetscReal x0[3], const PetscRea
   R = 2.0 * PetscSqrtReal(FCDot(rel, rel)) + eps;
   for (int k = 0; k < 3; k++) y[k] = c[k] - R * nv[k];
   PetscCall(FCBodyShapeDistance(S, FC_AT_NOW, y, &dy, ny, cb));
-  if (!(dy > 0.0) || FCDot(ny, nv) > -PetscSqrtReal(0.5)) PetscFunctionReturn(0);
+  if (!(dy > 0.0) || FCDot(ny, nv) > -FC_PARALLEL_FACE_COS) PetscFunctionReturn(0);
   PetscCall(FCBodyToBodyFrame(S, FC_AT_NOW, ny, PETSC_TRUE, nb));
   PetscCall(OverFace(S, FC_AT_NOW, x0, cb, nb, eps, &over0));
   PetscCall(OverFace(S, FC_AT_FREE, xf, cb, nb, eps, &overf));
@@ -158,7 +161,7 @@ PetscErrorCode FCCollisionPointsAgainstShape(FCBody P, FCBody S, PetscInt ipts, 
       if (pairs->continuous) PetscCall(FCCCDPointShape(S, &x0[3 * i], &xf[3 * i], d, tau, &hit));
       if (!hit) continue;
     }
-    if (own && FCBodyHasBoundedShape(S) && FCDot(nrm, own->n) > -FC_FACE_COS)
+    if (own && pairs->facing_face && FCBodyHasBoundedShape(S) && FCDot(nrm, own->n) > -FC_FACE_COS)
       PetscCall(FacingFace(S, &x0[3 * i], &xf[3 * i], own->n, 1e-3 * pairs->distance, &d, nrm, cpb));
     if (own && d > 0.0 && PetscAbsReal(FCDot(nrm, own->n)) < FC_FACING_COS) continue;
     PetscCall(PetscMemzero(&c, sizeof(c)));
