@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""What the crossing audit costs per contact step (issue 57; docs/benchmarks.md).
+"""What the crossing audit costs per contact step (issue 57; docs/hard-cases.md, "What the crossing audit costs").
 
 Runs each scene with -contact_crossings off, count and redo, alternately, REPEAT times, and prints
 per scene: the mean time of a contact step (the sum of the /steps/timing phases over the steps
