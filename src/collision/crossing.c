@@ -5,12 +5,14 @@
    - a vertex of a surface (an FE body's, a rigid mesh's) or a point of a bounded shape's picture,
      against the triangles of another body's surface (both ways between two meshed bodies), and in a
      self pair (a:a) a vertex against its own body's triangles outside its ring (-contact_self_ring);
-   - an edge of a surface against the edges of another body's surface (two meshed bodies).
+   - a sharp edge of a surface (-contact_edge_angle) against the edges of another body's surface (two meshed
+     bodies).
    A vertex crosses a triangle when, at some time of the step, it passes through the triangle's
    interior from its outer side (the outward normal's) to its inner side: the triple product
    f(t) = n(t) . (p(t) - a(t)), n = (b - a) x (c - a), a cubic in t, goes from + to - at a time
-   where the point is inside the triangle. It counts when at the end of the step the point is still
-   behind that triangle's plane by more than -contact_intersection_depth and farther than that from
+   where the point is inside the triangle, the triangle facing the same way as at the step's start and end (one that
+   turns over, an element inside out, moves its plane across the point instead). It counts when at the end of the step
+   the point is still behind that triangle's plane by more than -contact_intersection_depth and farther than that from
    the other body's surface: deep inside it, or through it and out on its other side (a ball that
    went wholly through a membrane). A vertex that a contact holds on the surface is within that depth
    of it; one that started behind the triangle (an intersection already counted) does not cross it
@@ -31,7 +33,7 @@ static inline void Lerp(const PetscReal x0[3], const PetscReal x1[3], PetscReal 
 
 struct _FCCrossingAudit {
   PetscInt            nbodies;
-  PetscInt           *ntri; /* per scene body: its gathered triangles at the start (-1: not taken) */
+  PetscInt           *ntri; /* per scene body: its gathered triangles at the start (0: not taken) */
   FCSurfaceTriangle **tri;
   PetscInt           *npts; /* per scene body: a bounded shape's picture points at the start */
   PetscReal         **pts;
