@@ -62,11 +62,12 @@ typedef struct {
 PETSC_INTERN PetscErrorCode FCRayGridCreate(const FCSurface *, FCRayGrid *);
 PETSC_INTERN PetscErrorCode FCRayGridDestroy(FCRayGrid *);
 PETSC_INTERN PetscBool      FCRayGridInside(const FCSurface *, const FCRayGrid *, const PetscReal x[3]);
-/* Whether the point x of the closed surface S (its outward normal there n, not unit) is inside another part of
-   S's body: the winding number just outside x is 1 or more */
+/* Whether x on the closed surface S (outward normal n) is inside another part of its body (winding number >= 1); the
+   squared distance from x to S's nearest triangle outside ring (NULL: none) hashed in x's cell (PETSC_MAX_REAL: none)
+ */
 PETSC_INTERN PetscBool FCRayGridSelfInside(const FCSurface *, const FCRayGrid *, const PetscReal x[3],
                                            const PetscReal n[3]);
-
+PETSC_INTERN PetscReal FCSurfaceNearestOutsideRing(const FCSurface *, FCSelfRing *ring, const PetscReal x[3]);
 /* collision.c, what the vertex contacts share with the shape points (shapepoints.c): the triangle
    of S a point moving x0 -> xf lands on (nv: the normal of the point's own surface, for
    -contact_facing; *best -1 if none; w, cp: weights and closest point at the start); the FE
@@ -172,7 +173,6 @@ PETSC_INTERN PetscErrorCode FCCollisionAddShapeContact(FCBody P, FCBody S, Petsc
 PETSC_INTERN PetscErrorCode FCCollisionBoxBox(FCBody P, FCBody S, PetscInt ip, PetscInt is, PetscInt pair,
                                               const FCContactPairs *, PetscMPIInt rank, FCContactSet *,
                                               PetscBool *done);
-
 /* edges.c: the edge-edge contacts of the sharp edges of A (FE) against those of B (FE or mesh), from their
    gathered surface triangles (the detection's: nta of ta, ntb of tb; a self pair passes A's twice) */
 PETSC_INTERN PetscErrorCode FCCollisionEdgeEdge(MPI_Comm, FCBody A, FCBody B, PetscInt ia, PetscInt ib, PetscInt nta,

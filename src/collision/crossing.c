@@ -79,23 +79,10 @@ static PetscErrorCode SweptDestroy(const FCContactPairs *pairs, Swept *w)
   PetscFunctionReturn(0);
 }
 
-/* The squared distance from x to the nearest triangle of B at the end (outside the current ring of a self pair)
-   among those hashed in x's cell (PETSC_MAX_REAL: none there, farther than the depth) */
-static PetscReal Nearest2(const Swept *B, const PetscReal x[3])
+/* The squared distance from x to the nearest triangle of B at the end, outside the current ring of a self pair */
+static inline PetscReal Nearest2(const Swept *B, const PetscReal x[3])
 {
-  PetscInt  cb, ce;
-  PetscReal best = PETSC_MAX_REAL;
-
-  FCSurfaceQueryPoint(B->S, x, &cb, &ce);
-  for (PetscInt e = cb; e < ce; e++) {
-    const FCSurfaceTriangle *T = &B->S->tri[B->S->cells[e].tri];
-    PetscReal                cp[3], w[3], d2 = 0.0;
-    if (B->ring && FCSelfRingHas(B->ring, B->S->cells[e].tri)) continue;
-    FCClosestPointTriangle(x, T->x0[0], T->x0[1], T->x0[2], cp, w);
-    for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
-    best = PetscMin(best, d2);
-  }
-  return best;
+  return FCSurfaceNearestOutsideRing(B->S, B->ring, x);
 }
 
 /* Whether the point x0 -> x1 (reference position X in a self pair) crosses a triangle of B (see the top); *deepest

@@ -343,17 +343,15 @@ PetscBool FCRayGridSelfInside(const FCSurface *S, const FCRayGrid *G, const Pets
   return SelfWinding(S, G, xout, n) >= 1 ? PETSC_TRUE : PETSC_FALSE;
 }
 
-/* the squared distance from x to the nearest triangle outside the current ring among those hashed
-   in x's cell (PETSC_MAX_REAL: none) */
-static PetscReal SelfNearest(const Closed *c, const PetscReal x[3])
+PetscReal FCSurfaceNearestOutsideRing(const FCSurface *S, FCSelfRing *ring, const PetscReal x[3])
 {
   PetscInt  cb, ce;
   PetscReal bestd = PETSC_MAX_REAL;
-  FCSurfaceQueryPoint(c->S, x, &cb, &ce);
+  FCSurfaceQueryPoint(S, x, &cb, &ce);
   for (PetscInt e = cb; e < ce; e++) {
-    const FCSurfaceTriangle *T = &c->S->tri[c->S->cells[e].tri];
+    const FCSurfaceTriangle *T = &S->tri[S->cells[e].tri];
     PetscReal                cp[3], w[3], d2 = 0.0;
-    if (FCSelfRingHas(c->S->ring, c->S->cells[e].tri)) continue;
+    if (ring && FCSelfRingHas(ring, S->cells[e].tri)) continue;
     FCClosestPointTriangle(x, T->x0[0], T->x0[1], T->x0[2], cp, w);
     for (int d = 0; d < 3; d++) d2 += PetscSqr(x[d] - cp[d]);
     bestd = PetscMin(bestd, d2);
@@ -372,7 +370,9 @@ static PetscErrorCode SelfDeep(Closed *c, const FCContactPairs *pairs, const Pet
   if (!FCRayGridSelfInside(c->S, &c->G, x, n)) PetscFunctionReturn(0);
   if (!c->S->ring) PetscCall(FCSelfRingCreate(c->T, pairs->self_ring, &c->S->ring)); /* at the first such point */
   FCSelfRingVertex(c->S->ring, X);
-  *deep = SelfNearest(c, x) > pairs->intersection_depth * pairs->intersection_depth ? PETSC_TRUE : PETSC_FALSE;
+  *deep = FCSurfaceNearestOutsideRing(c->S, c->S->ring, x) > pairs->intersection_depth * pairs->intersection_depth
+              ? PETSC_TRUE
+              : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
